@@ -1,0 +1,1 @@
+//! marsden-io: writers and plots, kept out of the core.

@@ -1,0 +1,1 @@
+//! marsden: discrete mechanics and variational integrators.
