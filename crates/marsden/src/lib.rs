@@ -1,5 +1,65 @@
-//! marsden: discrete mechanics and variational integrators.
+//! # marsden: discrete mechanics and variational integrators
+//!
+//! Write a Lagrangian once, generic over a dual-number [`Scalar`], and simulate it with a
+//! variational integrator that preserves its geometry (Marsden & West, *Discrete mechanics and
+//! variational integrators*, Acta Numerica 2001).
+//!
+//! ```
+//! use marsden::{Initial, Midpoint, Problem, SolveOptions, TimeGrid, systems::Pendulum};
+//! use marsden::diagnostics::EnergyReport;
+//!
+//! let pendulum = Pendulum::default();
+//! let problem = Problem::new(pendulum, Initial::velocity(&[1.5], &[0.0]), TimeGrid::new(0.0, 0.05, 2000)?)?;
+//! let trajectory = problem.solve(&Midpoint, &SolveOptions::default())?;
+//! let energy = EnergyReport::of(&pendulum, &trajectory)?;
+//! assert!(energy.max_rel_error < 2e-3); // R8: 8.99e-5 / 0.0707 for h = 0.05
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! ## Map of the crate (data flows down)
+//!
+//! | stage | module | seed concept |
+//! |---|---|---|
+//! | scalar | [`scalar`] | one generic axis: `f64` or dual numbers |
+//! | system | [`lagrangian`], [`force`], [`constraint`], [`systems`] | `L(t, q, v)`, `f_L`, `φ(q)`, the catalog |
+//! | continuous mechanics | [`mechanics`] | Legendre transform, energy, Euler–Lagrange, regularity |
+//! | discrete Lagrangian | [`discrete`], [`rules`] | `L_d`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; midpoint, trapezoid, α-rules |
+//! | step | [`step`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
+//! | integrator | [`integrator`] | rule + forces + constraints + solver + buffers |
+//! | run | [`problem`], [`simulate`], [`trajectory`] | problem → trajectory, stride, observers, failures |
+//! | diagnostics | [`diagnostics`] | energy error and drift |
+//!
+//! Conventions (`q, v, p, h, t, n`) and the discrete Legendre transforms
+//! `p_k = −D₁L_d(q_k, q_{k+1}) − f_d⁻`, `p_{k+1} = D₂L_d(q_k, q_{k+1}) + f_d⁺` follow DESIGN.md §3.
 
+pub mod ad;
+pub mod constraint;
+pub mod diagnostics;
+pub mod discrete;
+pub mod error;
+pub mod force;
+pub mod integrator;
+pub mod lagrangian;
+pub mod linalg;
+pub mod mechanics;
+pub mod newton;
+pub mod problem;
+pub mod rules;
 pub mod scalar;
+pub mod simulate;
+pub mod step;
+pub mod systems;
+pub mod trajectory;
 
+pub use constraint::{Constraint, Unconstrained};
+pub use discrete::{DiscreteAction, DiscreteLagrangian};
+pub use error::Error;
+pub use force::{DiscreteForce, Force, NoForce};
+pub use integrator::{Integrator, State, Statistics, StepReport};
+pub use lagrangian::Lagrangian;
+pub use newton::NewtonOptions;
+pub use problem::{Initial, Problem, SolveOptions};
+pub use rules::{GeneralizedMidpoint, Midpoint, Rule, SymmetrizedMidpoint, Trapezoid};
 pub use scalar::Scalar;
+pub use simulate::{Observer, RunOptions, StepView, TimeGrid, simulate};
+pub use trajectory::{RunFailure, Termination, Trajectory};

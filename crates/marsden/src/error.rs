@@ -1,0 +1,157 @@
+//! Typed errors carrying the numbers a user needs to act on them.
+//!
+//! Every fallible function of the crate returns [`Error`]. Run-time failures name the step and
+//! time at which they happened, and a failed run still hands back the trajectory computed up to
+//! the failure (see [`crate::RunFailure`]).
+
+use thiserror::Error;
+
+/// Everything that can go wrong in marsden's core.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The Newton iteration of a step did not reach its tolerance.
+    #[error(
+        "Newton's method did not converge in step {step} (t = {t}): residual {residual:.3e} \
+         after {iterations} iterations (tolerance {tolerance:.1e}); try a smaller step h or a \
+         larger max_iterations"
+    )]
+    NewtonDidNotConverge {
+        /// Index of the step being taken (from `t_step` to `t_step + h`).
+        step: usize,
+        /// Time at the start of the step.
+        t: f64,
+        /// Iterations performed.
+        iterations: usize,
+        /// Residual (max-norm) at the last iterate.
+        residual: f64,
+        /// The residual tolerance that was asked for.
+        tolerance: f64,
+    },
+    /// The Newton Jacobian of a step is singular (the discrete Lagrangian is degenerate there).
+    #[error(
+        "singular Newton Jacobian in step {step} (t = {t}) at iteration {iteration}: pivot \
+         {pivot:.3e}; the discrete Lagrangian is not regular here (is h too large, or are \
+         constraints redundant?)"
+    )]
+    SingularJacobian {
+        /// Index of the step being taken.
+        step: usize,
+        /// Time at the start of the step.
+        t: f64,
+        /// Newton iteration at which the factorisation failed.
+        iteration: usize,
+        /// The offending pivot.
+        pivot: f64,
+    },
+    /// A non-finite number (NaN or infinity) appeared during a step.
+    #[error("non-finite value in {what} during step {step} (t = {t})")]
+    NonFinite {
+        /// Index of the step being taken.
+        step: usize,
+        /// Time at the start of the step.
+        t: f64,
+        /// Which quantity went non-finite.
+        what: &'static str,
+    },
+    /// Input data contains NaN or infinity.
+    #[error("{what}[{index}] is not finite ({value})")]
+    NonFiniteInput {
+        /// Which input.
+        what: &'static str,
+        /// Position in the input vector.
+        index: usize,
+        /// The value found.
+        value: f64,
+    },
+    /// A vector has the wrong length.
+    #[error("{what} has length {found}, expected {expected}")]
+    DimensionMismatch {
+        /// Which input.
+        what: &'static str,
+        /// Expected length.
+        expected: usize,
+        /// Length found.
+        found: usize,
+    },
+    /// The time step is not a positive finite number.
+    #[error("the time step h must be positive and finite, got {h}")]
+    InvalidStep {
+        /// The rejected step.
+        h: f64,
+    },
+    /// The time span is empty or inconsistent.
+    #[error("invalid time span: {reason}")]
+    InvalidTimeSpan {
+        /// What is wrong.
+        reason: String,
+    },
+    /// An option is out of its valid range.
+    #[error("invalid option {name} = {value}: {reason}")]
+    InvalidOption {
+        /// Option name.
+        name: &'static str,
+        /// Offending value.
+        value: f64,
+        /// Valid range.
+        reason: &'static str,
+    },
+    /// The Lagrangian is singular: `∂²L/∂v²` cannot be inverted at this state.
+    #[error(
+        "the Lagrangian is singular at t = {t}, q = {q:?}, v = {v:?}: the velocity Hessian \
+         ∂²L/∂v² has pivot {pivot:.3e} (relative to its largest entry {scale:.3e}), so the \
+         Legendre transform is not invertible and the equations of motion are not defined"
+    )]
+    SingularLagrangian {
+        /// Time of the state.
+        t: f64,
+        /// Positions.
+        q: Vec<f64>,
+        /// Velocities.
+        v: Vec<f64>,
+        /// Smallest pivot met in the factorisation.
+        pivot: f64,
+        /// Largest absolute entry of the velocity Hessian.
+        scale: f64,
+    },
+    /// The inverse Legendre transform `v = FH(q, p)` did not converge.
+    #[error(
+        "could not invert the Legendre transform at t = {t}: residual {residual:.3e} after \
+         {iterations} Newton iterations"
+    )]
+    InverseLegendre {
+        /// Time of the state.
+        t: f64,
+        /// Iterations performed.
+        iterations: usize,
+        /// Final residual `|∂L/∂v(q, v) − p|`.
+        residual: f64,
+    },
+}
+
+impl Error {
+    /// Checks that every entry of `x` is finite.
+    pub fn check_finite(what: &'static str, x: &[f64]) -> Result<(), Error> {
+        match x.iter().position(|v| !v.is_finite()) {
+            Some(index) => Err(Error::NonFiniteInput {
+                what,
+                index,
+                value: x[index],
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// Checks that `x` has length `expected`.
+    pub fn check_len(what: &'static str, x: &[f64], expected: usize) -> Result<(), Error> {
+        if x.len() == expected {
+            Ok(())
+        } else {
+            Err(Error::DimensionMismatch {
+                what,
+                expected,
+                found: x.len(),
+            })
+        }
+    }
+}

@@ -1,0 +1,412 @@
+//! The integrator: a discrete action (rule applied to `L`), discrete forces, constraints,
+//! Newton's method and its buffers. One call to [`Integrator::step`] is one application of the
+//! (forced, constrained) discrete Hamiltonian map `F̃_{L_d}: (q_k, p_k) ↦ (q_{k+1}, p_{k+1})`
+//! ([MW01] §1.5, seed: *discrete Hamiltonian map*).
+//!
+//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+
+use crate::ad::HessianParts;
+use crate::newton::{self, NewtonFailure, NewtonOptions, NewtonReport, NewtonWorkspace};
+use crate::step::{StepFunction, StepShape, StepSystem, constraint_jacobian};
+use crate::{Constraint, DiscreteAction, DiscreteForce, Error, NoForce, Unconstrained};
+
+/// A point of phase space `(t, q, p)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct State {
+    /// Time.
+    pub t: f64,
+    /// Positions (length n).
+    pub q: Vec<f64>,
+    /// Momenta (length n).
+    pub p: Vec<f64>,
+}
+
+/// What one step cost and how well it converged.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StepReport {
+    /// Newton updates applied.
+    pub iterations: usize,
+    /// Final Newton residual (max-norm).
+    pub residual: f64,
+}
+
+/// Work counters accumulated over the integrator's life (pinned by tests).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Statistics {
+    /// Steps completed.
+    pub steps: usize,
+    /// Newton updates (linear solves) over all steps.
+    pub newton_iterations: usize,
+    /// Largest number of Newton updates in one step.
+    pub max_newton_iterations: usize,
+    /// Evaluations of the step system (residual and Jacobian together).
+    pub system_evaluations: usize,
+    /// Dual-number evaluations of the discrete action (one per AD chunk pair).
+    pub action_evaluations: usize,
+    /// Steps whose Newton iteration failed.
+    pub failed_steps: usize,
+}
+
+/// Steps a discrete action `A` with discrete forces `F` and constraints `C`.
+///
+/// ```
+/// use marsden::{Integrator, Midpoint, Rule, State, systems::Pendulum};
+///
+/// let mut integrator = Integrator::new(Midpoint.discretize(Pendulum::default()));
+/// let mut state = State { t: 0.0, q: vec![1.5], p: vec![0.0] };
+/// let report = integrator.step(&mut state, 0.1).unwrap();
+/// assert!(report.residual < 1e-12);
+/// assert!((state.t - 0.1).abs() < 1e-15);
+/// ```
+#[derive(Debug, Clone)]
+pub struct Integrator<A, F = NoForce, C = Unconstrained> {
+    action: A,
+    force: F,
+    constraint: C,
+    options: NewtonOptions,
+    shape: StepShape,
+    buffers: Buffers,
+    predictor: Predictor,
+    statistics: Statistics,
+}
+
+#[derive(Debug, Clone, Default)]
+struct Buffers {
+    newton: NewtonWorkspace,
+    parts: HessianParts,
+    points: Vec<f64>,
+    z: Vec<f64>,
+    p_next: Vec<f64>,
+    phi: Vec<f64>,
+    dphi0: Vec<f64>,
+}
+
+impl<A: DiscreteAction> Integrator<A> {
+    /// An unforced, unconstrained integrator with default Newton options.
+    pub fn new(action: A) -> Self {
+        let shape = StepShape {
+            n: action.dof(),
+            s: action.internal_stages() + 1,
+            d: 0,
+            forced: false,
+        };
+        Self {
+            action,
+            force: NoForce,
+            constraint: Unconstrained,
+            options: NewtonOptions::default(),
+            shape,
+            buffers: Buffers::default(),
+            predictor: Predictor::default(),
+            statistics: Statistics::default(),
+        }
+    }
+}
+
+impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
+    /// Adds discrete forces (replacing any previous ones).
+    pub fn with_force<F2: DiscreteForce>(self, force: F2) -> Integrator<A, F2, C> {
+        let shape = StepShape {
+            forced: force.is_active(),
+            ..self.shape
+        };
+        Integrator {
+            action: self.action,
+            force,
+            constraint: self.constraint,
+            options: self.options,
+            shape,
+            buffers: Buffers::default(),
+            predictor: Predictor::default(),
+            statistics: self.statistics,
+        }
+    }
+
+    /// Adds holonomic constraints (replacing any previous ones).
+    pub fn with_constraint<C2: Constraint>(self, constraint: C2) -> Integrator<A, F, C2> {
+        let shape = StepShape {
+            d: constraint.count(),
+            ..self.shape
+        };
+        Integrator {
+            action: self.action,
+            force: self.force,
+            constraint,
+            options: self.options,
+            shape,
+            buffers: Buffers::default(),
+            predictor: Predictor::default(),
+            statistics: self.statistics,
+        }
+    }
+
+    /// Sets the Newton options (validated).
+    pub fn with_options(mut self, options: NewtonOptions) -> Result<Self, Error> {
+        options.validate()?;
+        self.options = options;
+        Ok(self)
+    }
+
+    /// The discrete action being stepped.
+    pub fn action(&self) -> &A {
+        &self.action
+    }
+
+    /// The discrete forces.
+    pub fn force(&self) -> &F {
+        &self.force
+    }
+
+    /// The constraints.
+    pub fn constraint(&self) -> &C {
+        &self.constraint
+    }
+
+    /// Sizes of the step's Newton system.
+    pub fn shape(&self) -> StepShape {
+        self.shape
+    }
+
+    /// The Newton options in use.
+    pub fn options(&self) -> &NewtonOptions {
+        &self.options
+    }
+
+    /// Work counters so far.
+    pub fn statistics(&self) -> &Statistics {
+        &self.statistics
+    }
+
+    /// Multipliers `λ_k` of the last completed step (length d; the constraint forces are
+    /// `h Dφ(q_k)ᵀ λ_k`).
+    pub fn multipliers(&self) -> &[f64] {
+        let sn = self.shape.s * self.shape.n;
+        self.buffers.z.get(sn..).unwrap_or(&[])
+    }
+
+    /// All control points of the last completed step after `q_k` (`Q₁ … Q_s`).
+    pub fn stage_points(&self) -> &[f64] {
+        let sn = self.shape.s * self.shape.n;
+        self.buffers.z.get(..sn).unwrap_or(&[])
+    }
+
+    /// Forgets the step history, so the next predictor starts afresh (call when jumping to an
+    /// unrelated state or changing the sign of `h`).
+    pub fn reset(&mut self) {
+        self.predictor = Predictor::default();
+    }
+
+    /// Gives the predictor the velocity at the next starting state (used for the first step
+    /// after a reset: `Q_j ≈ q_k + c_j h v_k`).
+    pub fn set_velocity_hint(&mut self, v: &[f64]) {
+        self.predictor.velocity = Some(v.to_vec());
+    }
+
+    /// One step of the discrete Hamiltonian map from `state` (advanced in place by `h`).
+    ///
+    /// On error `state` is left unchanged.
+    pub fn step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error> {
+        let step = self.statistics.steps;
+        Error::check_len("q", &state.q, self.shape.n)?;
+        Error::check_len("p", &state.p, self.shape.n)?;
+        if h == 0.0 || !h.is_finite() {
+            return Err(Error::InvalidStep { h });
+        }
+        let mut z = std::mem::take(&mut self.buffers.z);
+        self.predictor.predict(&mut z, &state.q, h, self.shape);
+        let outcome = self
+            .solve(&mut z, state, h)
+            .map_err(|failure| self.newton_error(failure, step, state.t))
+            .and_then(|report| self.check_finite(&z, step, state.t).map(|_| report));
+        let result = match outcome {
+            Ok(report) => {
+                self.predictor.record(&z, &state.q, h);
+                self.accept(&z, state, h);
+                self.count(report);
+                Ok(StepReport {
+                    iterations: report.iterations,
+                    residual: report.residual,
+                })
+            }
+            Err(e) => {
+                self.statistics.failed_steps += 1;
+                Err(e)
+            }
+        };
+        self.buffers.z = z;
+        result
+    }
+
+    fn solve(
+        &mut self,
+        z: &mut [f64],
+        state: &State,
+        h: f64,
+    ) -> Result<NewtonReport, NewtonFailure> {
+        let sh = self.shape;
+        let b = &mut self.buffers;
+        b.p_next.resize(sh.n, 0.0);
+        if sh.d > 0 {
+            b.phi.resize(sh.d, 0.0);
+            b.dphi0.resize(sh.d * sh.n, 0.0);
+            constraint_jacobian(&self.constraint, &state.q, &mut b.phi, &mut b.dphi0);
+        }
+        let mut system = StepSystem {
+            func: StepFunction {
+                action: &self.action,
+                force: &self.force,
+                constraint: &self.constraint,
+                t0: state.t,
+                h,
+                shape: sh,
+            },
+            q0: &state.q,
+            p0: &state.p,
+            dphi0: &b.dphi0,
+            points: &mut b.points,
+            parts: &mut b.parts,
+            p_next: &mut b.p_next,
+            ad_evaluations: 0,
+        };
+        let result = newton::solve(&mut system, z, &self.options, &mut b.newton);
+        self.statistics.action_evaluations += system.ad_evaluations;
+        if let Ok(r) | Err(NewtonFailure::NotConverged(r)) | Err(NewtonFailure::NonFinite(r)) =
+            &result
+        {
+            self.statistics.system_evaluations += r.evaluations;
+        }
+        result
+    }
+
+    /// Fails if the converged `q_{k+1}` or `p_{k+1}` is not finite.
+    fn check_finite(&self, z: &[f64], step: usize, t: f64) -> Result<(), Error> {
+        let sn = self.shape.s * self.shape.n;
+        let q_next = &z[sn - self.shape.n..sn];
+        if q_next
+            .iter()
+            .chain(&self.buffers.p_next)
+            .all(|x| x.is_finite())
+        {
+            Ok(())
+        } else {
+            Err(Error::NonFinite {
+                step,
+                t,
+                what: "the new state",
+            })
+        }
+    }
+
+    /// Writes the converged step into `state`.
+    fn accept(&self, z: &[f64], state: &mut State, h: f64) {
+        let sn = self.shape.s * self.shape.n;
+        state.q.copy_from_slice(&z[sn - self.shape.n..sn]);
+        state.p.copy_from_slice(&self.buffers.p_next);
+        state.t += h;
+    }
+
+    fn newton_error(&self, failure: NewtonFailure, step: usize, t: f64) -> Error {
+        match failure {
+            NewtonFailure::NotConverged(r) => Error::NewtonDidNotConverge {
+                step,
+                t,
+                iterations: r.iterations,
+                residual: r.residual,
+                tolerance: self.options.residual_tolerance,
+            },
+            NewtonFailure::Singular { iteration, pivot } => Error::SingularJacobian {
+                step,
+                t,
+                iteration,
+                pivot,
+            },
+            NewtonFailure::NonFinite(_) => Error::NonFinite {
+                step,
+                t,
+                what: "the Newton residual",
+            },
+        }
+    }
+
+    fn count(&mut self, report: NewtonReport) {
+        let s = &mut self.statistics;
+        s.steps += 1;
+        s.newton_iterations += report.iterations;
+        s.max_newton_iterations = s.max_newton_iterations.max(report.iterations);
+    }
+}
+
+/// Starting guess for the unknowns of the next step.
+///
+/// Each unknown is extrapolated from the same unknown in the last three steps (quadratic:
+/// `3z₁ − 3z₂ + z₃`, error `O(h³)`), falling back to linear and then to `q_k + c h v_k` with the
+/// velocity hint (or `q_k`) for a fresh start. Multipliers start from their last values.
+#[derive(Debug, Clone, Default)]
+struct Predictor {
+    history: Vec<Vec<f64>>,
+    /// `q` at the start of the last recorded step.
+    previous_q: Vec<f64>,
+    h: f64,
+    velocity: Option<Vec<f64>>,
+}
+
+impl Predictor {
+    fn predict(&mut self, z: &mut Vec<f64>, q: &[f64], h: f64, sh: StepShape) {
+        let m = sh.unknowns();
+        z.resize(m, 0.0);
+        if h != self.h {
+            self.history.clear();
+        }
+        match self.history.as_slice() {
+            [z1, z2, z3, ..] => {
+                for i in 0..m {
+                    z[i] = 3.0 * z1[i] - 3.0 * z2[i] + z3[i];
+                }
+            }
+            [z1, z2] => {
+                for i in 0..m {
+                    z[i] = 2.0 * z1[i] - z2[i];
+                }
+            }
+            [z1] => {
+                // Shift the last step's points by its displacement q_k − q_{k−1}.
+                for i in 0..sh.s * sh.n {
+                    let a = i % sh.n;
+                    z[i] = z1[i] + q[a] - self.previous_q[a];
+                }
+            }
+            [] => self.fresh(z, q, h, sh),
+        }
+        if let Some(last) = self.history.first() {
+            z[sh.s * sh.n..].copy_from_slice(&last[sh.s * sh.n..]);
+        }
+    }
+
+    fn fresh(&self, z: &mut [f64], q: &[f64], h: f64, sh: StepShape) {
+        let n = sh.n;
+        for j in 1..=sh.s {
+            let c = j as f64 / sh.s as f64;
+            for a in 0..n {
+                let v = self.velocity.as_ref().map_or(0.0, |v| v[a]);
+                z[(j - 1) * n + a] = q[a] + c * h * v;
+            }
+        }
+        z[sh.s * n..].fill(0.0);
+    }
+
+    fn record(&mut self, z: &[f64], q: &[f64], h: f64) {
+        if self.history.len() == 3 {
+            if let Some(mut oldest) = self.history.pop() {
+                oldest.clear();
+                oldest.extend_from_slice(z);
+                self.history.insert(0, oldest);
+            }
+        } else {
+            self.history.insert(0, z.to_vec());
+        }
+        self.previous_q.clear();
+        self.previous_q.extend_from_slice(q);
+        self.h = h;
+        self.velocity = None;
+    }
+}

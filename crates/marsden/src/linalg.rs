@@ -1,0 +1,147 @@
+//! Small dense linear algebra for the Newton step: LU with partial pivoting, in place.
+//!
+//! The Newton systems of a variational step are small (`n·s + d` unknowns) and solved millions of
+//! times, so they are factored in caller-owned buffers with no allocation. Textbook Doolittle
+//! elimination with row pivoting (Golub & Van Loan, *Matrix Computations*, Alg. 3.4.1).
+//! Large or sparse systems belong to faer, not here.
+
+/// An LU factorisation `P A = L U` stored in place (row-major, unit lower triangle implicit).
+#[derive(Debug, Clone, Default)]
+pub struct Lu {
+    n: usize,
+    lu: Vec<f64>,
+    perm: Vec<usize>,
+}
+
+/// The factorisation met a pivot that is zero relative to the matrix scale.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SingularMatrix {
+    /// Column at which elimination stopped.
+    pub column: usize,
+    /// The pivot found there.
+    pub pivot: f64,
+}
+
+/// Relative pivot threshold below which a matrix is treated as singular.
+const PIVOT_TOLERANCE: f64 = 1e-13;
+
+impl Lu {
+    /// An empty factorisation; call [`Lu::factor`] before solving.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Dimension of the factored matrix.
+    pub fn dim(&self) -> usize {
+        self.n
+    }
+
+    /// Factors the `n × n` row-major matrix `a` (copied; `a` is left untouched).
+    pub fn factor(&mut self, a: &[f64], n: usize) -> Result<(), SingularMatrix> {
+        debug_assert_eq!(a.len(), n * n);
+        self.n = n;
+        self.lu.clear();
+        self.lu.extend_from_slice(a);
+        self.perm.clear();
+        self.perm.extend(0..n);
+        let scale = a.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        if !scale.is_finite() {
+            return Err(SingularMatrix {
+                column: 0,
+                pivot: scale,
+            });
+        }
+        for k in 0..n {
+            self.eliminate_column(k, scale)?;
+        }
+        Ok(())
+    }
+
+    fn eliminate_column(&mut self, k: usize, scale: f64) -> Result<(), SingularMatrix> {
+        let n = self.n;
+        let (p, pivot) =
+            (k..n)
+                .map(|i| (i, self.lu[i * n + k]))
+                .fold((k, 0.0_f64), |best, (i, v)| {
+                    if v.abs() > best.1.abs() { (i, v) } else { best }
+                });
+        if !(pivot.abs() > PIVOT_TOLERANCE * scale) {
+            return Err(SingularMatrix { column: k, pivot });
+        }
+        if p != k {
+            for j in 0..n {
+                self.lu.swap(k * n + j, p * n + j);
+            }
+            self.perm.swap(k, p);
+        }
+        for i in k + 1..n {
+            let factor = self.lu[i * n + k] / pivot;
+            self.lu[i * n + k] = factor;
+            if factor != 0.0 {
+                for j in k + 1..n {
+                    self.lu[i * n + j] -= factor * self.lu[k * n + j];
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Solves `A x = b` in place (`b` becomes `x`), using `scratch` of length `n`.
+    pub fn solve(&self, b: &mut [f64], scratch: &mut Vec<f64>) {
+        let n = self.n;
+        scratch.clear();
+        scratch.extend(self.perm.iter().map(|&i| b[i]));
+        for i in 0..n {
+            let row = &self.lu[i * n..i * n + i];
+            let s: f64 = row.iter().zip(&scratch[..i]).map(|(l, y)| l * y).sum();
+            scratch[i] -= s;
+        }
+        for i in (0..n).rev() {
+            let row = &self.lu[i * n + i + 1..(i + 1) * n];
+            let s: f64 = row.iter().zip(&scratch[i + 1..]).map(|(u, x)| u * x).sum();
+            scratch[i] = (scratch[i] - s) / self.lu[i * n + i];
+        }
+        b.copy_from_slice(scratch);
+    }
+
+    /// The smallest pivot magnitude of the factorisation (a cheap conditioning hint).
+    pub fn min_pivot(&self) -> f64 {
+        (0..self.n)
+            .map(|i| self.lu[i * self.n + i].abs())
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// Max-norm of a vector.
+#[inline]
+pub fn max_norm(x: &[f64]) -> f64 {
+    x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn solves_a_pivoting_system() {
+        // The (0,0) entry is zero, so row pivoting is required.
+        let a = [0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0];
+        let x = [1.0, -2.0, 0.5];
+        let mut b: Vec<f64> = (0..3)
+            .map(|i| (0..3).map(|j| a[i * 3 + j] * x[j]).sum())
+            .collect();
+        let mut lu = Lu::new();
+        lu.factor(&a, 3).unwrap();
+        lu.solve(&mut b, &mut Vec::new());
+        for (bi, xi) in b.iter().zip(x) {
+            assert!((bi - xi).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn reports_singular_matrix() {
+        let a = [1.0, 2.0, 2.0, 4.0];
+        let err = Lu::new().factor(&a, 2).unwrap_err();
+        assert_eq!(err.column, 1);
+    }
+}

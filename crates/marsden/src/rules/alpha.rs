@@ -1,0 +1,118 @@
+//! The generalised midpoint family `L_d^α = h L(t₀ + αh, (1−α)q₀ + αq₁, (q₁−q₀)/h)`.
+//!
+//! [MW01] §2.2.1 (eq. 2.2.3). Order 1 for α ≠ ½ and 2 for the midpoint rule α = ½ (reference
+//! case R5). Discrete forces by the same one-point quadrature: with `q_α` varied as
+//! `(1−α)δq₀ + αδq₁`, `f_d⁻ = h(1−α) f(q_α, v)` and `f_d⁺ = hα f(q_α, v)`.
+
+use super::{Rule, node};
+use crate::discrete::NodeBuf;
+use crate::{DiscreteForce, DiscreteLagrangian, Force, Lagrangian, Scalar};
+
+/// The midpoint rule (α = ½): second order, symmetric, the implicit midpoint method for
+/// mechanical Lagrangians.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Midpoint;
+
+/// The generalised midpoint rule with parameter α ∈ [0, 1] (α = 0: symplectic Euler).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GeneralizedMidpoint {
+    /// Where in the step `L` is sampled.
+    pub alpha: f64,
+}
+
+/// `L_d^α` of a Lagrangian (built by [`Midpoint`] and [`GeneralizedMidpoint`]).
+#[derive(Debug, Clone)]
+pub struct AlphaLd<L> {
+    /// The continuous Lagrangian.
+    pub lagrangian: L,
+    /// Quadrature node in `[0, 1]`.
+    pub alpha: f64,
+}
+
+impl<L: Lagrangian> DiscreteLagrangian for AlphaLd<L> {
+    fn dof(&self) -> usize {
+        self.lagrangian.dof()
+    }
+    #[inline]
+    fn discrete_lagrangian<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], q1: &[S]) -> S {
+        let (q, v) = node(self.alpha, h, q0, q1);
+        let t = S::from(t0 + self.alpha * h);
+        self.lagrangian.lagrangian(t, &q, &v) * h
+    }
+}
+
+/// Discrete forces of the α rule: `(h(1−α) f, hα f)` at `q_α`.
+#[derive(Debug, Clone)]
+pub struct AlphaForce<F> {
+    /// The continuous force.
+    pub force: F,
+    /// Quadrature node in `[0, 1]`.
+    pub alpha: f64,
+    /// Degrees of freedom.
+    pub dof: usize,
+}
+
+impl<F: Force> DiscreteForce for AlphaForce<F> {
+    #[inline]
+    fn discrete_force<S: Scalar>(&self, t0: f64, h: f64, points: &[S], out: &mut [S]) {
+        let n = self.dof;
+        let (q, v) = node(self.alpha, h, &points[..n], &points[n..2 * n]);
+        let mut f: NodeBuf<S> = (0..n).map(|_| S::from(0.0)).collect();
+        self.force
+            .force(S::from(t0 + self.alpha * h), &q, &v, &mut f);
+        let (w0, w1) = (h * (1.0 - self.alpha), h * self.alpha);
+        for i in 0..n {
+            out[i] = f[i] * w0;
+            out[n + i] = f[i] * w1;
+        }
+    }
+    fn is_active(&self) -> bool {
+        self.force.is_active()
+    }
+}
+
+fn alpha_rule_discretize<L: Lagrangian>(alpha: f64, lagrangian: L) -> AlphaLd<L> {
+    AlphaLd { lagrangian, alpha }
+}
+
+impl Rule for Midpoint {
+    type Discrete<L: Lagrangian> = AlphaLd<L>;
+    type DiscreteForce<F: Force> = AlphaForce<F>;
+    fn discretize<L: Lagrangian>(&self, lagrangian: L) -> AlphaLd<L> {
+        alpha_rule_discretize(0.5, lagrangian)
+    }
+    fn discretize_force<F: Force>(&self, force: F, dof: usize) -> AlphaForce<F> {
+        AlphaForce {
+            force,
+            alpha: 0.5,
+            dof,
+        }
+    }
+    fn name(&self) -> String {
+        "midpoint".into()
+    }
+    fn order(&self) -> u32 {
+        2
+    }
+}
+
+impl Rule for GeneralizedMidpoint {
+    type Discrete<L: Lagrangian> = AlphaLd<L>;
+    type DiscreteForce<F: Force> = AlphaForce<F>;
+    fn discretize<L: Lagrangian>(&self, lagrangian: L) -> AlphaLd<L> {
+        alpha_rule_discretize(self.alpha, lagrangian)
+    }
+    fn discretize_force<F: Force>(&self, force: F, dof: usize) -> AlphaForce<F> {
+        AlphaForce {
+            force,
+            alpha: self.alpha,
+            dof,
+        }
+    }
+    fn name(&self) -> String {
+        format!("alpha({})", self.alpha)
+    }
+    fn order(&self) -> u32 {
+        if self.alpha == 0.5 { 2 } else { 1 }
+    }
+}

@@ -1,0 +1,65 @@
+//! Rules: how a Lagrangian `L` (and a force `f_L`) becomes a discrete Lagrangian `L_d` (and
+//! discrete forces `f_d^±`) by quadrature of the action over one step.
+//!
+//! Seed: *variational integrators — use approximations to the exact discrete Lagrangian*
+//! ([MW01] §2.2, §4). Conventions (DESIGN.md §3, reference cases §0), with `v = (q₁ − q₀)/h`:
+//!
+//! | rule | `L_d(q₀, q₁)` | forces `(f_d⁻, f_d⁺)` | order |
+//! |---|---|---|---|
+//! | [`Midpoint`] | `h L(t₀ + h/2, (q₀+q₁)/2, v)` | `(h/2) f` at the midpoint, both | 2 |
+//! | [`Trapezoid`] | `(h/2)[L(t₀, q₀, v) + L(t₀+h, q₁, v)]` | `(h/2) f` at each end | 2 |
+//! | [`GeneralizedMidpoint`] α | `h L(t₀ + αh, (1−α)q₀ + αq₁, v)` | `h(1−α) f`, `hα f` at `q_α` | 1 (2 if α = ½) |
+//! | [`SymmetrizedMidpoint`] α | `½(L_d^α + L_d^{1−α})` | average of the two | 2 |
+//!
+//! Midpoint is the α = ½ member of the generalised family and trapezoid the symmetrised α = 0
+//! member; they share one implementation each ([`AlphaLd`], [`SymmetrizedLd`]).
+//!
+//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+
+mod alpha;
+mod symmetrized;
+
+pub use alpha::{AlphaForce, AlphaLd, GeneralizedMidpoint, Midpoint};
+pub use symmetrized::{SymmetrizedForce, SymmetrizedLd, SymmetrizedMidpoint, Trapezoid};
+
+use crate::{DiscreteAction, DiscreteForce, Force, Lagrangian};
+
+/// A quadrature rule turning continuous objects into discrete ones.
+pub trait Rule {
+    /// The discrete Lagrangian (action) of `L` under this rule.
+    type Discrete<L: Lagrangian>: DiscreteAction;
+    /// The discrete forces of `f_L` under this rule.
+    type DiscreteForce<F: Force>: DiscreteForce;
+    /// `L ↦ L_d`.
+    fn discretize<L: Lagrangian>(&self, lagrangian: L) -> Self::Discrete<L>;
+    /// `f_L ↦ f_d^±`, by the same quadrature as `L_d`.
+    fn discretize_force<F: Force>(&self, force: F, dof: usize) -> Self::DiscreteForce<F>;
+    /// A short name, e.g. `"midpoint"`.
+    fn name(&self) -> String;
+    /// The classical order of the resulting integrator.
+    fn order(&self) -> u32;
+}
+
+/// Position and velocity at the node `q_c = (1−c)q₀ + c q₁`, `v = (q₁ − q₀)/h`.
+#[inline(always)]
+pub(crate) fn node<S: crate::Scalar>(
+    c: f64,
+    h: f64,
+    q0: &[S],
+    q1: &[S],
+) -> (crate::discrete::NodeBuf<S>, crate::discrete::NodeBuf<S>) {
+    let inv_h = 1.0 / h;
+    let q = q0
+        .iter()
+        .zip(q1)
+        .map(|(&a, &b)| {
+            if c == 0.5 {
+                (a + b) * 0.5
+            } else {
+                a * (1.0 - c) + b * c
+            }
+        })
+        .collect();
+    let v = q0.iter().zip(q1).map(|(&a, &b)| (b - a) * inv_h).collect();
+    (q, v)
+}

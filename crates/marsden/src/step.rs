@@ -1,0 +1,188 @@
+//! The implicit equations of one step, assembled for Newton's method.
+//!
+//! Unknowns `z = (Q₁, …, Q_s, λ)`: the control points after `Q₀ = q_k` (the last one is
+//! `q_{k+1}`) and the constraint multipliers. Equations (DESIGN.md §3; forced DEL in
+//! position–momentum form, [MW01] §3.2; SHAKE, [LMO08]):
+//!
+//! ```text
+//!     p_k + ∂L_d/∂Q₀ + F₀ − h Dφ(q_k)ᵀ λ = 0          (discrete Legendre transform F⁻)
+//!           ∂L_d/∂Q_j + F_j               = 0,  0 < j < s   (internal stages)
+//!     φ(Q_s)                              = 0          (holonomic constraints)
+//! ```
+//!
+//! and afterwards `p_{k+1} = ∂L_d/∂Q_s + F_s` (discrete Legendre transform F⁺). One hyper-dual
+//! evaluation of `(L_d, F, φ)` with eps₁ seeded on `Q₀ … Q_{s−1}` and eps₂ on `Q₁ … Q_s` gives
+//! the residual (eps₁ part of `L_d`, values of `F`, `φ`), the Jacobian (eps₁eps₂ part of `L_d`,
+//! eps₂ parts of `F` and `φ`) and `p_{k+1}` (eps₂ part of `L_d`, last block) at once.
+//!
+//! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LMO08]: Leyendecker, Marsden, Ortiz, ZAMM 88 (2008).
+
+use crate::ad::{self, HessianParts, MultiFunction};
+use crate::linalg::max_norm;
+use crate::newton::NonlinearSystem;
+use crate::{Constraint, DiscreteAction, DiscreteForce, Scalar};
+
+/// Sizes of a step's Newton system.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StepShape {
+    /// Degrees of freedom.
+    pub n: usize,
+    /// Number of step segments `s` (internal stages + 1): control points `Q₀ … Q_s`.
+    pub s: usize,
+    /// Number of constraints.
+    pub d: usize,
+    /// Whether a force contributes.
+    pub forced: bool,
+}
+
+impl StepShape {
+    /// Number of control points times n: `(s + 1)·n`.
+    pub fn points_len(&self) -> usize {
+        (self.s + 1) * self.n
+    }
+    /// Number of unknowns `s·n + d`.
+    pub fn unknowns(&self) -> usize {
+        self.s * self.n + self.d
+    }
+    fn force_outputs(&self) -> usize {
+        if self.forced { self.points_len() } else { 0 }
+    }
+}
+
+/// `(L_d, F, φ)` of one step as a vector function of the control points.
+pub(crate) struct StepFunction<'a, A, F, C> {
+    pub action: &'a A,
+    pub force: &'a F,
+    pub constraint: &'a C,
+    pub t0: f64,
+    pub h: f64,
+    pub shape: StepShape,
+}
+
+impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
+    for StepFunction<'_, A, F, C>
+{
+    fn inputs(&self) -> usize {
+        self.shape.points_len()
+    }
+    fn outputs(&self) -> usize {
+        1 + self.shape.force_outputs() + self.shape.d
+    }
+    #[inline]
+    fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
+        let sh = self.shape;
+        out[0] = self.action.action(self.t0, self.h, x);
+        let nf = sh.force_outputs();
+        if nf > 0 {
+            self.force
+                .discrete_force(self.t0, self.h, x, &mut out[1..1 + nf]);
+        }
+        if sh.d > 0 {
+            self.constraint
+                .constraint(&x[sh.s * sh.n..], &mut out[1 + nf..]);
+        }
+    }
+}
+
+/// The Newton system of one step from `(q_k, p_k)`.
+pub(crate) struct StepSystem<'a, A, F, C> {
+    pub func: StepFunction<'a, A, F, C>,
+    pub q0: &'a [f64],
+    pub p0: &'a [f64],
+    /// `Dφ(q_k)`, row-major d × n.
+    pub dphi0: &'a [f64],
+    /// Control points buffer, length `(s+1)·n`.
+    pub points: &'a mut Vec<f64>,
+    pub parts: &'a mut HessianParts,
+    /// `p_{k+1}` at the last evaluated iterate.
+    pub p_next: &'a mut [f64],
+    /// AD evaluations (chunk pairs) performed.
+    pub ad_evaluations: usize,
+}
+
+impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> NonlinearSystem
+    for StepSystem<'_, A, F, C>
+{
+    fn dim(&self) -> usize {
+        self.func.shape.unknowns()
+    }
+
+    fn residual_scale(&self) -> f64 {
+        max_norm(self.p0)
+    }
+
+    fn evaluate(&mut self, z: &[f64], r: &mut [f64], jac: &mut [f64]) {
+        let sh = self.func.shape;
+        let (n, sn, m) = (sh.n, sh.s * sh.n, sh.unknowns());
+        self.points.clear();
+        self.points.extend_from_slice(self.q0);
+        self.points.extend_from_slice(&z[..sn]);
+        ad::partial_hessian(&self.func, self.points, 0..sn, n..sn + n, self.parts);
+        self.ad_evaluations += self.parts.evaluations;
+        let parts = &*self.parts;
+        let nf = sh.force_outputs();
+        let lambda = &z[sn..];
+        // Momentum-balance and stage equations.
+        for i in 0..sn {
+            let force = if nf > 0 { parts.values[1 + i] } else { 0.0 };
+            r[i] = parts.grad_rows[i] + force;
+            let row = &mut jac[i * m..(i + 1) * m];
+            for j in 0..sn {
+                let dforce = if nf > 0 {
+                    parts.jac_cols[(1 + i) * sn + j]
+                } else {
+                    0.0
+                };
+                row[j] = parts.hess[i * sn + j] + dforce;
+            }
+            row[sn..].fill(0.0);
+        }
+        for i in 0..n {
+            r[i] += self.p0[i];
+            for (c, l) in lambda.iter().enumerate() {
+                let g = self.dphi0[c * n + i];
+                r[i] -= self.func.h * g * l;
+                jac[i * m + sn + c] = -self.func.h * g;
+            }
+        }
+        // Constraint equations φ(Q_s) = 0.
+        for c in 0..sh.d {
+            let out = 1 + nf + c;
+            r[sn + c] = parts.values[out];
+            let row = &mut jac[(sn + c) * m..(sn + c + 1) * m];
+            row[..sn].copy_from_slice(&parts.jac_cols[out * sn..(out + 1) * sn]);
+            row[sn..].fill(0.0);
+        }
+        // p_{k+1} = ∂L_d/∂Q_s + F_s.
+        for a in 0..n {
+            let force = if nf > 0 {
+                parts.values[1 + sn + a]
+            } else {
+                0.0
+            };
+            self.p_next[a] = parts.jac_cols[sn - n + a] + force;
+        }
+    }
+}
+
+/// `Dφ(q)` (row-major d × n) and `φ(q)` of a constraint, by AD.
+pub(crate) fn constraint_jacobian<C: Constraint>(
+    c: &C,
+    q: &[f64],
+    values: &mut [f64],
+    jac: &mut [f64],
+) {
+    struct Phi<'a, C>(&'a C, usize);
+    impl<C: Constraint> MultiFunction for Phi<'_, C> {
+        fn inputs(&self) -> usize {
+            self.1
+        }
+        fn outputs(&self) -> usize {
+            self.0.count()
+        }
+        fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
+            self.0.constraint(x, out)
+        }
+    }
+    ad::jacobian(&Phi(c, q.len()), q, 0..q.len(), values, jac);
+}

@@ -1,0 +1,44 @@
+//! The Kepler problem in the plane, `L = ½|v|² + μ/|q|` (HLW06 §I.2).
+
+use crate::{Lagrangian, Scalar};
+
+/// Planar Kepler problem with gravitational parameter `μ` (unit mass).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Kepler {
+    /// Gravitational parameter (default 1).
+    pub mu: f64,
+}
+
+impl Default for Kepler {
+    fn default() -> Self {
+        Self { mu: 1.0 }
+    }
+}
+
+impl Kepler {
+    /// Pericentre initial data of eccentricity `e` with semi-major axis 1 (for μ = 1):
+    /// `q = (1 − e, 0)`, `p = (0, √((1+e)/(1−e)))` (period 2π, energy −½, angular momentum √(1−e²)).
+    pub fn pericentre(e: f64) -> ([f64; 2], [f64; 2]) {
+        ([1.0 - e, 0.0], [0.0, ((1.0 + e) / (1.0 - e)).sqrt()])
+    }
+
+    /// Energy `½|p|² − μ/|q|`.
+    pub fn energy(&self, q: &[f64], p: &[f64]) -> f64 {
+        0.5 * (p[0] * p[0] + p[1] * p[1]) - self.mu / q[0].hypot(q[1])
+    }
+
+    /// Angular momentum `q₁p₂ − q₂p₁`.
+    pub fn angular_momentum(q: &[f64], p: &[f64]) -> f64 {
+        q[0] * p[1] - q[1] * p[0]
+    }
+}
+
+impl Lagrangian for Kepler {
+    fn dof(&self) -> usize {
+        2
+    }
+    #[inline]
+    fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
+        (v[0] * v[0] + v[1] * v[1]) * 0.5 + (q[0] * q[0] + q[1] * q[1]).sqrt().recip() * self.mu
+    }
+}

@@ -1,0 +1,47 @@
+//! The planar pendulum `L = ½ m l² θ̇² + m g l cos θ` (θ from the downward vertical).
+
+use crate::{Lagrangian, Scalar};
+
+/// Planar pendulum of mass `m`, length `l` in gravity `g`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pendulum {
+    /// Bob mass (default 1).
+    pub m: f64,
+    /// Rod length (default 1).
+    pub l: f64,
+    /// Gravity (default 1).
+    pub g: f64,
+}
+
+impl Default for Pendulum {
+    fn default() -> Self {
+        Self {
+            m: 1.0,
+            l: 1.0,
+            g: 1.0,
+        }
+    }
+}
+
+impl Pendulum {
+    /// Small-oscillation frequency `ω = √(g/l)`.
+    pub fn omega(&self) -> f64 {
+        (self.g / self.l).sqrt()
+    }
+
+    /// Energy `p²/(2 m l²) − m g l cos θ`.
+    pub fn energy(&self, q: f64, p: f64) -> f64 {
+        0.5 * p * p / (self.m * self.l * self.l) - self.m * self.g * self.l * q.cos()
+    }
+}
+
+impl Lagrangian for Pendulum {
+    fn dof(&self) -> usize {
+        1
+    }
+    #[inline]
+    fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
+        let (m, l, g) = (self.m, self.l, self.g);
+        v[0] * v[0] * (0.5 * m * l * l) + q[0].cos() * (m * g * l)
+    }
+}
