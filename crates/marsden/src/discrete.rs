@@ -66,6 +66,16 @@ pub trait DiscreteAction {
     fn action<S: Scalar>(&self, t0: f64, h: f64, points: &[S]) -> S;
 }
 
+impl<D: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &D {
+    fn dof(&self) -> usize {
+        (**self).dof()
+    }
+    #[inline(always)]
+    fn discrete_lagrangian<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], q1: &[S]) -> S {
+        (**self).discrete_lagrangian(t0, h, q0, q1)
+    }
+}
+
 impl<T: DiscreteLagrangian> DiscreteAction for T {
     fn dof(&self) -> usize {
         DiscreteLagrangian::dof(self)

@@ -25,7 +25,7 @@
 //! | continuous mechanics | [`mechanics`] | Legendre transform, energy, Euler–Lagrange, regularity |
 //! | discrete Lagrangian | [`discrete`], [`rules`] | `L_d`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; midpoint, trapezoid, α-rules |
 //! | step | [`step`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
-//! | integrator | [`integrator`] | rule + forces + constraints + solver + buffers |
+//! | integrator | [`integrator`], [`maps`] | rule + forces + constraints + solver + buffers; `F_{L_d}`, `F̃_{L_d}` |
 //! | run | [`problem`], [`simulate`], [`trajectory`] | problem → trajectory, stride, observers, failures |
 //! | diagnostics | [`diagnostics`] | energy error and drift |
 //!
@@ -41,6 +41,7 @@ pub mod force;
 pub mod integrator;
 pub mod lagrangian;
 pub mod linalg;
+pub mod maps;
 pub mod mechanics;
 pub mod newton;
 pub mod problem;

@@ -1,0 +1,74 @@
+//! Helpers shared by the reference-case tests.
+#![allow(dead_code)]
+
+use marsden::{DiscreteAction, Integrator, NewtonOptions, State};
+
+/// Newton options for conservation tests: converge to round-off (reference cases §0, solver note).
+pub fn tight() -> NewtonOptions {
+    NewtonOptions {
+        residual_tolerance: 1e-14,
+        ..NewtonOptions::default()
+    }
+}
+
+/// Runs `steps` steps of `h` from `(q0, p0)` and returns the final state.
+pub fn run<A: DiscreteAction>(action: A, q0: &[f64], p0: &[f64], h: f64, steps: usize) -> State {
+    let mut integrator = Integrator::new(action).with_options(tight()).unwrap();
+    let mut state = State {
+        t: 0.0,
+        q: q0.to_vec(),
+        p: p0.to_vec(),
+    };
+    for k in 0..steps {
+        integrator.step(&mut state, h).unwrap();
+        state.t = (k + 1) as f64 * h;
+    }
+    state
+}
+
+/// Runs and calls `f(k, state)` after every step.
+pub fn run_with<A: DiscreteAction>(
+    action: A,
+    q0: &[f64],
+    p0: &[f64],
+    h: f64,
+    steps: usize,
+    mut f: impl FnMut(usize, &State),
+) -> State {
+    let mut integrator = Integrator::new(action).with_options(tight()).unwrap();
+    let mut state = State {
+        t: 0.0,
+        q: q0.to_vec(),
+        p: p0.to_vec(),
+    };
+    for k in 0..steps {
+        integrator.step(&mut state, h).unwrap();
+        state.t = (k + 1) as f64 * h;
+        f(k + 1, &state);
+    }
+    state
+}
+
+/// The one-step matrix of a linear system: columns are the images of the unit vectors.
+pub fn one_step_matrix<A: DiscreteAction + Clone>(action: &A, h: f64) -> [[f64; 2]; 2] {
+    let a = run(action.clone(), &[1.0], &[0.0], h, 1);
+    let b = run(action.clone(), &[0.0], &[1.0], h, 1);
+    [[a.q[0], b.q[0]], [a.p[0], b.p[0]]]
+}
+
+/// Least-squares slope of log(err) against log(h).
+pub fn loglog_slope(h: &[f64], err: &[f64]) -> f64 {
+    let x: Vec<f64> = h.iter().map(|v| v.ln()).collect();
+    let y: Vec<f64> = err.iter().map(|v| v.ln()).collect();
+    marsden::diagnostics::least_squares_slope(&x, &y)
+}
+
+/// Asserts `|a − b| ≤ tol` with a readable message.
+#[track_caller]
+pub fn assert_close(a: f64, b: f64, tol: f64, what: &str) {
+    assert!(
+        (a - b).abs() <= tol,
+        "{what}: {a:.17e} vs {b:.17e} (diff {:.2e} > {tol:.0e})",
+        (a - b).abs()
+    );
+}
