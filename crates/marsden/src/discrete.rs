@@ -46,15 +46,28 @@ use crate::ad::{self, MultiFunction};
 pub trait DiscreteLagrangian {
     /// Degrees of freedom `n`.
     fn dof(&self) -> usize;
+
     /// `L_d(q₀, q₁)` for the step from `t₀` to `t₀ + h`.
     fn discrete_lagrangian<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], q1: &[S]) -> S;
+
+    /// `L_d(q₀, q₀ + Δ)`, given the displacement `Δ = q₁ − q₀` exactly.
+    ///
+    /// The integrator steps displacements: `q₁ − q₀` recomputed from rounded positions carries an
+    /// error `ε|q|`, which a difference quotient `(q₁ − q₀)/h` turns into a momentum error
+    /// `ε|q|/h` per step, visible as a random walk of conserved momenta. The default forms
+    /// `q₁ = q₀ + Δ`; override it (as the built-in rules do) to use `Δ` directly.
+    fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
+        let q1: NodeBuf<S> = q0.iter().zip(delta).map(|(&a, &d)| a + d).collect();
+        self.discrete_lagrangian(t0, h, q0, &q1)
+    }
 }
 
 /// A discrete Lagrangian over the control points of one step (what the integrator steps).
 ///
-/// `points` holds `Q₀, …, Q_s` back to back (length `(s + 1)·n`, `s = internal_stages() + 1`),
-/// with `Q₀ = q_k` and `Q_s = q_{k+1}`. The step solves `∂/∂Q_j = 0` for the internal points
-/// together with the discrete Legendre transform for `q_{k+1}`.
+/// The control points `Q₀ = q_k, Q₁, …, Q_s = q_{k+1}` (`s = internal_stages() + 1`) are given as
+/// `q0 = Q₀` and the offsets `Δ_j = Q_j − Q₀` back to back (length `s·n`). The step solves
+/// `∂L_d/∂Q_j = 0` for the internal points together with the discrete Legendre transform for
+/// `q_{k+1}`; derivatives are always taken with respect to the control points `Q_j`.
 pub trait DiscreteAction {
     /// Degrees of freedom `n`.
     fn dof(&self) -> usize;
@@ -62,8 +75,8 @@ pub trait DiscreteAction {
     fn internal_stages(&self) -> usize {
         0
     }
-    /// The discrete action of one step as a function of all its control points.
-    fn action<S: Scalar>(&self, t0: f64, h: f64, points: &[S]) -> S;
+    /// The discrete action of one step as a function of `Q₀` and the offsets `Q_j − Q₀`.
+    fn action<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], offsets: &[S]) -> S;
 }
 
 impl<D: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &D {
@@ -74,6 +87,10 @@ impl<D: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &D {
     fn discrete_lagrangian<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], q1: &[S]) -> S {
         (**self).discrete_lagrangian(t0, h, q0, q1)
     }
+    #[inline(always)]
+    fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
+        (**self).discrete_lagrangian_offset(t0, h, q0, delta)
+    }
 }
 
 impl<T: DiscreteLagrangian> DiscreteAction for T {
@@ -81,9 +98,8 @@ impl<T: DiscreteLagrangian> DiscreteAction for T {
         DiscreteLagrangian::dof(self)
     }
     #[inline(always)]
-    fn action<S: Scalar>(&self, t0: f64, h: f64, points: &[S]) -> S {
-        let (q0, q1) = points.split_at(DiscreteLagrangian::dof(self));
-        self.discrete_lagrangian(t0, h, q0, q1)
+    fn action<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], offsets: &[S]) -> S {
+        self.discrete_lagrangian_offset(t0, h, q0, offsets)
     }
 }
 

@@ -28,9 +28,13 @@ pub trait Force {
 }
 
 /// Discrete forces on the control points of a step: `out = (f_d⁻, …, f_d⁺)`.
+///
+/// The control points are given as in [`crate::DiscreteAction`]: `q0 = Q₀` and the offsets
+/// `Q_j − Q₀`.
 pub trait DiscreteForce {
-    /// Writes the generalised force on each control point `Q₀ … Q_s` (same layout as `points`).
-    fn discrete_force<S: Scalar>(&self, t0: f64, h: f64, points: &[S], out: &mut [S]);
+    /// Writes the generalised force on each control point `Q₀ … Q_s` into `out` (length
+    /// `(s + 1)·n`, point by point).
+    fn discrete_force<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], offsets: &[S], out: &mut [S]);
     /// `false` for the no-op force, so the integrator can skip all force work.
     fn is_active(&self) -> bool {
         true
@@ -51,7 +55,14 @@ impl Force for NoForce {
 }
 
 impl DiscreteForce for NoForce {
-    fn discrete_force<S: Scalar>(&self, _t0: f64, _h: f64, _points: &[S], out: &mut [S]) {
+    fn discrete_force<S: Scalar>(
+        &self,
+        _t0: f64,
+        _h: f64,
+        _q0: &[S],
+        _offsets: &[S],
+        out: &mut [S],
+    ) {
         out.iter_mut().for_each(|f| *f = S::from(0.0));
     }
     fn is_active(&self) -> bool {

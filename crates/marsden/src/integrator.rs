@@ -184,8 +184,8 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         self.buffers.z.get(sn..).unwrap_or(&[])
     }
 
-    /// All control points of the last completed step after `q_k` (`Q₁ … Q_s`).
-    pub fn stage_points(&self) -> &[f64] {
+    /// Offsets `Q_j − q_k` of the control points of the last completed step (`j = 1 … s`).
+    pub fn stage_offsets(&self) -> &[f64] {
         let sn = self.shape.s * self.shape.n;
         self.buffers.z.get(..sn).unwrap_or(&[])
     }
@@ -213,14 +213,14 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
             return Err(Error::InvalidStep { h });
         }
         let mut z = std::mem::take(&mut self.buffers.z);
-        self.predictor.predict(&mut z, &state.q, h, self.shape);
+        self.predictor.predict(&mut z, h, self.shape);
         let outcome = self
             .solve(&mut z, state, h)
             .map_err(|failure| self.newton_error(failure, step, state.t))
             .and_then(|report| self.check_finite(&z, step, state.t).map(|_| report));
         let result = match outcome {
             Ok(report) => {
-                self.predictor.record(&z, &state.q, h);
+                self.predictor.record(&z, h);
                 self.accept(&z, state, h);
                 self.count(report);
                 Ok(StepReport {
@@ -278,7 +278,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         result
     }
 
-    /// Fails if the converged `q_{k+1}` or `p_{k+1}` is not finite.
+    /// Fails if the converged `Δ_s = q_{k+1} − q_k` or `p_{k+1}` is not finite.
     fn check_finite(&self, z: &[f64], step: usize, t: f64) -> Result<(), Error> {
         let sn = self.shape.s * self.shape.n;
         let q_next = &z[sn - self.shape.n..sn];
@@ -300,7 +300,8 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
     /// Writes the converged step into `state`.
     fn accept(&self, z: &[f64], state: &mut State, h: f64) {
         let sn = self.shape.s * self.shape.n;
-        state.q.copy_from_slice(&z[sn - self.shape.n..sn]);
+        let delta = &z[sn - self.shape.n..sn];
+        state.q.iter_mut().zip(delta).for_each(|(q, d)| *q += d);
         state.p.copy_from_slice(&self.buffers.p_next);
         state.t += h;
     }
@@ -338,20 +339,19 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
 
 /// Starting guess for the unknowns of the next step.
 ///
-/// Each unknown is extrapolated from the same unknown in the last three steps (quadratic:
-/// `3z₁ − 3z₂ + z₃`, error `O(h³)`), falling back to linear and then to `q_k + c h v_k` with the
-/// velocity hint (or `q_k`) for a fresh start. Multipliers start from their last values.
+/// The unknowns are offsets `Δ_j ≈ c_j h v`, smooth in time: each is extrapolated from the same
+/// unknown in the last three steps (quadratic: `3z₁ − 3z₂ + z₃`, error `O(h⁴)` in positions),
+/// falling back to linear, constant, and for a fresh start `Δ_j = c_j h v_k` with the velocity
+/// hint (or 0). Multipliers start from their last values.
 #[derive(Debug, Clone, Default)]
 struct Predictor {
     history: Vec<Vec<f64>>,
-    /// `q` at the start of the last recorded step.
-    previous_q: Vec<f64>,
     h: f64,
     velocity: Option<Vec<f64>>,
 }
 
 impl Predictor {
-    fn predict(&mut self, z: &mut Vec<f64>, q: &[f64], h: f64, sh: StepShape) {
+    fn predict(&mut self, z: &mut Vec<f64>, h: f64, sh: StepShape) {
         let m = sh.unknowns();
         z.resize(m, 0.0);
         if h != self.h {
@@ -368,33 +368,27 @@ impl Predictor {
                     z[i] = 2.0 * z1[i] - z2[i];
                 }
             }
-            [z1] => {
-                // Shift the last step's points by its displacement q_k − q_{k−1}.
-                for i in 0..sh.s * sh.n {
-                    let a = i % sh.n;
-                    z[i] = z1[i] + q[a] - self.previous_q[a];
-                }
-            }
-            [] => self.fresh(z, q, h, sh),
+            [z1] => z.copy_from_slice(z1),
+            [] => self.fresh(z, h, sh),
         }
         if let Some(last) = self.history.first() {
             z[sh.s * sh.n..].copy_from_slice(&last[sh.s * sh.n..]);
         }
     }
 
-    fn fresh(&self, z: &mut [f64], q: &[f64], h: f64, sh: StepShape) {
+    fn fresh(&self, z: &mut [f64], h: f64, sh: StepShape) {
         let n = sh.n;
         for j in 1..=sh.s {
             let c = j as f64 / sh.s as f64;
             for a in 0..n {
                 let v = self.velocity.as_ref().map_or(0.0, |v| v[a]);
-                z[(j - 1) * n + a] = q[a] + c * h * v;
+                z[(j - 1) * n + a] = c * h * v;
             }
         }
         z[sh.s * n..].fill(0.0);
     }
 
-    fn record(&mut self, z: &[f64], q: &[f64], h: f64) {
+    fn record(&mut self, z: &[f64], h: f64) {
         if self.history.len() == 3 {
             if let Some(mut oldest) = self.history.pop() {
                 oldest.clear();
@@ -404,8 +398,6 @@ impl Predictor {
         } else {
             self.history.insert(0, z.to_vec());
         }
-        self.previous_q.clear();
-        self.previous_q.extend_from_slice(q);
         self.h = h;
         self.velocity = None;
     }

@@ -16,6 +16,13 @@
 use crate::linalg::{Lu, SingularMatrix, max_norm};
 
 /// Options of the Newton solver (one options struct per layer).
+///
+/// Discrete momentum maps are conserved exactly only by the exact solution of the step
+/// equations; a residual `r` left in step k changes them by `⟨r, ξ_Q(q_k)⟩`, so over N steps they
+/// drift by up to `N · tol · |ξ_Q|`. For conservation at round-off set `residual_tolerance` to
+/// 1e-15: the iteration then usually ends on the update-size criterion (measured on Kepler
+/// e = 0.6, h = 2π/1000, 10⁵ midpoint steps: angular momentum within 2.5e-13 at 1.05 Newton
+/// iterations per step; 9.5e-13 at the default 1e-12).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct NewtonOptions {

@@ -1,7 +1,8 @@
 //! The implicit equations of one step, assembled for Newton's method.
 //!
-//! Unknowns `z = (Q₁, …, Q_s, λ)`: the control points after `Q₀ = q_k` (the last one is
-//! `q_{k+1}`) and the constraint multipliers. Equations (DESIGN.md §3; forced DEL in
+//! Unknowns `z = (Δ₁, …, Δ_s, λ)`: the offsets `Δ_j = Q_j − q_k` of the control points after
+//! `Q₀ = q_k` (so `q_{k+1} = q_k + Δ_s`) and the constraint multipliers. Offsets, not positions,
+//! keep velocities `Δ/h` free of the `ε|q|/h` cancellation error of `(q_{k+1} − q_k)/h`. Equations (DESIGN.md §3; forced DEL in
 //! position–momentum form, [MW01] §3.2; SHAKE, [LMO08]):
 //!
 //! ```text
@@ -13,9 +14,14 @@
 //! and afterwards `p_{k+1} = ∂L_d/∂Q_s + F_s` (discrete Legendre transform F⁺). One hyper-dual
 //! evaluation of `(L_d, F, φ)` with eps₁ seeded on `Q₀ … Q_{s−1}` and eps₂ on `Q₁ … Q_s` gives
 //! the residual (eps₁ part of `L_d`, values of `F`, `φ`), the Jacobian (eps₁eps₂ part of `L_d`,
-//! eps₂ parts of `F` and `φ`) and `p_{k+1}` (eps₂ part of `L_d`, last block) at once.
+//! eps₂ parts of `F` and `φ`) and `p_{k+1}` (eps₂ part of `L_d`, last block) at once. In offset
+//! variables `∂/∂Q₀` (all other `Q_j` fixed) is the direction `(e, −e, …, −e)`; the seeds of `q₀`
+//! are therefore subtracted from every offset inside the evaluation ([`StepFunction`]), which
+//! leaves the offsets' real parts untouched.
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LMO08]: Leyendecker, Marsden, Ortiz, ZAMM 88 (2008).
+
+use smallvec::SmallVec;
 
 use crate::ad::{self, HessianParts, MultiFunction};
 use crate::linalg::max_norm;
@@ -49,7 +55,9 @@ impl StepShape {
     }
 }
 
-/// `(L_d, F, φ)` of one step as a vector function of the control points.
+type OffsetBuf<S> = SmallVec<[S; 16]>;
+
+/// `(L_d, F, φ)` of one step as a vector function of `q₀` and the offsets.
 pub(crate) struct StepFunction<'a, A, F, C> {
     pub action: &'a A,
     pub force: &'a F,
@@ -71,15 +79,24 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
     #[inline]
     fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
         let sh = self.shape;
-        out[0] = self.action.action(self.t0, self.h, x);
+        let (q0, offsets) = x.split_at(sh.n);
+        // Δ_j − (q₀ − re q₀): same real part, derivatives taken with Q_j = q₀ + Δ_j held fixed.
+        let offsets: OffsetBuf<S> = offsets
+            .iter()
+            .enumerate()
+            .map(|(i, &d)| d + (S::from(q0[i % sh.n].re()) - q0[i % sh.n]))
+            .collect();
+        out[0] = self.action.action(self.t0, self.h, q0, &offsets);
         let nf = sh.force_outputs();
         if nf > 0 {
+            let forces = &mut out[1..1 + nf];
             self.force
-                .discrete_force(self.t0, self.h, x, &mut out[1..1 + nf]);
+                .discrete_force(self.t0, self.h, q0, &offsets, forces);
         }
         if sh.d > 0 {
-            self.constraint
-                .constraint(&x[sh.s * sh.n..], &mut out[1 + nf..]);
+            let last = &offsets[(sh.s - 1) * sh.n..];
+            let q_end: OffsetBuf<S> = q0.iter().zip(last).map(|(&a, &d)| a + d).collect();
+            self.constraint.constraint(&q_end, &mut out[1 + nf..]);
         }
     }
 }
@@ -91,7 +108,7 @@ pub(crate) struct StepSystem<'a, A, F, C> {
     pub p0: &'a [f64],
     /// `Dφ(q_k)`, row-major d × n.
     pub dphi0: &'a [f64],
-    /// Control points buffer, length `(s+1)·n`.
+    /// `(q₀, Δ₁ … Δ_s)`, length `(s+1)·n`.
     pub points: &'a mut Vec<f64>,
     pub parts: &'a mut HessianParts,
     /// `p_{k+1}` at the last evaluated iterate.

@@ -4,7 +4,7 @@
 //! case R5). Discrete forces by the same one-point quadrature: with `q_α` varied as
 //! `(1−α)δq₀ + αδq₁`, `f_d⁻ = h(1−α) f(q_α, v)` and `f_d⁺ = hα f(q_α, v)`.
 
-use super::{Rule, node};
+use super::{Rule, displacement, node};
 use crate::discrete::NodeBuf;
 use crate::{DiscreteForce, DiscreteLagrangian, Force, Lagrangian, Scalar};
 
@@ -35,7 +35,11 @@ impl<L: Lagrangian> DiscreteLagrangian for AlphaLd<L> {
     }
     #[inline]
     fn discrete_lagrangian<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], q1: &[S]) -> S {
-        let (q, v) = node(self.alpha, h, q0, q1);
+        self.discrete_lagrangian_offset(t0, h, q0, &displacement(q0, q1))
+    }
+    #[inline]
+    fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
+        let (q, v) = node(self.alpha, h, q0, delta);
         let t = S::from(t0 + self.alpha * h);
         self.lagrangian.lagrangian(t, &q, &v) * h
     }
@@ -54,9 +58,9 @@ pub struct AlphaForce<F> {
 
 impl<F: Force> DiscreteForce for AlphaForce<F> {
     #[inline]
-    fn discrete_force<S: Scalar>(&self, t0: f64, h: f64, points: &[S], out: &mut [S]) {
+    fn discrete_force<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], offsets: &[S], out: &mut [S]) {
         let n = self.dof;
-        let (q, v) = node(self.alpha, h, &points[..n], &points[n..2 * n]);
+        let (q, v) = node(self.alpha, h, q0, offsets);
         let mut f: NodeBuf<S> = (0..n).map(|_| S::from(0.0)).collect();
         self.force
             .force(S::from(t0 + self.alpha * h), &q, &v, &mut f);

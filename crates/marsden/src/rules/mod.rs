@@ -40,26 +40,31 @@ pub trait Rule {
     fn order(&self) -> u32;
 }
 
-/// Position and velocity at the node `q_c = (1−c)q₀ + c q₁`, `v = (q₁ − q₀)/h`.
+/// Position and velocity at the node `q_c = q₀ + cΔ`, `v = Δ/h`, from the displacement
+/// `Δ = q₁ − q₀` (no difference of rounded positions, see
+/// [`crate::DiscreteLagrangian::discrete_lagrangian_offset`]).
 #[inline(always)]
 pub(crate) fn node<S: crate::Scalar>(
     c: f64,
     h: f64,
     q0: &[S],
-    q1: &[S],
+    delta: &[S],
 ) -> (crate::discrete::NodeBuf<S>, crate::discrete::NodeBuf<S>) {
-    let inv_h = 1.0 / h;
     let q = q0
         .iter()
-        .zip(q1)
-        .map(|(&a, &b)| {
-            if c == 0.5 {
-                (a + b) * 0.5
-            } else {
-                a * (1.0 - c) + b * c
-            }
+        .zip(delta)
+        .map(|(&a, &d)| match c {
+            0.0 => a,
+            1.0 => a + d,
+            _ => a + d * c,
         })
         .collect();
-    let v = q0.iter().zip(q1).map(|(&a, &b)| (b - a) * inv_h).collect();
+    let v = delta.iter().map(|&d| d / h).collect();
     (q, v)
+}
+
+/// `q₁ − q₀` in a node buffer.
+#[inline(always)]
+pub(crate) fn displacement<S: crate::Scalar>(q0: &[S], q1: &[S]) -> crate::discrete::NodeBuf<S> {
+    q0.iter().zip(q1).map(|(&a, &b)| b - a).collect()
 }

@@ -5,7 +5,7 @@
 //! (reference cases R2, R5). Discrete forces: the average of the α and 1−α quadratures (for
 //! α = 0, `(h/2) f` at each end).
 
-use super::{Rule, node};
+use super::{Rule, displacement, node};
 use crate::discrete::NodeBuf;
 use crate::{DiscreteForce, DiscreteLagrangian, Force, Lagrangian, Scalar};
 
@@ -35,9 +35,13 @@ impl<L: Lagrangian> DiscreteLagrangian for SymmetrizedLd<L> {
     }
     #[inline]
     fn discrete_lagrangian<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], q1: &[S]) -> S {
+        self.discrete_lagrangian_offset(t0, h, q0, &displacement(q0, q1))
+    }
+    #[inline]
+    fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
         let mut sum = S::from(0.0);
         for c in [self.alpha, 1.0 - self.alpha] {
-            let (q, v) = node(c, h, q0, q1);
+            let (q, v) = node(c, h, q0, delta);
             sum += self.lagrangian.lagrangian(S::from(t0 + c * h), &q, &v);
         }
         sum * (0.5 * h)
@@ -57,12 +61,12 @@ pub struct SymmetrizedForce<F> {
 
 impl<F: Force> DiscreteForce for SymmetrizedForce<F> {
     #[inline]
-    fn discrete_force<S: Scalar>(&self, t0: f64, h: f64, points: &[S], out: &mut [S]) {
+    fn discrete_force<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], offsets: &[S], out: &mut [S]) {
         let n = self.dof;
         out[..2 * n].iter_mut().for_each(|o| *o = S::from(0.0));
         let mut f: NodeBuf<S> = (0..n).map(|_| S::from(0.0)).collect();
         for c in [self.alpha, 1.0 - self.alpha] {
-            let (q, v) = node(c, h, &points[..n], &points[n..2 * n]);
+            let (q, v) = node(c, h, q0, offsets);
             self.force.force(S::from(t0 + c * h), &q, &v, &mut f);
             let (w0, w1) = (0.5 * h * (1.0 - c), 0.5 * h * c);
             for i in 0..n {
