@@ -1,5 +1,6 @@
 //! marsden: discrete mechanics and variational integrators.
 
 pub mod scalar;
+pub mod special;
 
 pub use scalar::Scalar;

@@ -1,0 +1,1 @@
+//! Kepler problem (placeholder).
