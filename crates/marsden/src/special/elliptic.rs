@@ -20,8 +20,8 @@ use std::f64::consts::PI;
 
 mod jacobi;
 
-pub use jacobi::{Jacobi, am, cn, dn, jacobi, sn};
 pub(crate) use jacobi::jacobi_mm1;
+pub use jacobi::{Jacobi, am, cn, dn, jacobi, sn};
 
 /// Iteration cap for the quadratically convergent AGM / Landen loops (never reached: from
 /// `b₀ ≥ 10⁻¹⁶⁰` they converge in fewer than 15 steps).
@@ -128,7 +128,12 @@ pub fn carlson_rf(x: f64, y: f64, z: f64) -> Result<f64, SpecialError> {
         domain(v >= 0.0, name, v, "non-negative")?;
     }
     let smallest_pair = (x + y).min(y + z).min(z + x);
-    domain(smallest_pair > 0.0, "x, y, z", smallest_pair, "at most one zero argument")?;
+    domain(
+        smallest_pair > 0.0,
+        "x, y, z",
+        smallest_pair,
+        "at most one zero argument",
+    )?;
     Ok(rf_unchecked(x, y, z))
 }
 
@@ -157,7 +162,8 @@ fn rf_unchecked(x0: f64, y0: f64, z0: f64) -> f64 {
     let dz = -(dx + dy);
     let e2 = dx * dy - dz * dz;
     let e3 = dx * dy * dz;
-    let series = 1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0
+    let series = 1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0
+        - 3.0 * e2 * e3 / 44.0
         - 5.0 * e2 * e2 * e2 / 208.0
         + 3.0 * e3 * e3 / 104.0
         + e2 * e2 * e3 / 16.0;
@@ -189,12 +195,12 @@ pub fn ellip_f(phi: f64, m: f64) -> Result<f64, SpecialError> {
     finite("phi", phi)?;
     finite("m", m)?;
     domain(m <= 1.0, "m", m, "m <= 1")?;
-    ellip_f_mm1(phi, m, 1.0 - m)
+    ellip_f_m1(phi, 1.0 - m)
 }
 
-/// [`ellip_f`] with the complementary parameter `m₁ = 1 − m ≥ 0` supplied separately (exact
-/// when it is known more accurately than `1 − m`). Arguments must be finite.
-pub(crate) fn ellip_f_mm1(phi: f64, m: f64, m1: f64) -> Result<f64, SpecialError> {
+/// [`ellip_f`] in terms of the complementary parameter `m₁ = 1 − m ≥ 0` alone (pass it
+/// directly when it is known more accurately than `1 − m`). Arguments must be finite.
+pub(crate) fn ellip_f_m1(phi: f64, m1: f64) -> Result<f64, SpecialError> {
     let n = (phi / PI).round();
     let r = (-PI).mul_add(n, phi); // r ∈ [−π/2, π/2] up to rounding
     let (s, c) = r.sin_cos();
@@ -210,7 +216,6 @@ pub(crate) fn ellip_f_mm1(phi: f64, m: f64, m1: f64) -> Result<f64, SpecialError
         Ok((2.0 * ellip_k_m1(m1)).mul_add(n, reduced))
     }
 }
-
 
 #[cfg(test)]
 mod tests;

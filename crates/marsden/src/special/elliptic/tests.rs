@@ -61,9 +61,21 @@ fn legendre_relation() {
 #[test]
 fn carlson_rf_reference_values() {
     // Carlson (1995), section 3 test values.
-    assert!(close(carlson_rf(1.0, 2.0, 0.0).unwrap(), 1.3110287771461, 1e-13));
-    assert!(close(carlson_rf(2.0, 3.0, 4.0).unwrap(), 0.58408284167715, 1e-13));
-    assert!(close(carlson_rf(0.5, 0.5, 0.5).unwrap(), 2.0_f64.sqrt(), 2e-16));
+    assert!(close(
+        carlson_rf(1.0, 2.0, 0.0).unwrap(),
+        1.3110287771461,
+        1e-13
+    ));
+    assert!(close(
+        carlson_rf(2.0, 3.0, 4.0).unwrap(),
+        0.58408284167715,
+        1e-13
+    ));
+    assert!(close(
+        carlson_rf(0.5, 0.5, 0.5).unwrap(),
+        2.0_f64.sqrt(),
+        2e-16
+    ));
     // R_F(0, 1, 1) = π/2.
     assert!(close(carlson_rf(0.0, 1.0, 1.0).unwrap(), FRAC_PI_2, 2e-16));
 }
@@ -209,7 +221,10 @@ fn derivatives_by_finite_differences() {
 #[test]
 fn invalid_input_is_an_error() {
     assert!(matches!(ellip_k(1.0), Err(SpecialError::Domain { .. })));
-    assert!(matches!(ellip_k(f64::NAN), Err(SpecialError::NotFinite { .. })));
+    assert!(matches!(
+        ellip_k(f64::NAN),
+        Err(SpecialError::NotFinite { .. })
+    ));
     assert!(ellip_e(1.5).is_err());
     assert!(ellip_f(f64::INFINITY, 0.5).is_err());
     assert!(ellip_f(2.0, 1.0).is_err());
@@ -246,4 +261,3 @@ proptest! {
         prop_assert!((a.cn - b.cn).abs() < 1e-15 && (a.dn - b.dn).abs() < 1e-15);
     }
 }
-
