@@ -24,6 +24,7 @@
 //! removes the cancellation for long times.)
 
 use super::{SpecialError, domain, finite};
+use std::cmp::Ordering;
 use std::f64::consts::{PI, TAU};
 
 /// Newton iterations allowed in [`solve_kepler`]; the monotone iteration needs fewer than 30
@@ -73,10 +74,10 @@ fn kepler_on_half_turn(x: f64, e: f64) -> Result<f64, SpecialError> {
         let half_sin = (0.5 * ecc).sin();
         let slope = (2.0 * e * half_sin).mul_add(half_sin, one_minus_e);
         let next = ecc - residual / slope;
-        if !(next < ecc) {
-            return Ok(ecc);
+        match next.partial_cmp(&ecc) {
+            Some(Ordering::Less) => ecc = next,
+            _ => return Ok(ecc), // no further decrease: converged to rounding level
         }
-        ecc = next;
     }
     Err(SpecialError::NoConvergence("Kepler's equation"))
 }

@@ -28,10 +28,10 @@ fn project_reference_values() {
     // p(10) = −0.92012764912536936007…; the solution is within a few ulps.
     let (q5, p5) = pendulum.state(5.0).unwrap();
     let (q10, p10) = pendulum.state(10.0).unwrap();
-    assert!((q5 + 0.624_745_744_305_079_03).abs() < 2e-15);
-    assert!((p5 - 1.216_860_432_372_501_87).abs() < 2e-15);
-    assert!((q10 + 1.054_049_155_450_843_23).abs() < 2e-15);
-    assert!((p10 + 0.920_127_649_125_369_36).abs() < 2e-15);
+    assert!((q5 + 0.624_745_744_305_079).abs() < 2e-15);
+    assert!((p5 - 1.216_860_432_372_501_9).abs() < 2e-15);
+    assert!((q10 + 1.054_049_155_450_843_3).abs() < 2e-15);
+    assert!((p10 + 0.920_127_649_125_369_4).abs() < 2e-15);
 }
 
 #[test]
@@ -115,13 +115,16 @@ fn periods() {
         let (a, b) = (pendulum.state(t).unwrap(), pendulum.state(t + big).unwrap());
         assert!(close(a.0, b.0, 1e-14) && close(a.1, b.1, 1e-14));
     }
-    // The period of the motion equals period() at its amplitude.
-    let (theta_max, _) = Pendulum::new(0.0, 1.5, omega)
-        .unwrap()
-        .state(0.25 * Pendulum::new(0.0, 1.5, omega).unwrap().period())
-        .unwrap();
-    let tp = Pendulum::new(0.0, 1.5, omega).unwrap().period();
-    assert!(close(period(theta_max, omega).unwrap(), tp, 1e-14));
+    // Started at the bottom with speed 2kω: the amplitude is 2 arcsin k, reached at T/4.
+    let swing = Pendulum::new(0.0, 1.5, omega).unwrap();
+    let amplitude = 2.0 * (1.5 / (2.0 * omega)).asin();
+    assert!(close(
+        period(amplitude, omega).unwrap(),
+        swing.period(),
+        1e-14
+    ));
+    let (theta_max, at_rest) = swing.state(0.25 * swing.period()).unwrap();
+    assert!(close(theta_max, amplitude, 1e-14) && at_rest.abs() < 1e-14);
     // Rotation advances by 2π per period.
     let rotor = Pendulum::new(0.4, -3.9, omega).unwrap();
     let t = rotor.period();
