@@ -119,7 +119,7 @@ pub fn ellip_e(m: f64) -> Result<f64, SpecialError> {
 ///
 /// ```
 /// use marsden::special::elliptic::carlson_rf;
-/// // R_F(0, 1, 2) = 1.3110287771460599… (DLMF 19.20.2 / Carlson 1995 test value)
+/// // R_F(0, 1, 2) = 1.3110287771460599… (test value of Carlson, Numer. Algorithms 10, 1995)
 /// assert!((carlson_rf(0.0, 1.0, 2.0).unwrap() - 1.311_028_777_146_059_9).abs() < 1e-15);
 /// ```
 pub fn carlson_rf(x: f64, y: f64, z: f64) -> Result<f64, SpecialError> {
