@@ -28,6 +28,7 @@
 //! | integrator | [`integrator`], [`maps`] | rule + forces + constraints + solver + buffers; `F_{L_d}`, `F̃_{L_d}` |
 //! | run | [`problem`], [`simulate`], [`trajectory`] | problem → trajectory, stride, observers, failures |
 //! | diagnostics | [`diagnostics`] | energy error and drift |
+//! | known answers | [`special`] | elliptic functions, exact pendulum, Kepler and oscillator solutions |
 //!
 //! Conventions (`q, v, p, h, t, n`) and the discrete Legendre transforms
 //! `p_k = −D₁L_d(q_k, q_{k+1}) − f_d⁻`, `p_{k+1} = D₂L_d(q_k, q_{k+1}) + f_d⁺` follow DESIGN.md §3.
@@ -48,6 +49,7 @@ pub mod problem;
 pub mod rules;
 pub mod scalar;
 pub mod simulate;
+pub mod special;
 pub mod step;
 pub mod systems;
 pub mod trajectory;
