@@ -48,6 +48,7 @@ pub mod newton;
 pub mod problem;
 pub mod rules;
 pub mod scalar;
+pub mod scratch;
 pub mod simulate;
 pub mod special;
 pub mod step;
