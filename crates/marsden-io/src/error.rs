@@ -61,6 +61,13 @@ pub enum Error {
         name: String,
     },
 
+    /// A column the operation needs is not in the table.
+    #[error("no column named {name:?}")]
+    MissingColumn {
+        /// The missing column's name.
+        name: String,
+    },
+
     /// A table, header or layout with no columns at all.
     #[error("no columns: a table needs at least one column")]
     NoColumns,

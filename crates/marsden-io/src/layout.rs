@@ -3,6 +3,58 @@
 //! CSV output is flat (one header of column names); `.npy` output is one file per group.
 //! A [`Layout`] says both at once, so the CLI builds one value and streams the same rows
 //! into either format.
+//!
+//! # Example: what the CLI does with a run
+//! ```
+//! # fn main() -> marsden_io::Result<()> {
+//! # let tmp = tempfile::tempdir().unwrap();
+//! # let out = tmp.path();
+//! use marsden_io::{
+//!     CsvWriter, Group, Layout, NpyDirWriter, PlotOptions, RowSink, plot_run, read_csv,
+//!     read_npy_dir,
+//! };
+//! // Column names are the CLI's choice; this is the `trajectory.csv` convention.
+//! let layout = Layout::new(vec![
+//!     Group::scalar("t"),
+//!     Group::vector("q", ["q_theta"]),
+//!     Group::vector("p", ["p_theta"]),
+//!     Group::scalar("energy"),
+//!     Group::vector("J", Vec::<String>::new()), // no symmetries: the group is dropped
+//! ])?;
+//! let npy = false; // `format = "npy"` in the problem file
+//! let mut sink: Box<dyn RowSink> = if npy {
+//!     Box::new(NpyDirWriter::create(out, &layout)?)
+//! } else {
+//!     Box::new(CsvWriter::create(out.join("trajectory.csv"), &layout.column_names())?)
+//! };
+//! let stride = 10;
+//! let mut row = Vec::with_capacity(layout.width());
+//! for step in 0..1000 {
+//!     let t = step as f64 * 0.01; // … one integrator step …
+//!     if step % stride != 0 {
+//!         continue;
+//!     }
+//!     row.clear();
+//!     row.extend([t, t.cos(), -t.sin(), 0.5]);
+//!     if let Err(e) = sink.write_row(&row) {
+//!         sink.finish()?; // keep what was written, then report
+//!         return Err(e);
+//!     }
+//!     // A failing integrator step would likewise `sink.finish()` and report its error.
+//! }
+//! sink.finish()?;
+//!
+//! // Plots (also what `marsden plot DIR` does): read the run back, draw every plot.
+//! let table = if npy { read_npy_dir(out, &layout)? } else { read_csv(out.join("trajectory.csv"))? };
+//! let reports = plot_run(&table, out, &PlotOptions::default())?;
+//! assert_eq!(reports.len(), 2); // phase portrait and energy error (no J, no constraints)
+//! for r in &reports {
+//!     for note in &r.notes {
+//!         eprintln!("{}: {note}", r.path.display());
+//!     }
+//! }
+//! # Ok(()) }
+//! ```
 
 use crate::error::{Error, Result};
 use crate::table::{Column, Table, check_names};
@@ -118,7 +170,7 @@ impl Layout {
     /// Splits a table into this layout's groups: for each group, its columns in order.
     ///
     /// # Errors
-    /// [`Error::InvalidName`] if the table lacks one of the layout's columns.
+    /// [`Error::MissingColumn`] if the table lacks one of the layout's columns.
     pub(crate) fn select<'t>(&self, table: &'t Table) -> Result<Vec<Vec<&'t Column>>> {
         self.groups
             .iter()
@@ -126,10 +178,9 @@ impl Layout {
                 g.columns
                     .iter()
                     .map(|name| {
-                        table.column(name).ok_or_else(|| Error::InvalidName {
-                            name: name.clone(),
-                            reason: "no such column in the table",
-                        })
+                        table
+                            .column(name)
+                            .ok_or_else(|| Error::MissingColumn { name: name.clone() })
                     })
                     .collect()
             })

@@ -3,7 +3,8 @@
 //!
 //! Map of the crate:
 //! * [`table`] — [`Table`]/[`Column`]: named columns of equal length.
-//! * [`layout`] — [`Layout`]/[`Group`]: how flat rows group into arrays (`t`, `q`, `p`, …).
+//! * [`layout`] — [`Layout`]/[`Group`]: how flat rows group into arrays (`t`, `q`, `p`, …);
+//!   its docs show how the CLI streams a run and plots it.
 //! * [`csv`] — [`CsvWriter`] (streaming), [`write_csv`], [`read_csv`]; round-trip numbers.
 //! * [`npy`] — [`NpyWriter`], [`NpyDirWriter`] (streaming, one file per group),
 //!   [`write_npy_dir`], [`read_npy`], [`read_npy_dir`].

@@ -127,7 +127,7 @@ impl RowSink for NpyDirWriter {
 /// Writes a whole table as one `.npy` per group of `layout` into `dir`.
 ///
 /// # Errors
-/// [`Error::InvalidName`] if the table lacks a layout column, or an I/O error naming the file.
+/// [`Error::MissingColumn`] if the table lacks a layout column, or an I/O error naming the file.
 pub fn write_npy_dir(dir: impl AsRef<Path>, layout: &Layout, table: &Table) -> Result<()> {
     let groups = layout.select(table)?;
     let dir = dir.as_ref();
