@@ -230,7 +230,10 @@ fn errors_are_typed_and_name_the_file() {
     // A table lacking one of the layout's columns.
     let partial = Table::new(vec![Column::new("t", vec![0.0])]).unwrap();
     let e = write_npy_dir(dir.path(), &layout(), &partial).unwrap_err();
-    assert!(matches!(&e, Error::MissingColumn { name } if name == "q_x"), "{e}");
+    assert!(
+        matches!(&e, Error::MissingColumn { name } if name == "q_x"),
+        "{e}"
+    );
     // Missing file.
     let e = read_npy(dir.path().join("nope.npy")).unwrap_err();
     assert!(
