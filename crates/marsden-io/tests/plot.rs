@@ -233,6 +233,44 @@ fn degenerate_data_plots_with_notes_instead_of_failing() {
 }
 
 #[test]
+fn smallest_images_with_many_notes_still_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let opts = PlotOptions {
+        width: 200,
+        height: 200,
+        ..PlotOptions::default()
+    };
+    let t: Vec<f64> = (0..10_000).map(f64::from).collect();
+    let mut v: Vec<f64> = t.iter().map(|t| t.sin()).collect();
+    v[5] = f64::NAN;
+    let names: Vec<String> = (0..10).map(|i| format!("J_{i}")).collect();
+    let maps: Vec<Series<'_>> = names
+        .iter()
+        .map(|n| Series {
+            name: n,
+            values: &v,
+        })
+        .collect();
+    let r = plot_momentum_drift(dir.path().join("m.png"), &t, &maps, &opts).unwrap();
+    assert_eq!(r.notes.len(), 11, "{:?}", r.notes);
+    assert_eq!(decode(&r.path).0, 200);
+    let curves: Vec<PhaseCurve<'_>> = names
+        .iter()
+        .map(|n| PhaseCurve {
+            name: n,
+            q: &v,
+            p: &t,
+        })
+        .collect();
+    let r = plot_phase_portrait(dir.path().join("p.png"), &curves, &opts).unwrap();
+    assert!(
+        r.notes.iter().any(|n| n.contains("first 4 of 10")),
+        "{:?}",
+        r.notes
+    );
+}
+
+#[test]
 fn bad_input_is_a_typed_error() {
     let dir = tempfile::tempdir().unwrap();
     let opts = PlotOptions::default();

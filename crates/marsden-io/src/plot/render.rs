@@ -46,7 +46,7 @@ pub(crate) struct Panel {
     pub lines: Vec<Line>,
     /// Drawn as dots (thinned phase curves).
     pub clouds: Vec<Vec<(f64, f64)>>,
-    /// Printed above the plotting area.
+    /// Printed above the plotting area (the first few; all are returned in the report).
     pub notes: Vec<String>,
 }
 
@@ -200,10 +200,16 @@ where
     } else {
         area.titled(&panel.title, (FAMILY, 20)).map_err(e)?
     };
-    let note_band = NOTE_LINE * panel.notes.len() as i32;
+    // At most MAX_NOTES lines; the full list is in the PlotReport.
+    const MAX_NOTES: usize = 4;
+    let mut shown: Vec<String> = panel.notes.iter().take(MAX_NOTES).cloned().collect();
+    if panel.notes.len() > MAX_NOTES {
+        shown[MAX_NOTES - 1] = format!("… and {} more notes", panel.notes.len() - MAX_NOTES + 1);
+    }
+    let note_band = NOTE_LINE * shown.len() as i32;
     let (notes_area, chart_area) = below_title.split_vertically(note_band + 8);
     let style = TextStyle::from((FAMILY, 14).into_font()).color(&RGBColor(150, 20, 20));
-    for (i, note) in panel.notes.iter().enumerate() {
+    for (i, note) in shown.iter().enumerate() {
         notes_area
             .draw_text(note, &style, (12, 6 + NOTE_LINE * i as i32))
             .map_err(e)?;
