@@ -1,0 +1,229 @@
+//! Instructions of the compiled program and code generation from the folded tree.
+//!
+//! The machine has an accumulator (the value of the last completed subexpression) and a stack
+//! of pending left operands. A program is a first [`Leaf`] loaded into the accumulator followed
+//! by [`Op`]s. Binary operations whose right operand is an input or a constant read it directly
+//! (`MulConst`, `AddInput`, …), so most leaves never touch the stack.
+
+use std::fmt;
+
+use super::functions::Unary;
+use super::ir::{Arith, Node};
+
+/// The value first loaded into the accumulator.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Leaf {
+    Input(usize),
+    Const(f64),
+}
+
+/// One instruction. `acc` is the accumulator, `pop` the value popped from the stack.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Op {
+    /// push acc; acc = inputs[i]
+    PushInput(usize),
+    /// push acc; acc = c
+    PushConst(f64),
+    /// acc = pop + acc
+    Add,
+    /// acc = pop - acc
+    Sub,
+    /// acc = pop * acc
+    Mul,
+    /// acc = pop / acc
+    Div,
+    /// acc = acc + inputs[i]
+    AddInput(usize),
+    /// acc = acc - inputs[i]
+    SubInput(usize),
+    /// acc = acc * inputs[i]
+    MulInput(usize),
+    /// acc = acc / inputs[i]
+    DivInput(usize),
+    /// acc = acc + c
+    AddConst(f64),
+    /// acc = acc * c
+    MulConst(f64),
+    /// acc = acc / c
+    DivConst(f64),
+    /// acc = c - acc
+    ConstSub(f64),
+    /// acc = c / acc
+    ConstDiv(f64),
+    /// acc = -acc
+    Neg,
+    /// acc = f(acc)
+    Call(Unary),
+    /// acc = acc^n
+    Powi(i32),
+    /// acc = acc^e
+    Powf(f64),
+    /// acc = pop^acc
+    Powd,
+    /// acc = atan2(pop, acc)
+    Atan2,
+}
+
+/// A compiled expression: first leaf, instructions, and the stack depth they need.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Code {
+    pub(crate) first: Leaf,
+    pub(crate) ops: Vec<Op>,
+    pub(crate) depth: usize,
+}
+
+/// Generate code for `node`.
+pub(crate) fn generate(node: &Node) -> Code {
+    let mut g = Gen {
+        first: None,
+        ops: Vec::new(),
+        sp: 0,
+        depth: 0,
+    };
+    g.emit(node);
+    Code {
+        first: g.first.unwrap_or(Leaf::Const(f64::NAN)),
+        ops: g.ops,
+        depth: g.depth,
+    }
+}
+
+struct Gen {
+    first: Option<Leaf>,
+    ops: Vec<Op>,
+    sp: usize,
+    depth: usize,
+}
+
+impl Gen {
+    fn leaf(&mut self, leaf: Leaf) {
+        if self.first.is_none() {
+            self.first = Some(leaf);
+            return;
+        }
+        self.ops.push(match leaf {
+            Leaf::Input(i) => Op::PushInput(i),
+            Leaf::Const(c) => Op::PushConst(c),
+        });
+        self.sp += 1;
+        self.depth = self.depth.max(self.sp);
+    }
+
+    /// Emit an instruction that pops one stack value.
+    fn pop_op(&mut self, op: Op) {
+        self.ops.push(op);
+        self.sp -= 1;
+    }
+
+    fn emit(&mut self, node: &Node) {
+        match node {
+            Node::Const(c) => self.leaf(Leaf::Const(*c)),
+            Node::Input(i) => self.leaf(Leaf::Input(*i)),
+            Node::Neg(a) => self.then(a, Op::Neg),
+            Node::Unary(f, a) => self.then(a, Op::Call(*f)),
+            Node::Powi(a, n) => self.then(a, Op::Powi(*n)),
+            Node::Powf(a, e) => self.then(a, Op::Powf(*e)),
+            Node::Powd(a, b) => self.both(a, b, Op::Powd),
+            Node::Atan2(a, b) => self.both(a, b, Op::Atan2),
+            Node::Bin(op, a, b) => self.binary(*op, a, b),
+        }
+    }
+
+    /// Evaluate `a` into the accumulator, then apply `op`.
+    fn then(&mut self, a: &Node, op: Op) {
+        self.emit(a);
+        self.ops.push(op);
+    }
+
+    /// Evaluate `a` then `b` (pushing `a`), then apply the popping `op`.
+    fn both(&mut self, a: &Node, b: &Node, op: Op) {
+        self.emit(a);
+        self.emit(b);
+        self.pop_op(op);
+    }
+
+    fn binary(&mut self, op: Arith, a: &Node, b: &Node) {
+        let commutes = matches!(op, Arith::Add | Arith::Mul);
+        match (a, b) {
+            (_, Node::Const(c)) => self.then(a, const_rhs(op, *c)),
+            (_, Node::Input(i)) => self.then(a, input_rhs(op, *i)),
+            (Node::Const(c), _) => self.then(b, const_lhs(op, *c)),
+            (Node::Input(i), _) if commutes => self.then(b, input_rhs(op, *i)),
+            _ => self.both(a, b, stack_op(op)),
+        }
+    }
+}
+
+/// `acc = acc op c`
+fn const_rhs(op: Arith, c: f64) -> Op {
+    match op {
+        Arith::Add => Op::AddConst(c),
+        Arith::Sub => Op::AddConst(-c),
+        Arith::Mul => Op::MulConst(c),
+        Arith::Div => Op::DivConst(c),
+    }
+}
+
+/// `acc = c op acc`
+fn const_lhs(op: Arith, c: f64) -> Op {
+    match op {
+        Arith::Add => Op::AddConst(c),
+        Arith::Sub => Op::ConstSub(c),
+        Arith::Mul => Op::MulConst(c),
+        Arith::Div => Op::ConstDiv(c),
+    }
+}
+
+/// `acc = acc op inputs[i]`
+fn input_rhs(op: Arith, i: usize) -> Op {
+    match op {
+        Arith::Add => Op::AddInput(i),
+        Arith::Sub => Op::SubInput(i),
+        Arith::Mul => Op::MulInput(i),
+        Arith::Div => Op::DivInput(i),
+    }
+}
+
+/// `acc = pop op acc`
+fn stack_op(op: Arith) -> Op {
+    match op {
+        Arith::Add => Op::Add,
+        Arith::Sub => Op::Sub,
+        Arith::Mul => Op::Mul,
+        Arith::Div => Op::Div,
+    }
+}
+
+impl fmt::Display for Leaf {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Leaf::Input(i) => write!(f, "load in[{i}]"),
+            Leaf::Const(c) => write!(f, "load {c}"),
+        }
+    }
+}
+
+impl fmt::Display for Op {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Op::PushInput(i) => write!(f, "push; load in[{i}]"),
+            Op::PushConst(c) => write!(f, "push; load {c}"),
+            Op::Add | Op::Sub | Op::Mul | Op::Div | Op::Powd | Op::Atan2 => {
+                write!(f, "{} pop", format!("{self:?}").to_lowercase())
+            }
+            Op::AddInput(i) => write!(f, "add in[{i}]"),
+            Op::SubInput(i) => write!(f, "sub in[{i}]"),
+            Op::MulInput(i) => write!(f, "mul in[{i}]"),
+            Op::DivInput(i) => write!(f, "div in[{i}]"),
+            Op::AddConst(c) => write!(f, "add {c}"),
+            Op::MulConst(c) => write!(f, "mul {c}"),
+            Op::DivConst(c) => write!(f, "div {c}"),
+            Op::ConstSub(c) => write!(f, "rsub {c}"),
+            Op::ConstDiv(c) => write!(f, "rdiv {c}"),
+            Op::Neg => write!(f, "neg"),
+            Op::Call(u) => write!(f, "{}", u.name()),
+            Op::Powi(n) => write!(f, "powi {n}"),
+            Op::Powf(e) => write!(f, "powf {e}"),
+        }
+    }
+}
