@@ -94,6 +94,21 @@ impl Function {
         Function::ALL.into_iter().find(|f| f.name() == name)
     }
 
+    /// The built-in function that `name` (a spelling common elsewhere, such as `ln` or
+    /// `arctan`) most likely means.
+    pub fn alias(name: &str) -> Option<Function> {
+        Some(match name {
+            "ln" => Function::Log,
+            "arcsin" => Function::Asin,
+            "arccos" => Function::Acos,
+            "arctan" => Function::Atan,
+            "arctan2" => Function::Atan2,
+            "power" => Function::Pow,
+            "fabs" => Function::Abs,
+            _ => return None,
+        })
+    }
+
     /// All function names, sorted alphabetically.
     pub fn sorted_names() -> Vec<&'static str> {
         let mut names: Vec<_> = Function::ALL.iter().map(|f| f.name()).collect();
@@ -201,7 +216,7 @@ pub(crate) fn abs<S: Scalar>(x: S) -> S {
     if x < 0.0 { -x } else { x }
 }
 
-/// `x^y` for a variable exponent: `powd`, i.e. `exp(y ln x)`; NaN for `x < 0`.
+/// `x^y` for a variable exponent: num-dual's `powd` (`powf` at `f64`, `exp(y ln x)` for duals).
 #[inline(always)]
 pub(crate) fn powd<S: Scalar>(x: S, y: S) -> S {
     x.powd(y)

@@ -17,7 +17,7 @@ pub(crate) enum Tok {
     LParen,
     RParen,
     Comma,
-    /// End of input; its span is empty and sits at the end of the text.
+    /// End of input; its span is empty and sits after the last non-whitespace character.
     Eof,
 }
 
@@ -79,9 +79,11 @@ impl Lexer<'_> {
         self.bump_while(char::is_whitespace);
         let start = self.pos;
         let Some(c) = self.peek() else {
+            // Point end-of-input errors just after the last visible character.
+            let end = self.text.trim_end().len();
             return Ok(Token {
                 tok: Tok::Eof,
-                span: Span::new(start, start),
+                span: Span::new(end, end),
             });
         };
         let tok = match c {

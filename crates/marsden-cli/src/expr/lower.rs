@@ -82,7 +82,10 @@ impl Lowerer<'_> {
                     name: name.to_owned(),
                 }
             } else {
-                let suggestion = closest(name, Function::sorted_names()).map(str::to_owned);
+                let suggestion = Function::alias(name)
+                    .map(Function::name)
+                    .or_else(|| closest(name, Function::sorted_names()))
+                    .map(str::to_owned);
                 ErrorKind::UnknownFunction {
                     name: name.to_owned(),
                     suggestion,

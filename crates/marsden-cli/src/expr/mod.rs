@@ -32,7 +32,8 @@
 //! (parameters and numeric subexpressions, merged across products and sums, see `ir`) and
 //! generates a short instruction list for an accumulator machine. Integer constant powers
 //! become `powi` (exact and cheap for duals and negative bases), `x^0.5` becomes `sqrt`, other
-//! constant exponents `powf`, and variable exponents `powd` (`exp(y ln x)`, NaN for `x < 0`).
+//! constant exponents `powf`, and variable exponents `powd` (`exp(y ln x)` for dual numbers, so
+//! the base must be positive where derivatives are taken).
 //! [`Program::eval`] runs the instructions for any `S: Scalar`: no strings, no lookups, and no
 //! allocation for programs whose stack depth (computed at compile time) is at most 16.
 //!

@@ -3,9 +3,9 @@
 /// The largest edit distance at which a name is suggested.
 const MAX_DISTANCE: usize = 2;
 
-/// The candidate closest to `name` (edit distance at most 2 and smaller than the candidate's
-/// length, so one-letter names are not "corrected" into unrelated ones). Ties go to the first
-/// candidate in iteration order.
+/// The candidate closest to `name`: edit distance at most 2, and at most a third of the
+/// candidate's length (but at least 1), and less than its length, so short names are not
+/// "corrected" into unrelated ones. Ties go to the first candidate in iteration order.
 pub(crate) fn closest<'a>(
     name: &str,
     candidates: impl IntoIterator<Item = &'a str>,
@@ -13,7 +13,10 @@ pub(crate) fn closest<'a>(
     candidates
         .into_iter()
         .map(|c| (edit_distance(name, c), c))
-        .filter(|&(d, c)| d <= MAX_DISTANCE && d < c.chars().count())
+        .filter(|&(d, c)| {
+            let len = c.chars().count();
+            d < len && d <= MAX_DISTANCE.min((len / 3).max(1))
+        })
         .min_by_key(|&(d, _)| d)
         .map(|(_, c)| c)
 }
@@ -63,5 +66,7 @@ mod tests {
         assert_eq!(closest("thta", names), Some("theta"));
         assert_eq!(closest("omega", names), None);
         assert_eq!(closest("x", names), None);
+        assert_eq!(closest("foo", ["cos", "sin"]), None);
+        assert_eq!(closest("cso", ["cos", "sin"]), Some("cos"));
     }
 }
