@@ -1,5 +1,8 @@
 //! Every error class: the message text and where the caret points.
 
+// Helpers outside #[test] functions unwrap too; a failure is a test failure.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
 use marsden_cli::expr::{
     ErrorKind, EvalError, Expr, ExprError, Program, ProgramSet, Span, Symbols,
 };

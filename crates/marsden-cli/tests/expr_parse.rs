@@ -1,5 +1,8 @@
 //! Parser semantics: precedence, associativity, literals, functions, constants.
 
+// Helpers outside #[test] functions unwrap too; a failure is a test failure.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
 use marsden_cli::expr::{Expr, Program, Symbols};
 
 /// Evaluate `text` with `x` bound to input 0.

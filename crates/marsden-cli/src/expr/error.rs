@@ -199,7 +199,11 @@ impl ErrorKind {
 
 /// An error in an expression: what went wrong, where, and the text it refers to.
 #[derive(Debug, Clone, PartialEq)]
-pub struct ExprError {
+pub struct ExprError(Box<Details>);
+
+/// The contents of an [`ExprError`], boxed to keep `Result`s small.
+#[derive(Debug, Clone, PartialEq)]
+struct Details {
     kind: ErrorKind,
     text: String,
     span: Span,
@@ -209,46 +213,46 @@ pub struct ExprError {
 impl ExprError {
     /// An error of `kind` at `span` of the expression `text`.
     pub fn new(kind: ErrorKind, text: &str, span: Span) -> Self {
-        Self {
+        Self(Box::new(Details {
             kind,
             text: text.to_owned(),
             span,
             context: None,
-        }
+        }))
     }
 
     /// Attach a label for where the expression came from (e.g. `lagrangian` or
     /// `constraints[1]`); it is shown in the first line of the report.
     #[must_use]
     pub fn with_context(mut self, context: impl Into<String>) -> Self {
-        self.context = Some(context.into());
+        self.0.context = Some(context.into());
         self
     }
 
     /// What went wrong.
     pub fn kind(&self) -> &ErrorKind {
-        &self.kind
+        &self.0.kind
     }
 
     /// The byte range of the expression text the error points at.
     pub fn span(&self) -> Span {
-        self.span
+        self.0.span
     }
 
     /// The full expression text.
     pub fn text(&self) -> &str {
-        &self.text
+        &self.0.text
     }
 
     /// The context label set with [`ExprError::with_context`], if any.
     pub fn context(&self) -> Option<&str> {
-        self.context.as_deref()
+        self.0.context.as_deref()
     }
 
     /// Zero-based (line, column) of the span start, the column counted in characters.
     pub fn line_column(&self) -> (usize, usize) {
-        let start = self.clamped(self.span.start);
-        let before = &self.text[..start];
+        let start = self.clamped(self.0.span.start);
+        let before = &self.0.text[..start];
         let line = before.matches('\n').count();
         let line_start = before.rfind('\n').map_or(0, |i| i + 1);
         (line, before[line_start..].chars().count())
@@ -256,8 +260,8 @@ impl ExprError {
 
     /// Clamp a byte offset into the text and onto a character boundary.
     fn clamped(&self, offset: usize) -> usize {
-        let mut i = offset.min(self.text.len());
-        while !self.text.is_char_boundary(i) {
+        let mut i = offset.min(self.0.text.len());
+        while !self.0.text.is_char_boundary(i) {
             i -= 1;
         }
         i
@@ -265,34 +269,34 @@ impl ExprError {
 
     /// The source line containing the span start, and the caret line under it.
     fn snippet(&self) -> (String, String) {
-        let start = self.clamped(self.span.start);
-        let end = self.clamped(self.span.end.max(start));
-        let line_start = self.text[..start].rfind('\n').map_or(0, |i| i + 1);
-        let line_end = self.text[start..]
+        let start = self.clamped(self.0.span.start);
+        let end = self.clamped(self.0.span.end.max(start));
+        let line_start = self.0.text[..start].rfind('\n').map_or(0, |i| i + 1);
+        let line_end = self.0.text[start..]
             .find('\n')
-            .map_or(self.text.len(), |i| start + i);
-        let line = &self.text[line_start..line_end];
-        let pad: String = self.text[line_start..start]
+            .map_or(self.0.text.len(), |i| start + i);
+        let line = &self.0.text[line_start..line_end];
+        let pad: String = self.0.text[line_start..start]
             .chars()
             .map(|c| if c == '\t' { '\t' } else { ' ' })
             .collect();
-        let width = self.text[start..end.min(line_end)].chars().count().max(1);
+        let width = self.0.text[start..end.min(line_end)].chars().count().max(1);
         (line.to_owned(), format!("{pad}{}", "^".repeat(width)))
     }
 }
 
 impl fmt::Display for ExprError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match &self.context {
-            Some(ctx) => writeln!(f, "error in {ctx}: {}", self.kind)?,
-            None => writeln!(f, "error: {}", self.kind)?,
+        match &self.0.context {
+            Some(ctx) => writeln!(f, "error in {ctx}: {}", self.0.kind)?,
+            None => writeln!(f, "error: {}", self.0.kind)?,
         }
         let (line, carets) = self.snippet();
         write!(f, "  {line}\n  {carets}")?;
-        if let Some(help) = self.kind.help() {
+        if let Some(help) = self.0.kind.help() {
             write!(f, "\n  = help: {help}")?;
         }
-        if let Some(note) = self.kind.note() {
+        if let Some(note) = self.0.kind.note() {
             write!(f, "\n  = note: {note}")?;
         }
         Ok(())

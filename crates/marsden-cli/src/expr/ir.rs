@@ -67,7 +67,7 @@ pub(crate) fn add(a: Node, b: Node) -> Node {
     match (a, b) {
         (Const(x), Const(y)) => Const(x + y),
         (Const(c), x) => add(x, Const(c)),
-        (x, Const(c)) if c == 0.0 => x,
+        (x, Const(0.0)) => x,
         (Bin(Arith::Add, x, c1), Const(c2)) if c1.as_const().is_some() => {
             add(*x, add(*c1, Const(c2)))
         }
@@ -96,8 +96,8 @@ pub(crate) fn mul(a: Node, b: Node) -> Node {
     match (a, b) {
         (Const(x), Const(y)) => Const(x * y),
         (Const(c), x) => mul(x, Const(c)),
-        (x, Const(c)) if c == 1.0 => x,
-        (x, Const(c)) if c == -1.0 => neg(x),
+        (x, Const(1.0)) => x,
+        (x, Const(-1.0)) => neg(x),
         (Bin(Arith::Mul, x, c1), Const(c2)) if c1.as_const().is_some() => {
             mul(*x, mul(*c1, Const(c2)))
         }
@@ -118,7 +118,7 @@ pub(crate) fn mul(a: Node, b: Node) -> Node {
 pub(crate) fn div(a: Node, b: Node) -> Node {
     match (a, b) {
         (Const(x), Const(y)) => Const(x / y),
-        (x, Const(c)) if c == 1.0 => x,
+        (x, Const(1.0)) => x,
         (Bin(Arith::Mul, x, c1), Const(c2)) if c1.as_const().is_some() => {
             mul(*x, div(*c1, Const(c2)))
         }
@@ -158,9 +158,9 @@ pub(crate) fn pow(a: Node, b: Node) -> Node {
             Some(n) => x.powi(n),
             None => powd(x, y),
         }),
-        (_, Const(e)) if e == 0.0 => Const(1.0),
-        (x, Const(e)) if e == 1.0 => x,
-        (x, Const(e)) if e == 0.5 => unary(Unary::Sqrt, x),
+        (_, Const(0.0)) => Const(1.0),
+        (x, Const(1.0)) => x,
+        (x, Const(0.5)) => unary(Unary::Sqrt, x),
         (x, Const(e)) => match integer_exponent(e) {
             Some(n) => Node::Powi(Box::new(x), n),
             None => Node::Powf(Box::new(x), e),

@@ -149,9 +149,31 @@ impl Gen {
             (_, Node::Input(i)) => self.then(a, input_rhs(op, *i)),
             (Node::Const(c), _) => self.then(b, const_lhs(op, *c)),
             (Node::Input(i), _) if commutes => self.then(b, input_rhs(op, *i)),
+            // Evaluating the hungrier operand first keeps the stack shallow (Sethi–Ullman);
+            // swapping the operands of `+` and `*` is exact.
+            _ if commutes && need(b) > need(a) => self.both(b, a, stack_op(op)),
             _ => self.both(a, b, stack_op(op)),
         }
     }
+}
+
+/// Stack slots needed to evaluate `node` while the accumulator holds a live value.
+fn need(node: &Node) -> usize {
+    match node {
+        Node::Const(_) | Node::Input(_) => 1,
+        Node::Neg(a) | Node::Unary(_, a) | Node::Powi(a, _) | Node::Powf(a, _) => need(a),
+        Node::Bin(_, a, b) if is_leaf(b) => need(a),
+        Node::Bin(_, a, b) if is_leaf(a) => need(b),
+        Node::Bin(Arith::Add | Arith::Mul, a, b) => {
+            let (x, y) = (need(a), need(b));
+            x.max(y).max(1 + x.min(y))
+        }
+        Node::Bin(_, a, b) | Node::Powd(a, b) | Node::Atan2(a, b) => need(a).max(1 + need(b)),
+    }
+}
+
+fn is_leaf(node: &Node) -> bool {
+    matches!(node, Node::Const(_) | Node::Input(_))
 }
 
 /// `acc = acc op c`
