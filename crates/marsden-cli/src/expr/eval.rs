@@ -72,55 +72,73 @@ fn run<S: Scalar>(code: &Code, inputs: &[S], stack: &mut impl Stack<S>) -> S {
     };
     let mut sp = 0_usize;
     for op in &code.ops {
-        acc = match *op {
+        // Arms update `acc` in place where the scalar type supports it, so large dual numbers
+        // are not copied through a temporary on every instruction.
+        match *op {
             Op::PushInput(i) => {
                 stack.set(sp, acc);
                 sp += 1;
-                inputs[i]
+                acc = inputs[i];
             }
             Op::PushConst(c) => {
                 stack.set(sp, acc);
                 sp += 1;
-                S::from(c)
+                acc = S::from(c);
             }
             Op::Add => {
                 sp -= 1;
-                stack.get(sp) + acc
+                acc += stack.get(sp);
             }
             Op::Sub => {
                 sp -= 1;
-                stack.get(sp) - acc
+                acc = stack.get(sp) - acc;
             }
             Op::Mul => {
                 sp -= 1;
-                stack.get(sp) * acc
+                acc *= stack.get(sp);
             }
             Op::Div => {
                 sp -= 1;
-                stack.get(sp) / acc
+                acc = stack.get(sp) / acc;
             }
-            Op::AddInput(i) => acc + inputs[i],
-            Op::SubInput(i) => acc - inputs[i],
-            Op::MulInput(i) => acc * inputs[i],
-            Op::DivInput(i) => acc / inputs[i],
-            Op::AddConst(c) => acc + c,
-            Op::MulConst(c) => acc * c,
-            Op::DivConst(c) => acc / c,
-            Op::ConstSub(c) => S::from(c) - acc,
-            Op::ConstDiv(c) => S::from(c) / acc,
-            Op::Neg => -acc,
-            Op::Call(f) => f.apply(acc),
-            Op::Powi(n) => acc.powi(n),
-            Op::Powf(e) => acc.powf(e),
+            Op::AddInput(i) => acc += inputs[i],
+            Op::SubInput(i) => acc -= inputs[i],
+            Op::MulInput(i) => acc *= inputs[i],
+            Op::DivInput(i) => acc /= inputs[i],
+            Op::AddConst(c) => acc += c,
+            Op::MulConst(c) => acc *= c,
+            Op::DivConst(c) => acc /= c,
+            Op::ConstSub(c) => acc = S::from(c) - acc,
+            Op::ConstDiv(c) => acc = S::from(c) / acc,
+            Op::Neg => acc = -acc,
+            Op::Call(f) => acc = f.apply(acc),
+            Op::Powi(n) => acc = acc.powi(n),
+            Op::Square => acc = acc * acc,
+            Op::MulConstAdd(c) => {
+                sp -= 1;
+                acc *= c;
+                acc += stack.get(sp);
+            }
+            Op::PushCall(i, f) => {
+                stack.set(sp, acc);
+                sp += 1;
+                acc = f.apply(inputs[i]);
+            }
+            Op::PushSquare(i) => {
+                stack.set(sp, acc);
+                sp += 1;
+                acc = inputs[i] * inputs[i];
+            }
+            Op::Powf(e) => acc = acc.powf(e),
             Op::Powd => {
                 sp -= 1;
-                powd(stack.get(sp), acc)
+                acc = powd(stack.get(sp), acc);
             }
             Op::Atan2 => {
                 sp -= 1;
-                atan2(stack.get(sp), acc)
+                acc = atan2(stack.get(sp), acc);
             }
-        };
+        }
     }
     acc
 }

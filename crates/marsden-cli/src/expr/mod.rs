@@ -70,6 +70,7 @@
 //! ```
 
 mod ast;
+mod codegen;
 mod error;
 mod eval;
 mod functions;

@@ -1,4 +1,4 @@
-//! Instructions of the compiled program and code generation from the folded tree.
+//! Instructions of the compiled program.
 //!
 //! The machine has an accumulator (the value of the last completed subexpression) and a stack
 //! of pending left operands. A program is a first [`Leaf`] loaded into the accumulator followed
@@ -8,7 +8,6 @@
 use std::fmt;
 
 use super::functions::Unary;
-use super::ir::{Arith, Node};
 
 /// The value first loaded into the accumulator.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -56,6 +55,14 @@ pub(crate) enum Op {
     Call(Unary),
     /// acc = acc^n
     Powi(i32),
+    /// acc = acc * acc (`powi(2)`, the most common power)
+    Square,
+    /// acc = pop + acc * c (fused `MulConst(c)`, `Add`)
+    MulConstAdd(f64),
+    /// push acc; acc = f(inputs[i]) (fused `PushInput(i)`, `Call(f)`)
+    PushCall(usize, Unary),
+    /// push acc; acc = inputs[i]^2 (fused `PushInput(i)`, `Square`)
+    PushSquare(usize),
     /// acc = acc^e
     Powf(f64),
     /// acc = pop^acc
@@ -70,150 +77,6 @@ pub(crate) struct Code {
     pub(crate) first: Leaf,
     pub(crate) ops: Vec<Op>,
     pub(crate) depth: usize,
-}
-
-/// Generate code for `node`.
-pub(crate) fn generate(node: &Node) -> Code {
-    let mut g = Gen {
-        first: None,
-        ops: Vec::new(),
-        sp: 0,
-        depth: 0,
-    };
-    g.emit(node);
-    Code {
-        first: g.first.unwrap_or(Leaf::Const(f64::NAN)),
-        ops: g.ops,
-        depth: g.depth,
-    }
-}
-
-struct Gen {
-    first: Option<Leaf>,
-    ops: Vec<Op>,
-    sp: usize,
-    depth: usize,
-}
-
-impl Gen {
-    fn leaf(&mut self, leaf: Leaf) {
-        if self.first.is_none() {
-            self.first = Some(leaf);
-            return;
-        }
-        self.ops.push(match leaf {
-            Leaf::Input(i) => Op::PushInput(i),
-            Leaf::Const(c) => Op::PushConst(c),
-        });
-        self.sp += 1;
-        self.depth = self.depth.max(self.sp);
-    }
-
-    /// Emit an instruction that pops one stack value.
-    fn pop_op(&mut self, op: Op) {
-        self.ops.push(op);
-        self.sp -= 1;
-    }
-
-    fn emit(&mut self, node: &Node) {
-        match node {
-            Node::Const(c) => self.leaf(Leaf::Const(*c)),
-            Node::Input(i) => self.leaf(Leaf::Input(*i)),
-            Node::Neg(a) => self.then(a, Op::Neg),
-            Node::Unary(f, a) => self.then(a, Op::Call(*f)),
-            Node::Powi(a, n) => self.then(a, Op::Powi(*n)),
-            Node::Powf(a, e) => self.then(a, Op::Powf(*e)),
-            Node::Powd(a, b) => self.both(a, b, Op::Powd),
-            Node::Atan2(a, b) => self.both(a, b, Op::Atan2),
-            Node::Bin(op, a, b) => self.binary(*op, a, b),
-        }
-    }
-
-    /// Evaluate `a` into the accumulator, then apply `op`.
-    fn then(&mut self, a: &Node, op: Op) {
-        self.emit(a);
-        self.ops.push(op);
-    }
-
-    /// Evaluate `a` then `b` (pushing `a`), then apply the popping `op`.
-    fn both(&mut self, a: &Node, b: &Node, op: Op) {
-        self.emit(a);
-        self.emit(b);
-        self.pop_op(op);
-    }
-
-    fn binary(&mut self, op: Arith, a: &Node, b: &Node) {
-        let commutes = matches!(op, Arith::Add | Arith::Mul);
-        match (a, b) {
-            (_, Node::Const(c)) => self.then(a, const_rhs(op, *c)),
-            (_, Node::Input(i)) => self.then(a, input_rhs(op, *i)),
-            (Node::Const(c), _) => self.then(b, const_lhs(op, *c)),
-            (Node::Input(i), _) if commutes => self.then(b, input_rhs(op, *i)),
-            // Evaluating the hungrier operand first keeps the stack shallow (Sethi–Ullman);
-            // swapping the operands of `+` and `*` is exact.
-            _ if commutes && need(b) > need(a) => self.both(b, a, stack_op(op)),
-            _ => self.both(a, b, stack_op(op)),
-        }
-    }
-}
-
-/// Stack slots needed to evaluate `node` while the accumulator holds a live value.
-fn need(node: &Node) -> usize {
-    match node {
-        Node::Const(_) | Node::Input(_) => 1,
-        Node::Neg(a) | Node::Unary(_, a) | Node::Powi(a, _) | Node::Powf(a, _) => need(a),
-        Node::Bin(_, a, b) if is_leaf(b) => need(a),
-        Node::Bin(_, a, b) if is_leaf(a) => need(b),
-        Node::Bin(Arith::Add | Arith::Mul, a, b) => {
-            let (x, y) = (need(a), need(b));
-            x.max(y).max(1 + x.min(y))
-        }
-        Node::Bin(_, a, b) | Node::Powd(a, b) | Node::Atan2(a, b) => need(a).max(1 + need(b)),
-    }
-}
-
-fn is_leaf(node: &Node) -> bool {
-    matches!(node, Node::Const(_) | Node::Input(_))
-}
-
-/// `acc = acc op c`
-fn const_rhs(op: Arith, c: f64) -> Op {
-    match op {
-        Arith::Add => Op::AddConst(c),
-        Arith::Sub => Op::AddConst(-c),
-        Arith::Mul => Op::MulConst(c),
-        Arith::Div => Op::DivConst(c),
-    }
-}
-
-/// `acc = c op acc`
-fn const_lhs(op: Arith, c: f64) -> Op {
-    match op {
-        Arith::Add => Op::AddConst(c),
-        Arith::Sub => Op::ConstSub(c),
-        Arith::Mul => Op::MulConst(c),
-        Arith::Div => Op::ConstDiv(c),
-    }
-}
-
-/// `acc = acc op inputs[i]`
-fn input_rhs(op: Arith, i: usize) -> Op {
-    match op {
-        Arith::Add => Op::AddInput(i),
-        Arith::Sub => Op::SubInput(i),
-        Arith::Mul => Op::MulInput(i),
-        Arith::Div => Op::DivInput(i),
-    }
-}
-
-/// `acc = pop op acc`
-fn stack_op(op: Arith) -> Op {
-    match op {
-        Arith::Add => Op::Add,
-        Arith::Sub => Op::Sub,
-        Arith::Mul => Op::Mul,
-        Arith::Div => Op::Div,
-    }
 }
 
 impl fmt::Display for Leaf {
@@ -245,6 +108,10 @@ impl fmt::Display for Op {
             Op::Neg => write!(f, "neg"),
             Op::Call(u) => write!(f, "{}", u.name()),
             Op::Powi(n) => write!(f, "powi {n}"),
+            Op::Square => write!(f, "square"),
+            Op::MulConstAdd(c) => write!(f, "mul {c}; add pop"),
+            Op::PushCall(i, u) => write!(f, "push; load {}(in[{i}])", u.name()),
+            Op::PushSquare(i) => write!(f, "push; load in[{i}]^2"),
             Op::Powf(e) => write!(f, "powf {e}"),
         }
     }
