@@ -142,3 +142,89 @@ fn run<S: Scalar>(code: &Code, inputs: &[S], stack: &mut impl Stack<S>) -> S {
     }
     acc
 }
+
+#[cfg(test)]
+mod tests {
+    use std::mem::discriminant;
+
+    use super::super::functions::Unary;
+    use super::super::{Program, Symbols};
+    use super::*;
+
+    type Case = (&'static str, Op, fn(f64, f64) -> f64);
+
+    /// One expression per instruction, the instruction it must compile to, and its value.
+    const CASES: &[Case] = &[
+        ("atan2(sin(x), 2)", Op::PushConst(0.0), |x, _| {
+            x.sin().atan2(2.0)
+        }),
+        ("sin(x) * (y + x)", Op::PushInput(0), |x, y| {
+            x.sin() * (y + x)
+        }),
+        ("sin(x) + cos(y)", Op::Add, |x, y| x.sin() + y.cos()),
+        ("sin(x) - cos(y)", Op::Sub, |x, y| x.sin() - y.cos()),
+        ("sin(x) * cos(y)", Op::Mul, |x, y| x.sin() * y.cos()),
+        ("sin(x) / cos(y)", Op::Div, |x, y| x.sin() / y.cos()),
+        ("sin(x) + y", Op::AddInput(0), |x, y| x.sin() + y),
+        ("sin(x) - y", Op::SubInput(0), |x, y| x.sin() - y),
+        ("sin(x) * y", Op::MulInput(0), |x, y| x.sin() * y),
+        ("sin(x) / y", Op::DivInput(0), |x, y| x.sin() / y),
+        ("sin(x) + 2", Op::AddConst(0.0), |x, _| x.sin() + 2.0),
+        ("sin(x) * 3", Op::MulConst(0.0), |x, _| x.sin() * 3.0),
+        ("sin(x) / 3", Op::DivConst(0.0), |x, _| x.sin() / 3.0),
+        ("2 - sin(x)", Op::ConstSub(0.0), |x, _| 2.0 - x.sin()),
+        ("2 / sin(x)", Op::ConstDiv(0.0), |x, _| 2.0 / x.sin()),
+        ("-sin(x)", Op::Neg, |x, _| -x.sin()),
+        ("tanh(x)", Op::Call(Unary::Tanh), |x, _| x.tanh()),
+        ("x^3", Op::Powi(0), |x, _| x.powi(3)),
+        ("x^2", Op::Square, |x, _| x * x),
+        ("x^1.5", Op::Powf(0.0), |x, _| x.powf(1.5)),
+        ("x^y", Op::Powd, |x, y| x.powf(y)),
+        ("atan2(sin(x), y^2)", Op::Atan2, |x, y| x.sin().atan2(y * y)),
+        ("sin(x) + 3*cos(y)", Op::MulConstAdd(0.0), |x, y| {
+            x.sin() + y.cos() * 3.0
+        }),
+        ("sin(x) * cos(y)", Op::PushCall(0, Unary::Cos), |x, y| {
+            x.sin() * y.cos()
+        }),
+        ("sin(x) + y^2", Op::PushSquare(0), |x, y| x.sin() + y * y),
+    ];
+
+    #[test]
+    fn every_instruction_evaluates_correctly() {
+        let symbols = Symbols::with_inputs(["x", "y"]).unwrap();
+        for &(text, op, expected) in CASES {
+            let program = Program::compile(text, &symbols).unwrap();
+            let found = program
+                .ops()
+                .iter()
+                .any(|o| discriminant(o) == discriminant(&op));
+            assert!(found, "`{text}` should use {op:?}:\n{program}");
+            for (x, y) in [(0.7, 1.3), (1.9, 0.4), (2.5, 2.5), (0.1, 3.0)] {
+                let (value, want) = (program.eval(&[x, y]), expected(x, y));
+                assert!(
+                    (value - want).abs() <= 1e-15 * want.abs(),
+                    "{text} at ({x}, {y})"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn every_instruction_has_a_case() {
+        // Adding an instruction without a case here makes this match non-exhaustive.
+        for &(_, op, _) in CASES {
+            match op {
+                Op::PushInput(_) | Op::PushConst(_) | Op::Add | Op::Sub | Op::Mul | Op::Div => {}
+                Op::AddInput(_) | Op::SubInput(_) | Op::MulInput(_) | Op::DivInput(_) => {}
+                Op::AddConst(_) | Op::MulConst(_) | Op::DivConst(_) => {}
+                Op::ConstSub(_) | Op::ConstDiv(_) | Op::Neg | Op::Call(_) => {}
+                Op::Powi(_) | Op::Square | Op::Powf(_) | Op::Powd | Op::Atan2 => {}
+                Op::MulConstAdd(_) | Op::PushCall(..) | Op::PushSquare(_) => {}
+            }
+        }
+        let kinds: std::collections::HashSet<_> =
+            CASES.iter().map(|(_, op, _)| discriminant(op)).collect();
+        assert_eq!(kinds.len(), 25);
+    }
+}

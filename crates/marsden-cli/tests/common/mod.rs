@@ -105,7 +105,7 @@ impl Model for AllFunctions {
     const TEXT: &'static str = "sin(a)*cos(b) + tan(a/3) + asin(b/4) + acos(b/5) + atan(a) \
         + atan2(a, b) + sinh(a/2) - cosh(b/3) + tanh(a) + exp(-b^2) + log(1 + a^2) \
         + sqrt(2 + b) + abs(b - 2) + pow(2 + a^2, b/3) + (1 + a^2)^1.5 - 3/(1 + b^2) \
-        + a^-2 + 2^b - (a*b)^3 + c*pi";
+        + a^-2 + 2^b - (a*b)^3 + c*pi + (1 - sin(a)*b) - atan2(b^2, 3)";
     const INPUTS: &'static [&'static str] = &["a", "b"];
     const PARAMS: &'static [(&'static str, f64)] = &[("c", 0.25)];
     const RANGE: (f64, f64) = (0.2, 1.9);
@@ -132,5 +132,7 @@ impl Model for AllFunctions {
             + (b * 2.0_f64.ln()).exp()
             - (a * b).powi(3)
             + 0.25 * std::f64::consts::PI
+            + (one - a.sin() * b)
+            - (b * b).atan2(S::from(3.0))
     }
 }
