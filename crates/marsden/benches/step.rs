@@ -30,16 +30,28 @@ fn bench_steps<A: DiscreteAction>(bencher: Bencher, action: A, start: State, h: 
 }
 
 fn pendulum() -> State {
-    State { t: 0.0, q: vec![1.5], p: vec![0.0] }
+    State {
+        t: 0.0,
+        q: vec![1.5],
+        p: vec![0.0],
+    }
 }
 
 fn double_pendulum() -> State {
-    State { t: 0.0, q: vec![1.0, 0.5], p: vec![0.0, 0.0] }
+    State {
+        t: 0.0,
+        q: vec![1.0, 0.5],
+        p: vec![0.0, 0.0],
+    }
 }
 
 fn kepler() -> State {
     let (q, p) = Kepler::pericentre(0.6);
-    State { t: 0.0, q: q.to_vec(), p: p.to_vec() }
+    State {
+        t: 0.0,
+        q: q.to_vec(),
+        p: p.to_vec(),
+    }
 }
 
 macro_rules! rules {
@@ -59,17 +71,32 @@ macro_rules! rules {
 
             #[divan::bench]
             fn alpha_quarter(b: Bencher) {
-                bench_steps(b, GeneralizedMidpoint { alpha: 0.25 }.discretize($system), $start, $h);
+                bench_steps(
+                    b,
+                    GeneralizedMidpoint { alpha: 0.25 }.discretize($system),
+                    $start,
+                    $h,
+                );
             }
 
             #[divan::bench]
             fn symmetrized_quarter(b: Bencher) {
-                bench_steps(b, SymmetrizedMidpoint { alpha: 0.25 }.discretize($system), $start, $h);
+                bench_steps(
+                    b,
+                    SymmetrizedMidpoint { alpha: 0.25 }.discretize($system),
+                    $start,
+                    $h,
+                );
             }
         }
     };
 }
 
 rules!(pendulum_h005, Pendulum::default(), pendulum(), 0.05);
-rules!(double_pendulum_h001, DoublePendulum::default(), double_pendulum(), 0.01);
+rules!(
+    double_pendulum_h001,
+    DoublePendulum::default(),
+    double_pendulum(),
+    0.01
+);
 rules!(kepler_h001, Kepler::default(), kepler(), 0.01);

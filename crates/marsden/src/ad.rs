@@ -15,10 +15,10 @@
 
 use std::ops::Range;
 
-use nalgebra::{Const, U1};
-use num_dual::{Derivative, DualSVec64, HyperDual64, HyperDualSVec64};
 use crate::Scalar;
 use crate::scratch::with_buffer;
+use nalgebra::{Const, U1};
+use num_dual::{Derivative, DualSVec64, HyperDual64, HyperDualSVec64};
 
 /// A vector-valued function written once over the scalar type.
 pub trait MultiFunction {
@@ -118,29 +118,35 @@ fn jacobian_chunked<const C: usize, F: MultiFunction>(
     let zero = DualSVec64::<C>::from_re(0.0);
     let init = |i: usize| DualSVec64::<C>::from_re(x[i]);
     with_buffer::<_, INLINE, _>(x.len(), zero, init, |xs| {
-        with_buffer::<_, INLINE, _>(m, zero, |_| zero, |out| {
-            let mut evaluations = 0;
-            for jb in (0..nc).step_by(C) {
-                let width = C.min(nc - jb);
-                for a in 0..width {
-                    xs[cols.start + jb + a].eps = Derivative::derivative_generic(Const::<C>, U1, a);
-                }
-                f.eval(xs, out);
-                evaluations += 1;
-                for (i, o) in out.iter().enumerate() {
-                    values[i] = o.re;
-                    let row = &mut jac[i * nc + jb..i * nc + jb + width];
-                    match &o.eps.0 {
-                        Some(e) => row.copy_from_slice(&e.as_slice()[..width]),
-                        None => row.fill(0.0),
+        with_buffer::<_, INLINE, _>(
+            m,
+            zero,
+            |_| zero,
+            |out| {
+                let mut evaluations = 0;
+                for jb in (0..nc).step_by(C) {
+                    let width = C.min(nc - jb);
+                    for a in 0..width {
+                        xs[cols.start + jb + a].eps =
+                            Derivative::derivative_generic(Const::<C>, U1, a);
+                    }
+                    f.eval(xs, out);
+                    evaluations += 1;
+                    for (i, o) in out.iter().enumerate() {
+                        values[i] = o.re;
+                        let row = &mut jac[i * nc + jb..i * nc + jb + width];
+                        match &o.eps.0 {
+                            Some(e) => row.copy_from_slice(&e.as_slice()[..width]),
+                            None => row.fill(0.0),
+                        }
+                    }
+                    for a in 0..width {
+                        xs[cols.start + jb + a].eps = Derivative::none();
                     }
                 }
-                for a in 0..width {
-                    xs[cols.start + jb + a].eps = Derivative::none();
-                }
-            }
-            evaluations
-        })
+                evaluations
+            },
+        )
     })
 }
 
@@ -153,28 +159,39 @@ fn hessian_chunked<const C: usize, F: MultiFunction>(
 ) {
     let (nr, nc, m) = (rows.len(), cols.len(), f.outputs());
     let zero = hd_re::<C>(0.0);
-    with_buffer::<_, INLINE, _>(x.len(), zero, |i| hd_re::<C>(x[i]), |xs| {
-        with_buffer::<_, INLINE, _>(m, zero, |_| zero, |res| {
-            // At least one chunk each way, so values are written even if a range is empty.
-            for ib in (0..nr.max(1)).step_by(C) {
-                for jb in (0..nc.max(1)).step_by(C) {
-                    let (wr, wc) = (C.min(nr.saturating_sub(ib)), C.min(nc.saturating_sub(jb)));
-                    for a in 0..wr {
-                        xs[rows.start + ib + a] = xs[rows.start + ib + a].derivative1(a);
+    with_buffer::<_, INLINE, _>(
+        x.len(),
+        zero,
+        |i| hd_re::<C>(x[i]),
+        |xs| {
+            with_buffer::<_, INLINE, _>(
+                m,
+                zero,
+                |_| zero,
+                |res| {
+                    // At least one chunk each way, so values are written even if a range is empty.
+                    for ib in (0..nr.max(1)).step_by(C) {
+                        for jb in (0..nc.max(1)).step_by(C) {
+                            let (wr, wc) =
+                                (C.min(nr.saturating_sub(ib)), C.min(nc.saturating_sub(jb)));
+                            for a in 0..wr {
+                                xs[rows.start + ib + a] = xs[rows.start + ib + a].derivative1(a);
+                            }
+                            for b in 0..wc {
+                                xs[cols.start + jb + b] = xs[cols.start + jb + b].derivative2(b);
+                            }
+                            f.eval(xs, res);
+                            out.evaluations += 1;
+                            collect_block(res, (ib, wr), (jb, wc), nc, out);
+                            for v in xs.iter_mut() {
+                                *v = hd_re::<C>(v.re);
+                            }
+                        }
                     }
-                    for b in 0..wc {
-                        xs[cols.start + jb + b] = xs[cols.start + jb + b].derivative2(b);
-                    }
-                    f.eval(xs, res);
-                    out.evaluations += 1;
-                    collect_block(res, (ib, wr), (jb, wc), nc, out);
-                    for v in xs.iter_mut() {
-                        *v = hd_re::<C>(v.re);
-                    }
-                }
-            }
-        })
-    })
+                },
+            )
+        },
+    )
 }
 
 /// The 1 × 1 case with num-dual's scalar hyper-dual numbers (no optional derivative parts):
@@ -194,22 +211,27 @@ fn hessian_scalar<F: MultiFunction>(
         v
     };
     with_buffer::<_, 4, _>(x.len(), zero, seed, |xs| {
-        with_buffer::<_, 4, _>(f.outputs(), zero, |_| zero, |res| {
-            f.eval(xs, res);
-            out.evaluations += 1;
-            for (i, o) in res.iter().enumerate() {
-                out.values[i] = o.re;
-                if cols.len() == 1 {
-                    out.jac_cols[i] = o.eps2;
+        with_buffer::<_, 4, _>(
+            f.outputs(),
+            zero,
+            |_| zero,
+            |res| {
+                f.eval(xs, res);
+                out.evaluations += 1;
+                for (i, o) in res.iter().enumerate() {
+                    out.values[i] = o.re;
+                    if cols.len() == 1 {
+                        out.jac_cols[i] = o.eps2;
+                    }
                 }
-            }
-            if rows.len() == 1 {
-                out.grad_rows[0] = res[0].eps1;
-                if cols.len() == 1 {
-                    out.hess[0] = res[0].eps1eps2;
+                if rows.len() == 1 {
+                    out.grad_rows[0] = res[0].eps1;
+                    if cols.len() == 1 {
+                        out.hess[0] = res[0].eps1eps2;
+                    }
                 }
-            }
-        })
+            },
+        )
     })
 }
 

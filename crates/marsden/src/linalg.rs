@@ -122,12 +122,21 @@ pub fn solve_in_place(a: &mut [f64], b: &mut [f64], n: usize) -> Result<(), Sing
             b[0] /= a[0];
             Ok(())
         } else {
-            Err(SingularMatrix { column: 0, pivot: a[0] })
+            Err(SingularMatrix {
+                column: 0,
+                pivot: a[0],
+            })
         };
     }
     let scale = max_norm(a);
     for k in 0..n {
-        let p = (k..n).fold(k, |best, i| if a[i * n + k].abs() > a[best * n + k].abs() { i } else { best });
+        let p = (k..n).fold(k, |best, i| {
+            if a[i * n + k].abs() > a[best * n + k].abs() {
+                i
+            } else {
+                best
+            }
+        });
         let pivot = a[p * n + k];
         if !(pivot.abs() > PIVOT_TOLERANCE * scale) {
             return Err(SingularMatrix { column: k, pivot });

@@ -22,9 +22,9 @@
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LMO08]: Leyendecker, Marsden, Ortiz, ZAMM 88 (2008).
 
 use crate::ad::{self, HessianParts, MultiFunction};
-use crate::scratch::{NODE, with_buffer};
 use crate::linalg::max_norm;
 use crate::newton::NonlinearSystem;
+use crate::scratch::{NODE, with_buffer};
 use crate::{Constraint, DiscreteAction, DiscreteForce, Scalar};
 
 /// Sizes of a step's Newton system.
@@ -91,13 +91,19 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
             let nf = sh.force_outputs();
             if nf > 0 {
                 let forces = &mut out[1..1 + nf];
-                self.force.discrete_force(self.t0, self.h, q0, offsets, forces);
+                self.force
+                    .discrete_force(self.t0, self.h, q0, offsets, forces);
             }
             if sh.d > 0 {
                 let last = &offsets[(sh.s - 1) * sh.n..];
-                with_buffer::<S, NODE, ()>(sh.n, zero, |i| q0[i] + last[i], |q_end| {
-                    self.constraint.constraint(q_end, &mut out[1 + nf..]);
-                });
+                with_buffer::<S, NODE, ()>(
+                    sh.n,
+                    zero,
+                    |i| q0[i] + last[i],
+                    |q_end| {
+                        self.constraint.constraint(q_end, &mut out[1 + nf..]);
+                    },
+                );
             }
         });
     }

@@ -40,7 +40,9 @@ impl<L: Lagrangian> DiscreteLagrangian for AlphaLd<L> {
     #[inline]
     fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
         let t = S::from(t0 + self.alpha * h);
-        at_node(self.alpha, h, (q0, delta), |q, v| self.lagrangian.lagrangian(t, q, v)) * h
+        at_node(self.alpha, h, (q0, delta), |q, v| {
+            self.lagrangian.lagrangian(t, q, v)
+        }) * h
     }
 }
 
@@ -63,13 +65,18 @@ impl<F: Force> DiscreteForce for AlphaForce<F> {
         let (w0, w1) = (h * (1.0 - self.alpha), h * self.alpha);
         at_node(self.alpha, h, (q0, offsets), |q, v| {
             let zero = S::from(0.0);
-            with_buffer::<S, NODE, ()>(n, zero, |_| zero, |f| {
-                self.force.force(t, q, v, f);
-                for i in 0..n {
-                    out[i] = f[i] * w0;
-                    out[n + i] = f[i] * w1;
-                }
-            })
+            with_buffer::<S, NODE, ()>(
+                n,
+                zero,
+                |_| zero,
+                |f| {
+                    self.force.force(t, q, v, f);
+                    for i in 0..n {
+                        out[i] = f[i] * w0;
+                        out[n + i] = f[i] * w1;
+                    }
+                },
+            )
         })
     }
     fn is_active(&self) -> bool {

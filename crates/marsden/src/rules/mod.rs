@@ -64,7 +64,11 @@ pub(crate) fn at_node<S: crate::Scalar, R>(
 
 /// Calls `f(q₁ − q₀)`.
 #[inline(always)]
-pub(crate) fn with_displacement<S: crate::Scalar, R>(q0: &[S], q1: &[S], f: impl FnOnce(&[S]) -> R) -> R {
+pub(crate) fn with_displacement<S: crate::Scalar, R>(
+    q0: &[S],
+    q1: &[S],
+    f: impl FnOnce(&[S]) -> R,
+) -> R {
     use crate::scratch::{NODE, with_buffer};
     with_buffer::<S, NODE, R>(q0.len(), S::from(0.0), |i| q1[i] - q0[i], |d| f(d))
 }

@@ -42,7 +42,9 @@ impl<L: Lagrangian> DiscreteLagrangian for SymmetrizedLd<L> {
         let mut sum = S::from(0.0);
         for c in [self.alpha, 1.0 - self.alpha] {
             let t = S::from(t0 + c * h);
-            sum += at_node(c, h, (q0, delta), |q, v| self.lagrangian.lagrangian(t, q, v));
+            sum += at_node(c, h, (q0, delta), |q, v| {
+                self.lagrangian.lagrangian(t, q, v)
+            });
         }
         sum * (0.5 * h)
     }
@@ -69,13 +71,18 @@ impl<F: Force> DiscreteForce for SymmetrizedForce<F> {
             let t = S::from(t0 + c * h);
             let (w0, w1) = (0.5 * h * (1.0 - c), 0.5 * h * c);
             at_node(c, h, (q0, offsets), |q, v| {
-                with_buffer::<S, NODE, ()>(n, zero, |_| zero, |f| {
-                    self.force.force(t, q, v, f);
-                    for i in 0..n {
-                        out[i] += f[i] * w0;
-                        out[n + i] += f[i] * w1;
-                    }
-                })
+                with_buffer::<S, NODE, ()>(
+                    n,
+                    zero,
+                    |_| zero,
+                    |f| {
+                        self.force.force(t, q, v, f);
+                        for i in 0..n {
+                            out[i] += f[i] * w0;
+                            out[n + i] += f[i] * w1;
+                        }
+                    },
+                )
             });
         }
     }
