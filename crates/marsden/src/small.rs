@@ -114,14 +114,19 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
         let q: [D; N] = std::array::from_fn(|i| D::seeded(self.q0[i], Some((i, 1.0)), None));
         let d: [D; N] = std::array::from_fn(|i| D::seeded(delta[i], Some((i, -1.0)), Some(i)));
         let l = self.action.action(self.t0, self.h, &q, &d);
+        // Summed as (∂L_d/∂Q₀ + f_d⁻) + p_k, in the order of the general path.
         let mut e = Evaluation {
-            residual: std::array::from_fn(|i| self.p0[i] + l.eps1(i)),
+            residual: std::array::from_fn(|i| l.eps1(i)),
             jacobian: std::array::from_fn(|i| std::array::from_fn(|j| l.eps12(i, j))),
             p_next: std::array::from_fn(|j| l.eps2(j)),
         };
         if self.force.is_active() {
             self.add_forces::<N, D>(&q, &d, &mut e);
         }
+        e.residual
+            .iter_mut()
+            .zip(self.p0)
+            .for_each(|(r, p)| *r += p);
         e
     }
 
