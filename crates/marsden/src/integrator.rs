@@ -409,10 +409,16 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
 /// The unknowns are offsets `Δ_j ≈ c_j h v`, smooth in time: each is extrapolated from the same
 /// unknown in the last three steps (quadratic: `3z₁ − 3z₂ + z₃`, error `O(h⁴)` in positions),
 /// falling back to linear, constant, and for a fresh start `Δ_j = c_j h v_k` with the velocity
-/// hint (or 0). Multipliers start from their last values.
+/// hint (or 0). Multipliers start from their last values. The history is a flat ring of three
+/// solutions (no allocation per step).
 #[derive(Debug, Clone, Default)]
 struct Predictor {
-    history: Vec<Vec<f64>>,
+    /// Three solutions back to back.
+    ring: Vec<f64>,
+    /// Slots of the newest, previous and oldest solution.
+    order: [usize; 3],
+    /// Number of valid solutions in the ring (0 … 3).
+    len: usize,
     h: f64,
     velocity: Option<Vec<f64>>,
 }
@@ -421,26 +427,31 @@ impl Predictor {
     fn predict(&mut self, z: &mut Vec<f64>, h: f64, sh: StepShape) {
         let m = sh.unknowns();
         z.resize(m, 0.0);
-        if h != self.h {
-            self.history.clear();
+        if h != self.h || self.ring.len() != 3 * m {
+            self.reset_ring(m);
         }
-        match self.history.as_slice() {
-            [z1, z2, z3, ..] => {
-                for i in 0..m {
-                    z[i] = 3.0 * z1[i] - 3.0 * z2[i] + z3[i];
-                }
-            }
-            [z1, z2] => {
-                for i in 0..m {
-                    z[i] = 2.0 * z1[i] - z2[i];
-                }
-            }
-            [z1] => z.copy_from_slice(z1),
-            [] => self.fresh(z, h, sh),
+        let [a, b, c] = self.order.map(|slot| slot * m);
+        let (r, z) = (&self.ring, &mut z[..m]);
+        match self.len {
+            0 => return self.fresh(z, h, sh),
+            1 => z.copy_from_slice(&r[a..a + m]),
+            2 => z
+                .iter_mut()
+                .enumerate()
+                .for_each(|(i, zi)| *zi = 2.0 * r[a + i] - r[b + i]),
+            _ => z
+                .iter_mut()
+                .enumerate()
+                .for_each(|(i, zi)| *zi = 3.0 * (r[a + i] - r[b + i]) + r[c + i]),
         }
-        if let Some(last) = self.history.first() {
-            z[sh.s * sh.n..].copy_from_slice(&last[sh.s * sh.n..]);
-        }
+        let sn = sh.s * sh.n;
+        z[sn..].copy_from_slice(&r[a + sn..a + m]);
+    }
+
+    fn reset_ring(&mut self, m: usize) {
+        self.ring.resize(3 * m, 0.0);
+        self.order = [0, 1, 2];
+        self.len = 0;
     }
 
     fn fresh(&self, z: &mut [f64], h: f64, sh: StepShape) {
@@ -456,15 +467,14 @@ impl Predictor {
     }
 
     fn record(&mut self, z: &[f64], h: f64) {
-        if self.history.len() == 3 {
-            if let Some(mut oldest) = self.history.pop() {
-                oldest.clear();
-                oldest.extend_from_slice(z);
-                self.history.insert(0, oldest);
-            }
-        } else {
-            self.history.insert(0, z.to_vec());
+        let m = z.len();
+        if self.ring.len() != 3 * m {
+            self.reset_ring(m);
         }
+        let [newest, previous, oldest] = self.order;
+        self.order = [oldest, newest, previous];
+        self.ring[oldest * m..(oldest + 1) * m].copy_from_slice(z);
+        self.len = (self.len + 1).min(3);
         self.h = h;
         self.velocity = None;
     }

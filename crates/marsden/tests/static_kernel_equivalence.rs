@@ -1,5 +1,7 @@
 //! The statically sized step (`marsden::small`) and the general path solve the same equations:
 //! both must give the same trajectory to round-off, for every rule and with a force.
+// Tests may unwrap; reference values are quoted with all the digits the reference cases give.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::excessive_precision)]
 
 mod common;
 use marsden::systems::{DoublePendulum, HenonHeiles, Kepler, Pendulum};
