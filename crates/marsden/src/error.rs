@@ -114,6 +114,22 @@ pub enum Error {
         /// Largest absolute entry of the velocity Hessian.
         scale: f64,
     },
+    /// A Lagrangian declared separable is not: `∂²L/∂v²` differs from the declared mass matrix
+    /// or `∂²L/∂v∂q`, `∂²L/∂v∂t` are not zero.
+    #[error(
+        "the Lagrangian is declared separable (L = ½ vᵀMv − V(q)) but is not at q = {q:?}, v = \
+         {v:?}: {what} is off by {defect:.3e}"
+    )]
+    StructureMismatch {
+        /// Positions of the probe.
+        q: Vec<f64>,
+        /// Velocities of the probe.
+        v: Vec<f64>,
+        /// Which block of second derivatives disagrees.
+        what: &'static str,
+        /// Largest absolute discrepancy.
+        defect: f64,
+    },
     /// The inverse Legendre transform `v = FH(q, p)` did not converge.
     #[error(
         "could not invert the Legendre transform at t = {t}: residual {residual:.3e} after \

@@ -48,6 +48,8 @@ pub struct Statistics {
     pub action_evaluations: usize,
     /// Steps whose Newton iteration failed.
     pub failed_steps: usize,
+    /// Steps taken by an explicit formula (no Newton iteration).
+    pub explicit_steps: usize,
 }
 
 /// Steps a discrete action `A` with discrete forces `F` and constraints `C`.
@@ -71,8 +73,8 @@ pub struct Integrator<A, F = NoForce, C = Unconstrained> {
     buffers: Buffers,
     predictor: Predictor,
     statistics: Statistics,
-    /// Use the statically sized kernel ([`crate::small`]) when the step allows it.
-    static_sizes: bool,
+    /// Use the fast paths ([`crate::explicit`], [`crate::small`]) when the step allows them.
+    fast_paths: bool,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -84,6 +86,7 @@ struct Buffers {
     p_next: Vec<f64>,
     phi: Vec<f64>,
     dphi0: Vec<f64>,
+    work: Vec<f64>,
 }
 
 impl<A: DiscreteAction> Integrator<A> {
@@ -104,7 +107,7 @@ impl<A: DiscreteAction> Integrator<A> {
             buffers: Buffers::default(),
             predictor: Predictor::default(),
             statistics: Statistics::default(),
-            static_sizes: true,
+            fast_paths: true,
         }
     }
 }
@@ -125,7 +128,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
             buffers: Buffers::default(),
             predictor: Predictor::default(),
             statistics: self.statistics,
-            static_sizes: self.static_sizes,
+            fast_paths: self.fast_paths,
         }
     }
 
@@ -144,7 +147,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
             buffers: Buffers::default(),
             predictor: Predictor::default(),
             statistics: self.statistics,
-            static_sizes: self.static_sizes,
+            fast_paths: self.fast_paths,
         }
     }
 
@@ -155,10 +158,12 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         Ok(self)
     }
 
-    /// Whether to use the statically sized step for small systems (default: true). The
-    /// general path solves the same equations; switching is for testing and measurement.
-    pub fn with_static_sizes(mut self, enabled: bool) -> Self {
-        self.static_sizes = enabled;
+    /// Whether to use the fast paths (default: true): the explicit Störmer–Verlet step of the
+    /// trapezoid rule on separable Lagrangians ([`crate::explicit`]) and the statically sized
+    /// Newton step for small systems ([`crate::small`]). The general path solves the same
+    /// equations; switching is for testing and measurement.
+    pub fn with_fast_paths(mut self, enabled: bool) -> Self {
+        self.fast_paths = enabled;
         self
     }
 
@@ -226,6 +231,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         Error::check_len("p", &state.p, self.shape.n)?;
         if h == 0.0 || !h.is_finite() {
             return Err(Error::InvalidStep { h });
+        }
+        if let Some(report) = self.step_explicit(state, h, step)? {
+            return Ok(report);
         }
         let mut z = std::mem::take(&mut self.buffers.z);
         self.predictor.predict(&mut z, h, self.shape);
@@ -296,6 +304,41 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         result
     }
 
+    /// The explicit step ([`crate::explicit`]) when the action has one and nothing else (forces,
+    /// constraints) enters the step; `Ok(None)` when it does not apply.
+    fn step_explicit(
+        &mut self,
+        state: &mut State,
+        h: f64,
+        step: usize,
+    ) -> Result<Option<StepReport>, Error> {
+        let sh = self.shape;
+        if !self.fast_paths || sh.forced || sh.d != 0 || sh.s != 1 {
+            return Ok(None);
+        }
+        let Some(explicit) = self.action.explicit() else {
+            return Ok(None);
+        };
+        let b = &mut self.buffers;
+        b.points.clone_from(&state.q);
+        b.p_next.clone_from(&state.p);
+        explicit.explicit_step(state.t, h, &mut b.points, &mut b.p_next, &mut b.work);
+        if !b.points.iter().chain(&b.p_next).all(|x| x.is_finite()) {
+            self.statistics.failed_steps += 1;
+            return Err(Error::NonFinite {
+                step,
+                t: state.t,
+                what: "the new state",
+            });
+        }
+        state.q.copy_from_slice(&b.points);
+        state.p.copy_from_slice(&b.p_next);
+        state.t += h;
+        self.statistics.steps += 1;
+        self.statistics.explicit_steps += 1;
+        Ok(Some(StepReport::default()))
+    }
+
     /// The statically sized step ([`crate::small`]) for two-point, unconstrained steps with
     /// `n ≤ 4`; `None` when it does not apply.
     fn solve_small(
@@ -305,7 +348,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         h: f64,
     ) -> Option<Result<NewtonReport, NewtonFailure>> {
         let sh = self.shape;
-        if !self.static_sizes || sh.s != 1 || sh.d != 0 || sh.n > 4 {
+        if !self.fast_paths || sh.s != 1 || sh.d != 0 || sh.n > 4 {
             return None;
         }
         let small = SmallStep {

@@ -24,7 +24,7 @@
 //! | system | [`lagrangian`], [`force`], [`constraint`], [`systems`] | `L(t, q, v)`, `f_L`, `φ(q)`, the catalog |
 //! | continuous mechanics | [`mechanics`] | Legendre transform, energy, Euler–Lagrange, regularity |
 //! | discrete Lagrangian | [`discrete`], [`rules`] | `L_d`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; midpoint, trapezoid, α-rules |
-//! | step | [`step`], [`small`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
+//! | step | [`step`], [`small`], [`explicit`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
 //! | integrator | [`integrator`], [`maps`] | rule + forces + constraints + solver + buffers; `F_{L_d}`, `F̃_{L_d}` |
 //! | run | [`problem`], [`simulate`], [`trajectory`] | problem → trajectory, stride, observers, failures |
 //! | diagnostics | [`diagnostics`] | energy error and drift |
@@ -38,6 +38,7 @@ pub mod constraint;
 pub mod diagnostics;
 pub mod discrete;
 pub mod error;
+pub mod explicit;
 pub mod force;
 pub mod integrator;
 pub mod lagrangian;
@@ -61,7 +62,7 @@ pub use discrete::{DiscreteAction, DiscreteLagrangian};
 pub use error::Error;
 pub use force::{DiscreteForce, Force, NoForce};
 pub use integrator::{Integrator, State, Statistics, StepReport};
-pub use lagrangian::Lagrangian;
+pub use lagrangian::{Lagrangian, MassMatrix, Structure};
 pub use newton::NewtonOptions;
 pub use problem::{Initial, Problem, SolveOptions};
 pub use rules::{GeneralizedMidpoint, Midpoint, Rule, SymmetrizedMidpoint, Trapezoid};

@@ -19,7 +19,7 @@ fn trajectory<A: DiscreteAction, F: DiscreteForce>(
 ) -> Vec<f64> {
     let mut integrator = Integrator::new(action)
         .with_force(force)
-        .with_static_sizes(fast);
+        .with_fast_paths(fast);
     let mut s = start.clone();
     let mut out = Vec::new();
     // 1000 steps: long enough for many Newton solves, short enough that a drag force does not
