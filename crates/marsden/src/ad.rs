@@ -12,11 +12,13 @@
 //!   `∂²out₀/∂x[rows]∂x[cols]` of the first output, with hyper-dual numbers
 //!   `HyperDualSVec64<C, C>` (eps₁ seeds the rows, eps₂ the columns; a variable in both ranges is
 //!   seeded in both, which still yields the exact second derivative).
+//! * [`nested_gradient`]: a gradient evaluated at scalars that are themselves dual numbers
+//!   (nested `Dual<S>`), so that generic code can differentiate inside itself.
 
 use std::ops::Range;
 
 use nalgebra::{Const, U1};
-use num_dual::{Derivative, DualSVec64, HyperDualSVec64};
+use num_dual::{Derivative, Dual, DualSVec64, HyperDualSVec64};
 use smallvec::SmallVec;
 
 use crate::Scalar;
@@ -108,6 +110,31 @@ pub fn partial_hessian<F: MultiFunction>(
 /// Plain evaluation at `f64`.
 pub fn eval_f64<F: MultiFunction>(f: &F, x: &[f64], values: &mut [f64]) {
     f.eval(x, values);
+}
+
+/// Gradient `∂f₀/∂x[cols]` at a point whose coordinates are themselves scalars of type `S`
+/// (nested forward mode: one evaluation at `Dual<S>` per column), written into `out`.
+///
+/// This differentiates *inside* generic code: a function written over `S` can use the
+/// derivative of another function and still be differentiated by the caller (e.g. the
+/// Legendre transform `∂L/∂v` inside a Hamiltonian built from a Lagrangian). Costs
+/// `cols.len()` evaluations; meant for small systems and derived quantities, not hot loops.
+pub fn nested_gradient<S: Scalar, F: MultiFunction>(
+    f: &F,
+    x: &[S],
+    cols: Range<usize>,
+    out: &mut [S],
+) {
+    let m = f.outputs();
+    let mut xs: SmallVec<[Dual<S>; INLINE]> = x.iter().map(|&v| Dual::from_re(v)).collect();
+    let mut res: SmallVec<[Dual<S>; INLINE]> =
+        (0..m).map(|_| Dual::from_re(S::from(0.0))).collect();
+    for (k, c) in cols.enumerate() {
+        xs[c].eps = S::from(1.0);
+        f.eval(&xs, &mut res);
+        out[k] = res[0].eps;
+        xs[c].eps = S::from(0.0);
+    }
 }
 
 fn jacobian_chunked<const C: usize, F: MultiFunction>(
