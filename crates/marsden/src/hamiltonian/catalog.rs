@@ -113,7 +113,7 @@ impl Hamiltonian for DoublePendulum {
         let (m1, m2, l1, l2, g) = (self.m1, self.m2, self.l1, self.l2, self.g);
         let (a, b) = ((m1 + m2) * l1 * l1, m2 * l2 * l2);
         let (s, c) = ((q[0] - q[1]).sin(), (q[0] - q[1]).cos() * (m2 * l1 * l2));
-        let det = (s * s * m2 + m1 + m2) * (m2 * l1 * l1 * l2 * l2);
+        let det = (s * s * m2 + m1) * (m2 * l1 * l1 * l2 * l2);
         let kinetic = (p[0] * p[0] * b + p[1] * p[1] * a - c * p[0] * p[1] * 2.0) / (det * 2.0);
         let potential = q[0].cos() * (-(m1 + m2) * g * l1) - q[1].cos() * (m2 * g * l2);
         kinetic + potential

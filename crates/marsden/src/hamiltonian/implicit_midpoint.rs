@@ -9,7 +9,9 @@
 //! midpoint variational integrator of `L = ½vᵀMv − V` (reference cases §0).
 //!
 //! Solved by Newton's method ([`crate::newton`]) for the increment `Δ = z₁ − z₀`, with residual
-//! `Δ − h X_H(z₀ + Δ/2)` and Jacobian `I − (h/2) DX_H`, `DX_H = J∇²H` by AD. The step map's
+//! `Δ/h − X_H(z₀ + Δ/2)` and Jacobian `I/h − ½DX_H`, `DX_H = J∇²H` by AD. The residual is in the
+//! units of the vector field (velocities and forces) and scaled by `‖X_H(z₀)‖`, like the
+//! momentum residual of the variational step; a residual `r` moves `z₁` by only `h·r`. The step map's
 //! Jacobian follows from the implicit function theorem at the converged `Δ`:
 //! `∂z₁/∂z₀ = I + (I − (h/2)DX_H)⁻¹ h DX_H`.
 //!
@@ -54,11 +56,13 @@ impl ImplicitMidpoint {
         self.delta.resize(2 * n, 0.0);
         let (dq, dp) = self.delta.split_at_mut(n);
         vector_field(ham, state.t, &state.q, &state.p, dq, dp);
+        let scale = max_norm(&self.delta);
         self.delta.iter_mut().for_each(|d| *d *= h);
         let mut system = MidpointSystem {
             ham,
             t: state.t + 0.5 * h,
             h,
+            scale,
             z0: &self.z0,
             jet: &mut self.jet,
             x: vec![0.0; 2 * n],
@@ -154,11 +158,13 @@ impl<H: Hamiltonian> HamiltonianMethod<H> for ImplicitMidpoint {
     }
 }
 
-/// Residual `Δ − h X_H(z₀ + Δ/2)` and Jacobian `I − (h/2) DX_H`.
+/// Residual `Δ/h − X_H(z₀ + Δ/2)` and Jacobian `I/h − ½DX_H`.
 struct MidpointSystem<'a, H> {
     ham: &'a H,
     t: f64,
     h: f64,
+    /// `‖X_H(z₀)‖∞`, the scale of the residual.
+    scale: f64,
     z0: &'a [f64],
     jet: &'a mut PhaseJet,
     x: Vec<f64>,
@@ -170,7 +176,7 @@ impl<H: Hamiltonian> NonlinearSystem for MidpointSystem<'_, H> {
     }
 
     fn residual_scale(&self) -> f64 {
-        max_norm(self.z0)
+        self.scale
     }
 
     fn evaluate(&mut self, delta: &[f64], r: &mut [f64], jac: &mut [f64]) {
@@ -182,10 +188,10 @@ impl<H: Hamiltonian> NonlinearSystem for MidpointSystem<'_, H> {
         self.jet.vector_field(r);
         self.jet.vector_field_jacobian(jac);
         for (ri, d) in r.iter_mut().zip(delta) {
-            *ri = d - self.h * *ri;
+            *ri = d / self.h - *ri;
         }
         for (k, j) in jac.iter_mut().enumerate() {
-            *j = f64::from(u8::from(k / m == k % m)) - 0.5 * self.h * *j;
+            *j = f64::from(u8::from(k / m == k % m)) / self.h - 0.5 * *j;
         }
     }
 }
