@@ -301,6 +301,32 @@ mod tests {
         assert_eq!(parts.evaluations, 1);
     }
 
+    #[test]
+    fn nested_gradient_differentiates_inside_generic_code() {
+        /// f(x) = x0² x1 + sin x0.
+        struct F;
+        impl MultiFunction for F {
+            fn inputs(&self) -> usize {
+                2
+            }
+            fn outputs(&self) -> usize {
+                1
+            }
+            fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
+                out[0] = x[0] * x[0] * x[1] + x[0].sin();
+            }
+        }
+        let (a, b) = (0.7_f64, -1.3_f64);
+        let x = [Dual::new(a, 1.0), Dual::new(b, 0.0)];
+        let mut g = [Dual::new(0.0, 0.0); 2];
+        nested_gradient(&F, &x, 0..2, &mut g);
+        // ∂f/∂x0 = 2 x0 x1 + cos x0 and its x0-derivative 2 x1 − sin x0.
+        assert!((g[0].re - (2.0 * a * b + a.cos())).abs() < 1e-15);
+        assert!((g[0].eps - (2.0 * b - a.sin())).abs() < 1e-15);
+        // ∂f/∂x1 = x0² and its x0-derivative 2 x0.
+        assert!((g[1].re - a * a).abs() < 1e-15 && (g[1].eps - 2.0 * a).abs() < 1e-15);
+    }
+
     /// A 20-input quadratic form forces the chunked (8-wide) path: 3×3 chunk pairs.
     struct Quadratic;
     impl MultiFunction for Quadratic {

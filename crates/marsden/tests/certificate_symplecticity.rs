@@ -2,6 +2,7 @@
 //! Jacobian of the computed step map, by AD through the converged step (implicit function
 //! theorem), satisfies DFᵀJDF = J to round-off for every variational rule on the pendulum, the
 //! double pendulum and Kepler — and visibly fails for explicit RK2 and for a damped system.
+#![allow(clippy::unwrap_used, clippy::expect_used)] // tests may unwrap
 
 mod common;
 use common::tight;
@@ -36,14 +37,27 @@ fn vi_defect<A: DiscreteAction>(action: A, start: &State, h: f64, steps: usize) 
 fn all_rules<L: Lagrangian + Copy>(name: &str, l: L, start: &State, h: f64) {
     let defects = [
         ("midpoint", vi_defect(Midpoint.discretize(l), start, h, 200)),
-        ("trapezoid", vi_defect(Trapezoid.discretize(l), start, h, 200)),
+        (
+            "trapezoid",
+            vi_defect(Trapezoid.discretize(l), start, h, 200),
+        ),
         (
             "alpha(0.3)",
-            vi_defect(GeneralizedMidpoint { alpha: 0.3 }.discretize(l), start, h, 200),
+            vi_defect(
+                GeneralizedMidpoint { alpha: 0.3 }.discretize(l),
+                start,
+                h,
+                200,
+            ),
         ),
         (
             "symmetrized(0.2)",
-            vi_defect(SymmetrizedMidpoint { alpha: 0.2 }.discretize(l), start, h, 200),
+            vi_defect(
+                SymmetrizedMidpoint { alpha: 0.2 }.discretize(l),
+                start,
+                h,
+                200,
+            ),
         ),
     ];
     for (rule, d) in defects {
@@ -62,7 +76,12 @@ fn every_rule_is_symplectic_on_pendulum_double_pendulum_and_kepler() {
         0.05,
     );
     let (q, p) = Kepler::pericentre(0.6);
-    all_rules("kepler", Kepler::default(), &state(&q, &p), 2.0 * PI / 200.0);
+    all_rules(
+        "kepler",
+        Kepler::default(),
+        &state(&q, &p),
+        2.0 * PI / 200.0,
+    );
 }
 
 fn h_defect<H: Hamiltonian, M: marsden::hamiltonian::HamiltonianMethod<H>>(
@@ -73,7 +92,10 @@ fn h_defect<H: Hamiltonian, M: marsden::hamiltonian::HamiltonianMethod<H>>(
 ) -> f64 {
     let mut integrator = HamiltonianIntegrator::new(ham, method);
     let grid = TimeGrid::new(0.0, h, 200).unwrap();
-    certify(&mut integrator, start.clone(), &grid, 1).unwrap().0.max_relative
+    certify(&mut integrator, start.clone(), &grid, 1)
+        .unwrap()
+        .0
+        .max_relative
 }
 
 #[test]
@@ -83,25 +105,61 @@ fn hamiltonian_methods_symplectic_and_rk2_not() {
         let (q, p) = Kepler::pericentre(0.6);
         (Kepler::default(), state(&q, &p), 2.0 * PI / 200.0)
     };
-    let double = (DoublePendulum::default(), state(&[1.0, -0.5], &[0.3, 0.2]), 0.05);
+    let double = (
+        DoublePendulum::default(),
+        state(&[1.0, -0.5], &[0.3, 0.2]),
+        0.05,
+    );
     let midpoint = || ImplicitMidpoint::new(tight()).unwrap();
     for (name, d) in [
-        ("pendulum / implicit midpoint", h_defect(pendulum.0, midpoint(), &pendulum.1, pendulum.2)),
-        ("pendulum / Störmer–Verlet", h_defect(pendulum.0, Splitting::stormer_verlet(), &pendulum.1, pendulum.2)),
-        ("kepler / implicit midpoint", h_defect(kepler.0, midpoint(), &kepler.1, kepler.2)),
-        ("kepler / symplectic Euler", h_defect(kepler.0, Splitting::symplectic_euler(), &kepler.1, kepler.2)),
-        ("double pendulum / implicit midpoint", h_defect(double.0, midpoint(), &double.1, double.2)),
+        (
+            "pendulum / implicit midpoint",
+            h_defect(pendulum.0, midpoint(), &pendulum.1, pendulum.2),
+        ),
+        (
+            "pendulum / Störmer–Verlet",
+            h_defect(
+                pendulum.0,
+                Splitting::stormer_verlet(),
+                &pendulum.1,
+                pendulum.2,
+            ),
+        ),
+        (
+            "kepler / implicit midpoint",
+            h_defect(kepler.0, midpoint(), &kepler.1, kepler.2),
+        ),
+        (
+            "kepler / symplectic Euler",
+            h_defect(kepler.0, Splitting::symplectic_euler(), &kepler.1, kepler.2),
+        ),
+        (
+            "double pendulum / implicit midpoint",
+            h_defect(double.0, midpoint(), &double.1, double.2),
+        ),
     ] {
         println!("{name}: max relative defect {d:.2e}");
         assert!(d <= 1e-12, "{name}: defect {d:e}");
     }
     for (name, d) in [
-        ("pendulum", h_defect(pendulum.0, ExplicitMidpoint, &pendulum.1, pendulum.2)),
-        ("kepler", h_defect(kepler.0, ExplicitMidpoint, &kepler.1, kepler.2)),
-        ("double pendulum", h_defect(double.0, ExplicitMidpoint, &double.1, double.2)),
+        (
+            "pendulum",
+            h_defect(pendulum.0, ExplicitMidpoint, &pendulum.1, pendulum.2),
+        ),
+        (
+            "kepler",
+            h_defect(kepler.0, ExplicitMidpoint, &kepler.1, kepler.2),
+        ),
+        (
+            "double pendulum",
+            h_defect(double.0, ExplicitMidpoint, &double.1, double.2),
+        ),
     ] {
         println!("{name} / explicit RK2: max relative defect {d:.2e}");
-        assert!(d > 1e-6, "{name} / RK2: defect {d:e} should be clearly non-zero");
+        assert!(
+            d > 1e-6,
+            "{name} / RK2: defect {d:e} should be clearly non-zero"
+        );
     }
 }
 
@@ -155,7 +213,9 @@ fn forced_step_is_certified_not_symplectic() {
         .unwrap();
     let mut jac = [0.0; 4];
     let mut s = state(&[1.0], &[0.0]);
-    integrator.step_with_jacobian(&mut s, 0.1, &mut jac).unwrap();
+    integrator
+        .step_with_jacobian(&mut s, 0.1, &mut jac)
+        .unwrap();
     // R12: the one-step matrix is exactly [[401, 40], [−40, 397]]/403.
     let want = [401.0 / 403.0, 40.0 / 403.0, -40.0 / 403.0, 397.0 / 403.0];
     for (a, w) in jac.iter().zip(want) {

@@ -3,6 +3,7 @@
 //! VI *is* velocity Störmer–Verlet (same trajectories to 1e-12 over 10³ steps); for the double
 //! pendulum (configuration-dependent mass matrix) the two forms agree pointwise (energy, vector
 //! field, momentum maps) and both converge with order 2 to the same solution.
+#![allow(clippy::unwrap_used, clippy::expect_used)] // tests may unwrap
 
 mod common;
 use common::{loglog_slope, tight};
@@ -12,7 +13,9 @@ use marsden::hamiltonian::{
 };
 use marsden::symmetry::Sample;
 use marsden::systems::{DoublePendulum, HenonHeiles, Kepler};
-use marsden::{DiscreteAction, Integrator, Lagrangian, Midpoint, Rule, State, Trapezoid, mechanics};
+use marsden::{
+    DiscreteAction, Integrator, Lagrangian, Midpoint, Rule, State, Trapezoid, mechanics,
+};
 use std::f64::consts::PI;
 
 fn start(q: &[f64], p: &[f64]) -> State {
@@ -56,7 +59,10 @@ fn hamiltonian_run<H: Hamiltonian, M: HamiltonianMethod<H>>(
 
 fn max_difference(a: &[f64], b: &[f64]) -> f64 {
     assert_eq!(a.len(), b.len());
-    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
 }
 
 fn midpoint() -> ImplicitMidpoint {
@@ -77,7 +83,9 @@ fn one_step_differences<A: DiscreteAction, H: Hamiltonian + Copy, M: Hamiltonian
     let mut worst: f64 = 0.0;
     for _ in 0..1000 {
         let mut other = state.clone();
-        HamiltonianIntegrator::new(ham, method()).step(&mut other, h).unwrap();
+        HamiltonianIntegrator::new(ham, method())
+            .step(&mut other, h)
+            .unwrap();
         integrator.step(&mut state, h).unwrap();
         let a: Vec<f64> = state.q.iter().chain(&state.p).copied().collect();
         let b: Vec<f64> = other.q.iter().chain(&other.p).copied().collect();
@@ -100,7 +108,13 @@ fn constant_mass_midpoint_vi_is_implicit_midpoint_on_h() {
     let (q, p) = Kepler::pericentre(0.3);
     let on_l = lagrangian_run(Midpoint.discretize(kepler), &start(&q, &p), h, 1000);
     let on_h = hamiltonian_run(kepler, midpoint(), &start(&q, &p), h, 1000);
-    let from_l = hamiltonian_run(LegendreHamiltonian::new(kepler), midpoint(), &start(&q, &p), h, 1000);
+    let from_l = hamiltonian_run(
+        LegendreHamiltonian::new(kepler),
+        midpoint(),
+        &start(&q, &p),
+        h,
+        1000,
+    );
     let (d, d_adapter) = (max_difference(&on_l, &on_h), max_difference(&on_h, &from_l));
     println!("kepler e = 0.3, 10³ steps: L vs H {d:.2e}, H vs H(L) {d_adapter:.2e}");
     assert!(d <= 1e-12 && d_adapter <= 1e-12, "{d:e} {d_adapter:e}");
@@ -124,18 +138,33 @@ fn constant_mass_equivalences_on_the_eccentric_orbit_are_at_the_round_off_floor(
     let h = 2.0 * PI / 1000.0;
     let kepler = Kepler::default();
     let reference = lagrangian_run(Midpoint.discretize(kepler), &start(&q, &p), h, 1000);
-    let nudged = lagrangian_run(Midpoint.discretize(kepler), &start(&q, &[p[0], p[1] + 4.4e-16]), h, 1000);
+    let nudged = lagrangian_run(
+        Midpoint.discretize(kepler),
+        &start(&q, &[p[0], p[1] + 4.4e-16]),
+        h,
+        1000,
+    );
     let floor = max_difference(&reference[3996..], &nudged[3996..]);
     let on_h = hamiltonian_run(kepler, midpoint(), &start(&q, &p), h, 1000);
     let trapezoid = lagrangian_run(Trapezoid.discretize(kepler), &start(&q, &p), h, 1000);
     let verlet = hamiltonian_run(kepler, Splitting::stormer_verlet(), &start(&q, &p), h, 1000);
-    let (d_mid, d_sv) = (max_difference(&reference, &on_h), max_difference(&trapezoid, &verlet));
+    let (d_mid, d_sv) = (
+        max_difference(&reference, &on_h),
+        max_difference(&trapezoid, &verlet),
+    );
     println!(
         "kepler e = 0.6, 10³ steps: 1-ulp floor {floor:.2e}; midpoint L vs H {d_mid:.2e}; \
          trapezoid vs Störmer–Verlet {d_sv:.2e}"
     );
-    assert!(d_mid <= 20.0 * floor && d_sv <= 20.0 * floor, "{d_mid:e} {d_sv:e} (floor {floor:e})");
-    let d = one_step_differences(Trapezoid.discretize(kepler), kepler, Splitting::stormer_verlet);
+    assert!(
+        d_mid <= 20.0 * floor && d_sv <= 20.0 * floor,
+        "{d_mid:e} {d_sv:e} (floor {floor:e})"
+    );
+    let d = one_step_differences(
+        Trapezoid.discretize(kepler),
+        kepler,
+        Splitting::stormer_verlet,
+    );
     println!("kepler e = 0.6, one step, trapezoid VI vs Störmer–Verlet: {d:.2e}");
     assert!(d <= 8.0 * f64::EPSILON * 2.0, "{d:e}");
 }
@@ -144,8 +173,19 @@ fn constant_mass_equivalences_on_the_eccentric_orbit_are_at_the_round_off_floor(
 fn constant_mass_trapezoid_vi_is_stormer_verlet() {
     let (q, p) = Kepler::pericentre(0.3);
     let h = 2.0 * PI / 1000.0;
-    let on_l = lagrangian_run(Trapezoid.discretize(Kepler::default()), &start(&q, &p), h, 1000);
-    let on_h = hamiltonian_run(Kepler::default(), Splitting::stormer_verlet(), &start(&q, &p), h, 1000);
+    let on_l = lagrangian_run(
+        Trapezoid.discretize(Kepler::default()),
+        &start(&q, &p),
+        h,
+        1000,
+    );
+    let on_h = hamiltonian_run(
+        Kepler::default(),
+        Splitting::stormer_verlet(),
+        &start(&q, &p),
+        h,
+        1000,
+    );
     let d = max_difference(&on_l, &on_h);
     println!("kepler e = 0.3 trapezoid vs Störmer–Verlet: {d:.2e}");
     assert!(d <= 1e-12, "{d:e}");
@@ -204,7 +244,11 @@ fn double_pendulum_both_forms_converge_with_order_2_to_the_same_solution() {
     // Reference: implicit midpoint on H at h = 2/12800 and 2/6400, Richardson-extrapolated
     // (symmetric method: error C h² + O(h⁴)).
     let (fine, coarse) = (final_state("H", 12_800), final_state("H", 6_400));
-    let reference: Vec<f64> = fine.iter().zip(&coarse).map(|(f, c)| (4.0 * f - c) / 3.0).collect();
+    let reference: Vec<f64> = fine
+        .iter()
+        .zip(&coarse)
+        .map(|(f, c)| (4.0 * f - c) / 3.0)
+        .collect();
     let steps = [50, 100, 200, 400];
     let hs: Vec<f64> = steps.iter().map(|&n| 2.0 / n as f64).collect();
     for form in ["L midpoint", "L trapezoid", "H"] {
@@ -223,7 +267,10 @@ fn double_pendulum_both_forms_converge_with_order_2_to_the_same_solution() {
     // trapezoid VI is a different method (its difference from H is O(h²)).
     for &n in &steps {
         let d = max_difference(&final_state("L midpoint", n), &final_state("H", n));
-        assert!(d <= 1e-12, "midpoint VI vs implicit midpoint, {n} steps: {d:e}");
+        assert!(
+            d <= 1e-12,
+            "midpoint VI vs implicit midpoint, {n} steps: {d:e}"
+        );
     }
     let gap: Vec<f64> = steps
         .iter()

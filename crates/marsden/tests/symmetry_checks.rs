@@ -1,6 +1,7 @@
 //! Group actions, momentum maps and symmetry checks: declared symmetries are confirmed to
 //! round-off, a declared non-symmetry is reported with the size of ⟨dL, ξ_TQ⟩, bad generators
 //! are typed errors naming the symmetry, SO(3) momentum maps are equivariant, and J_L = FL*J_H.
+#![allow(clippy::unwrap_used, clippy::expect_used)] // tests may unwrap
 
 use marsden::hamiltonian::{Hamiltonian, HamiltonianLagrangian};
 use marsden::symmetry::check::{

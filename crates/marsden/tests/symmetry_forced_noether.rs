@@ -2,14 +2,15 @@
 //! translation (and rotation) symmetry, the change of the discrete momentum map in each step
 //! equals the discrete impulse of the forces along the generator,
 //! J_{k+1} − J_k = ⟨f_d⁻, ξ_Q(q_k)⟩ + ⟨f_d⁺, ξ_Q(q_{k+1})⟩, to 1e-12.
+#![allow(clippy::unwrap_used, clippy::expect_used)] // tests may unwrap
 
 mod common;
 use common::tight;
 use marsden::diagnostics::{BalanceMonitor, force_balance};
 use marsden::symmetry::{AxisRotation, GroupAction, Translations};
 use marsden::{
-    Force, GeneralizedMidpoint, Initial, Lagrangian, Midpoint, Problem, Rule, Scalar,
-    SolveOptions, TimeGrid, Trapezoid,
+    Force, GeneralizedMidpoint, Initial, Lagrangian, Midpoint, Problem, Rule, Scalar, SolveOptions,
+    TimeGrid, Trapezoid,
 };
 
 /// Two planar particles joined by a spring of rest length r₀ (translation and rotation invariant).
@@ -63,7 +64,11 @@ fn check<R: Rule, G: GroupAction>(rule: &R, action: &G) -> (f64, f64) {
     let mut monitor = BalanceMonitor::new(action, &fd, 0.05);
     problem.solve_with(rule, &options, &mut monitor).unwrap();
     assert_eq!(monitor.report().unwrap(), &report);
-    let change = report.total_change.iter().map(|x| x.abs()).fold(0.0, f64::max);
+    let change = report
+        .total_change
+        .iter()
+        .map(|x| x.abs())
+        .fold(0.0, f64::max);
     println!(
         "{} / {}: max |ΔJ − impulse| = {:.2e} (relative {:.2e}); total ΔJ = {:?}",
         rule.name(),

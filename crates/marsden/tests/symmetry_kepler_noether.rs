@@ -2,6 +2,7 @@
 //! discrete momentum maps J^±_{L_d} is constant to 1e-12 over 10⁵ steps for the midpoint and
 //! trapezoid rules; the Noether diagnostics (batch and streaming) report it, and report a
 //! non-conserved "momentum map" as drifting.
+#![allow(clippy::unwrap_used, clippy::expect_used)] // tests may unwrap
 
 mod common;
 use common::tight;
@@ -44,8 +45,14 @@ fn discrete_noether<D: DiscreteLagrangian>(ld: D, steps: usize) -> (f64, f64) {
 #[test]
 fn r10_discrete_momentum_maps_constant_to_1e12_over_1e5_steps() {
     for (name, (plus, minus)) in [
-        ("midpoint", discrete_noether(Midpoint.discretize(Kepler::default()), 100_000)),
-        ("trapezoid", discrete_noether(Trapezoid.discretize(Kepler::default()), 100_000)),
+        (
+            "midpoint",
+            discrete_noether(Midpoint.discretize(Kepler::default()), 100_000),
+        ),
+        (
+            "trapezoid",
+            discrete_noether(Trapezoid.discretize(Kepler::default()), 100_000),
+        ),
     ] {
         println!("{name}: max |J⁺ − 0.8| = {plus:.2e}, max |J⁻ − 0.8| = {minus:.2e}");
         assert!(plus <= 1e-12, "{name}: max |J⁺ − 0.8| = {plus:e}");
@@ -63,7 +70,9 @@ fn noether_report_and_monitor_agree_and_detect_a_non_symmetry() {
         ..SolveOptions::default()
     };
     let mut monitor = NoetherMonitor::new(Kepler::default().symmetries());
-    let trajectory = problem.solve_with(&Midpoint, &options, &mut monitor).unwrap();
+    let trajectory = problem
+        .solve_with(&Midpoint, &options, &mut monitor)
+        .unwrap();
     let batch = NoetherReport::all(&Kepler::default().symmetries(), &trajectory).unwrap();
     let streamed = monitor.reports().unwrap();
     assert_eq!(batch.len(), 1);

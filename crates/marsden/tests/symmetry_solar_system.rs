@@ -1,14 +1,14 @@
 //! The outer solar system (HLW06 §I.2.4; `bench/data/outer_solar_system_hlw.txt`): total linear
 //! and angular momentum are discrete Noether invariants of the midpoint and trapezoid variational
 //! integrators (translation and SO(3) invariance of L_d), constant to 1e-12 relative.
+#![allow(clippy::unwrap_used, clippy::expect_used)] // tests may unwrap
 
 mod common;
 use marsden::diagnostics::NoetherReport;
 use marsden::symmetry::DeclaresSymmetries;
 use marsden::systems::NBody;
 use marsden::{
-    Initial, Midpoint, NewtonOptions, Problem, Rule, RunOptions, SolveOptions, TimeGrid,
-    Trapezoid,
+    Initial, Midpoint, NewtonOptions, Problem, Rule, RunOptions, SolveOptions, TimeGrid, Trapezoid,
 };
 
 /// G in AU³/(solar mass · day²) (HLW06 §I.2.4).
@@ -25,7 +25,10 @@ fn outer_solar_system() -> (NBody, Vec<f64>, Vec<f64>) {
     let n: usize = lines.next().unwrap().trim().parse().unwrap();
     let (mut masses, mut q, mut p) = (Vec::new(), Vec::new(), Vec::new());
     for line in lines.take(n) {
-        let x: Vec<f64> = line.split_whitespace().map(|s| s.parse().unwrap()).collect();
+        let x: Vec<f64> = line
+            .split_whitespace()
+            .map(|s| s.parse().unwrap())
+            .collect();
         masses.push(x[0]);
         q.extend_from_slice(&x[1..4]);
         p.extend(x[4..7].iter().map(|v| x[0] * v));
@@ -76,7 +79,10 @@ fn assert_conserved(steps: usize) {
         ("trapezoid", drifts(&Trapezoid, steps, round_off())),
     ] {
         assert!(linear <= 1e-12, "{name}: linear momentum drift {linear:e}");
-        assert!(angular <= 1e-12, "{name}: angular momentum drift {angular:e}");
+        assert!(
+            angular <= 1e-12,
+            "{name}: angular momentum drift {angular:e}"
+        );
     }
 }
 

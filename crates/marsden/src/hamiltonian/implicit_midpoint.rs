@@ -57,6 +57,13 @@ impl ImplicitMidpoint {
         let (dq, dp) = self.delta.split_at_mut(n);
         vector_field(ham, state.t, &state.q, &state.p, dq, dp);
         let scale = max_norm(&self.delta);
+        if !scale.is_finite() {
+            return Err(Error::NonFinite {
+                step: 0,
+                t: state.t,
+                what: "Hamilton's vector field",
+            });
+        }
         self.delta.iter_mut().for_each(|d| *d *= h);
         let mut system = MidpointSystem {
             ham,

@@ -75,53 +75,94 @@ impl<F: Fibre> MultiFunction for FibreFn<'_, F> {
 
 type Buf<S> = SmallVec<[S; 16]>;
 
-/// Solves `∂f/∂y(t, x, y) = w` for `y` in `f64` (Newton from `y = 0`); returns `y` and
-/// `M⁻¹ = (∂²f/∂y²)⁻¹` (row-major).
+/// Newton's method for `∂f/∂y(t, x, y) = w` in `f64`, with backtracking.
+struct FibreNewton<'a, F> {
+    f: &'a F,
+    w: &'a [f64],
+    /// `(t, x, y)`.
+    z: Vec<f64>,
+    parts: HessianParts,
+    /// `w − ∂f/∂y` at `z`.
+    r: Vec<f64>,
+}
+
+impl<F: Fibre> FibreNewton<'_, F> {
+    /// Evaluates derivatives at `z`; returns the residual max-norm (∞ if not finite).
+    fn evaluate(&mut self) -> f64 {
+        let n = self.f.dof();
+        let ys = n + 1..2 * n + 1;
+        ad::partial_hessian(&FibreFn(self.f), &self.z, ys.clone(), ys, &mut self.parts);
+        for (i, ri) in self.r.iter_mut().enumerate() {
+            *ri = self.w[i] - self.parts.grad_rows[i];
+        }
+        if self.r.iter().all(|x| x.is_finite()) {
+            max_norm(&self.r)
+        } else {
+            f64::INFINITY
+        }
+    }
+}
+
+/// Solves `∂f/∂y(t, x, y) = w` for `y` in `f64` by Newton's method from `y = 0`, halving steps
+/// that do not decrease the residual (so that e.g. a relativistic `|v| < c` is never left);
+/// returns `y` and `M⁻¹ = (∂²f/∂y²)⁻¹` (row-major).
 fn solve_fibre<F: Fibre>(
     f: &F,
     t: f64,
     x: &[f64],
     w: &[f64],
 ) -> Result<(Vec<f64>, Vec<f64>), Error> {
-    const MAX_ITERATIONS: usize = 50;
+    const MAX_ITERATIONS: usize = 100;
     let n = f.dof();
     let tol = 1e-14 * max_norm(w).max(1.0);
-    let mut z: Vec<f64> = std::iter::once(t)
+    let z = std::iter::once(t)
         .chain(x.iter().copied())
-        .chain(std::iter::repeat_n(0.0, n))
-        .collect();
-    let (mut parts, mut lu) = (HessianParts::default(), Lu::new());
-    let (mut r, mut scratch) = (vec![0.0; n], Vec::with_capacity(n));
-    let mut residual = f64::INFINITY;
-    for iteration in 0..MAX_ITERATIONS {
-        ad::partial_hessian(
-            &FibreFn(f),
-            &z,
-            n + 1..2 * n + 1,
-            n + 1..2 * n + 1,
-            &mut parts,
-        );
-        let factored = lu.factor(&parts.hess, n);
-        for i in 0..n {
-            r[i] = w[i] - parts.grad_rows[i];
-        }
-        let previous = residual;
-        residual = max_norm(&r);
-        let stalled = iteration > 0 && residual >= previous && residual < 1e3 * tol;
-        if factored.is_ok() && (residual <= tol || stalled) {
-            return Ok((z[n + 1..].to_vec(), inverse(&lu, n)));
-        }
-        if factored.is_err() || !residual.is_finite() {
-            break;
-        }
-        lu.solve(&mut r, &mut scratch);
-        z[n + 1..].iter_mut().zip(&r).for_each(|(y, d)| *y += d);
-    }
-    Err(Error::InverseLegendre {
+        .chain(std::iter::repeat_n(0.0, n));
+    let mut newton = FibreNewton {
+        f,
+        w,
+        z: z.collect(),
+        parts: HessianParts::default(),
+        r: vec![0.0; n],
+    };
+    let (mut lu, mut scratch) = (Lu::new(), Vec::with_capacity(n));
+    let mut residual = newton.evaluate();
+    let failure = |residual| Error::InverseLegendre {
         t,
         iterations: MAX_ITERATIONS,
         residual,
-    })
+    };
+    for _ in 0..MAX_ITERATIONS {
+        let factored = lu.factor(&newton.parts.hess, n);
+        if factored.is_ok() && residual <= tol {
+            return Ok((newton.z[n + 1..].to_vec(), inverse(&lu, n)));
+        }
+        factored.map_err(|_| failure(residual))?;
+        let mut d = newton.r.clone();
+        lu.solve(&mut d, &mut scratch);
+        let y0 = newton.z[n + 1..].to_vec();
+        let (mut alpha, previous) = (1.0, residual);
+        loop {
+            for ((y, a), di) in newton.z[n + 1..].iter_mut().zip(&y0).zip(&d) {
+                *y = a + alpha * di;
+            }
+            residual = newton.evaluate();
+            if residual < previous || alpha < 1e-10 {
+                break;
+            }
+            alpha *= 0.5;
+        }
+        // At round-off the residual stops decreasing: accept if it is within 1e3 tolerances.
+        let decreased = residual < previous;
+        if !decreased && previous < 1e3 * tol {
+            newton.z[n + 1..].copy_from_slice(&y0);
+            newton.evaluate();
+            lu.factor(&newton.parts.hess, n)
+                .map_err(|_| failure(previous))?;
+            return Ok((y0, inverse(&lu, n)));
+        }
+    }
+    Err(failure(residual))
 }
 
 fn inverse(lu: &Lu, n: usize) -> Vec<f64> {
@@ -142,7 +183,10 @@ fn conjugate<S: Scalar, F: Fibre>(f: &F, t: S, x: &[S], w: &[S]) -> S {
     let x_re: Buf<f64> = x.iter().map(|v| v.re()).collect();
     let w_re: Buf<f64> = w.iter().map(|v| v.re()).collect();
     let Ok((y0, minv)) = solve_fibre(f, t.re(), &x_re, &w_re) else {
-        return S::from(f64::NAN);
+        // NaN in every derivative part too (0·NaN = NaN; the sum carries every seeded
+        // direction), so derivatives are not silently zero.
+        let all = x.iter().chain(w).fold(t, |acc, &v| acc + v);
+        return all * f64::NAN;
     };
     // One chord step in S: y = y₀ − M⁻¹(∂f/∂y(y₀) − w).
     let z: Buf<S> = std::iter::once(t)
