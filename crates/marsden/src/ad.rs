@@ -17,11 +17,10 @@
 
 use std::ops::Range;
 
-use nalgebra::{Const, U1};
-use num_dual::{Derivative, Dual, DualSVec64, HyperDualSVec64};
-use smallvec::SmallVec;
-
 use crate::Scalar;
+use crate::scratch::with_buffer;
+use nalgebra::{Const, U1};
+use num_dual::{Derivative, Dual, DualSVec64, HyperDual64, HyperDualSVec64};
 
 /// A vector-valued function written once over the scalar type.
 pub trait MultiFunction {
@@ -35,8 +34,6 @@ pub trait MultiFunction {
 
 /// Inline capacity of the dual-number buffers (inputs or outputs beyond it spill to the heap).
 const INLINE: usize = 24;
-
-type Buf<S> = SmallVec<[S; INLINE]>;
 
 /// Result of [`partial_hessian`]; buffers are reused across calls.
 #[derive(Debug, Clone, Default)]
@@ -100,7 +97,7 @@ pub fn partial_hessian<F: MultiFunction>(
             eval_f64(f, x, &mut out.values);
             out.evaluations = 1;
         }
-        1 => hessian_chunked::<1, F>(f, x, rows, cols, out),
+        1 => hessian_scalar(f, x, rows, cols, out),
         2 => hessian_chunked::<2, F>(f, x, rows, cols, out),
         3 | 4 => hessian_chunked::<4, F>(f, x, rows, cols, out),
         _ => hessian_chunked::<8, F>(f, x, rows, cols, out),
@@ -126,9 +123,8 @@ pub fn nested_gradient<S: Scalar, F: MultiFunction>(
     out: &mut [S],
 ) {
     let m = f.outputs();
-    let mut xs: SmallVec<[Dual<S>; INLINE]> = x.iter().map(|&v| Dual::from_re(v)).collect();
-    let mut res: SmallVec<[Dual<S>; INLINE]> =
-        (0..m).map(|_| Dual::from_re(S::from(0.0))).collect();
+    let mut xs: Vec<Dual<S>> = x.iter().map(|&v| Dual::from_re(v)).collect();
+    let mut res: Vec<Dual<S>> = (0..m).map(|_| Dual::from_re(S::from(0.0))).collect();
     for (k, c) in cols.enumerate() {
         xs[c].eps = S::from(1.0);
         f.eval(&xs, &mut res);
@@ -145,29 +141,39 @@ fn jacobian_chunked<const C: usize, F: MultiFunction>(
     jac: &mut [f64],
 ) -> usize {
     let (nc, m) = (cols.len(), f.outputs());
-    let mut xs: Buf<DualSVec64<C>> = x.iter().map(|&v| DualSVec64::<C>::from_re(v)).collect();
-    let mut out: Buf<DualSVec64<C>> = (0..m).map(|_| DualSVec64::<C>::from_re(0.0)).collect();
-    let mut evaluations = 0;
-    for jb in (0..nc).step_by(C) {
-        let width = C.min(nc - jb);
-        for a in 0..width {
-            xs[cols.start + jb + a].eps = Derivative::derivative_generic(Const::<C>, U1, a);
-        }
-        f.eval(&xs, &mut out);
-        evaluations += 1;
-        for (i, o) in out.iter().enumerate() {
-            values[i] = o.re;
-            let row = &mut jac[i * nc + jb..i * nc + jb + width];
-            match &o.eps.0 {
-                Some(e) => row.copy_from_slice(&e.as_slice()[..width]),
-                None => row.fill(0.0),
-            }
-        }
-        for a in 0..width {
-            xs[cols.start + jb + a].eps = Derivative::none();
-        }
-    }
-    evaluations
+    let zero = DualSVec64::<C>::from_re(0.0);
+    let init = |i: usize| DualSVec64::<C>::from_re(x[i]);
+    with_buffer::<_, INLINE, _>(x.len(), zero, init, |xs| {
+        with_buffer::<_, INLINE, _>(
+            m,
+            zero,
+            |_| zero,
+            |out| {
+                let mut evaluations = 0;
+                for jb in (0..nc).step_by(C) {
+                    let width = C.min(nc - jb);
+                    for a in 0..width {
+                        xs[cols.start + jb + a].eps =
+                            Derivative::derivative_generic(Const::<C>, U1, a);
+                    }
+                    f.eval(xs, out);
+                    evaluations += 1;
+                    for (i, o) in out.iter().enumerate() {
+                        values[i] = o.re;
+                        let row = &mut jac[i * nc + jb..i * nc + jb + width];
+                        match &o.eps.0 {
+                            Some(e) => row.copy_from_slice(&e.as_slice()[..width]),
+                            None => row.fill(0.0),
+                        }
+                    }
+                    for a in 0..width {
+                        xs[cols.start + jb + a].eps = Derivative::none();
+                    }
+                }
+                evaluations
+            },
+        )
+    })
 }
 
 fn hessian_chunked<const C: usize, F: MultiFunction>(
@@ -178,26 +184,81 @@ fn hessian_chunked<const C: usize, F: MultiFunction>(
     out: &mut HessianParts,
 ) {
     let (nr, nc, m) = (rows.len(), cols.len(), f.outputs());
-    let mut xs: Buf<HyperDualSVec64<C, C>> = x.iter().map(|&v| hd_re::<C>(v)).collect();
-    let mut res: Buf<HyperDualSVec64<C, C>> = (0..m).map(|_| hd_re::<C>(0.0)).collect();
-    // Always at least one chunk in each direction, so the values are written even if a range is empty.
-    for ib in (0..nr.max(1)).step_by(C) {
-        for jb in (0..nc.max(1)).step_by(C) {
-            let (wr, wc) = (C.min(nr.saturating_sub(ib)), C.min(nc.saturating_sub(jb)));
-            for a in 0..wr {
-                xs[rows.start + ib + a] = xs[rows.start + ib + a].derivative1(a);
-            }
-            for b in 0..wc {
-                xs[cols.start + jb + b] = xs[cols.start + jb + b].derivative2(b);
-            }
-            f.eval(&xs, &mut res);
-            out.evaluations += 1;
-            collect_block(&res, (ib, wr), (jb, wc), nc, out);
-            for v in xs.iter_mut() {
-                *v = hd_re::<C>(v.re);
-            }
-        }
-    }
+    let zero = hd_re::<C>(0.0);
+    with_buffer::<_, INLINE, _>(
+        x.len(),
+        zero,
+        |i| hd_re::<C>(x[i]),
+        |xs| {
+            with_buffer::<_, INLINE, _>(
+                m,
+                zero,
+                |_| zero,
+                |res| {
+                    // At least one chunk each way, so values are written even if a range is empty.
+                    for ib in (0..nr.max(1)).step_by(C) {
+                        for jb in (0..nc.max(1)).step_by(C) {
+                            let (wr, wc) =
+                                (C.min(nr.saturating_sub(ib)), C.min(nc.saturating_sub(jb)));
+                            for a in 0..wr {
+                                xs[rows.start + ib + a] = xs[rows.start + ib + a].derivative1(a);
+                            }
+                            for b in 0..wc {
+                                xs[cols.start + jb + b] = xs[cols.start + jb + b].derivative2(b);
+                            }
+                            f.eval(xs, res);
+                            out.evaluations += 1;
+                            collect_block(res, (ib, wr), (jb, wc), nc, out);
+                            for v in xs.iter_mut() {
+                                *v = hd_re::<C>(v.re);
+                            }
+                        }
+                    }
+                },
+            )
+        },
+    )
+}
+
+/// The 1 × 1 case with num-dual's scalar hyper-dual numbers (no optional derivative parts):
+/// the pendulum-sized hot path.
+fn hessian_scalar<F: MultiFunction>(
+    f: &F,
+    x: &[f64],
+    rows: Range<usize>,
+    cols: Range<usize>,
+    out: &mut HessianParts,
+) {
+    let zero = HyperDual64::from(0.0);
+    let seed = |i: usize| {
+        let mut v = HyperDual64::from(x[i]);
+        v.eps1 = if rows.contains(&i) { 1.0 } else { 0.0 };
+        v.eps2 = if cols.contains(&i) { 1.0 } else { 0.0 };
+        v
+    };
+    with_buffer::<_, 4, _>(x.len(), zero, seed, |xs| {
+        with_buffer::<_, 4, _>(
+            f.outputs(),
+            zero,
+            |_| zero,
+            |res| {
+                f.eval(xs, res);
+                out.evaluations += 1;
+                for (i, o) in res.iter().enumerate() {
+                    out.values[i] = o.re;
+                    if cols.len() == 1 {
+                        out.jac_cols[i] = o.eps2;
+                    }
+                }
+                if rows.len() == 1 {
+                    out.grad_rows[0] = res[0].eps1;
+                    if cols.len() == 1 {
+                        out.hess[0] = res[0].eps1eps2;
+                    }
+                }
+            },
+        )
+    })
 }
 
 #[inline]

@@ -25,8 +25,6 @@
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001). [MR99]: Marsden & Ratiu, *Introduction to
 //! Mechanics and Symmetry*, 2nd ed. (1999).
 
-use smallvec::SmallVec;
-
 use super::Hamiltonian;
 use crate::ad::{self, HessianParts, MultiFunction};
 use crate::linalg::{Lu, max_norm};
@@ -73,7 +71,8 @@ impl<F: Fibre> MultiFunction for FibreFn<'_, F> {
     }
 }
 
-type Buf<S> = SmallVec<[S; 16]>;
+/// Short vectors of the adapters (not a hot path: the inner Newton solve dominates).
+type Buf<S> = Vec<S>;
 
 /// Newton's method for `∂f/∂y(t, x, y) = w` in `f64`, with backtracking.
 struct FibreNewton<'a, F> {
