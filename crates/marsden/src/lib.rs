@@ -27,19 +27,24 @@
 //! | step | [`step`], [`small`], [`explicit`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
 //! | integrator | [`integrator`], [`maps`] | rule + forces + constraints + solver + buffers; `F_{L_d}`, `F̃_{L_d}` |
 //! | run | [`problem`], [`simulate`], [`trajectory`] | problem → trajectory, stride, observers, failures |
-//! | diagnostics | [`diagnostics`] | energy error and drift |
+//! | diagnostics | [`diagnostics`] | energy error and drift; momentum maps (Noether) and the force balance |
+//! | symmetry | [`symmetry`] | group actions, generators and lifts, `J_L`, `J_H`, `J^±_{L_d}`, symmetry checks |
+//! | Hamiltonian side | [`hamiltonian`] | `H(q, p)`, `X_H`, implicit midpoint, Störmer–Verlet, Legendre adapters |
+//! | certificates | [`certificate`] | exact Jacobian of the step map, symplecticity defect `‖DFᵀJDF − J‖` |
 //! | known answers | [`special`] | elliptic functions, exact pendulum, Kepler and oscillator solutions |
 //!
 //! Conventions (`q, v, p, h, t, n`) and the discrete Legendre transforms
 //! `p_k = −D₁L_d(q_k, q_{k+1}) − f_d⁻`, `p_{k+1} = D₂L_d(q_k, q_{k+1}) + f_d⁺` follow DESIGN.md §3.
 
 pub mod ad;
+pub mod certificate;
 pub mod constraint;
 pub mod diagnostics;
 pub mod discrete;
 pub mod error;
 pub mod explicit;
 pub mod force;
+pub mod hamiltonian;
 pub mod integrator;
 pub mod lagrangian;
 pub mod linalg;
@@ -54,6 +59,7 @@ pub mod simulate;
 pub mod small;
 pub mod special;
 pub mod step;
+pub mod symmetry;
 pub mod systems;
 pub mod trajectory;
 

@@ -164,10 +164,17 @@ pub fn solve_in_place(a: &mut [f64], b: &mut [f64], n: usize) -> Result<(), Sing
     Ok(())
 }
 
-/// Max-norm of a vector.
+/// Max-norm of a vector; NaN if any entry is NaN (`f64::max` alone would skip it, and a NaN
+/// residual would then look converged).
 #[inline]
 pub fn max_norm(x: &[f64]) -> f64 {
-    x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
+    x.iter().fold(0.0_f64, |m, v| {
+        if m.is_nan() || v.is_nan() {
+            f64::NAN
+        } else {
+            m.max(v.abs())
+        }
+    })
 }
 
 #[cfg(test)]

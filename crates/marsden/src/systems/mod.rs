@@ -13,6 +13,7 @@
 //! | [`Kepler`] | `x, y` | μ = 1 | energy, angular momentum, exact orbit |
 //! | [`HenonHeiles`] | `x, y` | λ = 1 | energy |
 //! | [`NBody`] | `x₁ y₁ z₁ …` | G = 1, softening 0 | energy, momentum, angular momentum |
+//! | [`PointRigidBody`] | `x₁ y₁ z₁ …` + distance constraints | tetrahedron, masses 1–4 | momentum, angular momentum |
 
 mod double_pendulum;
 mod free_fall;
@@ -21,6 +22,7 @@ mod kepler;
 mod nbody;
 mod oscillator;
 mod pendulum;
+mod rigid_body;
 
 pub use double_pendulum::DoublePendulum;
 pub use free_fall::FreeFall;
@@ -29,3 +31,4 @@ pub use kepler::Kepler;
 pub use nbody::NBody;
 pub use oscillator::HarmonicOscillator;
 pub use pendulum::Pendulum;
+pub use rigid_body::PointRigidBody;
