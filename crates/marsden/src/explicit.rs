@@ -24,8 +24,17 @@ use crate::{Lagrangian, MassMatrix, Scalar, Structure};
 
 /// A step that needs no nonlinear solve (object-safe: plain `f64` state).
 pub trait ExplicitStep {
-    /// Advances `(q, p)` from `t` by `h` in place, using `work` as scratch.
-    fn explicit_step(&self, t: f64, h: f64, q: &mut [f64], p: &mut [f64], work: &mut Vec<f64>);
+    /// One step from `(q, p)` at `t`: writes the offset `Δ = q_{k+1} − q_k` into `delta` and
+    /// replaces `p` by `p_{k+1}`; `work` is scratch.
+    fn explicit_step(
+        &self,
+        t: f64,
+        h: f64,
+        q: &[f64],
+        p: &mut [f64],
+        delta: &mut [f64],
+        work: &mut Vec<f64>,
+    );
 }
 
 /// `M⁻¹` of a separable Lagrangian, ready to apply.
@@ -106,27 +115,29 @@ pub(crate) fn half_kick<L: Lagrangian>(
         .for_each(|(pi, g)| *pi += 0.5 * h * g);
 }
 
-/// One velocity Störmer–Verlet step of a separable `L` (the trapezoid variational step);
-/// `work` is resized to `2n` (+ n for a dense mass matrix).
+/// One velocity Störmer–Verlet step of a separable `L` (the trapezoid variational step):
+/// `Δ = h M⁻¹ p½` into `delta`, `p ← p_{k+1}`.
 pub(crate) fn velocity_verlet<L: Lagrangian>(
     l: &L,
     inverse_mass: &InverseMass,
     (t, h): (f64, f64),
-    q: &mut [f64],
-    p: &mut [f64],
+    (q, p): (&[f64], &mut [f64]),
+    delta: &mut [f64],
     work: &mut Vec<f64>,
 ) {
     let n = q.len();
     work.resize(2 * n, 0.0);
-    let (grad, velocity) = work.split_at_mut(n);
+    let (grad, q_next) = work.split_at_mut(n);
     half_kick(l, t, h, q, p, grad);
-    velocity.copy_from_slice(p);
+    delta.copy_from_slice(p);
     match inverse_mass {
-        InverseMass::Diagonal(d) => velocity.iter_mut().zip(d).for_each(|(v, di)| *v *= di),
-        InverseMass::Dense(lu) => lu.solve(velocity, &mut grad.to_vec()),
+        InverseMass::Diagonal(d) => delta.iter_mut().zip(d).for_each(|(v, di)| *v *= di),
+        InverseMass::Dense(lu) => lu.solve(delta, &mut grad.to_vec()),
     }
-    q.iter_mut()
-        .zip(velocity.iter())
-        .for_each(|(qi, vi)| *qi += h * vi);
-    half_kick(l, t + h, h, q, p, grad);
+    delta.iter_mut().for_each(|d| *d *= h);
+    q_next
+        .iter_mut()
+        .zip(q.iter().zip(delta.iter()))
+        .for_each(|(x, (qi, d))| *x = qi + d);
+    half_kick(l, t + h, h, q_next, p, grad);
 }

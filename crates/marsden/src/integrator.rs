@@ -320,10 +320,10 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
             return Ok(None);
         };
         let b = &mut self.buffers;
-        b.points.clone_from(&state.q);
         b.p_next.clone_from(&state.p);
-        explicit.explicit_step(state.t, h, &mut b.points, &mut b.p_next, &mut b.work);
-        if !b.points.iter().chain(&b.p_next).all(|x| x.is_finite()) {
+        b.z.resize(sh.n, 0.0);
+        explicit.explicit_step(state.t, h, &state.q, &mut b.p_next, &mut b.z, &mut b.work);
+        if !b.z.iter().chain(&b.p_next).all(|x| x.is_finite()) {
             self.statistics.failed_steps += 1;
             return Err(Error::NonFinite {
                 step,
@@ -331,7 +331,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
                 what: "the new state",
             });
         }
-        state.q.copy_from_slice(&b.points);
+        state.q.iter_mut().zip(&b.z).for_each(|(q, d)| *q += d);
         state.p.copy_from_slice(&b.p_next);
         state.t += h;
         self.statistics.steps += 1;

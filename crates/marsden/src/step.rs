@@ -133,7 +133,14 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> NonlinearSystem
     }
 
     fn residual_scale(&self) -> f64 {
-        max_norm(self.p0)
+        let n = self.func.shape.n;
+        max_norm(self.p0).max(max_norm(
+            &self.parts.grad_rows[..n.min(self.parts.grad_rows.len())],
+        ))
+    }
+
+    fn unknown_scale(&self, z: &[f64]) -> f64 {
+        max_norm(self.q0).max(max_norm(z)).max(f64::MIN_POSITIVE)
     }
 
     fn evaluate(&mut self, z: &[f64], r: &mut [f64], jac: &mut [f64]) {

@@ -183,7 +183,7 @@ impl<H: Hamiltonian> NonlinearSystem for MidpointSystem<'_, H> {
     }
 
     fn residual_scale(&self) -> f64 {
-        self.scale
+        self.scale.max(1.0)
     }
 
     fn evaluate(&mut self, delta: &[f64], r: &mut [f64], jac: &mut [f64]) {

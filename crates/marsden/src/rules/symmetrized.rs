@@ -49,9 +49,17 @@ impl<L: Lagrangian> SymmetrizedLd<L> {
 }
 
 impl<L: Lagrangian> ExplicitStep for SymmetrizedLd<L> {
-    fn explicit_step(&self, t: f64, h: f64, q: &mut [f64], p: &mut [f64], work: &mut Vec<f64>) {
+    fn explicit_step(
+        &self,
+        t: f64,
+        h: f64,
+        q: &[f64],
+        p: &mut [f64],
+        delta: &mut [f64],
+        work: &mut Vec<f64>,
+    ) {
         if let Some(inverse_mass) = &self.inverse_mass {
-            velocity_verlet(&self.lagrangian, inverse_mass, (t, h), q, p, work);
+            velocity_verlet(&self.lagrangian, inverse_mass, (t, h), (q, p), delta, work);
         }
     }
 }
