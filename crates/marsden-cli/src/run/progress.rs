@@ -10,6 +10,8 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 const DELAY: Duration = Duration::from_secs(1);
 /// The clock is read every this many steps.
 const CHECK_EVERY: usize = 256;
+/// The rate and the remaining time are recomputed every this many steps.
+const RATE_EVERY: usize = 16 * CHECK_EVERY;
 
 /// A progress bar that shows up only for long runs on a terminal.
 #[derive(Debug)]
@@ -43,20 +45,36 @@ impl Progress {
             return;
         }
         match &self.bar {
-            Some(bar) => bar.set_position(step as u64),
+            Some(bar) => {
+                bar.set_position(step as u64);
+                if step.is_multiple_of(RATE_EVERY) {
+                    bar.set_message(self.rate(step));
+                }
+            }
             None if self.start.elapsed() >= DELAY => self.bar = Some(self.show(step)),
             None => {}
         }
     }
 
+    /// `1234567 steps/s, 3 s left`, measured from the start of the run (the bar appears late,
+    /// so indicatif's own estimate would count the steps before it as instantaneous).
+    fn rate(&self, step: usize) -> String {
+        let elapsed = self.start.elapsed().as_secs_f64();
+        let rate = step as f64 / elapsed.max(1e-9);
+        let left = self.total.saturating_sub(step) as f64 / rate.max(1e-9);
+        format!("{rate:.0} steps/s, {left:.0} s left")
+    }
+
     fn show(&self, step: usize) -> ProgressBar {
-        let bar =
-            ProgressBar::with_draw_target(Some(self.total as u64), ProgressDrawTarget::stderr());
-        let template = "{elapsed_precise} [{bar:40}] {pos}/{len} steps ({per_sec}, eta {eta})";
+        let target = ProgressDrawTarget::stderr();
+        let bar = ProgressBar::with_draw_target(Some(self.total as u64), target)
+            .with_elapsed(self.start.elapsed());
+        let template = "{elapsed_precise} [{bar:40}] {pos}/{len} steps ({msg})";
         if let Ok(style) = ProgressStyle::with_template(template) {
             bar.set_style(style.progress_chars("=> "));
         }
         bar.set_position(step as u64);
+        bar.set_message(self.rate(step));
         bar
     }
 
