@@ -217,3 +217,51 @@ fn overrides_replace_steps_h_and_out() {
     assert_close(number(&s, "t_final"), 1.0, 1e-15, "t_final");
     assert_eq!(run.trajectory().n_rows(), 21);
 }
+
+#[test]
+fn time_enters_lagrangians_and_forces_alike() {
+    let force = run_ok("driven_by_force.toml", &[]).trajectory();
+    let lagrangian = run_ok("driven_by_lagrangian.toml", &[]).trajectory();
+    assert_eq!(force.n_rows(), 41);
+    assert_close(
+        column(&force, "t")[40],
+        40.25,
+        1e-14,
+        "t starts at t0 = 0.25",
+    );
+    for name in ["t", "q_x", "p_x"] {
+        let (a, b) = (column(&force, name), column(&lagrangian, name));
+        let max = a
+            .iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max);
+        assert!(max <= 1e-12, "{name}: max difference {max:e}");
+    }
+    // The drive does work: the amplitude changes.
+    let x = column(&force, "q_x");
+    assert!(x.iter().any(|v| v.abs() > 1.05), "driven amplitude");
+}
+
+#[test]
+fn a_new_run_replaces_the_files_of_the_previous_one() {
+    let first = run_ok("kepler_symmetry.toml", &["--steps", "50"]);
+    assert!(first.out.join("momentum_drift.png").is_file());
+    std::fs::write(first.out.join("notes.txt"), "mine").unwrap();
+    let out = first.out.to_str().unwrap();
+    let file = fixture("cartesian_pendulum.toml");
+    let second = e2e::marsden_in(
+        first.tmp.path(),
+        &["run", file.to_str().unwrap(), "--out", out, "-q"],
+    );
+    assert_eq!(second.status.code(), Some(0));
+    assert!(
+        !first.out.join("momentum_drift.png").exists(),
+        "stale plot removed"
+    );
+    assert!(first.out.join("constraint_residual.png").is_file());
+    assert_eq!(
+        std::fs::read_to_string(first.out.join("notes.txt")).unwrap(),
+        "mine"
+    );
+}

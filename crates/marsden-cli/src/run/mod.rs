@@ -178,6 +178,7 @@ pub fn execute(spec: &RunSpec, show_progress: bool) -> Result<Outcome, CliError>
         )))
     };
     std::fs::create_dir_all(&dir).map_err(|e| io("create the output directory", &e))?;
+    output::clear_previous(&dir).map_err(|e| io("clear the previous results in", &e))?;
     let layout = output::layout(&spec.system).map_err(|e| io("lay out the columns of", &e))?;
     let mut sink = output::open_sink(&dir, spec.output.format, &layout)
         .map_err(|e| io("write the trajectory into", &e))?;

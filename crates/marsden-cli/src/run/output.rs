@@ -67,6 +67,37 @@ pub fn layout_from_columns(names: &[String]) -> marsden_io::Result<Layout> {
     Layout::new(groups)
 }
 
+/// Files a previous run may have left in an output directory (and nothing else).
+const RUN_FILES: [&str; 12] = [
+    TRAJECTORY_CSV,
+    SUMMARY_JSON,
+    "t.npy",
+    "q.npy",
+    "p.npy",
+    "energy.npy",
+    "J.npy",
+    "constraint_residual.npy",
+    marsden_io::plot::PHASE_PORTRAIT_PNG,
+    marsden_io::plot::ENERGY_ERROR_PNG,
+    marsden_io::plot::MOMENTUM_DRIFT_PNG,
+    marsden_io::plot::CONSTRAINT_RESIDUAL_PNG,
+];
+
+/// Removes the files of a previous run from `dir`, so that a directory never mixes two runs
+/// (say, a momentum-drift plot of an older problem). Other files are left alone.
+///
+/// # Errors
+/// The first file that exists but cannot be removed.
+pub fn clear_previous(dir: &Path) -> std::io::Result<()> {
+    for name in RUN_FILES {
+        match std::fs::remove_file(dir.join(name)) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => return Err(e),
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
 /// Opens the streaming writer of `format` in `dir` (which must exist).
 ///
 /// # Errors
