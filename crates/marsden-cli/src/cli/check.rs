@@ -5,8 +5,10 @@ use std::fmt::Write as _;
 
 use super::FileArgs;
 use crate::error::{CliError, Status};
+use crate::expr::ProgramSet;
 use crate::model::MomentumMap as _;
 use crate::problem::{self, InitialData, LagrangianSpec, RunSpec};
+use crate::run::start::Start;
 use crate::run::{output, start};
 
 /// Validates and prints; status 2 on the first mistake.
@@ -17,132 +19,127 @@ pub fn check(args: &FileArgs) -> Result<Status, CliError> {
     Ok(Status::Completed)
 }
 
+/// Labelled lines: `label` padded to a column, then the text.
+#[derive(Default)]
+struct Lines(String);
+
+impl Lines {
+    fn line(&mut self, label: &str, text: impl AsRef<str>) {
+        let _ = writeln!(self.0, "{label:<13}{}", text.as_ref());
+    }
+}
+
 /// The resolved problem, one labelled line per fact.
-pub fn render(spec: &RunSpec, start: &start::Start) -> String {
-    let mut out = String::new();
-    let mut line = |label: &str, text: String| {
-        let _ = writeln!(out, "{label:<13}{text}");
-    };
-    line(
-        "problem",
-        format!(
-            "{} (sha256 {})",
-            spec.source.path().display(),
-            spec.source.sha256()
-        ),
-    );
+pub fn render(spec: &RunSpec, start: &Start) -> String {
+    let mut out = Lines::default();
+    let (path, hash) = (spec.source.path().display(), spec.source.sha256());
+    out.line("problem", format!("{path} (sha256 {hash})"));
+    system(&mut out, spec);
+    initial(&mut out, spec, start);
+    integrator(&mut out, spec);
+    output(&mut out, spec);
+    out.0.push_str("ok: the problem file is valid\n");
+    out.0
+}
+
+fn texts(set: &ProgramSet) -> Vec<String> {
+    set.programs().iter().map(|p| p.text().to_owned()).collect()
+}
+
+fn or_none(items: Vec<String>, separator: &str) -> String {
+    if items.is_empty() {
+        "none".to_owned()
+    } else {
+        items.join(separator)
+    }
+}
+
+fn system(out: &mut Lines, spec: &RunSpec) {
     let s = &spec.system;
     match &s.lagrangian {
         LagrangianSpec::Builtin { builtin, .. } => {
-            line(
+            out.line(
                 "system",
                 format!("{}: builtin {}", spec.name, builtin.name()),
             );
-            line("lagrangian", builtin.formula().to_owned());
+            out.line("lagrangian", builtin.formula());
         }
         LagrangianSpec::Expression(l) => {
-            line("system", format!("{}: expression Lagrangian", spec.name));
-            let ops = l.program().op_count();
-            line(
+            let program = l.program();
+            out.line("system", format!("{}: expression Lagrangian", spec.name));
+            out.line(
                 "lagrangian",
-                format!("{} ({ops} instructions)", l.program().text()),
+                format!("{} ({} instructions)", program.text(), program.op_count()),
             );
         }
     }
-    line("coordinates", s.coordinates.join(", "));
-    let params: Vec<String> = s
+    out.line("coordinates", s.coordinates.join(", "));
+    let mut params: Vec<String> = s
         .parameters
         .iter()
         .map(|(n, v)| format!("{n} = {v}"))
         .collect();
-    let mut params = params.join(", ");
     if let Some(m) = &s.masses {
-        params = format!("masses = {m:?}, {params}");
+        params.insert(0, format!("masses = {m:?}"));
     }
-    line(
-        "parameters",
-        if params.is_empty() {
-            "none".into()
-        } else {
-            params
-        },
-    );
-    let listed = |set: &crate::expr::ProgramSet| -> Vec<String> {
-        set.programs().iter().map(|p| p.text().to_owned()).collect()
-    };
-    let forces = listed(s.force.components());
-    line(
-        "forces",
-        if forces.is_empty() {
-            "none".into()
-        } else {
-            forces.join(", ")
-        },
-    );
-    let constraints = listed(s.constraint.components());
-    let constraints = if constraints.is_empty() {
-        "none".to_owned()
-    } else {
-        format!(
-            "{} = 0 (SHAKE; momenta not projected yet)",
-            constraints.join(" = 0, ")
-        )
-    };
-    line("constraints", constraints);
+    out.line("parameters", or_none(params, ", "));
+    out.line("forces", or_none(texts(s.force.components()), ", "));
+    let mut constraints = or_none(texts(s.constraint.components()), " = 0, ");
+    if constraints != "none" {
+        constraints.push_str(" = 0 (SHAKE; momenta not projected yet)");
+    }
+    out.line("constraints", constraints);
     for sym in &s.symmetries {
-        let xi = listed(sym.generator()).join(", ");
-        line(
+        let xi = texts(sym.generator()).join(", ");
+        out.line(
             "symmetry",
             format!("{}: ξ_Q(q) = ({xi}), J = ⟨p, ξ_Q(q)⟩", sym.name()),
         );
     }
+}
+
+fn initial(out: &mut Lines, spec: &RunSpec, start: &Start) {
     let given = match &spec.initial.data {
         InitialData::Velocity(_) => "v given, p = ∂L/∂q̇",
         InitialData::Momentum(_) => "p given, v by the inverse Legendre transform",
     };
-    line("initial", format!("t0 = {}, q = {:?}", start.t, start.q));
-    line(
+    out.line("initial", format!("t0 = {}, q = {:?}", start.t, start.q));
+    out.line(
         "",
         format!("v = {:?}, p = {:?} ({given})", start.v, start.p),
     );
-    line("", format!("energy E0 = {}", start.energy));
+    out.line("", format!("energy E0 = {}", start.energy));
+}
+
+fn integrator(out: &mut Lines, spec: &RunSpec) {
     let i = &spec.integrator;
+    let g = &i.grid;
     let length = match i.t_end {
-        Some(t_end) => format!("t_end = {t_end} → {} steps", i.grid.steps),
-        None => format!("{} steps", i.grid.steps),
+        Some(t_end) => format!("t_end = {t_end} → {} steps", g.steps),
+        None => format!("{} steps", g.steps),
     };
-    line(
+    let (method, order) = (i.method, i.method.order());
+    let span = format!("t = {} → {}", g.t0, g.t_end());
+    out.line(
         "integrator",
-        format!(
-            "{} (order {}), h = {}, {length}, t = {} → {}",
-            i.method,
-            i.method.order(),
-            i.grid.h,
-            i.grid.t0,
-            i.grid.t_end()
-        ),
+        format!("{method} (order {order}), h = {}, {length}, {span}", g.h),
     );
-    line(
+    let (tol, max) = (i.newton.residual_tolerance, i.newton.max_iterations);
+    out.line(
         "",
-        format!(
-            "Newton: residual tolerance {:e}, at most {} iterations per step",
-            i.newton.residual_tolerance, i.newton.max_iterations
-        ),
+        format!("Newton: residual tolerance {tol:e}, at most {max} iterations per step"),
     );
+}
+
+fn output(out: &mut Lines, spec: &RunSpec) {
     let o = &spec.output;
     let plots = if o.plots { "plots" } else { "no plots" };
-    line(
+    let (dir, format) = (o.dir.display(), o.format.name());
+    out.line(
         "output",
-        format!(
-            "{}, {}, every {} step(s), {plots}",
-            o.dir.display(),
-            o.format.name(),
-            o.every
-        ),
+        format!("{dir}, {format}, every {} step(s), {plots}", o.every),
     );
-    if let Ok(layout) = output::layout(s) {
-        line("", format!("columns: {}", layout.column_names().join(", ")));
+    if let Ok(layout) = output::layout(&spec.system) {
+        out.line("", format!("columns: {}", layout.column_names().join(", ")));
     }
-    out.push_str("ok: the problem file is valid\n");
-    out
 }

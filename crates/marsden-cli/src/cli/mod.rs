@@ -50,13 +50,13 @@ pub enum Command {
 pub struct FileArgs {
     /// The problem file (TOML).
     pub file: PathBuf,
-    /// Number of steps (replaces `steps` and `t_end` of [integrator]).
+    /// Number of steps (replaces `steps` and `t_end` of the integrator table).
     #[arg(long)]
     pub steps: Option<u64>,
     /// Time step (replaces `h`; with `t_end`, the number of steps follows).
     #[arg(long, allow_negative_numbers = true)]
     pub h: Option<f64>,
-    /// Output directory (replaces `dir` of [output]).
+    /// Output directory (replaces `dir` of the output table).
     #[arg(long)]
     pub out: Option<PathBuf>,
 }

@@ -3,9 +3,7 @@
 //! A symmetry of a problem file is given by its infinitesimal generator `ξ_Q(q)`, one expression
 //! per coordinate. Evaluated with the discrete momenta `p_k` of a variational integrator, `J` is
 //! the discrete momentum map, conserved up to the Newton tolerance when `L` is invariant
-//! (discrete Noether theorem, [MW01] §1.3.3).
-//!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! (discrete Noether theorem; Marsden & West, *Acta Numerica* 10 (2001), §1.3.3).
 
 use crate::expr::ProgramSet;
 
