@@ -282,3 +282,20 @@ fn a_run_failing_at_the_first_step_keeps_the_initial_state() {
     assert_eq!(run.trajectory().n_rows(), 1);
     assert_eq!(number(&s, "t_final"), 0.0);
 }
+
+#[test]
+fn velocities_off_the_constraint_are_a_warning_not_an_error() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("off.toml");
+    let text = std::fs::read_to_string(fixture("cartesian_pendulum.toml")).unwrap();
+    std::fs::write(&file, text.replace("v = [0.0, 0.0]", "v = [0.0, 0.3]")).unwrap();
+    let run = marsden("run", &file, &["--steps", "20"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(
+        run.stderr.contains(
+            "warning: the initial velocities are not tangent to constraint [0]: dφ/dt = -4.8e-1"
+        ),
+        "{}",
+        run.stderr
+    );
+}

@@ -15,6 +15,9 @@ use crate::run::{output, start};
 pub fn check(args: &FileArgs) -> Result<Status, CliError> {
     let spec = problem::load(&args.file, &args.overrides())?;
     let start = start::prepare(&spec)?;
+    for warning in &start.warnings {
+        eprintln!("warning: {warning}");
+    }
     print!("{}", render(&spec, &start));
     Ok(Status::Completed)
 }

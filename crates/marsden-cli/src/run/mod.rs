@@ -169,7 +169,7 @@ pub struct Outcome {
 /// Status 2 if the problem cannot start (nothing written); status 1 only if not even the
 /// summary could be written. A failed simulation is an `Ok` outcome with status "failed".
 pub fn execute(spec: &RunSpec, show_progress: bool) -> Result<Outcome, CliError> {
-    start::prepare(spec)?;
+    let start = start::prepare(spec)?;
     let dir = spec.output.dir.clone();
     let io = |what: &str, e: &dyn std::fmt::Display| {
         CliError::bad_input(Diagnostic::new(format!(
@@ -189,7 +189,7 @@ pub fn execute(spec: &RunSpec, show_progress: bool) -> Result<Outcome, CliError>
         progress,
     };
     let mut record = spec.system.lagrangian.dispatch(runner)?;
-    let mut warnings = Vec::new();
+    let mut warnings = start.warnings;
     if let Err(e) = sink.finish() {
         record
             .error
