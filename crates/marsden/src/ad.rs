@@ -133,6 +133,25 @@ pub fn nested_gradient<S: Scalar, F: MultiFunction>(
     }
 }
 
+/// The mixed directional second derivative `uᵀ ∇²f₀(x) w` of the first output, in one
+/// evaluation at scalar hyper-dual numbers `x + ε₁u + ε₂w`: a probe of a Hessian of any size at
+/// the cost of about four evaluations of `f`.
+pub fn directional_second<F: MultiFunction>(f: &F, x: &[f64], u: &[f64], w: &[f64]) -> f64 {
+    let zero = HyperDual64::from(0.0);
+    let seed = |i: usize| HyperDual64::new(x[i], u[i], w[i], 0.0);
+    with_buffer::<_, INLINE, _>(x.len(), zero, seed, |xs| {
+        with_buffer::<_, INLINE, _>(
+            f.outputs(),
+            zero,
+            |_| zero,
+            |res| {
+                f.eval(xs, res);
+                res[0].eps1eps2
+            },
+        )
+    })
+}
+
 fn jacobian_chunked<const C: usize, F: MultiFunction>(
     f: &F,
     x: &[f64],

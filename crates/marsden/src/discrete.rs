@@ -26,6 +26,7 @@ use crate::Scalar;
 use crate::ad::{self, MultiFunction};
 use crate::explicit::ExplicitStep;
 use crate::scratch::{NODE, with_buffer};
+use crate::separable::SeparableStep;
 
 /// A two-point discrete Lagrangian `L_d(t₀, h, q₀, q₁)`.
 ///
@@ -68,6 +69,13 @@ pub trait DiscreteLagrangian {
     fn explicit(&self) -> Option<&dyn ExplicitStep> {
         None
     }
+
+    /// A structured Newton step, if this discrete Lagrangian may have one (the α rules on a
+    /// separable Lagrangian: Jacobian `M/h + hα(1−α)∇²V`, [`crate::separable`]; whether the
+    /// Lagrangian really is separable is asked once, [`SeparableStep::mass`]). Default: none.
+    fn separable(&self) -> Option<&dyn SeparableStep> {
+        None
+    }
 }
 
 /// A discrete Lagrangian over the control points of one step (what the integrator steps).
@@ -90,6 +98,11 @@ pub trait DiscreteAction {
     fn explicit(&self) -> Option<&dyn ExplicitStep> {
         None
     }
+
+    /// A structured Newton step, if any (see [`DiscreteLagrangian::separable`]).
+    fn separable(&self) -> Option<&dyn SeparableStep> {
+        None
+    }
 }
 
 impl<D: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &D {
@@ -107,6 +120,9 @@ impl<D: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &D {
     fn explicit(&self) -> Option<&dyn ExplicitStep> {
         (**self).explicit()
     }
+    fn separable(&self) -> Option<&dyn SeparableStep> {
+        (**self).separable()
+    }
 }
 
 impl<T: DiscreteLagrangian> DiscreteAction for T {
@@ -119,6 +135,9 @@ impl<T: DiscreteLagrangian> DiscreteAction for T {
     }
     fn explicit(&self) -> Option<&dyn ExplicitStep> {
         DiscreteLagrangian::explicit(self)
+    }
+    fn separable(&self) -> Option<&dyn SeparableStep> {
+        DiscreteLagrangian::separable(self)
     }
 }
 

@@ -8,7 +8,9 @@
 use num_dual::{HyperDual64, HyperDualSVec64};
 
 use crate::ad::HessianParts;
+use crate::explicit::ExplicitWorkspace;
 use crate::newton::{self, NewtonFailure, NewtonOptions, NewtonReport, NewtonWorkspace};
+use crate::separable::{Frame, SeparableWorkspace};
 use crate::small::SmallStep;
 use crate::step::{StepFunction, StepShape, StepSystem, constraint_jacobian};
 use crate::{Constraint, DiscreteAction, DiscreteForce, Error, NoForce, Unconstrained};
@@ -50,6 +52,12 @@ pub struct Statistics {
     pub failed_steps: usize,
     /// Steps taken by an explicit formula (no Newton iteration).
     pub explicit_steps: usize,
+    /// Newton Jacobians factored: one per update on the general and the small path; on the
+    /// separable path ([`crate::separable`]) only fresh ones, a reused Jacobian is not counted.
+    pub jacobian_factorizations: usize,
+    /// Gradients `∇V` of a separable potential evaluated by the structure-aware paths (the
+    /// explicit step reuses the last step's gradient: one per step in a run).
+    pub potential_gradients: usize,
 }
 
 /// Steps a discrete action `A` with discrete forces `F` and constraints `C`.
@@ -86,7 +94,8 @@ struct Buffers {
     p_next: Vec<f64>,
     phi: Vec<f64>,
     dphi0: Vec<f64>,
-    work: Vec<f64>,
+    explicit: ExplicitWorkspace,
+    separable: SeparableWorkspace,
 }
 
 impl<A: DiscreteAction> Integrator<A> {
@@ -266,6 +275,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         state: &State,
         h: f64,
     ) -> Result<NewtonReport, NewtonFailure> {
+        if let Some(result) = self.solve_separable(z, state, h) {
+            return result;
+        }
         if let Some(result) = self.solve_small(z, state, h) {
             return result;
         }
@@ -322,7 +334,15 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         let b = &mut self.buffers;
         b.p_next.clone_from(&state.p);
         b.z.resize(sh.n, 0.0);
-        explicit.explicit_step(state.t, h, &state.q, &mut b.p_next, &mut b.z, &mut b.work);
+        let gradients = explicit.explicit_step(
+            state.t,
+            h,
+            &state.q,
+            &mut b.p_next,
+            &mut b.z,
+            &mut b.explicit,
+        );
+        self.statistics.potential_gradients += gradients;
         if !b.z.iter().chain(&b.p_next).all(|x| x.is_finite()) {
             self.statistics.failed_steps += 1;
             return Err(Error::NonFinite {
@@ -337,6 +357,42 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         self.statistics.steps += 1;
         self.statistics.explicit_steps += 1;
         Ok(Some(StepReport::default()))
+    }
+
+    /// The structured Newton step of a separable Lagrangian ([`crate::separable`]) for
+    /// two-point, unforced, unconstrained steps; `None` when it does not apply.
+    fn solve_separable(
+        &mut self,
+        z: &mut [f64],
+        state: &State,
+        h: f64,
+    ) -> Option<Result<NewtonReport, NewtonFailure>> {
+        let sh = self.shape;
+        if !self.fast_paths || sh.s != 1 || sh.d != 0 || sh.forced {
+            return None;
+        }
+        let step = self.action.separable()?;
+        let b = &mut self.buffers;
+        if !b.separable.applies(step) {
+            return None;
+        }
+        b.p_next.resize(sh.n, 0.0);
+        let frame = Frame {
+            t0: state.t,
+            h,
+            q0: &state.q,
+            p0: &state.p,
+        };
+        let result = step.solve_separable(frame, z, &mut b.p_next, &self.options, &mut b.separable);
+        let evaluations = match &result {
+            Ok(r) | Err(NewtonFailure::NotConverged(r)) | Err(NewtonFailure::NonFinite(r)) => {
+                r.evaluations
+            }
+            Err(NewtonFailure::Singular { iteration, .. }) => iteration + 1,
+        };
+        self.statistics.system_evaluations += evaluations;
+        self.statistics.potential_gradients += evaluations;
+        Some(result)
     }
 
     /// The statically sized step ([`crate::small`]) for two-point, unconstrained steps with
@@ -443,6 +499,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         let s = &mut self.statistics;
         s.steps += 1;
         s.newton_iterations += report.iterations;
+        s.jacobian_factorizations += report.factorizations;
         s.max_newton_iterations = s.max_newton_iterations.max(report.iterations);
     }
 }

@@ -43,6 +43,37 @@ pub trait Lagrangian {
     fn structure(&self) -> Structure {
         Structure::General
     }
+
+    /// `∇V(t, q)` of a separable `L = ½ vᵀ M v − V(t, q)`, written into `grad` (length n);
+    /// `scratch` is storage the implementation may use, kept by the caller between calls so
+    /// that the step does not allocate. Used only when [`Lagrangian::structure`] is
+    /// [`Structure::Separable`].
+    ///
+    /// Default: AD of `−L(t, q, 0)` ([`crate::potential::gradient_by_ad`]). Override it where AD
+    /// is too slow (the N-body problem, [`crate::systems::NBody`]); tests compare the two with
+    /// [`crate::potential::gradient_defect`].
+    #[inline]
+    fn potential_gradient(&self, t: f64, q: &[f64], grad: &mut [f64], scratch: &mut Vec<f64>) {
+        let _ = scratch;
+        crate::potential::gradient_by_ad(self, t, q, grad);
+    }
+
+    /// Half-bandwidth `b` of `∇²V` (`∂²V/∂qᵢ∂qⱼ = 0` for `|i − j| > b`), if the potential is a
+    /// sum of local terms; `None` (the default): dense.
+    fn potential_bandwidth(&self) -> Option<usize> {
+        None
+    }
+
+    /// `∇²V(t, q)` of a separable Lagrangian, written into `hess` (shaped n × n with the
+    /// half-bandwidth of [`Lagrangian::potential_bandwidth`]; entries start at zero).
+    ///
+    /// Default: the dense AD Hessian of `−L(t, q, 0)` ([`crate::potential::hessian_by_ad`]).
+    /// Override it together with `potential_bandwidth` for large systems (a chain:
+    /// [`crate::systems::Chain`]), so the Newton Jacobian `M/h + (h/4)∇²V` of the midpoint
+    /// rule is assembled and factored in `O(n)`.
+    fn potential_hessian(&self, t: f64, q: &[f64], hess: &mut crate::banded::Banded) {
+        crate::potential::hessian_by_ad(self, t, q, hess);
+    }
 }
 
 /// What is known about the form of a Lagrangian.
@@ -51,7 +82,9 @@ pub enum Structure {
     /// No assumption.
     General,
     /// `L = ½ vᵀ M v − V(t, q)` with a constant, symmetric positive definite mass matrix `M`:
-    /// the trapezoid rule is then explicit (velocity Störmer–Verlet, [`crate::explicit`]).
+    /// the trapezoid rule is then explicit (velocity Störmer–Verlet, [`crate::explicit`]) and
+    /// the midpoint rule a Newton solve with Jacobian `M/h + (h/4)∇²V` ([`crate::separable`]);
+    /// both use the potential's derivatives ([`crate::potential`]).
     Separable {
         /// The constant mass matrix.
         mass: MassMatrix,
@@ -92,5 +125,15 @@ impl<L: Lagrangian + ?Sized> Lagrangian for &L {
     }
     fn structure(&self) -> Structure {
         (**self).structure()
+    }
+    #[inline(always)]
+    fn potential_gradient(&self, t: f64, q: &[f64], grad: &mut [f64], scratch: &mut Vec<f64>) {
+        (**self).potential_gradient(t, q, grad, scratch)
+    }
+    fn potential_bandwidth(&self) -> Option<usize> {
+        (**self).potential_bandwidth()
+    }
+    fn potential_hessian(&self, t: f64, q: &[f64], hess: &mut crate::banded::Banded) {
+        (**self).potential_hessian(t, q, hess)
     }
 }

@@ -24,7 +24,7 @@
 //! | system | [`lagrangian`], [`force`], [`constraint`], [`systems`] | `L(t, q, v)`, `f_L`, `φ(q)`, the catalog |
 //! | continuous mechanics | [`mechanics`] | Legendre transform, energy, Euler–Lagrange, regularity |
 //! | discrete Lagrangian | [`discrete`], [`rules`] | `L_d`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; midpoint, trapezoid, α-rules |
-//! | step | [`step`], [`small`], [`explicit`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
+//! | step | [`step`], [`small`], [`explicit`], [`separable`], [`potential`], [`newton`], [`linalg`], [`banded`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians; structure-aware fast paths (explicit Störmer–Verlet, `M/h + (h/4)∇²V`, band solves) |
 //! | integrator | [`integrator`], [`maps`] | rule + forces + constraints + solver + buffers; `F_{L_d}`, `F̃_{L_d}` |
 //! | run | [`problem`], [`simulate`], [`trajectory`] | problem → trajectory, stride, observers, failures |
 //! | diagnostics | [`diagnostics`] | energy error and drift; momentum maps (Noether) and the force balance |
@@ -37,6 +37,7 @@
 //! `p_k = −D₁L_d(q_k, q_{k+1}) − f_d⁻`, `p_{k+1} = D₂L_d(q_k, q_{k+1}) + f_d⁺` follow DESIGN.md §3.
 
 pub mod ad;
+pub mod banded;
 pub mod certificate;
 pub mod constraint;
 pub mod diagnostics;
@@ -51,14 +52,17 @@ pub mod linalg;
 pub mod maps;
 pub mod mechanics;
 pub mod newton;
+pub mod potential;
 pub mod problem;
 pub mod rules;
 pub mod scalar;
 pub mod scratch;
+pub mod separable;
 pub mod simulate;
 pub mod small;
 pub mod special;
 pub mod step;
+pub mod structure;
 pub mod symmetry;
 pub mod systems;
 pub mod trajectory;

@@ -11,12 +11,16 @@
 //! * the regularity check (`∂²L/∂v²` invertible, [`check_regular`]) and the inverse Legendre
 //!   transform `v = FH(q, p)` by Newton's method ([`velocity`]).
 //!
+//! Large separable Lagrangians (more than [`structure::LARGE`] degrees of freedom) take the
+//! shortcuts of [`crate::structure`] in [`momentum`], [`velocity`], [`check_regular`] and
+//! [`check_structure`]: the AD jet would cost `O(n)` evaluations of `L`.
+//!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001). [HLW06]: Hairer, Lubich, Wanner, *Geometric
 //! Numerical Integration* (2006).
 
 use crate::ad::{self, HessianParts, MultiFunction};
 use crate::linalg::{Lu, max_norm};
-use crate::{Error, Lagrangian, Scalar};
+use crate::{Error, Lagrangian, Scalar, structure};
 
 /// `L` as a function of `z = (t, q, v)` for the AD drivers.
 struct OnTangentBundle<'a, L>(&'a L);
@@ -96,6 +100,9 @@ impl LagrangianJet {
 
 /// Legendre transform `p = ∂L/∂v (t, q, v)`, written into `p`.
 pub fn momentum<L: Lagrangian>(l: &L, t: f64, q: &[f64], v: &[f64], p: &mut [f64]) {
+    if let Some(mass) = structure::large_separable(l) {
+        return structure::momentum(&mass, v, p);
+    }
     let n = l.dof();
     let mut z = Vec::with_capacity(2 * n + 1);
     z.push(t);
@@ -162,6 +169,9 @@ fn factor_mass(jet: &LagrangianJet, t: f64, q: &[f64], v: &[f64]) -> Result<Lu, 
 
 /// Checks that `L` is regular at `(t, q, v)`: `∂²L/∂v²` is invertible.
 pub fn check_regular<L: Lagrangian>(l: &L, t: f64, q: &[f64], v: &[f64]) -> Result<(), Error> {
+    if let Some(mass) = structure::large_separable(l) {
+        return structure::velocity(&mass, t, q, v, &mut vec![0.0; v.len()]);
+    }
     factor_mass(&LagrangianJet::at(l, t, q, v), t, q, v).map(|_| ())
 }
 
@@ -196,6 +206,9 @@ pub fn velocity<L: Lagrangian>(
     v: &mut [f64],
 ) -> Result<(), Error> {
     const MAX_ITERATIONS: usize = 50;
+    if let Some(mass) = structure::large_separable(l) {
+        return structure::velocity(&mass, t, q, p, v);
+    }
     let n = l.dof();
     let tol = 1e-14 * max_norm(p).max(1.0);
     let mut r = vec![0.0; n];
@@ -231,6 +244,9 @@ pub fn check_structure<L: Lagrangian>(l: &L, t: f64, q: &[f64], v: &[f64]) -> Re
     let crate::Structure::Separable { mass } = l.structure() else {
         return Ok(());
     };
+    if l.dof() > structure::LARGE {
+        return structure::check_by_probes(l, &mass, (t, q, v));
+    }
     let jet = LagrangianJet::at(l, t, q, v);
     let dense = mass.to_dense();
     let scale = max_norm(&dense).max(1.0);

@@ -104,6 +104,9 @@ pub struct NewtonReport {
     pub iterations: usize,
     /// System evaluations (residual + Jacobian).
     pub evaluations: usize,
+    /// Jacobians factored (one per update on the general path; fewer where a structured path
+    /// reuses its Jacobian, [`crate::separable`]).
+    pub factorizations: usize,
     /// Final residual, max-norm.
     pub residual: f64,
 }
@@ -174,6 +177,7 @@ pub fn solve<Sys: NonlinearSystem>(
         }
         newton_update(ws, m, report.iterations)?;
         report.iterations += 1;
+        report.factorizations += 1;
         let size = max_norm(&ws.update);
         if options.line_search {
             report.evaluations += line_search(system, z, ws, report.residual);

@@ -207,5 +207,7 @@ fn difference(after: &crate::Statistics, before: &crate::Statistics) -> crate::S
         action_evaluations: after.action_evaluations - before.action_evaluations,
         failed_steps: after.failed_steps - before.failed_steps,
         explicit_steps: after.explicit_steps - before.explicit_steps,
+        jacobian_factorizations: after.jacobian_factorizations - before.jacobian_factorizations,
+        potential_gradients: after.potential_gradients - before.potential_gradients,
     }
 }

@@ -190,6 +190,7 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
                 }
             })?;
             report.iterations += 1;
+            report.factorizations += 1;
             let size = update.iter().fold(0.0_f64, |m, u| m.max(u.abs()));
             delta.iter_mut().zip(&update).for_each(|(d, u)| *d += u);
             let znorm = delta.iter().fold(q_scale, |m, d| m.max(d.abs()));

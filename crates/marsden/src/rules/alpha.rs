@@ -5,8 +5,10 @@
 //! `(1−α)δq₀ + αδq₁`, `f_d⁻ = h(1−α) f(q_α, v)` and `f_d⁺ = hα f(q_α, v)`.
 
 use super::{Rule, at_node, with_displacement};
+use crate::newton::{NewtonFailure, NewtonOptions, NewtonReport};
 use crate::scratch::{NODE, with_buffer};
-use crate::{DiscreteForce, DiscreteLagrangian, Force, Lagrangian, Scalar};
+use crate::separable::{Frame, SeparableStep, SeparableWorkspace, solve_alpha};
+use crate::{DiscreteForce, DiscreteLagrangian, Force, Lagrangian, MassMatrix, Scalar, Structure};
 
 /// The midpoint rule (α = ½): second order, symmetric, the implicit midpoint method for
 /// mechanical Lagrangians.
@@ -43,6 +45,37 @@ impl<L: Lagrangian> DiscreteLagrangian for AlphaLd<L> {
         at_node(self.alpha, h, (q0, delta), |q, v| {
             self.lagrangian.lagrangian(t, q, v)
         }) * h
+    }
+    fn separable(&self) -> Option<&dyn SeparableStep> {
+        Some(self)
+    }
+}
+
+/// On a separable `L` the α step is a Newton solve with Jacobian `M/h + hα(1−α)∇²V`
+/// ([`crate::separable`]).
+impl<L: Lagrangian> SeparableStep for AlphaLd<L> {
+    fn mass(&self) -> Option<MassMatrix> {
+        let Structure::Separable { mass } = self.lagrangian.structure() else {
+            return None;
+        };
+        Some(mass)
+    }
+    fn solve_separable(
+        &self,
+        frame: Frame<'_>,
+        z: &mut [f64],
+        p_next: &mut [f64],
+        options: &NewtonOptions,
+        ws: &mut SeparableWorkspace,
+    ) -> Result<NewtonReport, NewtonFailure> {
+        solve_alpha(
+            &self.lagrangian,
+            self.alpha,
+            frame,
+            (z, p_next),
+            options,
+            ws,
+        )
     }
 }
 

@@ -6,7 +6,7 @@
 //! α = 0, `(h/2) f` at each end).
 
 use super::{Rule, at_node, with_displacement};
-use crate::explicit::{ExplicitStep, InverseMass, velocity_verlet};
+use crate::explicit::{ExplicitStep, ExplicitWorkspace, InverseMass, velocity_verlet};
 use crate::scratch::{NODE, with_buffer};
 use crate::{DiscreteForce, DiscreteLagrangian, Force, Lagrangian, Scalar};
 
@@ -56,10 +56,13 @@ impl<L: Lagrangian> ExplicitStep for SymmetrizedLd<L> {
         q: &[f64],
         p: &mut [f64],
         delta: &mut [f64],
-        work: &mut Vec<f64>,
-    ) {
-        if let Some(inverse_mass) = &self.inverse_mass {
-            velocity_verlet(&self.lagrangian, inverse_mass, (t, h), (q, p), delta, work);
+        ws: &mut ExplicitWorkspace,
+    ) -> usize {
+        match &self.inverse_mass {
+            Some(inverse_mass) => {
+                velocity_verlet(&self.lagrangian, inverse_mass, (t, h), (q, p), delta, ws)
+            }
+            None => 0,
         }
     }
 }

@@ -1,5 +1,6 @@
 //! The Kepler problem in the plane, `L = ½|v|² + μ/|q|` (HLW06 §I.2).
 
+use crate::banded::Banded;
 use crate::special::SpecialError;
 use crate::special::kepler::KeplerOrbit;
 use crate::{Lagrangian, MassMatrix, Scalar, Structure};
@@ -57,6 +58,26 @@ impl Lagrangian for Kepler {
     fn structure(&self) -> Structure {
         Structure::Separable {
             mass: MassMatrix::Diagonal(vec![1.0, 1.0]),
+        }
+    }
+    /// `∇V = μ q / |q|³` (one square root, one division).
+    #[inline]
+    fn potential_gradient(&self, _t: f64, q: &[f64], grad: &mut [f64], _scratch: &mut Vec<f64>) {
+        let r2 = q[0] * q[0] + q[1] * q[1];
+        let c = self.mu / (r2 * r2.sqrt());
+        grad[0] = c * q[0];
+        grad[1] = c * q[1];
+    }
+    /// `∇²V = μ (I/|q|³ − 3 q qᵀ/|q|⁵)`.
+    fn potential_hessian(&self, _t: f64, q: &[f64], hess: &mut Banded) {
+        let r2 = q[0] * q[0] + q[1] * q[1];
+        let c = self.mu / (r2 * r2.sqrt());
+        let d = 3.0 * c / r2;
+        for i in 0..2 {
+            for j in 0..2 {
+                let identity = if i == j { c } else { 0.0 };
+                hess.set(i, j, identity - d * q[i] * q[j]);
+            }
         }
     }
 }

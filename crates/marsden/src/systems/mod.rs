@@ -13,17 +13,20 @@
 //! | [`Kepler`] | `x, y` | μ = 1 | energy, angular momentum, exact orbit |
 //! | [`HenonHeiles`] | `x, y` | λ = 1 | energy |
 //! | [`NBody`] | `x₁ y₁ z₁ …` | G = 1, softening 0 | energy, momentum, angular momentum |
+//! | [`Chain`] | `q₁ … q_n` | FPU-β: m = k = β = 1, α = 0, ends fixed | energy |
 //! | [`PointRigidBody`] | `x₁ y₁ z₁ …` + distance constraints | tetrahedron, masses 1–4 | momentum, angular momentum |
 
+mod chain;
 mod double_pendulum;
 mod free_fall;
 mod henon_heiles;
 mod kepler;
-mod nbody;
+pub mod nbody;
 mod oscillator;
 mod pendulum;
 mod rigid_body;
 
+pub use chain::Chain;
 pub use double_pendulum::DoublePendulum;
 pub use free_fall::FreeFall;
 pub use henon_heiles::HenonHeiles;

@@ -1,5 +1,6 @@
 //! The planar pendulum `L = ½ m l² θ̇² + m g l cos θ` (θ from the downward vertical).
 
+use crate::banded::Banded;
 use crate::special::{self, SpecialError};
 use crate::{Lagrangian, MassMatrix, Scalar, Structure};
 
@@ -65,5 +66,14 @@ impl Lagrangian for Pendulum {
         Structure::Separable {
             mass: MassMatrix::Diagonal(vec![self.m * self.l * self.l]),
         }
+    }
+    /// `∂V/∂θ = m g l sin θ`.
+    #[inline]
+    fn potential_gradient(&self, _t: f64, q: &[f64], grad: &mut [f64], _scratch: &mut Vec<f64>) {
+        grad[0] = q[0].sin() * (self.m * self.g * self.l);
+    }
+    /// `∂²V/∂θ² = m g l cos θ`.
+    fn potential_hessian(&self, _t: f64, q: &[f64], hess: &mut Banded) {
+        hess.set(0, 0, q[0].cos() * (self.m * self.g * self.l));
     }
 }

@@ -4,8 +4,15 @@
 //! L = Σᵢ ½ mᵢ |vᵢ|² + Σ_{i<j} G mᵢ mⱼ / √(|qᵢ − qⱼ|² + ε²).
 //! ```
 //!
-//! Coordinates are `(x₁, y₁, z₁, x₂, …)`. This is the general (AD) form; large N belongs to the
-//! explicit fast path.
+//! Coordinates are `(x₁, y₁, z₁, x₂, …)`. `L` below is the general (AD) form and the reference;
+//! the structure-aware paths use the hand-written gradient of [`gravity`] (direct summation,
+//! structure of arrays, vectorised), which tests compare with AD. Initial data can be read from
+//! the benchmark file format ([`file`]).
+
+mod file;
+pub mod gravity;
+
+pub use file::{NBodyData, NBodyFileError, parse as parse_file};
 
 use crate::{Lagrangian, MassMatrix, Scalar, Structure};
 
@@ -99,5 +106,10 @@ impl Lagrangian for NBody {
         Structure::Separable {
             mass: MassMatrix::Diagonal(self.masses.iter().flat_map(|&m| [m, m, m]).collect()),
         }
+    }
+    /// Direct summation ([`gravity::gradient`]), `O(N²)` with one pass over all pairs.
+    #[inline]
+    fn potential_gradient(&self, _t: f64, q: &[f64], grad: &mut [f64], scratch: &mut Vec<f64>) {
+        gravity::gradient((&self.masses, self.g, self.softening), q, grad, scratch);
     }
 }

@@ -1,0 +1,172 @@
+//! Declared structure at scale: checks and shortcuts for separable Lagrangians with many degrees
+//! of freedom.
+//!
+//! [`crate::mechanics`] works with the full AD jet of `L` (second derivatives in `v` against
+//! `(t, q, v)`): `O(n)` evaluations of `L` per jet, hopeless for an N-body problem whose `L`
+//! alone costs `O(n²)`. For a Lagrangian that declares `L = ½ vᵀ M v − V(t, q)` and has more than
+//! [`LARGE`] degrees of freedom, the momenta are `p = M v`, the inverse Legendre transform is
+//! `v = M⁻¹ p` and regularity is the invertibility of `M`; the declaration itself is checked by
+//! random probes of the three Hessian blocks — `wᵀ(∂²L/∂v²)u = wᵀMu`, `wᵀ(∂²L/∂v∂q)u = 0`,
+//! `wᵀ ∂²L/∂v∂t = 0` — each one hyper-dual evaluation ([`crate::ad::directional_second`]). A
+//! block that is wrong fails a probe with probability one; the directions are fixed
+//! pseudo-random vectors, so the check is deterministic.
+
+use crate::ad::{self, MultiFunction};
+use crate::linalg::{Lu, max_norm};
+use crate::{Error, Lagrangian, MassMatrix, Scalar, Structure};
+
+/// Systems with more degrees of freedom than this use the shortcuts of this module.
+pub const LARGE: usize = 32;
+
+/// The mass matrix if `l` declares itself separable and is large.
+pub fn large_separable<L: Lagrangian + ?Sized>(l: &L) -> Option<MassMatrix> {
+    if l.dof() <= LARGE {
+        return None;
+    }
+    let Structure::Separable { mass } = l.structure() else {
+        return None;
+    };
+    Some(mass)
+}
+
+/// `p = M v`.
+pub fn momentum(mass: &MassMatrix, v: &[f64], p: &mut [f64]) {
+    match mass {
+        MassMatrix::Diagonal(d) => {
+            for ((pi, m), vi) in p.iter_mut().zip(d).zip(v) {
+                *pi = m * vi;
+            }
+        }
+        MassMatrix::Dense(m) => {
+            let n = v.len();
+            for (i, pi) in p.iter_mut().enumerate() {
+                *pi = m[i * n..(i + 1) * n]
+                    .iter()
+                    .zip(v)
+                    .map(|(a, b)| a * b)
+                    .sum();
+            }
+        }
+    }
+}
+
+/// `v = M⁻¹ p`, or the singular mass matrix as [`Error::SingularLagrangian`].
+pub fn velocity(
+    mass: &MassMatrix,
+    t: f64,
+    q: &[f64],
+    p: &[f64],
+    v: &mut [f64],
+) -> Result<(), Error> {
+    let dense = mass.to_dense();
+    let n = p.len();
+    let mut lu = Lu::new();
+    lu.factor(&dense, n)
+        .map_err(|e| Error::SingularLagrangian {
+            t,
+            q: q.to_vec(),
+            v: v.to_vec(),
+            pivot: e.pivot,
+            scale: max_norm(&dense),
+        })?;
+    match mass {
+        MassMatrix::Diagonal(d) => {
+            for ((vi, m), pi) in v.iter_mut().zip(d).zip(p) {
+                *vi = pi / m;
+            }
+        }
+        MassMatrix::Dense(_) => {
+            v.copy_from_slice(p);
+            lu.solve(v, &mut Vec::with_capacity(n));
+        }
+    }
+    Ok(())
+}
+
+/// `L` as a function of `z = (t, q, v)`.
+struct OnTangentBundle<'a, L: ?Sized>(&'a L);
+
+impl<L: Lagrangian + ?Sized> MultiFunction for OnTangentBundle<'_, L> {
+    fn inputs(&self) -> usize {
+        2 * self.0.dof() + 1
+    }
+    fn outputs(&self) -> usize {
+        1
+    }
+    fn eval<S: Scalar>(&self, z: &[S], out: &mut [S]) {
+        let n = self.0.dof();
+        out[0] = self.0.lagrangian(z[0], &z[1..=n], &z[n + 1..]);
+    }
+}
+
+/// A fixed pseudo-random direction with entries in `[−1, 1]` (xorshift, seeded by `seed`).
+fn direction(len: usize, seed: u64) -> Vec<f64> {
+    let mut s = seed | 1;
+    (0..len)
+        .map(|_| {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        })
+        .collect()
+}
+
+/// Checks `L = ½ vᵀ M v − V(t, q)` at `(t, q, v)` by probes of the Hessian blocks (relative
+/// 1e-10, as [`crate::mechanics::check_structure`]).
+pub fn check_by_probes<L: Lagrangian + ?Sized>(
+    l: &L,
+    mass: &MassMatrix,
+    (t, q, v): (f64, &[f64], &[f64]),
+) -> Result<(), Error> {
+    let n = q.len();
+    let mut z = Vec::with_capacity(2 * n + 1);
+    z.push(t);
+    z.extend_from_slice(q);
+    z.extend_from_slice(v);
+    let f = OnTangentBundle(l);
+    let scale = match mass {
+        MassMatrix::Diagonal(d) => max_norm(d),
+        MassMatrix::Dense(m) => max_norm(m),
+    }
+    .max(1.0);
+    for probe in 0..2u64 {
+        let (w, u) = (direction(n, 17 + probe), direction(n, 91 + probe));
+        let mut mu = vec![0.0; n];
+        momentum(mass, &u, &mut mu);
+        let wmu: f64 = w.iter().zip(&mu).map(|(a, b)| a * b).sum();
+        let seed_v = |x: &[f64]| -> Vec<f64> {
+            std::iter::once(0.0)
+                .chain(vec![0.0; n])
+                .chain(x.iter().copied())
+                .collect()
+        };
+        let seed_q: Vec<f64> = std::iter::once(0.0)
+            .chain(u.iter().copied())
+            .chain(vec![0.0; n])
+            .collect();
+        let mut seed_t = vec![0.0; 2 * n + 1];
+        seed_t[0] = 1.0;
+        let wv = seed_v(&w);
+        let blocks = [
+            (
+                "∂²L/∂v² against the mass matrix",
+                ad::directional_second(&f, &z, &wv, &seed_v(&u)) - wmu,
+            ),
+            ("∂²L/∂v∂q", ad::directional_second(&f, &z, &wv, &seed_q)),
+            ("∂²L/∂v∂t", ad::directional_second(&f, &z, &wv, &seed_t)),
+        ];
+        if let Some((what, defect)) = blocks
+            .iter()
+            .find(|(_, d)| d.is_nan() || d.abs() > 1e-10 * scale * n as f64)
+        {
+            return Err(Error::StructureMismatch {
+                q: q.to_vec(),
+                v: v.to_vec(),
+                what,
+                defect: *defect,
+            });
+        }
+    }
+    Ok(())
+}
