@@ -20,5 +20,5 @@ mod slope;
 pub use balance::{BalanceMonitor, BalanceReport, force_balance};
 pub use noether::{NoetherMonitor, NoetherReport, momentum_series};
 
-pub use energy::{EnergyMonitor, EnergyReport, energy_series};
+pub use energy::{EnergyAccumulator, EnergyMonitor, EnergyReport, energy_series};
 pub use slope::{OnlineSlope, least_squares_slope};
