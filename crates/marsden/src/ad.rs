@@ -218,6 +218,29 @@ fn collect_block<const C: usize>(
     }
 }
 
+/// Partial derivatives `∂f/∂x[range]` at a point whose coordinates are themselves scalars of
+/// any type `S` (possibly dual numbers), by nested first-order duals `Dual<S>`: one evaluation
+/// of `f` per derivative. This lets a quantity that is itself a derivative (for instance the
+/// momenta `∂L/∂v` inside a Hamiltonian force, [`crate::forces::FromHamiltonian`]) be
+/// differentiated again by the outer AD of a step. Returns `f(x)`.
+pub fn nested_gradient<S, F>(f: F, x: &[S], range: Range<usize>, out: &mut [S]) -> S
+where
+    S: Scalar,
+    F: Fn(&[num_dual::Dual<S>]) -> num_dual::Dual<S>,
+{
+    let zero = S::from(0.0);
+    let mut xs: Buf<num_dual::Dual<S>> = x.iter().map(|&v| num_dual::Dual::new(v, zero)).collect();
+    let mut value = None;
+    for (o, i) in out.iter_mut().zip(range) {
+        xs[i].eps = S::from(1.0);
+        let r = f(&xs);
+        value = Some(r.re);
+        *o = r.eps;
+        xs[i].eps = zero;
+    }
+    value.unwrap_or_else(|| f(&xs).re)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,11 +1,14 @@
 //! The integrator: a discrete action (rule applied to `L`), discrete forces, constraints,
 //! Newton's method and its buffers. One call to [`Integrator::step`] is one application of the
 //! (forced, constrained) discrete Hamiltonian map `F̃_{L_d}: (q_k, p_k) ↦ (q_{k+1}, p_{k+1})`
-//! ([MW01] §1.5, seed: *discrete Hamiltonian map*).
+//! ([MW01] §1.5, seed: *discrete Hamiltonian map*). With constraints, an optional
+//! [`MomentumProjection`] (RATTLE, [`crate::holonomic::Rattle`]) is applied to the momenta after
+//! the SHAKE solve ([`crate::holonomic`] describes the constrained scheme).
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 use crate::ad::HessianParts;
+use crate::holonomic::{MomentumProjection, NoProjection};
 use crate::newton::{self, NewtonFailure, NewtonOptions, NewtonReport, NewtonWorkspace};
 use crate::step::{StepFunction, StepShape, StepSystem, constraint_jacobian};
 use crate::{Constraint, DiscreteAction, DiscreteForce, Error, NoForce, Unconstrained};
@@ -47,7 +50,8 @@ pub struct Statistics {
     pub failed_steps: usize,
 }
 
-/// Steps a discrete action `A` with discrete forces `F` and constraints `C`.
+/// Steps a discrete action `A` with discrete forces `F`, constraints `C` and a momentum
+/// projection `P` (applied after each solved step; [`NoProjection`] by default).
 ///
 /// ```
 /// use marsden::{Integrator, Midpoint, Rule, State, systems::Pendulum};
@@ -59,10 +63,11 @@ pub struct Statistics {
 /// assert!((state.t - 0.1).abs() < 1e-15);
 /// ```
 #[derive(Debug, Clone)]
-pub struct Integrator<A, F = NoForce, C = Unconstrained> {
+pub struct Integrator<A, F = NoForce, C = Unconstrained, P = NoProjection> {
     action: A,
     force: F,
     constraint: C,
+    projection: P,
     options: NewtonOptions,
     shape: StepShape,
     buffers: Buffers,
@@ -79,6 +84,10 @@ struct Buffers {
     p_next: Vec<f64>,
     phi: Vec<f64>,
     dphi0: Vec<f64>,
+    /// `q_{k+1}` for the momentum projection.
+    q_next: Vec<f64>,
+    /// Projection multipliers `μ_k = ν/h` of the last step.
+    mu: Vec<f64>,
 }
 
 impl<A: DiscreteAction> Integrator<A> {
@@ -94,6 +103,7 @@ impl<A: DiscreteAction> Integrator<A> {
             action,
             force: NoForce,
             constraint: Unconstrained,
+            projection: NoProjection,
             options: NewtonOptions::default(),
             shape,
             buffers: Buffers::default(),
@@ -103,9 +113,11 @@ impl<A: DiscreteAction> Integrator<A> {
     }
 }
 
-impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
+impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
+    Integrator<A, F, C, P>
+{
     /// Adds discrete forces (replacing any previous ones).
-    pub fn with_force<F2: DiscreteForce>(self, force: F2) -> Integrator<A, F2, C> {
+    pub fn with_force<F2: DiscreteForce>(self, force: F2) -> Integrator<A, F2, C, P> {
         let shape = StepShape {
             forced: force.is_active(),
             ..self.shape
@@ -114,6 +126,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
             action: self.action,
             force,
             constraint: self.constraint,
+            projection: self.projection,
             options: self.options,
             shape,
             buffers: Buffers::default(),
@@ -123,7 +136,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
     }
 
     /// Adds holonomic constraints (replacing any previous ones).
-    pub fn with_constraint<C2: Constraint>(self, constraint: C2) -> Integrator<A, F, C2> {
+    pub fn with_constraint<C2: Constraint>(self, constraint: C2) -> Integrator<A, F, C2, P> {
         let shape = StepShape {
             d: constraint.count(),
             ..self.shape
@@ -132,10 +145,30 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
             action: self.action,
             force: self.force,
             constraint,
+            projection: self.projection,
             options: self.options,
             shape,
             buffers: Buffers::default(),
             predictor: Predictor::default(),
+            statistics: self.statistics,
+        }
+    }
+
+    /// Adds a momentum projection applied after every solved step (replacing any previous one),
+    /// e.g. [`crate::holonomic::Rattle`] for constrained systems.
+    pub fn with_projection<P2: MomentumProjection>(
+        self,
+        projection: P2,
+    ) -> Integrator<A, F, C, P2> {
+        Integrator {
+            action: self.action,
+            force: self.force,
+            constraint: self.constraint,
+            projection,
+            options: self.options,
+            shape: self.shape,
+            buffers: self.buffers,
+            predictor: self.predictor,
             statistics: self.statistics,
         }
     }
@@ -162,6 +195,11 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         &self.constraint
     }
 
+    /// The momentum projection.
+    pub fn projection(&self) -> &P {
+        &self.projection
+    }
+
     /// Sizes of the step's Newton system.
     pub fn shape(&self) -> StepShape {
         self.shape
@@ -182,6 +220,13 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
     pub fn multipliers(&self) -> &[f64] {
         let sn = self.shape.s * self.shape.n;
         self.buffers.z.get(sn..).unwrap_or(&[])
+    }
+
+    /// Projection multipliers `μ_k` of the last completed step: the projection replaced
+    /// `p̃_{k+1}` by `p_{k+1} = p̃_{k+1} − h Dφ(q_{k+1})ᵀ μ_k` (length d; empty without an active
+    /// projection).
+    pub fn projection_multipliers(&self) -> &[f64] {
+        &self.buffers.mu
     }
 
     /// Offsets `Q_j − q_k` of the control points of the last completed step (`j = 1 … s`).
@@ -216,8 +261,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         self.predictor.predict(&mut z, h, self.shape);
         let outcome = self
             .solve(&mut z, state, h)
-            .map_err(|failure| self.newton_error(failure, step, state.t))
-            .and_then(|report| self.check_finite(&z, step, state.t).map(|_| report));
+            .map_err(|failure| self.newton_error(failure, step, state))
+            .and_then(|report| self.check_finite(&z, step, state.t).map(|_| report))
+            .and_then(|report| self.project(&z, state, h, step).map(|_| report));
         let result = match outcome {
             Ok(report) => {
                 self.predictor.record(&z, h);
@@ -297,6 +343,33 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         }
     }
 
+    /// Applies the momentum projection to `p_{k+1}` (in the buffers, so that a failure leaves
+    /// `state` untouched) and keeps its multipliers as `μ_k = ν/h`.
+    fn project(&mut self, z: &[f64], state: &State, h: f64, step: usize) -> Result<(), Error> {
+        if !self.projection.is_active() {
+            return Ok(());
+        }
+        let (n, sn) = (self.shape.n, self.shape.s * self.shape.n);
+        let b = &mut self.buffers;
+        b.q_next.clear();
+        b.q_next
+            .extend(state.q.iter().zip(&z[sn - n..sn]).map(|(q, d)| q + d));
+        let t = state.t + h;
+        match self.projection.project(t, &b.q_next, &mut b.p_next) {
+            Ok(_) => {
+                b.mu.clear();
+                b.mu.extend(self.projection.multipliers().iter().map(|nu| nu / h));
+                Ok(())
+            }
+            Err(failure) => Err(Error::MomentumProjectionFailed {
+                step,
+                t,
+                iterations: failure.iterations,
+                residual: failure.residual,
+            }),
+        }
+    }
+
     /// Writes the converged step into `state`.
     fn accept(&self, z: &[f64], state: &mut State, h: f64) {
         let sn = self.shape.s * self.shape.n;
@@ -306,7 +379,11 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         state.t += h;
     }
 
-    fn newton_error(&self, failure: NewtonFailure, step: usize, t: f64) -> Error {
+    fn newton_error(&self, failure: NewtonFailure, step: usize, state: &State) -> Error {
+        let t = state.t;
+        if let Some(error) = self.constraint_error(&failure, step, state) {
+            return error;
+        }
         match failure {
             NewtonFailure::NotConverged(r) => Error::NewtonDidNotConverge {
                 step,
@@ -327,6 +404,36 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
                 what: "the Newton residual",
             },
         }
+    }
+
+    /// A failed constrained step whose constraint equations `φ(q_{k+1}) = 0` were left unsolved
+    /// is reported as [`Error::ConstraintNotSatisfied`] (e.g. an unsatisfiable constraint).
+    fn constraint_error(
+        &self,
+        failure: &NewtonFailure,
+        step: usize,
+        state: &State,
+    ) -> Option<Error> {
+        let sh = self.shape;
+        let residual = self.buffers.newton.residual();
+        let phi = residual
+            .get(sh.s * sh.n..sh.unknowns())
+            .filter(|r| !r.is_empty())?;
+        let (index, value) = phi.iter().enumerate().fold((0, 0.0_f64), |best, (i, &v)| {
+            if v.abs() > best.1.abs() { (i, v) } else { best }
+        });
+        let tol = self.options.residual_tolerance * crate::linalg::max_norm(&state.p).max(1.0);
+        let iterations = match *failure {
+            NewtonFailure::NotConverged(r) | NewtonFailure::NonFinite(r) => r.iterations,
+            NewtonFailure::Singular { iteration, .. } => iteration,
+        };
+        (value.is_finite() && value.abs() > tol).then_some(Error::ConstraintNotSatisfied {
+            step,
+            t: state.t,
+            index,
+            residual: value,
+            iterations,
+        })
     }
 
     fn count(&mut self, report: NewtonReport) {

@@ -22,6 +22,8 @@
 //! |---|---|---|
 //! | scalar | [`scalar`] | one generic axis: `f64` or dual numbers |
 //! | system | [`lagrangian`], [`force`], [`constraint`], [`systems`] | `L(t, q, v)`, `f_L`, `φ(q)`, the catalog |
+//! | forces | [`forces`] | damping, driving, controls, sums, `f_H ∘ FL`, user `f_d^±` |
+//! | constraints | [`holonomic`] | SHAKE + RATTLE, initial data on `T*N`, distance constraints |
 //! | continuous mechanics | [`mechanics`] | Legendre transform, energy, Euler–Lagrange, regularity |
 //! | discrete Lagrangian | [`discrete`], [`rules`] | `L_d`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; midpoint, trapezoid, α-rules |
 //! | step | [`step`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
@@ -39,6 +41,8 @@ pub mod diagnostics;
 pub mod discrete;
 pub mod error;
 pub mod force;
+pub mod forces;
+pub mod holonomic;
 pub mod integrator;
 pub mod lagrangian;
 pub mod linalg;
