@@ -84,8 +84,13 @@ struct Buffers {
     p_next: Vec<f64>,
     phi: Vec<f64>,
     dphi0: Vec<f64>,
-    /// `q_{k+1}` for the momentum projection.
+    /// `q_{k+1}` for the momentum projection, and `φ`, `Dφ` there.
     q_next: Vec<f64>,
+    phi_next: Vec<f64>,
+    dphi_next: Vec<f64>,
+    /// Whether `dphi0` already holds `Dφ` at the current `state.q` (computed by the projection
+    /// of the previous step; checked against `q_next` before reuse).
+    dphi0_current: bool,
     /// Projection multipliers `μ_k = ν/h` of the last step.
     mu: Vec<f64>,
 }
@@ -292,11 +297,14 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         let sh = self.shape;
         let b = &mut self.buffers;
         b.p_next.resize(sh.n, 0.0);
-        if sh.d > 0 {
+        // Dφ(q_k): reused from the previous step's projection when the state is the one it left.
+        let reuse = b.dphi0_current && b.q_next == state.q;
+        if sh.d > 0 && !reuse {
             b.phi.resize(sh.d, 0.0);
             b.dphi0.resize(sh.d * sh.n, 0.0);
             constraint_jacobian(&self.constraint, &state.q, &mut b.phi, &mut b.dphi0);
         }
+        b.dphi0_current = false;
         let mut system = StepSystem {
             func: StepFunction {
                 action: &self.action,
@@ -350,15 +358,31 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             return Ok(());
         }
         let (n, sn) = (self.shape.n, self.shape.s * self.shape.n);
-        let b = &mut self.buffers;
+        let (b, d) = (&mut self.buffers, self.shape.d);
         b.q_next.clear();
         b.q_next
             .extend(state.q.iter().zip(&z[sn - n..sn]).map(|(q, d)| q + d));
+        b.phi_next.resize(d, 0.0);
+        b.dphi_next.resize(d * n, 0.0);
+        if d > 0 {
+            constraint_jacobian(
+                &self.constraint,
+                &b.q_next,
+                &mut b.phi_next,
+                &mut b.dphi_next,
+            );
+        }
         let t = state.t + h;
-        match self.projection.project(t, &b.q_next, &mut b.p_next) {
+        let projected = self
+            .projection
+            .project(t, &b.q_next, &b.dphi_next, &mut b.p_next);
+        match projected {
             Ok(_) => {
                 b.mu.clear();
                 b.mu.extend(self.projection.multipliers().iter().map(|nu| nu / h));
+                // Dφ(q_{k+1}) serves the next step too (see `solve`).
+                std::mem::swap(&mut b.dphi0, &mut b.dphi_next);
+                b.dphi0_current = d > 0;
                 Ok(())
             }
             Err(failure) => Err(Error::MomentumProjectionFailed {

@@ -81,11 +81,15 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
         let sh = self.shape;
         let (q0, offsets) = x.split_at(sh.n);
         // Δ_j − (q₀ − re q₀): same real part, derivatives taken with Q_j = q₀ + Δ_j held fixed.
-        let offsets: OffsetBuf<S> = offsets
-            .iter()
-            .enumerate()
-            .map(|(i, &d)| d + (S::from(q0[i % sh.n].re()) - q0[i % sh.n]))
-            .collect();
+        // Built in place (`new` + `extend` rather than `collect`, which moves the inline buffer).
+        let mut shifted: OffsetBuf<S> = OffsetBuf::new();
+        shifted.extend(
+            offsets
+                .iter()
+                .enumerate()
+                .map(|(i, &d)| d + (S::from(q0[i % sh.n].re()) - q0[i % sh.n])),
+        );
+        let offsets = shifted;
         out[0] = self.action.action(self.t0, self.h, q0, &offsets);
         let nf = sh.force_outputs();
         if nf > 0 {
@@ -95,7 +99,8 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
         }
         if sh.d > 0 {
             let last = &offsets[(sh.s - 1) * sh.n..];
-            let q_end: OffsetBuf<S> = q0.iter().zip(last).map(|(&a, &d)| a + d).collect();
+            let mut q_end: OffsetBuf<S> = OffsetBuf::new();
+            q_end.extend(q0.iter().zip(last).map(|(&a, &d)| a + d));
             self.constraint.constraint(&q_end, &mut out[1 + nf..]);
         }
     }

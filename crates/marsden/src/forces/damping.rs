@@ -26,10 +26,10 @@ enum Coefficients {
 /// ```
 /// use marsden::{Force, forces::LinearDamping};
 ///
-/// let damping = LinearDamping::uniform(0.1).unwrap();
+/// let damping = LinearDamping::uniform(0.5).unwrap();
 /// let mut f = [0.0; 2];
 /// damping.force(0.0, &[1.0, 2.0], &[3.0, -4.0], &mut f);
-/// assert_eq!(f, [-0.3, 0.4]);
+/// assert_eq!(f, [-1.5, 2.0]);
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct LinearDamping {

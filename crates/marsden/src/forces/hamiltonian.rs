@@ -55,7 +55,7 @@ pub trait HamiltonianForce {
 /// // m = 2: p = 2v, so f_L = −γ·2v.
 /// let osc = HarmonicOscillator { m: 2.0, k: 1.0 };
 /// let f = FromHamiltonian::new(osc, MomentumDamping(0.1));
-/// let mut out = [0.0];
+/// let mut out = [0.0_f64];
 /// f.force(0.0, &[1.0], &[3.0], &mut out);
 /// assert!((out[0] + 0.6).abs() < 1e-15);
 /// ```

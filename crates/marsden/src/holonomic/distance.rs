@@ -134,7 +134,7 @@ impl Constraint for DistanceConstraints {
 
     fn validate(&self, dof: usize) -> Result<(), Error> {
         let needed = self.particles_used() * self.dim;
-        if self.dim == 0 || dof % self.dim != 0 || needed > dof {
+        if self.dim == 0 || !dof.is_multiple_of(self.dim) || needed > dof {
             return Err(Error::DimensionMismatch {
                 what: "q for the distance constraints (particles × dimension)",
                 expected: needed.max(self.dim),

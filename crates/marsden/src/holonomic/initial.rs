@@ -124,7 +124,7 @@ pub fn check_initial<C: Constraint>(
     let g_size = max_norm(&g);
     let (index, residual) = worst(&phi);
     let tol = tolerance * (max_norm(q) * g_size).max(1.0);
-    if !(residual.abs() <= tol) {
+    if residual.is_nan() || residual.abs() > tol {
         return Err(Error::InitialPositionOffConstraint {
             index,
             residual,
@@ -138,7 +138,7 @@ pub fn check_initial<C: Constraint>(
         .collect();
     let (index, residual) = worst(&gv);
     let tol = tolerance * (g_size * max_norm(v)).max(1.0);
-    if !(residual.abs() <= tol) {
+    if residual.is_nan() || residual.abs() > tol {
         return Err(Error::InitialVelocityNotTangent {
             what,
             index,
@@ -241,7 +241,7 @@ fn project_with<L: Lagrangian, C: Constraint>(
     p: &mut [f64],
 ) -> Result<(), Error> {
     rattle
-        .project(t, q, p)
+        .project_at(t, q, p)
         .map(|_| ())
         .map_err(|f| Error::MomentumProjectionFailed {
             step: 0,

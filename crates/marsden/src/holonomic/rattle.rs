@@ -12,7 +12,7 @@
 //!
 //! by Newton's method with the KKT matrix `[[∂²L/∂v², Dφᵀ], [Dφ, 0]]`; for a Lagrangian
 //! quadratic in `v` (constant or position-dependent mass matrix) one Newton update solves it
-//! exactly (`ν = (Dφ M⁻¹ Dφᵀ)⁻¹ Dφ M⁻¹ p̃`) and a second evaluation confirms the residual.
+//! exactly (`ν = (Dφ M⁻¹ Dφᵀ)⁻¹ Dφ M⁻¹ p̃`) and a residual-only evaluation confirms it.
 //!
 //! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006). [LMO08]:
 //! Leyendecker, Marsden, Ortiz, ZAMM 88 (2008).
@@ -20,8 +20,8 @@
 use smallvec::SmallVec;
 
 use crate::ad::{self, HessianParts, MultiFunction};
-use crate::linalg::max_norm;
-use crate::newton::{self, NewtonFailure, NewtonOptions, NewtonWorkspace, NonlinearSystem};
+use crate::linalg::{Lu, max_norm};
+use crate::newton::NewtonOptions;
 use crate::step::constraint_jacobian;
 use crate::{Constraint, Lagrangian, Scalar};
 
@@ -34,11 +34,13 @@ pub trait MomentumProjection {
     fn is_active(&self) -> bool {
         true
     }
-    /// Replaces `p` at `(t, q)` by its projection; on failure `p` is left unchanged.
+    /// Replaces `p` at `(t, q)` by its projection, given `dphi = Dφ(q)` (row-major d × n, as the
+    /// integrator computes it once per configuration); on failure `p` is left unchanged.
     fn project(
         &mut self,
         t: f64,
         q: &[f64],
+        dphi: &[f64],
         p: &mut [f64],
     ) -> Result<ProjectionReport, ProjectionFailure>;
     /// The multipliers `ν` of the last successful projection (`p ← p − Dφ(q)ᵀν`, length d).
@@ -75,6 +77,7 @@ impl MomentumProjection for NoProjection {
         &mut self,
         _t: f64,
         _q: &[f64],
+        _dphi: &[f64],
         _p: &mut [f64],
     ) -> Result<ProjectionReport, ProjectionFailure> {
         Ok(ProjectionReport::default())
@@ -89,23 +92,30 @@ impl MomentumProjection for NoProjection {
 pub struct ProjectionStatistics {
     /// Successful projections.
     pub projections: usize,
-    /// Newton updates over all projections.
+    /// Newton updates (KKT solves) over all projections.
     pub newton_iterations: usize,
-    /// Evaluations of the KKT system (one hyper-dual evaluation of `L` each).
-    pub evaluations: usize,
+    /// Full evaluations: residual and KKT matrix (one hyper-dual evaluation of `L` each).
+    pub kkt_evaluations: usize,
+    /// Residual-only evaluations after an update (one first-order dual evaluation of `L` each).
+    pub residual_evaluations: usize,
 }
 
 /// The RATTLE projection for the Lagrangian `L` and the constraints `C` (see the module docs).
 ///
+/// Newton's method on `(v, ν)`: a full evaluation gives the residual and the KKT matrix; after
+/// each update the residual alone is re-evaluated (gradient only, cheaper), so a Lagrangian
+/// quadratic in `v` costs one full and one residual evaluation per projection. It stops when
+/// `‖R‖∞ ≤ tol_R · max(1, ‖p‖∞)` or when the update is at round-off, like [`crate::newton`].
+///
 /// ```
-/// use marsden::holonomic::{MomentumProjection, Rattle};
+/// use marsden::holonomic::Rattle;
 /// use marsden::systems::SphericalPendulum;
 ///
 /// let pendulum = SphericalPendulum::default(); // |q| = 1, unit mass
 /// let mut rattle = Rattle::new(pendulum, pendulum);
 /// let q = [0.0, 0.0, -1.0];
 /// let mut p = [0.3, 0.0, 0.5]; // the radial part 0.5 must go
-/// rattle.project(0.0, &q, &mut p).unwrap();
+/// rattle.project_at(0.0, &q, &mut p).unwrap();
 /// assert!(p[2].abs() < 1e-15 && (p[0] - 0.3).abs() < 1e-15);
 /// ```
 #[derive(Debug, Clone)]
@@ -119,13 +129,19 @@ pub struct Rattle<L, C> {
 
 #[derive(Debug, Clone, Default)]
 struct Workspace {
-    newton: NewtonWorkspace,
     parts: HessianParts,
+    lu: Lu,
+    scratch: Vec<f64>,
     phi: Vec<f64>,
-    /// `Dφ(q)`, row-major d × n.
+    /// `Dφ(q)` when [`Rattle::project_at`] computes it.
     g: Vec<f64>,
-    /// Newton unknowns `(v, ν)`.
+    /// Newton unknowns `(v, ν)`, residual, KKT matrix (row-major), update.
     z: Vec<f64>,
+    r: Vec<f64>,
+    kkt: Vec<f64>,
+    dz: Vec<f64>,
+    /// `∂L/∂v` from a residual-only evaluation.
+    grad: Vec<f64>,
     /// `ν` of the last successful projection.
     nu: Vec<f64>,
     /// `v = FH(q, p)` of the last successful projection (and the next starting guess).
@@ -150,6 +166,25 @@ impl<L: Lagrangian, C: Constraint> Rattle<L, C> {
         self
     }
 
+    /// Projects `p` at `(t, q)`, computing `Dφ(q)` itself (for use outside an integrator).
+    pub fn project_at(
+        &mut self,
+        t: f64,
+        q: &[f64],
+        p: &mut [f64],
+    ) -> Result<ProjectionReport, ProjectionFailure> {
+        let d = self.constraint.count();
+        let mut g = std::mem::take(&mut self.ws.g);
+        g.resize(d * q.len(), 0.0);
+        self.ws.phi.resize(d, 0.0);
+        if d > 0 {
+            constraint_jacobian(&self.constraint, q, &mut self.ws.phi, &mut g);
+        }
+        let result = self.project(t, q, &g, p);
+        self.ws.g = g;
+        result
+    }
+
     /// The velocities `v = FH(t, q, p)` of the last successful projection; they satisfy
     /// `Dφ(q) v = 0` to the solver tolerance.
     pub fn velocity(&self) -> &[f64] {
@@ -161,30 +196,92 @@ impl<L: Lagrangian, C: Constraint> Rattle<L, C> {
         &self.statistics
     }
 
+    /// Sizes the buffers; starts from the last velocity (if any) and `ν = 0`.
     fn start(&mut self, n: usize, d: usize) {
         let ws = &mut self.ws;
-        ws.phi.resize(d, 0.0);
-        ws.g.resize(d * n, 0.0);
+        let m = n + d;
         ws.z.clear();
         if ws.v.len() == n {
             ws.z.extend_from_slice(&ws.v);
         } else {
             ws.z.resize(n, 0.0);
         }
-        ws.z.resize(n + d, 0.0);
+        ws.z.resize(m, 0.0);
+        ws.r.resize(m, 0.0);
+        ws.kkt.resize(m * m, 0.0);
+        ws.dz.resize(m, 0.0);
+        ws.grad.resize(n, 0.0);
+    }
+
+    /// Newton's method on `(v, ν)`; see the type's docs.
+    fn solve(
+        &mut self,
+        t: f64,
+        q: &[f64],
+        g: &[f64],
+        p: &[f64],
+    ) -> Result<ProjectionReport, ProjectionFailure> {
+        let (n, m) = (q.len(), self.ws.z.len());
+        let tol = self.options.residual_tolerance * max_norm(p).max(1.0);
+        let velocity_lagrangian = InVelocity {
+            lagrangian: &self.lagrangian,
+            t,
+            q,
+        };
+        let ws = &mut self.ws;
+        let stats = &mut self.statistics;
+        let mut iterations = 0;
+        loop {
+            full_evaluation(&velocity_lagrangian, g, p, ws);
+            stats.kkt_evaluations += 1;
+            let residual = max_norm(&ws.r);
+            let failure = ProjectionFailure {
+                iterations,
+                residual,
+            };
+            if !residual.is_finite() {
+                return Err(failure);
+            }
+            if residual <= tol {
+                return Ok(ProjectionReport {
+                    iterations,
+                    residual,
+                });
+            }
+            if iterations >= self.options.max_iterations {
+                return Err(failure);
+            }
+            ws.lu.factor(&ws.kkt, m).map_err(|_| failure)?;
+            ws.dz.iter_mut().zip(&ws.r).for_each(|(d, r)| *d = -r);
+            ws.lu.solve(&mut ws.dz, &mut ws.scratch);
+            ws.z.iter_mut().zip(&ws.dz).for_each(|(z, d)| *z += d);
+            iterations += 1;
+            stats.newton_iterations += 1;
+            let small = max_norm(&ws.dz) <= self.options.step_tolerance * max_norm(&ws.z).max(1.0);
+            residual_evaluation(&velocity_lagrangian, g, p, n, ws);
+            stats.residual_evaluations += 1;
+            let residual = max_norm(&ws.r);
+            if residual.is_finite() && (residual <= tol || small) {
+                return Ok(ProjectionReport {
+                    iterations,
+                    residual,
+                });
+            }
+        }
     }
 
     /// `p ← p − Dφᵀν`, and keeps `ν` and `v`.
-    fn accept(&mut self, n: usize, d: usize, p: &mut [f64]) {
+    fn accept(&mut self, n: usize, d: usize, g: &[f64], p: &mut [f64]) {
         let ws = &mut self.ws;
         let (v, nu) = ws.z.split_at(n);
         for (i, pi) in p.iter_mut().enumerate() {
-            *pi -= (0..d).map(|c| ws.g[c * n + i] * nu[c]).sum::<f64>();
+            *pi -= (0..d).map(|c| g[c * n + i] * nu[c]).sum::<f64>();
         }
         ws.nu.clear();
         ws.nu.extend_from_slice(nu);
         ws.v.clear();
         ws.v.extend_from_slice(v);
+        self.statistics.projections += 1;
     }
 }
 
@@ -197,50 +294,23 @@ impl<L: Lagrangian, C: Constraint> MomentumProjection for Rattle<L, C> {
         &mut self,
         t: f64,
         q: &[f64],
+        dphi: &[f64],
         p: &mut [f64],
     ) -> Result<ProjectionReport, ProjectionFailure> {
         let (n, d) = (q.len(), self.constraint.count());
         if d == 0 {
             return Ok(ProjectionReport::default());
         }
-        self.start(n, d);
-        let ws = &mut self.ws;
-        constraint_jacobian(&self.constraint, q, &mut ws.phi, &mut ws.g);
-        let mut system = KktSystem {
-            velocity_lagrangian: InVelocity {
-                lagrangian: &self.lagrangian,
-                t,
-                q,
-            },
-            p,
-            g: &ws.g,
-            d,
-            parts: &mut ws.parts,
-        };
-        let result = newton::solve(&mut system, &mut ws.z, &self.options, &mut ws.newton);
-        let stats = &mut self.statistics;
-        match result {
-            Ok(report) => {
-                stats.projections += 1;
-                stats.newton_iterations += report.iterations;
-                stats.evaluations += report.evaluations;
-                self.accept(n, d, p);
-                Ok(ProjectionReport {
-                    iterations: report.iterations,
-                    residual: report.residual,
-                })
-            }
-            Err(NewtonFailure::NotConverged(r) | NewtonFailure::NonFinite(r)) => {
-                Err(ProjectionFailure {
-                    iterations: r.iterations,
-                    residual: r.residual,
-                })
-            }
-            Err(NewtonFailure::Singular { iteration, .. }) => Err(ProjectionFailure {
-                iterations: iteration,
-                residual: max_norm(ws.newton.residual()),
-            }),
+        if dphi.len() != d * n {
+            return Err(ProjectionFailure {
+                iterations: 0,
+                residual: f64::NAN,
+            });
         }
+        self.start(n, d);
+        let report = self.solve(t, q, dphi, p)?;
+        self.accept(n, d, dphi, p);
+        Ok(report)
     }
 
     fn multipliers(&self) -> &[f64] {
@@ -264,51 +334,61 @@ impl<L: Lagrangian> MultiFunction for InVelocity<'_, L> {
     }
     #[inline]
     fn eval<S: Scalar>(&self, v: &[S], out: &mut [S]) {
-        let q: SmallVec<[S; 16]> = self.q.iter().map(|&x| S::from(x)).collect();
+        // Built in place (`collect` would move the inline buffer).
+        let mut q: SmallVec<[S; 16]> = SmallVec::new();
+        q.extend(self.q.iter().map(|&x| S::from(x)));
         out[0] = self.lagrangian.lagrangian(S::from(self.t), &q, v);
     }
 }
 
-/// `R(v, ν) = (∂L/∂v − p + Dφᵀν, Dφ v)` with its KKT Jacobian.
-struct KktSystem<'a, L> {
-    velocity_lagrangian: InVelocity<'a, L>,
-    p: &'a [f64],
-    g: &'a [f64],
-    d: usize,
-    parts: &'a mut HessianParts,
+/// Residual `R(v, ν) = (∂L/∂v − p + Dφᵀν, Dφ v)` and its KKT matrix
+/// `[[∂²L/∂v², Dφᵀ], [Dφ, 0]]` at `ws.z`, by one hyper-dual evaluation.
+fn full_evaluation<L: Lagrangian>(f: &InVelocity<'_, L>, g: &[f64], p: &[f64], ws: &mut Workspace) {
+    let (n, m) = (p.len(), ws.z.len());
+    let d = m - n;
+    ad::partial_hessian(f, &ws.z[..n], 0..n, 0..n, &mut ws.parts);
+    for i in 0..n {
+        let row = &mut ws.kkt[i * m..(i + 1) * m];
+        row[..n].copy_from_slice(&ws.parts.hess[i * n..(i + 1) * n]);
+        for c in 0..d {
+            row[n + c] = g[c * n + i];
+        }
+        ws.grad[i] = ws.parts.grad_rows[i];
+    }
+    for c in 0..d {
+        let row = &mut ws.kkt[(n + c) * m..(n + c + 1) * m];
+        row[..n].copy_from_slice(&g[c * n..(c + 1) * n]);
+        row[n..].fill(0.0);
+    }
+    assemble_residual(g, p, n, ws);
 }
 
-impl<L: Lagrangian> NonlinearSystem for KktSystem<'_, L> {
-    fn dim(&self) -> usize {
-        self.p.len() + self.d
-    }
+/// The residual alone at `ws.z`, by one first-order dual evaluation (`∂L/∂v` only).
+fn residual_evaluation<L: Lagrangian>(
+    f: &InVelocity<'_, L>,
+    g: &[f64],
+    p: &[f64],
+    n: usize,
+    ws: &mut Workspace,
+) {
+    let mut value = [0.0];
+    ad::jacobian(f, &ws.z[..n], 0..n, &mut value, &mut ws.grad);
+    assemble_residual(g, p, n, ws);
+}
 
-    fn residual_scale(&self) -> f64 {
-        max_norm(self.p)
+/// `R` from `∂L/∂v` in `ws.grad`.
+fn assemble_residual(g: &[f64], p: &[f64], n: usize, ws: &mut Workspace) {
+    let d = ws.z.len() - n;
+    let (v, nu) = ws.z.split_at(n);
+    for i in 0..n {
+        let constraint_force: f64 = (0..d).map(|c| g[c * n + i] * nu[c]).sum();
+        ws.r[i] = ws.grad[i] - p[i] + constraint_force;
     }
-
-    fn evaluate(&mut self, z: &[f64], r: &mut [f64], jac: &mut [f64]) {
-        let (n, d) = (self.p.len(), self.d);
-        let m = n + d;
-        let (v, nu) = z.split_at(n);
-        ad::partial_hessian(&self.velocity_lagrangian, v, 0..n, 0..n, self.parts);
-        let (g, parts) = (self.g, &*self.parts);
-        for i in 0..n {
-            let row = &mut jac[i * m..(i + 1) * m];
-            row[..n].copy_from_slice(&parts.hess[i * n..(i + 1) * n]);
-            let mut ri = parts.grad_rows[i] - self.p[i];
-            for c in 0..d {
-                row[n + c] = g[c * n + i];
-                ri += g[c * n + i] * nu[c];
-            }
-            r[i] = ri;
-        }
-        for c in 0..d {
-            let gc = &g[c * n..(c + 1) * n];
-            let row = &mut jac[(n + c) * m..(n + c + 1) * m];
-            row[..n].copy_from_slice(gc);
-            row[n..].fill(0.0);
-            r[n + c] = gc.iter().zip(v).map(|(a, b)| a * b).sum();
-        }
+    for c in 0..d {
+        ws.r[n + c] = g[c * n..(c + 1) * n]
+            .iter()
+            .zip(v)
+            .map(|(a, b)| a * b)
+            .sum();
     }
 }
