@@ -15,11 +15,10 @@
 
 use std::ops::Range;
 
-use nalgebra::{Const, U1};
-use num_dual::{Derivative, DualSVec64, HyperDualSVec64};
-use smallvec::SmallVec;
-
 use crate::Scalar;
+use crate::scratch::with_buffer;
+use nalgebra::{Const, U1};
+use num_dual::{Derivative, DualSVec64, HyperDual64, HyperDualSVec64};
 
 /// A vector-valued function written once over the scalar type.
 pub trait MultiFunction {
@@ -33,8 +32,6 @@ pub trait MultiFunction {
 
 /// Inline capacity of the dual-number buffers (inputs or outputs beyond it spill to the heap).
 const INLINE: usize = 24;
-
-type Buf<S> = SmallVec<[S; INLINE]>;
 
 /// Result of [`partial_hessian`]; buffers are reused across calls.
 #[derive(Debug, Clone, Default)]
@@ -98,7 +95,7 @@ pub fn partial_hessian<F: MultiFunction>(
             eval_f64(f, x, &mut out.values);
             out.evaluations = 1;
         }
-        1 => hessian_chunked::<1, F>(f, x, rows, cols, out),
+        1 => hessian_scalar(f, x, rows, cols, out),
         2 => hessian_chunked::<2, F>(f, x, rows, cols, out),
         3 | 4 => hessian_chunked::<4, F>(f, x, rows, cols, out),
         _ => hessian_chunked::<8, F>(f, x, rows, cols, out),
@@ -118,32 +115,39 @@ fn jacobian_chunked<const C: usize, F: MultiFunction>(
     jac: &mut [f64],
 ) -> usize {
     let (nc, m) = (cols.len(), f.outputs());
-    // Built in place (`new` + `extend`): a collected inline buffer of duals is moved by memcpy.
-    let mut xs: Buf<DualSVec64<C>> = Buf::new();
-    xs.extend(x.iter().map(|&v| DualSVec64::<C>::from_re(v)));
-    let mut out: Buf<DualSVec64<C>> = Buf::new();
-    out.extend((0..m).map(|_| DualSVec64::<C>::from_re(0.0)));
-    let mut evaluations = 0;
-    for jb in (0..nc).step_by(C) {
-        let width = C.min(nc - jb);
-        for a in 0..width {
-            xs[cols.start + jb + a].eps = Derivative::derivative_generic(Const::<C>, U1, a);
-        }
-        f.eval(&xs, &mut out);
-        evaluations += 1;
-        for (i, o) in out.iter().enumerate() {
-            values[i] = o.re;
-            let row = &mut jac[i * nc + jb..i * nc + jb + width];
-            match &o.eps.0 {
-                Some(e) => row.copy_from_slice(&e.as_slice()[..width]),
-                None => row.fill(0.0),
-            }
-        }
-        for a in 0..width {
-            xs[cols.start + jb + a].eps = Derivative::none();
-        }
-    }
-    evaluations
+    let zero = DualSVec64::<C>::from_re(0.0);
+    let init = |i: usize| DualSVec64::<C>::from_re(x[i]);
+    with_buffer::<_, INLINE, _>(x.len(), zero, init, |xs| {
+        with_buffer::<_, INLINE, _>(
+            m,
+            zero,
+            |_| zero,
+            |out| {
+                let mut evaluations = 0;
+                for jb in (0..nc).step_by(C) {
+                    let width = C.min(nc - jb);
+                    for a in 0..width {
+                        xs[cols.start + jb + a].eps =
+                            Derivative::derivative_generic(Const::<C>, U1, a);
+                    }
+                    f.eval(xs, out);
+                    evaluations += 1;
+                    for (i, o) in out.iter().enumerate() {
+                        values[i] = o.re;
+                        let row = &mut jac[i * nc + jb..i * nc + jb + width];
+                        match &o.eps.0 {
+                            Some(e) => row.copy_from_slice(&e.as_slice()[..width]),
+                            None => row.fill(0.0),
+                        }
+                    }
+                    for a in 0..width {
+                        xs[cols.start + jb + a].eps = Derivative::none();
+                    }
+                }
+                evaluations
+            },
+        )
+    })
 }
 
 fn hessian_chunked<const C: usize, F: MultiFunction>(
@@ -154,30 +158,81 @@ fn hessian_chunked<const C: usize, F: MultiFunction>(
     out: &mut HessianParts,
 ) {
     let (nr, nc, m) = (rows.len(), cols.len(), f.outputs());
-    // Built in place (`new` + `extend`): a collected inline buffer of hyper-duals is moved by
-    // memcpy (~2 kB per buffer), which cost about a fifth of a small step.
-    let mut xs: Buf<HyperDualSVec64<C, C>> = Buf::new();
-    xs.extend(x.iter().map(|&v| hd_re::<C>(v)));
-    let mut res: Buf<HyperDualSVec64<C, C>> = Buf::new();
-    res.extend((0..m).map(|_| hd_re::<C>(0.0)));
-    // Always at least one chunk in each direction, so the values are written even if a range is empty.
-    for ib in (0..nr.max(1)).step_by(C) {
-        for jb in (0..nc.max(1)).step_by(C) {
-            let (wr, wc) = (C.min(nr.saturating_sub(ib)), C.min(nc.saturating_sub(jb)));
-            for a in 0..wr {
-                xs[rows.start + ib + a] = xs[rows.start + ib + a].derivative1(a);
-            }
-            for b in 0..wc {
-                xs[cols.start + jb + b] = xs[cols.start + jb + b].derivative2(b);
-            }
-            f.eval(&xs, &mut res);
-            out.evaluations += 1;
-            collect_block(&res, (ib, wr), (jb, wc), nc, out);
-            for v in xs.iter_mut() {
-                *v = hd_re::<C>(v.re);
-            }
-        }
-    }
+    let zero = hd_re::<C>(0.0);
+    with_buffer::<_, INLINE, _>(
+        x.len(),
+        zero,
+        |i| hd_re::<C>(x[i]),
+        |xs| {
+            with_buffer::<_, INLINE, _>(
+                m,
+                zero,
+                |_| zero,
+                |res| {
+                    // At least one chunk each way, so values are written even if a range is empty.
+                    for ib in (0..nr.max(1)).step_by(C) {
+                        for jb in (0..nc.max(1)).step_by(C) {
+                            let (wr, wc) =
+                                (C.min(nr.saturating_sub(ib)), C.min(nc.saturating_sub(jb)));
+                            for a in 0..wr {
+                                xs[rows.start + ib + a] = xs[rows.start + ib + a].derivative1(a);
+                            }
+                            for b in 0..wc {
+                                xs[cols.start + jb + b] = xs[cols.start + jb + b].derivative2(b);
+                            }
+                            f.eval(xs, res);
+                            out.evaluations += 1;
+                            collect_block(res, (ib, wr), (jb, wc), nc, out);
+                            for v in xs.iter_mut() {
+                                *v = hd_re::<C>(v.re);
+                            }
+                        }
+                    }
+                },
+            )
+        },
+    )
+}
+
+/// The 1 × 1 case with num-dual's scalar hyper-dual numbers (no optional derivative parts):
+/// the pendulum-sized hot path.
+fn hessian_scalar<F: MultiFunction>(
+    f: &F,
+    x: &[f64],
+    rows: Range<usize>,
+    cols: Range<usize>,
+    out: &mut HessianParts,
+) {
+    let zero = HyperDual64::from(0.0);
+    let seed = |i: usize| {
+        let mut v = HyperDual64::from(x[i]);
+        v.eps1 = if rows.contains(&i) { 1.0 } else { 0.0 };
+        v.eps2 = if cols.contains(&i) { 1.0 } else { 0.0 };
+        v
+    };
+    with_buffer::<_, 4, _>(x.len(), zero, seed, |xs| {
+        with_buffer::<_, 4, _>(
+            f.outputs(),
+            zero,
+            |_| zero,
+            |res| {
+                f.eval(xs, res);
+                out.evaluations += 1;
+                for (i, o) in res.iter().enumerate() {
+                    out.values[i] = o.re;
+                    if cols.len() == 1 {
+                        out.jac_cols[i] = o.eps2;
+                    }
+                }
+                if rows.len() == 1 {
+                    out.grad_rows[0] = res[0].eps1;
+                    if cols.len() == 1 {
+                        out.hess[0] = res[0].eps1eps2;
+                    }
+                }
+            },
+        )
+    })
 }
 
 #[inline]
@@ -236,16 +291,23 @@ where
     F: Fn(&[num_dual::Dual<S>]) -> num_dual::Dual<S>,
 {
     let zero = S::from(0.0);
-    let mut xs: Buf<num_dual::Dual<S>> = x.iter().map(|&v| num_dual::Dual::new(v, zero)).collect();
-    let mut value = None;
-    for (o, i) in out.iter_mut().zip(range) {
-        xs[i].eps = S::from(1.0);
-        let r = f(&xs);
-        value = Some(r.re);
-        *o = r.eps;
-        xs[i].eps = zero;
-    }
-    value.unwrap_or_else(|| f(&xs).re)
+    let lift = |v: S| num_dual::Dual::new(v, zero);
+    with_buffer::<_, INLINE, _>(
+        x.len(),
+        lift(zero),
+        |i| lift(x[i]),
+        |xs| {
+            let mut value = None;
+            for (o, i) in out.iter_mut().zip(range) {
+                xs[i].eps = S::from(1.0);
+                let r = f(xs);
+                value = Some(r.re);
+                *o = r.eps;
+                xs[i].eps = zero;
+            }
+            value.unwrap_or_else(|| f(xs).re)
+        },
+    )
 }
 
 #[cfg(test)]

@@ -22,10 +22,9 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
-use smallvec::SmallVec;
-
 use crate::Scalar;
 use crate::ad::{self, MultiFunction};
+use crate::scratch::{NODE, with_buffer};
 
 /// A two-point discrete Lagrangian `L_d(t₀, h, q₀, q₁)`.
 ///
@@ -57,8 +56,10 @@ pub trait DiscreteLagrangian {
     /// `ε|q|/h` per step, visible as a random walk of conserved momenta. The default forms
     /// `q₁ = q₀ + Δ`; override it (as the built-in rules do) to use `Δ` directly.
     fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
-        let q1: NodeBuf<S> = q0.iter().zip(delta).map(|(&a, &d)| a + d).collect();
-        self.discrete_lagrangian(t0, h, q0, &q1)
+        let q1 = |i: usize| q0[i] + delta[i];
+        with_buffer::<S, NODE, S>(q0.len(), S::from(0.0), q1, |q1| {
+            self.discrete_lagrangian(t0, h, q0, q1)
+        })
     }
 }
 
@@ -102,9 +103,6 @@ impl<T: DiscreteLagrangian> DiscreteAction for T {
         self.discrete_lagrangian_offset(t0, h, q0, offsets)
     }
 }
-
-/// Small inline buffer for per-node temporaries (no heap for `n ≤ 8`).
-pub(crate) type NodeBuf<S> = SmallVec<[S; 8]>;
 
 /// `L_d` as a function of `(q₀, q₁)` for the AD drivers.
 struct TwoPoint<'a, D> {

@@ -7,9 +7,12 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
+use num_dual::{HyperDual64, HyperDualSVec64};
+
 use crate::ad::HessianParts;
 use crate::holonomic::{MomentumProjection, NoProjection};
 use crate::newton::{self, NewtonFailure, NewtonOptions, NewtonReport, NewtonWorkspace};
+use crate::small::SmallStep;
 use crate::step::{StepFunction, StepShape, StepSystem, constraint_jacobian};
 use crate::{Constraint, DiscreteAction, DiscreteForce, Error, NoForce, Unconstrained};
 
@@ -73,6 +76,8 @@ pub struct Integrator<A, F = NoForce, C = Unconstrained, P = NoProjection> {
     buffers: Buffers,
     predictor: Predictor,
     statistics: Statistics,
+    /// Use the statically sized kernel ([`crate::small`]) when the step allows it.
+    static_sizes: bool,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -114,6 +119,7 @@ impl<A: DiscreteAction> Integrator<A> {
             buffers: Buffers::default(),
             predictor: Predictor::default(),
             statistics: Statistics::default(),
+            static_sizes: true,
         }
     }
 }
@@ -137,6 +143,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             buffers: Buffers::default(),
             predictor: Predictor::default(),
             statistics: self.statistics,
+            static_sizes: self.static_sizes,
         }
     }
 
@@ -156,6 +163,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             buffers: Buffers::default(),
             predictor: Predictor::default(),
             statistics: self.statistics,
+            static_sizes: self.static_sizes,
         }
     }
 
@@ -175,6 +183,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             buffers: self.buffers,
             predictor: self.predictor,
             statistics: self.statistics,
+            static_sizes: self.static_sizes,
         }
     }
 
@@ -183,6 +192,13 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         options.validate()?;
         self.options = options;
         Ok(self)
+    }
+
+    /// Whether to use the statically sized step for small systems (default: true). The
+    /// general path solves the same equations; switching is for testing and measurement.
+    pub fn with_static_sizes(mut self, enabled: bool) -> Self {
+        self.static_sizes = enabled;
+        self
     }
 
     /// The discrete action being stepped.
@@ -294,6 +310,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         state: &State,
         h: f64,
     ) -> Result<NewtonReport, NewtonFailure> {
+        if let Some(result) = self.solve_small(z, state, h) {
+            return result;
+        }
         let sh = self.shape;
         let b = &mut self.buffers;
         b.p_next.resize(sh.n, 0.0);
@@ -330,6 +349,55 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             self.statistics.system_evaluations += r.evaluations;
         }
         result
+    }
+
+    /// The statically sized step ([`crate::small`]) for two-point, unconstrained steps with
+    /// `n ≤ 4`; `None` when it does not apply.
+    fn solve_small(
+        &mut self,
+        z: &mut [f64],
+        state: &State,
+        h: f64,
+    ) -> Option<Result<NewtonReport, NewtonFailure>> {
+        let sh = self.shape;
+        if !self.static_sizes || sh.s != 1 || sh.d != 0 || sh.n > 4 {
+            return None;
+        }
+        let small = SmallStep {
+            action: &self.action,
+            force: &self.force,
+            t0: state.t,
+            h,
+            q0: &state.q,
+            p0: &state.p,
+        };
+        let o = &self.options;
+        let p_next = &mut self.buffers.p_next;
+        p_next.resize(sh.n, 0.0);
+        let result = match sh.n {
+            1 => small
+                .solve::<1, HyperDual64>(z, o)
+                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+            2 => small
+                .solve::<2, HyperDualSVec64<2, 2>>(z, o)
+                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+            3 => small
+                .solve::<3, HyperDualSVec64<3, 3>>(z, o)
+                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+            _ => small
+                .solve::<4, HyperDualSVec64<4, 4>>(z, o)
+                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+        }
+        .map(|(report, ())| report);
+        let evaluations = match &result {
+            Ok(r) | Err(NewtonFailure::NotConverged(r)) | Err(NewtonFailure::NonFinite(r)) => {
+                r.evaluations
+            }
+            Err(NewtonFailure::Singular { iteration, .. }) => iteration + 1,
+        };
+        self.statistics.system_evaluations += evaluations;
+        self.statistics.action_evaluations += evaluations;
+        Some(result)
     }
 
     /// Fails if the converged `Δ_s = q_{k+1} − q_k` or `p_{k+1}` is not finite.

@@ -26,7 +26,7 @@
 //! | constraints | [`holonomic`] | SHAKE + RATTLE, initial data on `T*N`, distance constraints |
 //! | continuous mechanics | [`mechanics`] | Legendre transform, energy, Euler–Lagrange, regularity |
 //! | discrete Lagrangian | [`discrete`], [`rules`] | `L_d`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; midpoint, trapezoid, α-rules |
-//! | step | [`step`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
+//! | step | [`step`], [`small`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
 //! | integrator | [`integrator`], [`maps`] | rule + forces + constraints + solver + buffers; `F_{L_d}`, `F̃_{L_d}` |
 //! | run | [`problem`], [`simulate`], [`trajectory`] | problem → trajectory, stride, observers, failures |
 //! | diagnostics | [`diagnostics`] | energy error and drift |
@@ -52,7 +52,9 @@ pub mod newton;
 pub mod problem;
 pub mod rules;
 pub mod scalar;
+pub mod scratch;
 pub mod simulate;
+pub mod small;
 pub mod special;
 pub mod step;
 pub mod systems;

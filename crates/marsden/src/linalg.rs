@@ -112,6 +112,58 @@ impl Lu {
     }
 }
 
+/// Solves `A x = b` in place by Gaussian elimination with partial pivoting, destroying `a`
+/// (row-major n × n); `b` becomes `x`. For a Jacobian used once this avoids the copy and the
+/// permutation bookkeeping of [`Lu`].
+#[inline]
+pub fn solve_in_place(a: &mut [f64], b: &mut [f64], n: usize) -> Result<(), SingularMatrix> {
+    if n == 1 {
+        return if a[0].abs() > 0.0 && a[0].is_finite() {
+            b[0] /= a[0];
+            Ok(())
+        } else {
+            Err(SingularMatrix {
+                column: 0,
+                pivot: a[0],
+            })
+        };
+    }
+    let scale = max_norm(a);
+    for k in 0..n {
+        let p = (k..n).fold(k, |best, i| {
+            if a[i * n + k].abs() > a[best * n + k].abs() {
+                i
+            } else {
+                best
+            }
+        });
+        let pivot = a[p * n + k];
+        if !(pivot.abs() > PIVOT_TOLERANCE * scale) {
+            return Err(SingularMatrix { column: k, pivot });
+        }
+        if p != k {
+            for j in k..n {
+                a.swap(k * n + j, p * n + j);
+            }
+            b.swap(k, p);
+        }
+        for i in k + 1..n {
+            let factor = a[i * n + k] / pivot;
+            if factor != 0.0 {
+                for j in k + 1..n {
+                    a[i * n + j] -= factor * a[k * n + j];
+                }
+                b[i] -= factor * b[k];
+            }
+        }
+    }
+    for i in (0..n).rev() {
+        let s: f64 = (i + 1..n).map(|j| a[i * n + j] * b[j]).sum();
+        b[i] = (b[i] - s) / a[i * n + i];
+    }
+    Ok(())
+}
+
 /// Max-norm of a vector.
 #[inline]
 pub fn max_norm(x: &[f64]) -> f64 {
@@ -136,6 +188,21 @@ mod tests {
         for (bi, xi) in b.iter().zip(x) {
             assert!((bi - xi).abs() < 1e-15);
         }
+    }
+
+    #[test]
+    fn in_place_solve_matches_lu() {
+        let a = [0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0];
+        let mut b = [1.0, 2.0, 3.0];
+        let mut expected = b;
+        let mut lu = Lu::new();
+        lu.factor(&a, 3).unwrap();
+        lu.solve(&mut expected, &mut Vec::new());
+        solve_in_place(&mut a.clone(), &mut b, 3).unwrap();
+        for (x, y) in b.iter().zip(expected) {
+            assert!((x - y).abs() < 1e-15);
+        }
+        assert!(solve_in_place(&mut [0.0], &mut [1.0], 1).is_err());
     }
 
     #[test]

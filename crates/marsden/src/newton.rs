@@ -13,7 +13,7 @@
 //! the max-norm, Dennis & Schnabel §6.3). Reference: Deuflhard, *Newton Methods for Nonlinear
 //! Problems* (2011), ch. 2.
 
-use crate::linalg::{Lu, SingularMatrix, max_norm};
+use crate::linalg::{SingularMatrix, max_norm, solve_in_place};
 
 /// Options of the Newton solver (one options struct per layer).
 ///
@@ -123,8 +123,6 @@ pub struct NewtonWorkspace {
     jacobian: Vec<f64>,
     update: Vec<f64>,
     trial: Vec<f64>,
-    scratch: Vec<f64>,
-    lu: Lu,
 }
 
 impl NewtonWorkspace {
@@ -182,20 +180,18 @@ pub fn solve<Sys: NonlinearSystem>(
     }
 }
 
-/// Factors the Jacobian and writes the Newton update `−J⁻¹R` into `ws.update`.
+/// Writes the Newton update `−J⁻¹R` into `ws.update` (the Jacobian buffer is consumed; the next
+/// evaluation rewrites it).
 fn newton_update(
     ws: &mut NewtonWorkspace,
     m: usize,
     iteration: usize,
 ) -> Result<(), NewtonFailure> {
-    ws.lu
-        .factor(&ws.jacobian, m)
-        .map_err(|SingularMatrix { pivot, .. }| NewtonFailure::Singular { iteration, pivot })?;
     for (u, r) in ws.update.iter_mut().zip(&ws.residual) {
         *u = -r;
     }
-    ws.lu.solve(&mut ws.update, &mut ws.scratch);
-    Ok(())
+    solve_in_place(&mut ws.jacobian, &mut ws.update, m)
+        .map_err(|SingularMatrix { pivot, .. }| NewtonFailure::Singular { iteration, pivot })
 }
 
 /// Backtracking: halve the update until the residual norm decreases; returns evaluations used.

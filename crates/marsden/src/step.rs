@@ -21,11 +21,10 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LMO08]: Leyendecker, Marsden, Ortiz, ZAMM 88 (2008).
 
-use smallvec::SmallVec;
-
 use crate::ad::{self, HessianParts, MultiFunction};
 use crate::linalg::max_norm;
 use crate::newton::NonlinearSystem;
+use crate::scratch::{NODE, with_buffer};
 use crate::{Constraint, DiscreteAction, DiscreteForce, Scalar};
 
 /// Sizes of a step's Newton system.
@@ -55,7 +54,8 @@ impl StepShape {
     }
 }
 
-type OffsetBuf<S> = SmallVec<[S; 16]>;
+/// Inline capacity for the offsets of a step (`s·n`).
+const OFFSETS: usize = 16;
 
 /// `(L_d, F, φ)` of one step as a vector function of `q₀` and the offsets.
 pub(crate) struct StepFunction<'a, A, F, C> {
@@ -80,29 +80,32 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
     fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
         let sh = self.shape;
         let (q0, offsets) = x.split_at(sh.n);
+        let zero = S::from(0.0);
         // Δ_j − (q₀ − re q₀): same real part, derivatives taken with Q_j = q₀ + Δ_j held fixed.
-        // Built in place (`new` + `extend` rather than `collect`, which moves the inline buffer).
-        let mut shifted: OffsetBuf<S> = OffsetBuf::new();
-        shifted.extend(
-            offsets
-                .iter()
-                .enumerate()
-                .map(|(i, &d)| d + (S::from(q0[i % sh.n].re()) - q0[i % sh.n])),
-        );
-        let offsets = shifted;
-        out[0] = self.action.action(self.t0, self.h, q0, &offsets);
-        let nf = sh.force_outputs();
-        if nf > 0 {
-            let forces = &mut out[1..1 + nf];
-            self.force
-                .discrete_force(self.t0, self.h, q0, &offsets, forces);
-        }
-        if sh.d > 0 {
-            let last = &offsets[(sh.s - 1) * sh.n..];
-            let mut q_end: OffsetBuf<S> = OffsetBuf::new();
-            q_end.extend(q0.iter().zip(last).map(|(&a, &d)| a + d));
-            self.constraint.constraint(&q_end, &mut out[1 + nf..]);
-        }
+        let shifted = |i: usize| {
+            let a = q0[i % sh.n];
+            offsets[i] + (S::from(a.re()) - a)
+        };
+        with_buffer::<S, OFFSETS, ()>(offsets.len(), zero, shifted, |offsets| {
+            out[0] = self.action.action(self.t0, self.h, q0, offsets);
+            let nf = sh.force_outputs();
+            if nf > 0 {
+                let forces = &mut out[1..1 + nf];
+                self.force
+                    .discrete_force(self.t0, self.h, q0, offsets, forces);
+            }
+            if sh.d > 0 {
+                let last = &offsets[(sh.s - 1) * sh.n..];
+                with_buffer::<S, NODE, ()>(
+                    sh.n,
+                    zero,
+                    |i| q0[i] + last[i],
+                    |q_end| {
+                        self.constraint.constraint(q_end, &mut out[1 + nf..]);
+                    },
+                );
+            }
+        });
     }
 }
 

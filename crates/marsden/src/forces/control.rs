@@ -6,6 +6,7 @@
 //! quadrature as `L`. Here `u` is any Rust closure of time; it is sampled at the rule's
 //! quadrature times and contributes nothing to the Newton Jacobian.
 
+use crate::scratch::{NODE, with_buffer};
 use crate::{Force, Scalar};
 
 /// A force given by a closure of time, `f_L(t, q, v) = u(t)`: `u(t, out)` writes the n
@@ -44,10 +45,16 @@ impl<U> std::fmt::Debug for Control<U> {
 impl<U: Fn(f64, &mut [f64])> Force for Control<U> {
     #[inline]
     fn force<S: Scalar>(&self, t: S, _q: &[S], _v: &[S], out: &mut [S]) {
-        let mut u: smallvec::SmallVec<[f64; 8]> = smallvec::smallvec![0.0; out.len()];
-        (self.input)(t.re(), &mut u);
-        for (o, &ui) in out.iter_mut().zip(&u) {
-            *o = S::from(ui);
-        }
+        with_buffer::<f64, NODE, ()>(
+            out.len(),
+            0.0,
+            |_| 0.0,
+            |u| {
+                (self.input)(t.re(), u);
+                for (o, &ui) in out.iter_mut().zip(u.iter()) {
+                    *o = S::from(ui);
+                }
+            },
+        );
     }
 }

@@ -11,8 +11,7 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
-use smallvec::SmallVec;
-
+use crate::scratch::{NODE, with_buffer};
 use crate::{Error, Force, Lagrangian, Scalar, ad, mechanics};
 
 /// A Hamiltonian force `f_H(t, q, p)`, written once over the scalar type.
@@ -74,29 +73,37 @@ impl<L: Lagrangian, H: HamiltonianForce> FromHamiltonian<L, H> {
     }
 }
 
-type Buf<S> = SmallVec<[S; 17]>;
-
 /// `p = ∂L/∂v(t, q, v)` at any scalar type, by nested duals.
 fn momenta<L: Lagrangian, S: Scalar>(l: &L, t: S, q: &[S], v: &[S], p: &mut [S]) {
     let n = q.len();
-    let z: Buf<S> = std::iter::once(t)
-        .chain(q.iter().copied())
-        .chain(v.iter().copied())
-        .collect();
-    ad::nested_gradient(
-        |z| l.lagrangian(z[0], &z[1..=n], &z[n + 1..]),
-        &z,
-        n + 1..2 * n + 1,
-        p,
-    );
+    let entry = |i: usize| match i {
+        0 => t,
+        i if i <= n => q[i - 1],
+        i => v[i - n - 1],
+    };
+    with_buffer::<S, { 2 * NODE + 1 }, ()>(2 * n + 1, t, entry, |z| {
+        ad::nested_gradient(
+            |z| l.lagrangian(z[0], &z[1..=n], &z[n + 1..]),
+            z,
+            n + 1..2 * n + 1,
+            p,
+        );
+    });
 }
 
 impl<L: Lagrangian, H: HamiltonianForce> Force for FromHamiltonian<L, H> {
     #[inline]
     fn force<S: Scalar>(&self, t: S, q: &[S], v: &[S], out: &mut [S]) {
-        let mut p: Buf<S> = q.iter().map(|_| S::from(0.0)).collect();
-        momenta(&self.lagrangian, t, q, v, &mut p);
-        self.force.hamiltonian_force(t, q, &p, out);
+        let zero = S::from(0.0);
+        with_buffer::<S, NODE, ()>(
+            q.len(),
+            zero,
+            |_| zero,
+            |p| {
+                momenta(&self.lagrangian, t, q, v, p);
+                self.force.hamiltonian_force(t, q, p, out);
+            },
+        );
     }
 
     fn validate(&self, dof: usize) -> Result<(), Error> {

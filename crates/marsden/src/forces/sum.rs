@@ -3,8 +3,7 @@
 //! The Lagrange–d'Alembert principle is linear in the force, so forces add, and a rule's
 //! quadrature of a sum is the sum of the quadratures: `(f₁ + f₂)_d^± = f₁_d^± + f₂_d^±`.
 
-use smallvec::SmallVec;
-
+use crate::scratch::with_buffer;
 use crate::{DiscreteForce, Error, Force, Scalar};
 
 /// The sum `f₁ + f₂` of two forces (nest it, or use [`ForceExt::plus`], for more).
@@ -30,7 +29,25 @@ pub trait ForceExt: Sized {
 
 impl<F: Force> ForceExt for F {}
 
-type Scratch<S> = SmallVec<[S; 16]>;
+/// Inline capacity of the second summand's output (`n`, or `(s + 1)·n` for discrete forces).
+const SCRATCH: usize = 16;
+
+/// `out += second`, where `second` is filled by `fill`.
+#[inline(always)]
+fn add_into<S: Scalar>(out: &mut [S], fill: impl FnOnce(&mut [S])) {
+    let zero = S::from(0.0);
+    with_buffer::<S, SCRATCH, ()>(
+        out.len(),
+        zero,
+        |_| zero,
+        |second| {
+            fill(second);
+            out.iter_mut()
+                .zip(second.iter())
+                .for_each(|(o, &s)| *o += s);
+        },
+    );
+}
 
 impl<A: Force, B: Force> Force for ForceSum<A, B> {
     #[inline]
@@ -38,9 +55,7 @@ impl<A: Force, B: Force> Force for ForceSum<A, B> {
         match (self.0.is_active(), self.1.is_active()) {
             (true, true) => {
                 self.0.force(t, q, v, out);
-                let mut second: Scratch<S> = out.iter().map(|_| S::from(0.0)).collect();
-                self.1.force(t, q, v, &mut second);
-                out.iter_mut().zip(&second).for_each(|(o, &s)| *o += s);
+                add_into(out, |second| self.1.force(t, q, v, second));
             }
             (true, false) => self.0.force(t, q, v, out),
             (false, true) => self.1.force(t, q, v, out),
@@ -64,9 +79,9 @@ impl<A: DiscreteForce, B: DiscreteForce> DiscreteForce for ForceSum<A, B> {
         match (self.0.is_active(), self.1.is_active()) {
             (true, true) => {
                 self.0.discrete_force(t0, h, q0, offsets, out);
-                let mut second: Scratch<S> = out.iter().map(|_| S::from(0.0)).collect();
-                self.1.discrete_force(t0, h, q0, offsets, &mut second);
-                out.iter_mut().zip(&second).for_each(|(o, &s)| *o += s);
+                add_into(out, |second| {
+                    self.1.discrete_force(t0, h, q0, offsets, second)
+                });
             }
             (true, false) => self.0.discrete_force(t0, h, q0, offsets, out),
             (false, true) => self.1.discrete_force(t0, h, q0, offsets, out),

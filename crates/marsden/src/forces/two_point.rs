@@ -10,8 +10,7 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
-use smallvec::SmallVec;
-
+use crate::scratch::{NODE, with_buffer};
 use crate::{DiscreteForce, Scalar};
 
 /// Discrete forces `(f_d⁻, f_d⁺)` of one step `(q₀, q₁)` from `t₀` to `t₀ + h`.
@@ -57,8 +56,13 @@ pub trait TwoPointForce {
         minus: &mut [S],
         plus: &mut [S],
     ) {
-        let q1: SmallVec<[S; 8]> = q0.iter().zip(delta).map(|(&a, &d)| a + d).collect();
-        self.two_point_force(t0, h, q0, &q1, minus, plus);
+        let zero = S::from(0.0);
+        with_buffer::<S, NODE, ()>(
+            q0.len(),
+            zero,
+            |i| q0[i] + delta[i],
+            |q1| self.two_point_force(t0, h, q0, q1, minus, plus),
+        );
     }
 }
 

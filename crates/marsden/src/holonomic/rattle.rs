@@ -17,11 +17,10 @@
 //! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006). [LMO08]:
 //! Leyendecker, Marsden, Ortiz, ZAMM 88 (2008).
 
-use smallvec::SmallVec;
-
 use crate::ad::{self, HessianParts, MultiFunction};
 use crate::linalg::{Lu, max_norm};
 use crate::newton::NewtonOptions;
+use crate::scratch::{NODE, with_buffer};
 use crate::step::constraint_jacobian;
 use crate::{Constraint, Lagrangian, Scalar};
 
@@ -334,10 +333,15 @@ impl<L: Lagrangian> MultiFunction for InVelocity<'_, L> {
     }
     #[inline]
     fn eval<S: Scalar>(&self, v: &[S], out: &mut [S]) {
-        // Built in place (`collect` would move the inline buffer).
-        let mut q: SmallVec<[S; 16]> = SmallVec::new();
-        q.extend(self.q.iter().map(|&x| S::from(x)));
-        out[0] = self.lagrangian.lagrangian(S::from(self.t), &q, v);
+        let zero = S::from(0.0);
+        with_buffer::<S, NODE, ()>(
+            self.q.len(),
+            zero,
+            |i| S::from(self.q[i]),
+            |q| {
+                out[0] = self.lagrangian.lagrangian(S::from(self.t), q, v);
+            },
+        );
     }
 }
 

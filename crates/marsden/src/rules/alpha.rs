@@ -4,8 +4,8 @@
 //! case R5). Discrete forces by the same one-point quadrature: with `q_α` varied as
 //! `(1−α)δq₀ + αδq₁`, `f_d⁻ = h(1−α) f(q_α, v)` and `f_d⁺ = hα f(q_α, v)`.
 
-use super::{Rule, displacement, node};
-use crate::discrete::NodeBuf;
+use super::{Rule, at_node, with_displacement};
+use crate::scratch::{NODE, with_buffer};
 use crate::{DiscreteForce, DiscreteLagrangian, Force, Lagrangian, Scalar};
 
 /// The midpoint rule (α = ½): second order, symmetric, the implicit midpoint method for
@@ -35,13 +35,14 @@ impl<L: Lagrangian> DiscreteLagrangian for AlphaLd<L> {
     }
     #[inline]
     fn discrete_lagrangian<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], q1: &[S]) -> S {
-        self.discrete_lagrangian_offset(t0, h, q0, &displacement(q0, q1))
+        with_displacement(q0, q1, |d| self.discrete_lagrangian_offset(t0, h, q0, d))
     }
     #[inline]
     fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
-        let (q, v) = node(self.alpha, h, q0, delta);
         let t = S::from(t0 + self.alpha * h);
-        self.lagrangian.lagrangian(t, &q, &v) * h
+        at_node(self.alpha, h, (q0, delta), |q, v| {
+            self.lagrangian.lagrangian(t, q, v)
+        }) * h
     }
 }
 
@@ -60,15 +61,23 @@ impl<F: Force> DiscreteForce for AlphaForce<F> {
     #[inline]
     fn discrete_force<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], offsets: &[S], out: &mut [S]) {
         let n = self.dof;
-        let (q, v) = node(self.alpha, h, q0, offsets);
-        let mut f: NodeBuf<S> = (0..n).map(|_| S::from(0.0)).collect();
-        self.force
-            .force(S::from(t0 + self.alpha * h), &q, &v, &mut f);
+        let t = S::from(t0 + self.alpha * h);
         let (w0, w1) = (h * (1.0 - self.alpha), h * self.alpha);
-        for i in 0..n {
-            out[i] = f[i] * w0;
-            out[n + i] = f[i] * w1;
-        }
+        at_node(self.alpha, h, (q0, offsets), |q, v| {
+            let zero = S::from(0.0);
+            with_buffer::<S, NODE, ()>(
+                n,
+                zero,
+                |_| zero,
+                |f| {
+                    self.force.force(t, q, v, f);
+                    for i in 0..n {
+                        out[i] = f[i] * w0;
+                        out[n + i] = f[i] * w1;
+                    }
+                },
+            )
+        })
     }
     fn is_active(&self) -> bool {
         self.force.is_active()

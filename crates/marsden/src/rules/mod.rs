@@ -40,31 +40,35 @@ pub trait Rule {
     fn order(&self) -> u32;
 }
 
-/// Position and velocity at the node `q_c = q₀ + cΔ`, `v = Δ/h`, from the displacement
+/// Calls `f(q_c, v)` at the node `q_c = q₀ + cΔ` with `v = Δ/h`, from the displacement
 /// `Δ = q₁ − q₀` (no difference of rounded positions, see
 /// [`crate::DiscreteLagrangian::discrete_lagrangian_offset`]).
 #[inline(always)]
-pub(crate) fn node<S: crate::Scalar>(
+pub(crate) fn at_node<S: crate::Scalar, R>(
     c: f64,
     h: f64,
-    q0: &[S],
-    delta: &[S],
-) -> (crate::discrete::NodeBuf<S>, crate::discrete::NodeBuf<S>) {
-    let q = q0
-        .iter()
-        .zip(delta)
-        .map(|(&a, &d)| match c {
-            0.0 => a,
-            1.0 => a + d,
-            _ => a + d * c,
-        })
-        .collect();
-    let v = delta.iter().map(|&d| d / h).collect();
-    (q, v)
+    (q0, delta): (&[S], &[S]),
+    f: impl FnOnce(&[S], &[S]) -> R,
+) -> R {
+    use crate::scratch::{NODE, with_buffer};
+    let (n, zero, inv_h) = (q0.len(), S::from(0.0), 1.0 / h);
+    let position = |i: usize| match c {
+        0.0 => q0[i],
+        1.0 => q0[i] + delta[i],
+        _ => q0[i] + delta[i] * c,
+    };
+    with_buffer::<S, NODE, R>(n, zero, position, |q| {
+        with_buffer::<S, NODE, R>(n, zero, |i| delta[i] * inv_h, |v| f(q, v))
+    })
 }
 
-/// `q₁ − q₀` in a node buffer.
+/// Calls `f(q₁ − q₀)`.
 #[inline(always)]
-pub(crate) fn displacement<S: crate::Scalar>(q0: &[S], q1: &[S]) -> crate::discrete::NodeBuf<S> {
-    q0.iter().zip(q1).map(|(&a, &b)| b - a).collect()
+pub(crate) fn with_displacement<S: crate::Scalar, R>(
+    q0: &[S],
+    q1: &[S],
+    f: impl FnOnce(&[S]) -> R,
+) -> R {
+    use crate::scratch::{NODE, with_buffer};
+    with_buffer::<S, NODE, R>(q0.len(), S::from(0.0), |i| q1[i] - q0[i], |d| f(d))
 }

@@ -5,8 +5,8 @@
 //! (reference cases R2, R5). Discrete forces: the average of the α and 1−α quadratures (for
 //! α = 0, `(h/2) f` at each end).
 
-use super::{Rule, displacement, node};
-use crate::discrete::NodeBuf;
+use super::{Rule, at_node, with_displacement};
+use crate::scratch::{NODE, with_buffer};
 use crate::{DiscreteForce, DiscreteLagrangian, Force, Lagrangian, Scalar};
 
 /// The trapezoid rule (symmetrised α = 0): velocity Störmer–Verlet for mechanical systems.
@@ -35,14 +35,16 @@ impl<L: Lagrangian> DiscreteLagrangian for SymmetrizedLd<L> {
     }
     #[inline]
     fn discrete_lagrangian<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], q1: &[S]) -> S {
-        self.discrete_lagrangian_offset(t0, h, q0, &displacement(q0, q1))
+        with_displacement(q0, q1, |d| self.discrete_lagrangian_offset(t0, h, q0, d))
     }
     #[inline]
     fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
         let mut sum = S::from(0.0);
         for c in [self.alpha, 1.0 - self.alpha] {
-            let (q, v) = node(c, h, q0, delta);
-            sum += self.lagrangian.lagrangian(S::from(t0 + c * h), &q, &v);
+            let t = S::from(t0 + c * h);
+            sum += at_node(c, h, (q0, delta), |q, v| {
+                self.lagrangian.lagrangian(t, q, v)
+            });
         }
         sum * (0.5 * h)
     }
@@ -63,16 +65,25 @@ impl<F: Force> DiscreteForce for SymmetrizedForce<F> {
     #[inline]
     fn discrete_force<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], offsets: &[S], out: &mut [S]) {
         let n = self.dof;
-        out[..2 * n].iter_mut().for_each(|o| *o = S::from(0.0));
-        let mut f: NodeBuf<S> = (0..n).map(|_| S::from(0.0)).collect();
+        let zero = S::from(0.0);
+        out[..2 * n].iter_mut().for_each(|o| *o = zero);
         for c in [self.alpha, 1.0 - self.alpha] {
-            let (q, v) = node(c, h, q0, offsets);
-            self.force.force(S::from(t0 + c * h), &q, &v, &mut f);
+            let t = S::from(t0 + c * h);
             let (w0, w1) = (0.5 * h * (1.0 - c), 0.5 * h * c);
-            for i in 0..n {
-                out[i] += f[i] * w0;
-                out[n + i] += f[i] * w1;
-            }
+            at_node(c, h, (q0, offsets), |q, v| {
+                with_buffer::<S, NODE, ()>(
+                    n,
+                    zero,
+                    |_| zero,
+                    |f| {
+                        self.force.force(t, q, v, f);
+                        for i in 0..n {
+                            out[i] += f[i] * w0;
+                            out[n + i] += f[i] * w1;
+                        }
+                    },
+                )
+            });
         }
     }
     fn is_active(&self) -> bool {

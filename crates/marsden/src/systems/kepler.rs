@@ -1,5 +1,7 @@
 //! The Kepler problem in the plane, `L = ½|v|² + μ/|q|` (HLW06 §I.2).
 
+use crate::special::SpecialError;
+use crate::special::kepler::KeplerOrbit;
 use crate::{Lagrangian, Scalar};
 
 /// Planar Kepler problem with gravitational parameter `μ` (unit mass).
@@ -20,6 +22,17 @@ impl Kepler {
     /// `q = (1 − e, 0)`, `p = (0, √((1+e)/(1−e)))` (period 2π, energy −½, angular momentum √(1−e²)).
     pub fn pericentre(e: f64) -> ([f64; 2], [f64; 2]) {
         ([1.0 - e, 0.0], [0.0, ((1.0 + e) / (1.0 - e)).sqrt()])
+    }
+
+    /// Exact solution `(q(t), p(t))` from `(q₀, p₀)` at time 0 (bound orbits), by Kepler's
+    /// equation `E − e sin E = M` (see [`KeplerOrbit`]).
+    pub fn exact(
+        &self,
+        q0: [f64; 2],
+        p0: [f64; 2],
+        t: f64,
+    ) -> Result<([f64; 2], [f64; 2]), SpecialError> {
+        KeplerOrbit::new(self.mu, q0, p0)?.state(t)
     }
 
     /// Energy `½|p|² − μ/|q|`.

@@ -1,5 +1,6 @@
 //! The planar pendulum `L = ½ m l² θ̇² + m g l cos θ` (θ from the downward vertical).
 
+use crate::special::{self, SpecialError};
 use crate::{Lagrangian, Scalar};
 
 /// Planar pendulum of mass `m`, length `l` in gravity `g`.
@@ -27,6 +28,22 @@ impl Pendulum {
     /// Small-oscillation frequency `ω = √(g/l)`.
     pub fn omega(&self) -> f64 {
         (self.g / self.l).sqrt()
+    }
+
+    /// Exact period `4K(k²)/ω` of the libration with amplitude `θ_max`, `k = sin(θ_max/2)`
+    /// (A&S 17.3; see [`special::pendulum::period`]).
+    pub fn period(&self, amplitude: f64) -> Result<f64, SpecialError> {
+        special::pendulum::period(amplitude, self.omega())
+    }
+
+    /// Exact solution `(θ(t), p(t))` from `(θ₀, p₀)` at time 0, through Jacobi elliptic
+    /// functions (`sin(θ/2) = k sn(ωt + u₀, k²)` for librations; rotations too), see
+    /// [`special::pendulum::Pendulum`].
+    pub fn exact(&self, q0: f64, p0: f64, t: f64) -> Result<(f64, f64), SpecialError> {
+        let inertia = self.m * self.l * self.l;
+        let motion = special::pendulum::Pendulum::new(q0, p0 / inertia, self.omega())?;
+        let (q, v) = motion.state(t)?;
+        Ok((q, inertia * v))
     }
 
     /// Energy `p²/(2 m l²) − m g l cos θ`.

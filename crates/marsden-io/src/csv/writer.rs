@@ -1,0 +1,227 @@
+//! Streaming CSV writer and the one-shot table writer.
+
+use std::fs::File;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use super::number::format_f64;
+use crate::error::{Error, Result};
+use crate::sink::RowSink;
+use crate::table::{Table, check_names};
+
+/// Rows are gathered in memory up to this many bytes, then handed to the file together.
+const SPILL_BYTES: usize = 1 << 16;
+
+/// Writes a CSV header, then rows one at a time, in bounded memory.
+///
+/// Whole rows are buffered (about 64 KiB) and handed to the underlying writer together, so
+/// the output always ends at a row boundary. [`finish`](Self::finish) (or
+/// [`flush`](Self::flush)) can be called at any row: a failed run keeps what it wrote. If the
+/// writer is dropped unfinished, buffered rows are written on a best-effort basis (errors
+/// ignored); call `finish` to see them.
+///
+/// ```
+/// # fn main() -> Result<(), marsden_io::Error> {
+/// # let dir = tempfile::tempdir().unwrap();
+/// # let path = dir.path().join("trajectory.csv");
+/// use marsden_io::CsvWriter;
+/// let mut w = CsvWriter::create(&path, &["t", "q_x", "p_x", "energy"])?;
+/// w.write_row(&[0.0, 1.0, 0.0, 0.5])?;
+/// w.write_row(&[0.1, 0.995, -0.0998, 0.5])?;
+/// w.finish()?;
+/// assert_eq!(std::fs::read_to_string(&path).unwrap(),
+///            "t,q_x,p_x,energy\n0,1,0,0.5\n0.1,0.995,-0.0998,0.5\n");
+/// # Ok(()) }
+/// ```
+#[derive(Debug)]
+pub struct CsvWriter<W: Write> {
+    inner: Option<W>,
+    path: PathBuf,
+    width: usize,
+    rows: u64,
+    buf: String,
+}
+
+impl CsvWriter<File> {
+    /// Creates (or truncates) the file at `path` and writes the header line to it at once.
+    ///
+    /// # Errors
+    /// Invalid or duplicate names ([`Error::InvalidName`], [`Error::DuplicateName`],
+    /// [`Error::NoColumns`]) or an I/O error naming `path`.
+    pub fn create<S: AsRef<str>>(path: impl AsRef<Path>, header: &[S]) -> Result<Self> {
+        let path = path.as_ref();
+        // Check the names before touching the file system.
+        check_names(header.iter().map(AsRef::as_ref))?;
+        let file = File::create(path).map_err(|e| Error::io("create", path, e))?;
+        Self::from_writer(file, path, header)
+    }
+}
+
+impl<W: Write> CsvWriter<W> {
+    /// Wraps any writer; `path` is only used to name the output in error messages.
+    ///
+    /// # Errors
+    /// As [`create`](CsvWriter::create).
+    pub fn from_writer<S: AsRef<str>>(
+        writer: W,
+        path: impl Into<PathBuf>,
+        header: &[S],
+    ) -> Result<Self> {
+        check_names(header.iter().map(AsRef::as_ref))?;
+        let mut w = Self {
+            inner: Some(writer),
+            path: path.into(),
+            width: header.len(),
+            rows: 0,
+            buf: String::with_capacity(SPILL_BYTES + 1024),
+        };
+        for (i, name) in header.iter().enumerate() {
+            if i > 0 {
+                w.buf.push(',');
+            }
+            w.buf.push_str(name.as_ref());
+        }
+        w.buf.push('\n');
+        w.flush()?;
+        Ok(w)
+    }
+
+    /// Appends one row; `row.len()` must equal the number of header columns.
+    ///
+    /// # Errors
+    /// [`Error::RowLength`], [`Error::Finished`], or an I/O error naming the file when a
+    /// buffer spill fails.
+    pub fn write_row(&mut self, row: &[f64]) -> Result<()> {
+        if self.inner.is_none() {
+            return Err(Error::Finished {
+                path: self.path.clone(),
+            });
+        }
+        if row.len() != self.width {
+            return Err(Error::RowLength {
+                path: self.path.clone(),
+                row: self.rows,
+                expected: self.width,
+                found: row.len(),
+            });
+        }
+        for (i, &x) in row.iter().enumerate() {
+            if i > 0 {
+                self.buf.push(',');
+            }
+            format_f64(x, &mut self.buf);
+        }
+        self.buf.push('\n');
+        self.rows += 1;
+        if self.buf.len() >= SPILL_BYTES {
+            self.spill()?;
+        }
+        Ok(())
+    }
+
+    /// Hands all buffered rows to the underlying writer and flushes it.
+    ///
+    /// # Errors
+    /// [`Error::Finished`] or an I/O error naming the file.
+    pub fn flush(&mut self) -> Result<()> {
+        self.spill()?;
+        match self.inner.as_mut() {
+            Some(w) => w.flush().map_err(|e| Error::io("flush", &self.path, e)),
+            None => Err(Error::Finished {
+                path: self.path.clone(),
+            }),
+        }
+    }
+
+    /// Flushes and stops: the file holds the header and every row written so far.
+    /// Later writes fail with [`Error::Finished`]; finishing again does nothing.
+    ///
+    /// # Errors
+    /// An I/O error naming the file.
+    pub fn finish(&mut self) -> Result<()> {
+        if self.inner.is_none() {
+            return Ok(());
+        }
+        let result = self.flush();
+        self.inner = None;
+        result
+    }
+
+    /// Finishes and returns the underlying writer (e.g. the `Vec<u8>` written to).
+    ///
+    /// # Errors
+    /// [`Error::Finished`] if already finished, or an I/O error naming the file.
+    pub fn into_inner(mut self) -> Result<W> {
+        self.flush()?;
+        self.inner.take().ok_or_else(|| Error::Finished {
+            path: self.path.clone(),
+        })
+    }
+
+    /// Number of data rows accepted so far (header excluded).
+    pub fn rows_written(&self) -> u64 {
+        self.rows
+    }
+
+    /// The path given at creation, used in error messages.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Writes the buffer to the underlying writer without flushing it.
+    fn spill(&mut self) -> Result<()> {
+        if self.buf.is_empty() {
+            return Ok(());
+        }
+        let Some(w) = self.inner.as_mut() else {
+            return Err(Error::Finished {
+                path: self.path.clone(),
+            });
+        };
+        // Clear even on failure: retrying a partly written buffer would duplicate rows.
+        let result = w.write_all(self.buf.as_bytes());
+        self.buf.clear();
+        result.map_err(|e| Error::io("write to", &self.path, e))
+    }
+}
+
+impl<W: Write> Drop for CsvWriter<W> {
+    fn drop(&mut self) {
+        if self.inner.is_some() {
+            // Best effort: a caller who wants the error calls `finish` first.
+            let _ = self.finish();
+        }
+    }
+}
+
+impl<W: Write> RowSink for CsvWriter<W> {
+    fn write_row(&mut self, row: &[f64]) -> Result<()> {
+        CsvWriter::write_row(self, row)
+    }
+    fn flush(&mut self) -> Result<()> {
+        CsvWriter::flush(self)
+    }
+    fn finish(&mut self) -> Result<()> {
+        CsvWriter::finish(self)
+    }
+    fn rows_written(&self) -> u64 {
+        CsvWriter::rows_written(self)
+    }
+}
+
+/// Writes a whole table to `path` as CSV (header = the table's column names).
+///
+/// # Errors
+/// An I/O error naming `path`.
+pub fn write_csv(path: impl AsRef<Path>, table: &Table) -> Result<()> {
+    let names: Vec<&str> = table.names().collect();
+    let mut w = CsvWriter::create(path, &names)?;
+    let mut row = vec![0.0; table.n_columns()];
+    for i in 0..table.n_rows() {
+        for (slot, col) in row.iter_mut().zip(table.columns()) {
+            *slot = col.values[i];
+        }
+        w.write_row(&row)?;
+    }
+    w.finish()
+}

@@ -1,0 +1,192 @@
+//! The step for small systems, with sizes known at compile time.
+//!
+//! Same equations as [`crate::step`] for a two-point discrete Lagrangian (no internal stages)
+//! without constraints, solved by the same Newton iteration — but for `n ≤ 4` degrees of freedom
+//! every buffer is a stack array of length `N`, the hyper-dual numbers are `HyperDual64`
+//! (n = 1) or `HyperDualSVec64<N, N>`, seeded directly in offset form (`q₀` with eps₁ = eᵢ; the
+//! displacement `Δ` with eps₁ = −eᵢ, eps₂ = eᵢ, so eps₁ differentiates along `Q₀` with `Q₁` fixed),
+//! and the N × N Newton system is solved in place. The integrator dispatches here once per
+//! step on `n`; the general path remains the reference (a test checks both agree to round-off).
+
+use nalgebra::{Const, U1};
+use num_dual::{Derivative, HyperDual64, HyperDualSVec64};
+
+use crate::linalg::solve_in_place;
+use crate::newton::{NewtonFailure, NewtonOptions, NewtonReport};
+use crate::{DiscreteAction, DiscreteForce, Scalar};
+
+/// A hyper-dual number with `N`-dimensional eps₁ and eps₂ parts.
+pub(crate) trait SmallDual<const N: usize>: Scalar {
+    /// `re` with eps₁ = `e1 · e_i1` and eps₂ = `e_i2` (either optional).
+    fn seeded(re: f64, eps1: Option<(usize, f64)>, eps2: Option<usize>) -> Self;
+    /// Real part.
+    fn value(&self) -> f64;
+    /// eps₁ component `i`.
+    fn eps1(&self, i: usize) -> f64;
+    /// eps₂ component `j`.
+    fn eps2(&self, j: usize) -> f64;
+    /// eps₁eps₂ component `(i, j)`.
+    fn eps12(&self, i: usize, j: usize) -> f64;
+}
+
+impl SmallDual<1> for HyperDual64 {
+    #[inline(always)]
+    fn seeded(re: f64, eps1: Option<(usize, f64)>, eps2: Option<usize>) -> Self {
+        HyperDual64::new(
+            re,
+            eps1.map_or(0.0, |e| e.1),
+            eps2.map_or(0.0, |_| 1.0),
+            0.0,
+        )
+    }
+    #[inline(always)]
+    fn value(&self) -> f64 {
+        self.re
+    }
+    #[inline(always)]
+    fn eps1(&self, _i: usize) -> f64 {
+        self.eps1
+    }
+    #[inline(always)]
+    fn eps2(&self, _j: usize) -> f64 {
+        self.eps2
+    }
+    #[inline(always)]
+    fn eps12(&self, _i: usize, _j: usize) -> f64 {
+        self.eps1eps2
+    }
+}
+
+impl<const N: usize> SmallDual<N> for HyperDualSVec64<N, N> {
+    #[inline(always)]
+    fn seeded(re: f64, eps1: Option<(usize, f64)>, eps2: Option<usize>) -> Self {
+        let mut x = HyperDualSVec64::<N, N>::from_re(re);
+        if let Some((i, c)) = eps1 {
+            let mut d = Derivative::derivative_generic(Const::<N>, U1, i);
+            if let Some(m) = d.0.as_mut() {
+                m[i] = c;
+            }
+            x.eps1 = d;
+        }
+        if let Some(j) = eps2 {
+            x.eps2 = Derivative::derivative_generic(U1, Const::<N>, j);
+        }
+        x
+    }
+    #[inline(always)]
+    fn value(&self) -> f64 {
+        self.re
+    }
+    #[inline(always)]
+    fn eps1(&self, i: usize) -> f64 {
+        self.eps1.0.as_ref().map_or(0.0, |m| m[i])
+    }
+    #[inline(always)]
+    fn eps2(&self, j: usize) -> f64 {
+        self.eps2.0.as_ref().map_or(0.0, |m| m[j])
+    }
+    #[inline(always)]
+    fn eps12(&self, i: usize, j: usize) -> f64 {
+        self.eps1eps2.0.as_ref().map_or(0.0, |m| m[(i, j)])
+    }
+}
+
+/// Residual, Jacobian and `p_{k+1}` of one step at the offset `delta`.
+struct Evaluation<const N: usize> {
+    residual: [f64; N],
+    jacobian: [[f64; N]; N],
+    p_next: [f64; N],
+}
+
+/// The fixed data of one step.
+pub(crate) struct SmallStep<'a, A, F> {
+    pub action: &'a A,
+    pub force: &'a F,
+    pub t0: f64,
+    pub h: f64,
+    pub q0: &'a [f64],
+    pub p0: &'a [f64],
+}
+
+impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
+    #[inline(always)]
+    fn evaluate<const N: usize, D: SmallDual<N>>(&self, delta: &[f64; N]) -> Evaluation<N> {
+        let q: [D; N] = std::array::from_fn(|i| D::seeded(self.q0[i], Some((i, 1.0)), None));
+        let d: [D; N] = std::array::from_fn(|i| D::seeded(delta[i], Some((i, -1.0)), Some(i)));
+        let l = self.action.action(self.t0, self.h, &q, &d);
+        // Summed as (∂L_d/∂Q₀ + f_d⁻) + p_k, in the order of the general path.
+        let mut e = Evaluation {
+            residual: std::array::from_fn(|i| l.eps1(i)),
+            jacobian: std::array::from_fn(|i| std::array::from_fn(|j| l.eps12(i, j))),
+            p_next: std::array::from_fn(|j| l.eps2(j)),
+        };
+        if self.force.is_active() {
+            self.add_forces::<N, D>(&q, &d, &mut e);
+        }
+        e.residual
+            .iter_mut()
+            .zip(self.p0)
+            .for_each(|(r, p)| *r += p);
+        e
+    }
+
+    /// Adds `f_d⁻` (and its Jacobian) to the residual and `f_d⁺` to `p_{k+1}`.
+    fn add_forces<const N: usize, D: SmallDual<N>>(
+        &self,
+        q: &[D; N],
+        d: &[D; N],
+        e: &mut Evaluation<N>,
+    ) {
+        let mut f = [D::from(0.0); 8];
+        self.force
+            .discrete_force(self.t0, self.h, q, d, &mut f[..2 * N]);
+        for i in 0..N {
+            e.residual[i] += f[i].value();
+            e.p_next[i] += f[N + i].value();
+            for j in 0..N {
+                e.jacobian[i][j] += f[i].eps2(j);
+            }
+        }
+    }
+
+    /// Newton's method on the step equations from the offset `z` (overwritten with the
+    /// solution); returns the report and `p_{k+1}`.
+    pub fn solve<const N: usize, D: SmallDual<N>>(
+        &self,
+        z: &mut [f64],
+        options: &NewtonOptions,
+    ) -> Result<(NewtonReport, [f64; N]), NewtonFailure> {
+        let mut delta: [f64; N] = std::array::from_fn(|i| z[i]);
+        let scale = self.p0.iter().fold(1.0_f64, |m, p| m.max(p.abs()));
+        let tol = options.residual_tolerance * scale;
+        let mut report = NewtonReport::default();
+        let mut update_converged = false;
+        loop {
+            let mut e = self.evaluate::<N, D>(&delta);
+            report.evaluations += 1;
+            report.residual = e.residual.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
+            if !report.residual.is_finite() {
+                return Err(NewtonFailure::NonFinite(report));
+            }
+            if report.residual <= tol || update_converged {
+                z[..N].copy_from_slice(&delta);
+                return Ok((report, e.p_next));
+            }
+            if report.iterations >= options.max_iterations {
+                return Err(NewtonFailure::NotConverged(report));
+            }
+            let mut update = e.residual.map(|r| -r);
+            solve_in_place(e.jacobian.as_flattened_mut(), &mut update, N).map_err(|s| {
+                NewtonFailure::Singular {
+                    iteration: report.iterations,
+                    pivot: s.pivot,
+                }
+            })?;
+            report.iterations += 1;
+            let size = update.iter().fold(0.0_f64, |m, u| m.max(u.abs()));
+            delta.iter_mut().zip(&update).for_each(|(d, u)| *d += u);
+            let znorm = delta.iter().fold(1.0_f64, |m, d| m.max(d.abs()));
+            update_converged = size <= options.step_tolerance * znorm;
+        }
+    }
+}

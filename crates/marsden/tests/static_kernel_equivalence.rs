@@ -1,0 +1,150 @@
+//! The statically sized step (`marsden::small`) and the general path solve the same equations:
+//! both must give the same trajectory to round-off, for every rule and with a force.
+
+mod common;
+use marsden::systems::{DoublePendulum, HenonHeiles, Kepler, Pendulum};
+use marsden::{
+    DiscreteAction, DiscreteForce, Force, GeneralizedMidpoint, Integrator, Midpoint, NoForce, Rule,
+    Scalar, State, SymmetrizedMidpoint, Trapezoid,
+};
+
+fn trajectory<A: DiscreteAction, F: DiscreteForce>(
+    action: A,
+    force: F,
+    start: &State,
+    h: f64,
+    fast: bool,
+) -> Vec<f64> {
+    let mut integrator = Integrator::new(action)
+        .with_force(force)
+        .with_static_sizes(fast);
+    let mut s = start.clone();
+    let mut out = Vec::new();
+    // 1000 steps: long enough for many Newton solves, short enough that a drag force does not
+    // spiral the Kepler orbit into its singularity.
+    for _ in 0..1000 {
+        integrator.step(&mut s, h).unwrap();
+        out.extend(s.q.iter().chain(&s.p));
+    }
+    out
+}
+
+fn max_difference(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+fn check<R: Rule, F: Force + Clone>(rule: R, start: State, h: f64, force: F) {
+    let n = start.q.len();
+    let run = |fast| match n {
+        1 => trajectory(
+            rule.discretize(Pendulum::default()),
+            rule.discretize_force(force.clone(), n),
+            &start,
+            h,
+            fast,
+        ),
+        _ => trajectory(
+            rule.discretize(Kepler::default()),
+            rule.discretize_force(force.clone(), n),
+            &start,
+            h,
+            fast,
+        ),
+    };
+    let d = max_difference(&run(true), &run(false));
+    assert!(
+        d <= 1e-13,
+        "{}: static vs general differ by {d:e}",
+        rule.name()
+    );
+}
+
+#[derive(Clone)]
+struct Drag;
+impl Force for Drag {
+    fn force<S: Scalar>(&self, t: S, _q: &[S], v: &[S], out: &mut [S]) {
+        for (o, vi) in out.iter_mut().zip(v) {
+            *o = -*vi * 0.05 + t.sin() * 0.01;
+        }
+    }
+}
+
+#[test]
+fn static_and_general_paths_agree_for_every_rule() {
+    let pendulum = State {
+        t: 0.0,
+        q: vec![1.5],
+        p: vec![0.0],
+    };
+    let (q, p) = Kepler::pericentre(0.6);
+    let kepler = State {
+        t: 0.0,
+        q: q.to_vec(),
+        p: p.to_vec(),
+    };
+    for (start, h) in [(pendulum, 0.05), (kepler, 0.005)] {
+        check(Midpoint, start.clone(), h, NoForce);
+        check(Trapezoid, start.clone(), h, NoForce);
+        check(
+            GeneralizedMidpoint { alpha: 0.3 },
+            start.clone(),
+            h,
+            NoForce,
+        );
+        check(
+            SymmetrizedMidpoint { alpha: 0.2 },
+            start.clone(),
+            h,
+            NoForce,
+        );
+        check(Midpoint, start.clone(), h, Drag);
+        check(Trapezoid, start, h, Drag);
+    }
+}
+
+#[test]
+fn static_and_general_paths_agree_for_two_and_four_degrees_of_freedom() {
+    let start = State {
+        t: 0.0,
+        q: vec![1.0, 0.5],
+        p: vec![0.0, 0.0],
+    };
+    let a = trajectory(
+        Midpoint.discretize(DoublePendulum::default()),
+        NoForce,
+        &start,
+        0.01,
+        true,
+    );
+    let b = trajectory(
+        Midpoint.discretize(DoublePendulum::default()),
+        NoForce,
+        &start,
+        0.01,
+        false,
+    );
+    assert!(max_difference(&a, &b) <= 1e-13);
+    let start = State {
+        t: 0.0,
+        q: vec![0.1, -0.2],
+        p: vec![0.3, 0.25],
+    };
+    let a = trajectory(
+        Trapezoid.discretize(HenonHeiles::default()),
+        NoForce,
+        &start,
+        0.1,
+        true,
+    );
+    let b = trajectory(
+        Trapezoid.discretize(HenonHeiles::default()),
+        NoForce,
+        &start,
+        0.1,
+        false,
+    );
+    assert!(max_difference(&a, &b) <= 1e-13);
+}
