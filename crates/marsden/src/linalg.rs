@@ -65,7 +65,7 @@ impl Lu {
                 .fold((k, 0.0_f64), |best, (i, v)| {
                     if v.abs() > best.1.abs() { (i, v) } else { best }
                 });
-        if !(pivot.abs() > PIVOT_TOLERANCE * scale) {
+        if pivot.is_nan() || pivot.abs() <= PIVOT_TOLERANCE * scale {
             return Err(SingularMatrix { column: k, pivot });
         }
         if p != k {
@@ -138,7 +138,7 @@ pub fn solve_in_place(a: &mut [f64], b: &mut [f64], n: usize) -> Result<(), Sing
             }
         });
         let pivot = a[p * n + k];
-        if !(pivot.abs() > PIVOT_TOLERANCE * scale) {
+        if pivot.is_nan() || pivot.abs() <= PIVOT_TOLERANCE * scale {
             return Err(SingularMatrix { column: k, pivot });
         }
         if p != k {

@@ -176,9 +176,9 @@ pub fn acceleration<L: Lagrangian>(
     let jet = LagrangianJet::at(l, t, q, v);
     let lu = factor_mass(&jet, t, q, v)?;
     let n = jet.n;
-    for i in 0..n {
+    for (i, ai) in a.iter_mut().enumerate().take(n) {
         let coupling: f64 = (0..n).map(|j| jet.d2l_dvdq[i * n + j] * v[j]).sum();
-        a[i] = jet.dl_dq[i] - coupling - jet.d2l_dvdt[i];
+        *ai = jet.dl_dq[i] - coupling - jet.d2l_dvdt[i];
     }
     lu.solve(a, &mut Vec::with_capacity(n));
     Ok(())

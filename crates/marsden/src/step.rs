@@ -152,13 +152,13 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> NonlinearSystem
             let force = if nf > 0 { parts.values[1 + i] } else { 0.0 };
             r[i] = parts.grad_rows[i] + force;
             let row = &mut jac[i * m..(i + 1) * m];
-            for j in 0..sn {
+            for (j, entry) in row[..sn].iter_mut().enumerate() {
                 let dforce = if nf > 0 {
                     parts.jac_cols[(1 + i) * sn + j]
                 } else {
                     0.0
                 };
-                row[j] = parts.hess[i * sn + j] + dforce;
+                *entry = parts.hess[i * sn + j] + dforce;
             }
             row[sn..].fill(0.0);
         }

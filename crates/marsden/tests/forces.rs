@@ -1,6 +1,8 @@
 //! Forces through the discrete Lagrange–d'Alembert principle: Hamiltonian forces, sums,
 //! controls, constant and periodic driving, the energy balance for nonlinear potentials, the
 //! momentum balance of Noether's theorem with forces, and forces combined with constraints.
+// Tests: helpers unwrap, and reference values keep all their published digits.
+#![allow(clippy::unwrap_used, clippy::excessive_precision)]
 
 mod common;
 use common::{assert_close, tight};

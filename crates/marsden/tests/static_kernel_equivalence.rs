@@ -1,5 +1,7 @@
 //! The statically sized step (`marsden::small`) and the general path solve the same equations:
 //! both must give the same trajectory to round-off, for every rule and with a force.
+// Tests: helpers unwrap, and reference values keep all their published digits.
+#![allow(clippy::unwrap_used, clippy::excessive_precision)]
 
 mod common;
 use marsden::systems::{DoublePendulum, HenonHeiles, Kepler, Pendulum};

@@ -1,4 +1,6 @@
 //! Helpers shared by the reference-case tests.
+// Tests: helpers unwrap, and reference values keep all their published digits.
+#![allow(clippy::unwrap_used, clippy::excessive_precision)]
 #![allow(dead_code)]
 
 use marsden::{DiscreteAction, Integrator, NewtonOptions, State};
