@@ -13,7 +13,9 @@ use crate::ad::HessianParts;
 use crate::holonomic::{MomentumProjection, NoProjection};
 use crate::newton::{self, NewtonFailure, NewtonOptions, NewtonReport, NewtonWorkspace};
 use crate::small::SmallStep;
-use crate::step::{StepFunction, StepShape, StepSystem, constraint_jacobian};
+use crate::small_constrained::constraint_jacobian;
+use crate::small_constrained::{MAX_CONSTRAINTS, SmallConstrainedStep};
+use crate::step::{StepFunction, StepShape, StepSystem};
 use crate::{Constraint, DiscreteAction, DiscreteForce, Error, NoForce, Unconstrained};
 
 /// A point of phase space `(t, q, p)`.
@@ -282,7 +284,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         self.predictor.predict(&mut z, h, self.shape);
         let outcome = self
             .solve(&mut z, state, h)
-            .map_err(|failure| self.newton_error(failure, step, state))
+            .map_err(|failure| self.newton_error(failure, step, state, &z))
             .and_then(|report| self.check_finite(&z, step, state.t).map(|_| report))
             .and_then(|report| self.project(&z, state, h, step).map(|_| report));
         let result = match outcome {
@@ -324,6 +326,10 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             constraint_jacobian(&self.constraint, &state.q, &mut b.phi, &mut b.dphi0);
         }
         b.dphi0_current = false;
+        if let Some(result) = self.solve_small_constrained(z, state, h) {
+            return result;
+        }
+        let b = &mut self.buffers;
         let mut system = StepSystem {
             func: StepFunction {
                 action: &self.action,
@@ -374,6 +380,59 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         let o = &self.options;
         let p_next = &mut self.buffers.p_next;
         p_next.resize(sh.n, 0.0);
+        let result = match sh.n {
+            1 => small
+                .solve::<1, HyperDual64>(z, o)
+                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+            2 => small
+                .solve::<2, HyperDualSVec64<2, 2>>(z, o)
+                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+            3 => small
+                .solve::<3, HyperDualSVec64<3, 3>>(z, o)
+                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+            _ => small
+                .solve::<4, HyperDualSVec64<4, 4>>(z, o)
+                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+        }
+        .map(|(report, ())| report);
+        let evaluations = match &result {
+            Ok(r) | Err(NewtonFailure::NotConverged(r)) | Err(NewtonFailure::NonFinite(r)) => {
+                r.evaluations
+            }
+            Err(NewtonFailure::Singular { iteration, .. }) => iteration + 1,
+        };
+        self.statistics.system_evaluations += evaluations;
+        self.statistics.action_evaluations += evaluations;
+        Some(result)
+    }
+
+    /// The statically sized constrained (SHAKE) step ([`crate::small_constrained`]) for
+    /// two-point steps with `n ≤ 4` and `1 ≤ d ≤ 4`, once `Dφ(q_k)` is in the buffers; `None`
+    /// when it does not apply.
+    fn solve_small_constrained(
+        &mut self,
+        z: &mut [f64],
+        state: &State,
+        h: f64,
+    ) -> Option<Result<NewtonReport, NewtonFailure>> {
+        let sh = self.shape;
+        let fits = sh.s == 1 && sh.n <= 4 && (1..=MAX_CONSTRAINTS).contains(&sh.d);
+        if !self.static_sizes || !fits {
+            return None;
+        }
+        let b = &mut self.buffers;
+        let small = SmallConstrainedStep {
+            action: &self.action,
+            force: &self.force,
+            constraint: &self.constraint,
+            t0: state.t,
+            h,
+            q0: &state.q,
+            p0: &state.p,
+            dphi0: &b.dphi0,
+            d: sh.d,
+        };
+        let (o, p_next) = (&self.options, &mut b.p_next);
         let result = match sh.n {
             1 => small
                 .solve::<1, HyperDual64>(z, o)
@@ -471,9 +530,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         state.t += h;
     }
 
-    fn newton_error(&self, failure: NewtonFailure, step: usize, state: &State) -> Error {
+    fn newton_error(&self, failure: NewtonFailure, step: usize, state: &State, z: &[f64]) -> Error {
         let t = state.t;
-        if let Some(error) = self.constraint_error(&failure, step, state) {
+        if let Some(error) = self.constraint_error(&failure, step, state, z) {
             return error;
         }
         match failure {
@@ -505,12 +564,17 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         failure: &NewtonFailure,
         step: usize,
         state: &State,
+        z: &[f64],
     ) -> Option<Error> {
         let sh = self.shape;
-        let residual = self.buffers.newton.residual();
-        let phi = residual
-            .get(sh.s * sh.n..sh.unknowns())
-            .filter(|r| !r.is_empty())?;
+        if sh.d == 0 {
+            return None;
+        }
+        // φ at the last Newton iterate q_k + Δ_s (both solvers leave it in `z`).
+        let delta = z.get(sh.s * sh.n - sh.n..sh.s * sh.n)?;
+        let q_end: Vec<f64> = state.q.iter().zip(delta).map(|(q, d)| q + d).collect();
+        let mut phi = vec![0.0; sh.d];
+        self.constraint.constraint(&q_end, &mut phi);
         let (index, value) = phi.iter().enumerate().fold((0, 0.0_f64), |best, (i, &v)| {
             if v.abs() > best.1.abs() { (i, v) } else { best }
         });

@@ -55,6 +55,7 @@ pub mod scalar;
 pub mod scratch;
 pub mod simulate;
 pub mod small;
+pub mod small_constrained;
 pub mod special;
 pub mod step;
 pub mod systems;

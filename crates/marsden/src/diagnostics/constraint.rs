@@ -12,7 +12,7 @@ use std::ops::ControlFlow;
 
 use crate::linalg::max_norm;
 use crate::simulate::{Observer, StepView};
-use crate::step::constraint_jacobian;
+use crate::small_constrained::constraint_jacobian;
 use crate::{Constraint, Error, Lagrangian, Trajectory, mechanics};
 
 /// Constraint residuals of a run, one entry per stored sample.

@@ -9,7 +9,7 @@
 //! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
 
 use crate::linalg::{Lu, max_norm};
-use crate::step::constraint_jacobian;
+use crate::small_constrained::constraint_jacobian;
 use crate::{Constraint, Error, Initial, Lagrangian, mechanics};
 
 use super::{MomentumProjection, Rattle};

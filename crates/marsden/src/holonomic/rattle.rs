@@ -18,10 +18,13 @@
 //! Leyendecker, Marsden, Ortiz, ZAMM 88 (2008).
 
 use crate::ad::{self, HessianParts, MultiFunction};
-use crate::linalg::{Lu, max_norm};
+use num_dual::{HyperDual64, HyperDualSVec64};
+
+use crate::linalg::{max_norm, solve_in_place};
 use crate::newton::NewtonOptions;
 use crate::scratch::{NODE, with_buffer};
-use crate::step::constraint_jacobian;
+use crate::small::SmallDual;
+use crate::small_constrained::constraint_jacobian;
 use crate::{Constraint, Lagrangian, Scalar};
 
 /// What an [`crate::Integrator`] applies to the momenta after each solved step.
@@ -129,8 +132,7 @@ pub struct Rattle<L, C> {
 #[derive(Debug, Clone, Default)]
 struct Workspace {
     parts: HessianParts,
-    lu: Lu,
-    scratch: Vec<f64>,
+
     phi: Vec<f64>,
     /// `Dφ(q)` when [`Rattle::project_at`] computes it.
     g: Vec<f64>,
@@ -250,9 +252,10 @@ impl<L: Lagrangian, C: Constraint> Rattle<L, C> {
             if iterations >= self.options.max_iterations {
                 return Err(failure);
             }
-            ws.lu.factor(&ws.kkt, m).map_err(|_| failure)?;
+
             ws.dz.iter_mut().zip(&ws.r).for_each(|(d, r)| *d = -r);
-            ws.lu.solve(&mut ws.dz, &mut ws.scratch);
+            // The KKT matrix is rebuilt by every full evaluation: solve it in place.
+            solve_in_place(&mut ws.kkt, &mut ws.dz, m).map_err(|_| failure)?;
             ws.z.iter_mut().zip(&ws.dz).for_each(|(z, d)| *z += d);
             iterations += 1;
             stats.newton_iterations += 1;
@@ -345,19 +348,50 @@ impl<L: Lagrangian> MultiFunction for InVelocity<'_, L> {
     }
 }
 
+/// `∂L/∂v` into `ws.grad` and `∂²L/∂v²` into `ws.parts.hess` at `v = ws.z[..n]`, by one
+/// hyper-dual evaluation: statically sized for `n ≤ 4` (as [`crate::small`]), by the chunked
+/// driver otherwise.
+fn velocity_jet<L: Lagrangian>(f: &InVelocity<'_, L>, n: usize, ws: &mut Workspace) {
+    match n {
+        1 => small_velocity_jet::<1, HyperDual64, L>(f, ws),
+        2 => small_velocity_jet::<2, HyperDualSVec64<2, 2>, L>(f, ws),
+        3 => small_velocity_jet::<3, HyperDualSVec64<3, 3>, L>(f, ws),
+        4 => small_velocity_jet::<4, HyperDualSVec64<4, 4>, L>(f, ws),
+        _ => {
+            ad::partial_hessian(f, &ws.z[..n], 0..n, 0..n, &mut ws.parts);
+            ws.grad.copy_from_slice(&ws.parts.grad_rows);
+        }
+    }
+}
+
+fn small_velocity_jet<const N: usize, D: SmallDual<N>, L: Lagrangian>(
+    f: &InVelocity<'_, L>,
+    ws: &mut Workspace,
+) {
+    let v: [D; N] = std::array::from_fn(|i| D::seeded(ws.z[i], Some((i, 1.0)), Some(i)));
+    let q: [D; N] = std::array::from_fn(|i| D::from(f.q[i]));
+    let l = f.lagrangian.lagrangian(D::from(f.t), &q, &v);
+    ws.parts.hess.resize(N * N, 0.0);
+    for i in 0..N {
+        ws.grad[i] = l.eps1(i);
+        for j in 0..N {
+            ws.parts.hess[i * N + j] = l.eps12(i, j);
+        }
+    }
+}
+
 /// Residual `R(v, ν) = (∂L/∂v − p + Dφᵀν, Dφ v)` and its KKT matrix
 /// `[[∂²L/∂v², Dφᵀ], [Dφ, 0]]` at `ws.z`, by one hyper-dual evaluation.
 fn full_evaluation<L: Lagrangian>(f: &InVelocity<'_, L>, g: &[f64], p: &[f64], ws: &mut Workspace) {
     let (n, m) = (p.len(), ws.z.len());
     let d = m - n;
-    ad::partial_hessian(f, &ws.z[..n], 0..n, 0..n, &mut ws.parts);
+    velocity_jet(f, n, ws);
     for i in 0..n {
         let row = &mut ws.kkt[i * m..(i + 1) * m];
         row[..n].copy_from_slice(&ws.parts.hess[i * n..(i + 1) * n]);
         for c in 0..d {
             row[n + c] = g[c * n + i];
         }
-        ws.grad[i] = ws.parts.grad_rows[i];
     }
     for c in 0..d {
         let row = &mut ws.kkt[(n + c) * m..(n + c + 1) * m];
@@ -375,8 +409,13 @@ fn residual_evaluation<L: Lagrangian>(
     n: usize,
     ws: &mut Workspace,
 ) {
-    let mut value = [0.0];
-    ad::jacobian(f, &ws.z[..n], 0..n, &mut value, &mut ws.grad);
+    if n <= 4 {
+        // The static hyper-dual jet is cheaper than the chunked first-order driver here.
+        velocity_jet(f, n, ws);
+    } else {
+        let mut value = [0.0];
+        ad::jacobian(f, &ws.z[..n], 0..n, &mut value, &mut ws.grad);
+    }
     assemble_residual(g, p, n, ws);
 }
 
