@@ -26,10 +26,10 @@
 //! | constraints | [`holonomic`] | SHAKE + RATTLE, initial data on `T*N`, distance constraints |
 //! | continuous mechanics | [`mechanics`] | Legendre transform, energy, Euler–Lagrange, regularity |
 //! | discrete Lagrangian | [`discrete`], [`rules`] | `L_d`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; midpoint, trapezoid, α-rules |
-//! | step | [`step`], [`small`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
+//! | step | [`step`], [`small`], [`small_constrained`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
 //! | integrator | [`integrator`], [`maps`] | rule + forces + constraints + solver + buffers; `F_{L_d}`, `F̃_{L_d}` |
 //! | run | [`problem`], [`simulate`], [`trajectory`] | problem → trajectory, stride, observers, failures |
-//! | diagnostics | [`diagnostics`] | energy error and drift |
+//! | diagnostics | [`diagnostics`] | energy error and drift; energy balance with forces; constraint residuals and multipliers |
 //! | known answers | [`special`] | elliptic functions, exact pendulum, Kepler and oscillator solutions |
 //!
 //! Conventions (`q, v, p, h, t, n`) and the discrete Legendre transforms
