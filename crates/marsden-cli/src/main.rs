@@ -1,5 +1,7 @@
-//! The `marsden` command (placeholder until the CLI issue lands).
+//! The `marsden` binary; everything lives in the library ([`marsden_cli::cli`]).
 
-fn main() {
-    println!("marsden: the command-line interface is not built yet");
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    marsden_cli::cli::main_with(std::env::args_os())
 }

@@ -12,13 +12,15 @@
 //!   `∂²out₀/∂x[rows]∂x[cols]` of the first output, with hyper-dual numbers
 //!   `HyperDualSVec64<C, C>` (eps₁ seeds the rows, eps₂ the columns; a variable in both ranges is
 //!   seeded in both, which still yields the exact second derivative).
+//! * [`nested_gradient`]: a gradient evaluated at scalars that are themselves dual numbers
+//!   (nested `Dual<S>`), so that generic code can differentiate inside itself.
 
 use std::ops::Range;
 
 use crate::Scalar;
 use crate::scratch::with_buffer;
 use nalgebra::{Const, U1};
-use num_dual::{Derivative, DualSVec64, HyperDual64, HyperDualSVec64};
+use num_dual::{Derivative, Dual, DualSVec64, HyperDual64, HyperDualSVec64};
 
 /// A vector-valued function written once over the scalar type.
 pub trait MultiFunction {
@@ -105,6 +107,30 @@ pub fn partial_hessian<F: MultiFunction>(
 /// Plain evaluation at `f64`.
 pub fn eval_f64<F: MultiFunction>(f: &F, x: &[f64], values: &mut [f64]) {
     f.eval(x, values);
+}
+
+/// Gradient `∂f₀/∂x[cols]` at a point whose coordinates are themselves scalars of type `S`
+/// (nested forward mode: one evaluation at `Dual<S>` per column), written into `out`.
+///
+/// This differentiates *inside* generic code: a function written over `S` can use the
+/// derivative of another function and still be differentiated by the caller (e.g. the
+/// Legendre transform `∂L/∂v` inside a Hamiltonian built from a Lagrangian). Costs
+/// `cols.len()` evaluations; meant for small systems and derived quantities, not hot loops.
+pub fn nested_gradient<S: Scalar, F: MultiFunction>(
+    f: &F,
+    x: &[S],
+    cols: Range<usize>,
+    out: &mut [S],
+) {
+    let m = f.outputs();
+    let mut xs: Vec<Dual<S>> = x.iter().map(|&v| Dual::from_re(v)).collect();
+    let mut res: Vec<Dual<S>> = (0..m).map(|_| Dual::from_re(S::from(0.0))).collect();
+    for (k, c) in cols.enumerate() {
+        xs[c].eps = S::from(1.0);
+        f.eval(&xs, &mut res);
+        out[k] = res[0].eps;
+        xs[c].eps = S::from(0.0);
+    }
 }
 
 fn jacobian_chunked<const C: usize, F: MultiFunction>(
@@ -280,36 +306,6 @@ fn collect_block<const C: usize>(
     }
 }
 
-/// Partial derivatives `∂f/∂x[range]` at a point whose coordinates are themselves scalars of
-/// any type `S` (possibly dual numbers), by nested first-order duals `Dual<S>`: one evaluation
-/// of `f` per derivative. This lets a quantity that is itself a derivative (for instance the
-/// momenta `∂L/∂v` inside a Hamiltonian force, [`crate::forces::FromHamiltonian`]) be
-/// differentiated again by the outer AD of a step. Returns `f(x)`.
-pub fn nested_gradient<S, F>(f: F, x: &[S], range: Range<usize>, out: &mut [S]) -> S
-where
-    S: Scalar,
-    F: Fn(&[num_dual::Dual<S>]) -> num_dual::Dual<S>,
-{
-    let zero = S::from(0.0);
-    let lift = |v: S| num_dual::Dual::new(v, zero);
-    with_buffer::<_, INLINE, _>(
-        x.len(),
-        lift(zero),
-        |i| lift(x[i]),
-        |xs| {
-            let mut value = None;
-            for (o, i) in out.iter_mut().zip(range) {
-                xs[i].eps = S::from(1.0);
-                let r = f(xs);
-                value = Some(r.re);
-                *o = r.eps;
-                xs[i].eps = zero;
-            }
-            value.unwrap_or_else(|| f(xs).re)
-        },
-    )
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -364,6 +360,32 @@ mod tests {
         // Second output: x0 x3, derivative w.r.t. columns (x1, x2, x3) = (0, 0, x0).
         assert_eq!(&parts.jac_cols[3..6], &[0.0, 0.0, x[0]]);
         assert_eq!(parts.evaluations, 1);
+    }
+
+    #[test]
+    fn nested_gradient_differentiates_inside_generic_code() {
+        /// f(x) = x0² x1 + sin x0.
+        struct F;
+        impl MultiFunction for F {
+            fn inputs(&self) -> usize {
+                2
+            }
+            fn outputs(&self) -> usize {
+                1
+            }
+            fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
+                out[0] = x[0] * x[0] * x[1] + x[0].sin();
+            }
+        }
+        let (a, b) = (0.7_f64, -1.3_f64);
+        let x = [Dual::new(a, 1.0), Dual::new(b, 0.0)];
+        let mut g = [Dual::new(0.0, 0.0); 2];
+        nested_gradient(&F, &x, 0..2, &mut g);
+        // ∂f/∂x0 = 2 x0 x1 + cos x0 and its x0-derivative 2 x1 − sin x0.
+        assert!((g[0].re - (2.0 * a * b + a.cos())).abs() < 1e-15);
+        assert!((g[0].eps - (2.0 * b - a.sin())).abs() < 1e-15);
+        // ∂f/∂x1 = x0² and its x0-derivative 2 x0.
+        assert!((g[1].re - a * a).abs() < 1e-15 && (g[1].eps - 2.0 * a).abs() < 1e-15);
     }
 
     /// A 20-input quadratic form forces the chunked (8-wide) path: 3×3 chunk pairs.

@@ -24,6 +24,7 @@
 
 use crate::Scalar;
 use crate::ad::{self, MultiFunction};
+use crate::explicit::ExplicitStep;
 use crate::scratch::{NODE, with_buffer};
 
 /// A two-point discrete Lagrangian `L_d(t₀, h, q₀, q₁)`.
@@ -61,6 +62,12 @@ pub trait DiscreteLagrangian {
             self.discrete_lagrangian(t0, h, q0, q1)
         })
     }
+
+    /// An explicit form of the step, if this discrete Lagrangian has one (the trapezoid rule on a
+    /// separable Lagrangian: velocity Störmer–Verlet, [`crate::explicit`]). Default: none.
+    fn explicit(&self) -> Option<&dyn ExplicitStep> {
+        None
+    }
 }
 
 /// A discrete Lagrangian over the control points of one step (what the integrator steps).
@@ -78,6 +85,11 @@ pub trait DiscreteAction {
     }
     /// The discrete action of one step as a function of `Q₀` and the offsets `Q_j − Q₀`.
     fn action<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], offsets: &[S]) -> S;
+
+    /// An explicit form of the step, if any (see [`DiscreteLagrangian::explicit`]).
+    fn explicit(&self) -> Option<&dyn ExplicitStep> {
+        None
+    }
 }
 
 impl<D: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &D {
@@ -92,6 +104,9 @@ impl<D: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &D {
     fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
         (**self).discrete_lagrangian_offset(t0, h, q0, delta)
     }
+    fn explicit(&self) -> Option<&dyn ExplicitStep> {
+        (**self).explicit()
+    }
 }
 
 impl<T: DiscreteLagrangian> DiscreteAction for T {
@@ -101,6 +116,9 @@ impl<T: DiscreteLagrangian> DiscreteAction for T {
     #[inline(always)]
     fn action<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], offsets: &[S]) -> S {
         self.discrete_lagrangian_offset(t0, h, q0, offsets)
+    }
+    fn explicit(&self) -> Option<&dyn ExplicitStep> {
+        DiscreteLagrangian::explicit(self)
     }
 }
 

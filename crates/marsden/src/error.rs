@@ -114,6 +114,22 @@ pub enum Error {
         /// Largest absolute entry of the velocity Hessian.
         scale: f64,
     },
+    /// A Lagrangian declared separable is not: `∂²L/∂v²` differs from the declared mass matrix
+    /// or `∂²L/∂v∂q`, `∂²L/∂v∂t` are not zero.
+    #[error(
+        "the Lagrangian is declared separable (L = ½ vᵀMv − V(q)) but is not at q = {q:?}, v = \
+         {v:?}: {what} is off by {defect:.3e}"
+    )]
+    StructureMismatch {
+        /// Positions of the probe.
+        q: Vec<f64>,
+        /// Velocities of the probe.
+        v: Vec<f64>,
+        /// Which block of second derivatives disagrees.
+        what: &'static str,
+        /// Largest absolute discrepancy.
+        defect: f64,
+    },
     /// The inverse Legendre transform `v = FH(q, p)` did not converge.
     #[error(
         "could not invert the Legendre transform at t = {t}: residual {residual:.3e} after \
@@ -127,6 +143,7 @@ pub enum Error {
         /// Final residual `|∂L/∂v(q, v) − p|`.
         residual: f64,
     },
+    // ---- Holonomic constraints and initial data (issue 3) ----
     /// The initial positions violate the holonomic constraints beyond the tolerance.
     #[error(
         "the initial positions q0 violate constraint {index}: |φ_{index}(q0)| = {residual:.3e} \
@@ -224,6 +241,58 @@ pub enum Error {
         iterations: usize,
         /// Residual (max-norm) at the last iterate.
         residual: f64,
+    },
+
+    // ---- Symmetries, momentum maps and the Hamiltonian side (issue 4) ----
+    /// A group action acts on a configuration space of the wrong dimension: its generators
+    /// `ξ_Q(q)` have the wrong number of components for this system.
+    #[error(
+        "the symmetry \"{symmetry}\" has generators with {found} components, but the system has \
+         {expected} degrees of freedom"
+    )]
+    SymmetryDimension {
+        /// Name of the group action.
+        symmetry: String,
+        /// Degrees of freedom of the system.
+        expected: usize,
+        /// Components of the generators (the action's `dof()`).
+        found: usize,
+    },
+    /// A generator `ξ_Q(q)` returned a non-finite component (or left one unwritten).
+    #[error(
+        "the symmetry \"{symmetry}\": generator {generator} has component {component} = {value} \
+         at q = {q:?} (not finite, or not written)"
+    )]
+    InvalidGenerator {
+        /// Name of the group action.
+        symmetry: String,
+        /// Index of the Lie algebra basis element.
+        generator: usize,
+        /// Offending component of `ξ_Q(q)`.
+        component: usize,
+        /// The value found (NaN if the component was not written).
+        value: f64,
+        /// Where it was evaluated.
+        q: Vec<f64>,
+    },
+    /// A declared group action is not a symmetry: `⟨dL, ξ_TQ⟩ ≠ 0` (or `L_d`, `H` not invariant).
+    #[error(
+        "\"{symmetry}\" is not a symmetry of {of}: generator {generator} gives a defect \
+         ⟨dL, ξ⟩ = {defect:.3e} (relative {relative:.3e}, tolerance {tolerance:.1e})"
+    )]
+    NotASymmetry {
+        /// Name of the group action.
+        symmetry: String,
+        /// What was checked (`"L"`, `"L_d"`, `"H"`).
+        of: &'static str,
+        /// Index of the worst Lie algebra basis element.
+        generator: usize,
+        /// Largest `|⟨dL, ξ⟩|` over the samples.
+        defect: f64,
+        /// The defect relative to the size of the terms that should cancel.
+        relative: f64,
+        /// Relative tolerance used.
+        tolerance: f64,
     },
 }
 

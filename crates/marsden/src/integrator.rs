@@ -53,6 +53,8 @@ pub struct Statistics {
     pub action_evaluations: usize,
     /// Steps whose Newton iteration failed.
     pub failed_steps: usize,
+    /// Steps taken by an explicit formula (no Newton iteration).
+    pub explicit_steps: usize,
 }
 
 /// Steps a discrete action `A` with discrete forces `F`, constraints `C` and a momentum
@@ -78,8 +80,8 @@ pub struct Integrator<A, F = NoForce, C = Unconstrained, P = NoProjection> {
     buffers: Buffers,
     predictor: Predictor,
     statistics: Statistics,
-    /// Use the statically sized kernel ([`crate::small`]) when the step allows it.
-    static_sizes: bool,
+    /// Use the fast paths ([`crate::explicit`], [`crate::small`]) when the step allows them.
+    fast_paths: bool,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -100,6 +102,7 @@ struct Buffers {
     dphi0_current: bool,
     /// Projection multipliers `μ_k = ν/h` of the last step.
     mu: Vec<f64>,
+    work: Vec<f64>,
 }
 
 impl<A: DiscreteAction> Integrator<A> {
@@ -121,7 +124,7 @@ impl<A: DiscreteAction> Integrator<A> {
             buffers: Buffers::default(),
             predictor: Predictor::default(),
             statistics: Statistics::default(),
-            static_sizes: true,
+            fast_paths: true,
         }
     }
 }
@@ -145,7 +148,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             buffers: Buffers::default(),
             predictor: Predictor::default(),
             statistics: self.statistics,
-            static_sizes: self.static_sizes,
+            fast_paths: self.fast_paths,
         }
     }
 
@@ -165,7 +168,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             buffers: Buffers::default(),
             predictor: Predictor::default(),
             statistics: self.statistics,
-            static_sizes: self.static_sizes,
+            fast_paths: self.fast_paths,
         }
     }
 
@@ -185,7 +188,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             buffers: self.buffers,
             predictor: self.predictor,
             statistics: self.statistics,
-            static_sizes: self.static_sizes,
+            fast_paths: self.fast_paths,
         }
     }
 
@@ -196,10 +199,12 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         Ok(self)
     }
 
-    /// Whether to use the statically sized step for small systems (default: true). The
-    /// general path solves the same equations; switching is for testing and measurement.
-    pub fn with_static_sizes(mut self, enabled: bool) -> Self {
-        self.static_sizes = enabled;
+    /// Whether to use the fast paths (default: true): the explicit Störmer–Verlet step of the
+    /// trapezoid rule on separable Lagrangians ([`crate::explicit`]) and the statically sized
+    /// Newton step for small systems ([`crate::small`]). The general path solves the same
+    /// equations; switching is for testing and measurement.
+    pub fn with_fast_paths(mut self, enabled: bool) -> Self {
+        self.fast_paths = enabled;
         self
     }
 
@@ -280,6 +285,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         if h == 0.0 || !h.is_finite() {
             return Err(Error::InvalidStep { h });
         }
+        if let Some(report) = self.step_explicit(state, h, step)? {
+            return Ok(report);
+        }
         let mut z = std::mem::take(&mut self.buffers.z);
         self.predictor.predict(&mut z, h, self.shape);
         let outcome = self
@@ -357,6 +365,41 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         result
     }
 
+    /// The explicit step ([`crate::explicit`]) when the action has one and nothing else (forces,
+    /// constraints) enters the step; `Ok(None)` when it does not apply.
+    fn step_explicit(
+        &mut self,
+        state: &mut State,
+        h: f64,
+        step: usize,
+    ) -> Result<Option<StepReport>, Error> {
+        let sh = self.shape;
+        if !self.fast_paths || sh.forced || sh.d != 0 || sh.s != 1 {
+            return Ok(None);
+        }
+        let Some(explicit) = self.action.explicit() else {
+            return Ok(None);
+        };
+        let b = &mut self.buffers;
+        b.p_next.clone_from(&state.p);
+        b.z.resize(sh.n, 0.0);
+        explicit.explicit_step(state.t, h, &state.q, &mut b.p_next, &mut b.z, &mut b.work);
+        if !b.z.iter().chain(&b.p_next).all(|x| x.is_finite()) {
+            self.statistics.failed_steps += 1;
+            return Err(Error::NonFinite {
+                step,
+                t: state.t,
+                what: "the new state",
+            });
+        }
+        state.q.iter_mut().zip(&b.z).for_each(|(q, d)| *q += d);
+        state.p.copy_from_slice(&b.p_next);
+        state.t += h;
+        self.statistics.steps += 1;
+        self.statistics.explicit_steps += 1;
+        Ok(Some(StepReport::default()))
+    }
+
     /// The statically sized step ([`crate::small`]) for two-point, unconstrained steps with
     /// `n ≤ 4`; `None` when it does not apply.
     fn solve_small(
@@ -366,7 +409,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         h: f64,
     ) -> Option<Result<NewtonReport, NewtonFailure>> {
         let sh = self.shape;
-        if !self.static_sizes || sh.s != 1 || sh.d != 0 || sh.n > 4 {
+        if !self.fast_paths || sh.s != 1 || sh.d != 0 || sh.n > 4 {
             return None;
         }
         let small = SmallStep {
@@ -417,7 +460,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     ) -> Option<Result<NewtonReport, NewtonFailure>> {
         let sh = self.shape;
         let fits = sh.s == 1 && sh.n <= 4 && (1..=MAX_CONSTRAINTS).contains(&sh.d);
-        if !self.static_sizes || !fits {
+        if !self.fast_paths || !fits {
             return None;
         }
         let b = &mut self.buffers;
@@ -605,10 +648,16 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
 /// The unknowns are offsets `Δ_j ≈ c_j h v`, smooth in time: each is extrapolated from the same
 /// unknown in the last three steps (quadratic: `3z₁ − 3z₂ + z₃`, error `O(h⁴)` in positions),
 /// falling back to linear, constant, and for a fresh start `Δ_j = c_j h v_k` with the velocity
-/// hint (or 0). Multipliers start from their last values.
+/// hint (or 0). Multipliers start from their last values. The history is a flat ring of three
+/// solutions (no allocation per step).
 #[derive(Debug, Clone, Default)]
 struct Predictor {
-    history: Vec<Vec<f64>>,
+    /// Three solutions back to back.
+    ring: Vec<f64>,
+    /// Slots of the newest, previous and oldest solution.
+    order: [usize; 3],
+    /// Number of valid solutions in the ring (0 … 3).
+    len: usize,
     h: f64,
     velocity: Option<Vec<f64>>,
 }
@@ -617,26 +666,31 @@ impl Predictor {
     fn predict(&mut self, z: &mut Vec<f64>, h: f64, sh: StepShape) {
         let m = sh.unknowns();
         z.resize(m, 0.0);
-        if h != self.h {
-            self.history.clear();
+        if h != self.h || self.ring.len() != 3 * m {
+            self.reset_ring(m);
         }
-        match self.history.as_slice() {
-            [z1, z2, z3, ..] => {
-                for i in 0..m {
-                    z[i] = 3.0 * z1[i] - 3.0 * z2[i] + z3[i];
-                }
-            }
-            [z1, z2] => {
-                for i in 0..m {
-                    z[i] = 2.0 * z1[i] - z2[i];
-                }
-            }
-            [z1] => z.copy_from_slice(z1),
-            [] => self.fresh(z, h, sh),
+        let [a, b, c] = self.order.map(|slot| slot * m);
+        let (r, z) = (&self.ring, &mut z[..m]);
+        match self.len {
+            0 => return self.fresh(z, h, sh),
+            1 => z.copy_from_slice(&r[a..a + m]),
+            2 => z
+                .iter_mut()
+                .enumerate()
+                .for_each(|(i, zi)| *zi = 2.0 * r[a + i] - r[b + i]),
+            _ => z
+                .iter_mut()
+                .enumerate()
+                .for_each(|(i, zi)| *zi = 3.0 * (r[a + i] - r[b + i]) + r[c + i]),
         }
-        if let Some(last) = self.history.first() {
-            z[sh.s * sh.n..].copy_from_slice(&last[sh.s * sh.n..]);
-        }
+        let sn = sh.s * sh.n;
+        z[sn..].copy_from_slice(&r[a + sn..a + m]);
+    }
+
+    fn reset_ring(&mut self, m: usize) {
+        self.ring.resize(3 * m, 0.0);
+        self.order = [0, 1, 2];
+        self.len = 0;
     }
 
     fn fresh(&self, z: &mut [f64], h: f64, sh: StepShape) {
@@ -652,15 +706,14 @@ impl Predictor {
     }
 
     fn record(&mut self, z: &[f64], h: f64) {
-        if self.history.len() == 3 {
-            if let Some(mut oldest) = self.history.pop() {
-                oldest.clear();
-                oldest.extend_from_slice(z);
-                self.history.insert(0, oldest);
-            }
-        } else {
-            self.history.insert(0, z.to_vec());
+        let m = z.len();
+        if self.ring.len() != 3 * m {
+            self.reset_ring(m);
         }
+        let [newest, previous, oldest] = self.order;
+        self.order = [oldest, newest, previous];
+        self.ring[oldest * m..(oldest + 1) * m].copy_from_slice(z);
+        self.len = (self.len + 1).min(3);
         self.h = h;
         self.velocity = None;
     }

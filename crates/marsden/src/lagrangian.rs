@@ -35,6 +35,51 @@ pub trait Lagrangian {
 
     /// `L(t, q, v)`; `q` and `v` have length [`Lagrangian::dof`].
     fn lagrangian<S: Scalar>(&self, t: S, q: &[S], v: &[S]) -> S;
+
+    /// Structure the integrators may exploit (default: none). Declaring
+    /// [`Structure::Separable`] asserts `L = ½ vᵀ M v − V(t, q)` with a constant `M`; it is
+    /// checked by AD at the initial state of a [`crate::Problem`]
+    /// ([`crate::mechanics::check_structure`]).
+    fn structure(&self) -> Structure {
+        Structure::General
+    }
+}
+
+/// What is known about the form of a Lagrangian.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Structure {
+    /// No assumption.
+    General,
+    /// `L = ½ vᵀ M v − V(t, q)` with a constant, symmetric positive definite mass matrix `M`:
+    /// the trapezoid rule is then explicit (velocity Störmer–Verlet, [`crate::explicit`]).
+    Separable {
+        /// The constant mass matrix.
+        mass: MassMatrix,
+    },
+}
+
+/// A constant mass matrix.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MassMatrix {
+    /// `diag(m₁, …, m_n)`.
+    Diagonal(Vec<f64>),
+    /// A dense symmetric matrix, row-major n × n.
+    Dense(Vec<f64>),
+}
+
+impl MassMatrix {
+    /// The matrix as a dense row-major array.
+    pub fn to_dense(&self) -> Vec<f64> {
+        match self {
+            Self::Dense(m) => m.clone(),
+            Self::Diagonal(d) => {
+                let n = d.len();
+                let mut m = vec![0.0; n * n];
+                d.iter().enumerate().for_each(|(i, di)| m[i * n + i] = *di);
+                m
+            }
+        }
+    }
 }
 
 impl<L: Lagrangian + ?Sized> Lagrangian for &L {
@@ -44,5 +89,8 @@ impl<L: Lagrangian + ?Sized> Lagrangian for &L {
     #[inline(always)]
     fn lagrangian<S: Scalar>(&self, t: S, q: &[S], v: &[S]) -> S {
         (**self).lagrangian(t, q, v)
+    }
+    fn structure(&self) -> Structure {
+        (**self).structure()
     }
 }

@@ -26,22 +26,28 @@
 //! | constraints | [`holonomic`] | SHAKE + RATTLE, initial data on `T*N`, distance constraints |
 //! | continuous mechanics | [`mechanics`] | Legendre transform, energy, Euler–Lagrange, regularity |
 //! | discrete Lagrangian | [`discrete`], [`rules`] | `L_d`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; midpoint, trapezoid, α-rules |
-//! | step | [`step`], [`small`], [`small_constrained`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
+//! | step | [`step`], [`small`], [`small_constrained`], [`explicit`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
 //! | integrator | [`integrator`], [`maps`] | rule + forces + constraints + solver + buffers; `F_{L_d}`, `F̃_{L_d}` |
 //! | run | [`problem`], [`simulate`], [`trajectory`] | problem → trajectory, stride, observers, failures |
-//! | diagnostics | [`diagnostics`] | energy error and drift; energy balance with forces; constraint residuals and multipliers |
+//! | diagnostics | [`diagnostics`] | energy error and drift; momentum maps (Noether) and the force balance; energy balance with forces; constraint residuals and multipliers |
+//! | symmetry | [`symmetry`] | group actions, generators and lifts, `J_L`, `J_H`, `J^±_{L_d}`, symmetry checks |
+//! | Hamiltonian side | [`hamiltonian`] | `H(q, p)`, `X_H`, implicit midpoint, Störmer–Verlet, Legendre adapters |
+//! | certificates | [`certificate`] | exact Jacobian of the step map, symplecticity defect `‖DFᵀJDF − J‖` |
 //! | known answers | [`special`] | elliptic functions, exact pendulum, Kepler and oscillator solutions |
 //!
 //! Conventions (`q, v, p, h, t, n`) and the discrete Legendre transforms
 //! `p_k = −D₁L_d(q_k, q_{k+1}) − f_d⁻`, `p_{k+1} = D₂L_d(q_k, q_{k+1}) + f_d⁺` follow DESIGN.md §3.
 
 pub mod ad;
+pub mod certificate;
 pub mod constraint;
 pub mod diagnostics;
 pub mod discrete;
 pub mod error;
+pub mod explicit;
 pub mod force;
 pub mod forces;
+pub mod hamiltonian;
 pub mod holonomic;
 pub mod integrator;
 pub mod lagrangian;
@@ -58,6 +64,7 @@ pub mod small;
 pub mod small_constrained;
 pub mod special;
 pub mod step;
+pub mod symmetry;
 pub mod systems;
 pub mod trajectory;
 
@@ -66,7 +73,7 @@ pub use discrete::{DiscreteAction, DiscreteLagrangian};
 pub use error::Error;
 pub use force::{DiscreteForce, Force, NoForce};
 pub use integrator::{Integrator, State, Statistics, StepReport};
-pub use lagrangian::Lagrangian;
+pub use lagrangian::{Lagrangian, MassMatrix, Structure};
 pub use newton::NewtonOptions;
 pub use problem::{Initial, Problem, SolveOptions};
 pub use rules::{GeneralizedMidpoint, Midpoint, Rule, SymmetrizedMidpoint, Trapezoid};

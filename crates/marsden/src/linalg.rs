@@ -65,7 +65,7 @@ impl Lu {
                 .fold((k, 0.0_f64), |best, (i, v)| {
                     if v.abs() > best.1.abs() { (i, v) } else { best }
                 });
-        if pivot.is_nan() || pivot.abs() <= PIVOT_TOLERANCE * scale {
+        if pivot.abs().is_nan() || pivot.abs() <= PIVOT_TOLERANCE * scale {
             return Err(SingularMatrix { column: k, pivot });
         }
         if p != k {
@@ -138,7 +138,7 @@ pub fn solve_in_place(a: &mut [f64], b: &mut [f64], n: usize) -> Result<(), Sing
             }
         });
         let pivot = a[p * n + k];
-        if pivot.is_nan() || pivot.abs() <= PIVOT_TOLERANCE * scale {
+        if pivot.abs().is_nan() || pivot.abs() <= PIVOT_TOLERANCE * scale {
             return Err(SingularMatrix { column: k, pivot });
         }
         if p != k {
@@ -164,10 +164,17 @@ pub fn solve_in_place(a: &mut [f64], b: &mut [f64], n: usize) -> Result<(), Sing
     Ok(())
 }
 
-/// Max-norm of a vector.
+/// Max-norm of a vector; NaN if any entry is NaN (`f64::max` alone would skip it, and a NaN
+/// residual would then look converged).
 #[inline]
 pub fn max_norm(x: &[f64]) -> f64 {
-    x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
+    x.iter().fold(0.0_f64, |m, v| {
+        if m.is_nan() || v.is_nan() {
+            f64::NAN
+        } else {
+            m.max(v.abs())
+        }
+    })
 }
 
 #[cfg(test)]

@@ -177,7 +177,8 @@ pub fn acceleration<L: Lagrangian>(
     let lu = factor_mass(&jet, t, q, v)?;
     let n = jet.n;
     for (i, ai) in a.iter_mut().enumerate().take(n) {
-        let coupling: f64 = (0..n).map(|j| jet.d2l_dvdq[i * n + j] * v[j]).sum();
+        let row = &jet.d2l_dvdq[i * n..(i + 1) * n];
+        let coupling: f64 = row.iter().zip(v).map(|(m, vj)| m * vj).sum();
         *ai = jet.dl_dq[i] - coupling - jet.d2l_dvdt[i];
     }
     lu.solve(a, &mut Vec::with_capacity(n));
@@ -222,6 +223,50 @@ pub fn velocity<L: Lagrangian>(
         iterations: MAX_ITERATIONS,
         residual,
     })
+}
+
+/// Checks a declared [`crate::Structure`] at `(t, q, v)` by AD: for `Separable`, `∂²L/∂v²`
+/// must equal the mass matrix and `∂²L/∂v∂q`, `∂²L/∂v∂t` must vanish (relative 1e-10).
+pub fn check_structure<L: Lagrangian>(l: &L, t: f64, q: &[f64], v: &[f64]) -> Result<(), Error> {
+    let crate::Structure::Separable { mass } = l.structure() else {
+        return Ok(());
+    };
+    let jet = LagrangianJet::at(l, t, q, v);
+    let dense = mass.to_dense();
+    let scale = max_norm(&dense).max(1.0);
+    let mismatch = |what, defect: f64| Error::StructureMismatch {
+        q: q.to_vec(),
+        v: v.to_vec(),
+        what,
+        defect,
+    };
+    let defect = |a: &[f64], b: &[f64]| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max)
+    };
+    if dense.len() != jet.n * jet.n {
+        return Err(mismatch(
+            "the size of the mass matrix",
+            (dense.len() as f64).sqrt() - jet.n as f64,
+        ));
+    }
+    let checks = [
+        (
+            "∂²L/∂v² against the mass matrix",
+            defect(&jet.d2l_dv2, &dense),
+        ),
+        ("∂²L/∂v∂q", max_norm(&jet.d2l_dvdq)),
+        ("∂²L/∂v∂t", max_norm(&jet.d2l_dvdt)),
+    ];
+    match checks
+        .iter()
+        .find(|(_, d)| d.is_nan() || d.abs() > 1e-10 * scale)
+    {
+        Some((what, d)) => Err(mismatch(what, *d)),
+        None => Ok(()),
+    }
 }
 
 /// Energy at a phase-space point `(t, q, p)`: `E(q, FH(q, p))`, the Hamiltonian.

@@ -4,10 +4,12 @@
 //! evaluation (that is what one hyper-dual evaluation of a discrete Lagrangian gives). The
 //! iteration stops when either
 //!
-//! * the residual is small: `‖R(z)‖∞ ≤ tol_R · max(1, scale)`, where `scale` is supplied by the
-//!   system (for a step: the size of the momenta), or
-//! * the Newton update is at round-off: `‖Δz‖∞ ≤ tol_z · max(1, ‖z‖∞)`, after which one more
-//!   evaluation makes the returned residual consistent with `z`.
+//! * the residual is small: `‖R(z)‖∞ ≤ tol_R · scale_R`, where `scale_R` is the size of the
+//!   terms the residual is made of (supplied by the system; for a step `max(|p_k|, |∂L_d/∂Q₀|)`),
+//!   so the test is independent of units, or
+//! * the Newton update is at round-off: `‖Δz‖∞ ≤ tol_z · scale_z` (for a step: the size of the
+//!   positions and offsets), after which one more evaluation makes the returned residual
+//!   consistent with `z`.
 //!
 //! An optional backtracking line search halves the update until `‖R‖∞` decreases (Armijo on
 //! the max-norm, Dennis & Schnabel §6.3). Reference: Deuflhard, *Newton Methods for Nonlinear
@@ -26,11 +28,11 @@ use crate::linalg::{SingularMatrix, max_norm, solve_in_place};
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct NewtonOptions {
-    /// Tolerance on the residual, max-norm, relative to `max(1, scale)` where `scale` is the
-    /// size of the momenta (default: 1e-12).
+    /// Tolerance on the residual, max-norm, relative to the size of the terms it is made of
+    /// (for a step: `max(|p_k|, |∂L_d/∂Q₀|)`, so it does not depend on units) (default: 1e-12).
     pub residual_tolerance: f64,
-    /// Tolerance on the Newton update, relative to `max(1, ‖z‖∞)` (default: 1e-15, i.e.
-    /// converged to round-off).
+    /// Tolerance on the Newton update, relative to the size of the unknowns (for a step: of
+    /// the positions and offsets) (default: 1e-15, i.e. converged to round-off).
     pub step_tolerance: f64,
     /// Maximum number of Newton iterations per step (default: 50).
     pub max_iterations: usize,
@@ -83,9 +85,15 @@ pub trait NonlinearSystem {
     fn dim(&self) -> usize;
     /// Writes `R(z)` into `residual` and `∂R/∂z` (row-major) into `jacobian`.
     fn evaluate(&mut self, z: &[f64], residual: &mut [f64], jacobian: &mut [f64]);
-    /// Scale of the residual's natural units (for the relative tolerance); default 1.
+    /// Size of the terms the residual is made of, so that the tolerance is relative and
+    /// independent of units (default 1: absolute). Read after each evaluation.
     fn residual_scale(&self) -> f64 {
         1.0
+    }
+    /// Size of the unknowns' natural units, for the update criterion (default
+    /// `max(1, ‖z‖∞)`).
+    fn unknown_scale(&self, z: &[f64]) -> f64 {
+        max_norm(z).max(1.0)
     }
 }
 
@@ -157,7 +165,7 @@ pub fn solve<Sys: NonlinearSystem>(
         if !report.residual.is_finite() {
             return Err(NewtonFailure::NonFinite(report));
         }
-        let tol = options.residual_tolerance * system.residual_scale().max(1.0);
+        let tol = options.residual_tolerance * system.residual_scale();
         if report.residual <= tol || update_converged {
             return Ok(report);
         }
@@ -176,7 +184,7 @@ pub fn solve<Sys: NonlinearSystem>(
             system.evaluate(z, &mut ws.residual, &mut ws.jacobian);
             report.evaluations += 1;
         }
-        update_converged = size <= options.step_tolerance * max_norm(z).max(1.0);
+        update_converged = size <= options.step_tolerance * system.unknown_scale(z);
     }
 }
 

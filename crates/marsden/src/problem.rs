@@ -116,6 +116,7 @@ impl<L: Lagrangian> Problem<L> {
                 (q, v, p)
             }
         };
+        mechanics::check_structure(&lagrangian, t, &q, &v)?;
         Ok(Self {
             lagrangian,
             force: NoForce,

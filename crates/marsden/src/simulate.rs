@@ -219,5 +219,6 @@ fn difference(after: &crate::Statistics, before: &crate::Statistics) -> crate::S
         system_evaluations: after.system_evaluations - before.system_evaluations,
         action_evaluations: after.action_evaluations - before.action_evaluations,
         failed_steps: after.failed_steps - before.failed_steps,
+        explicit_steps: after.explicit_steps - before.explicit_steps,
     }
 }

@@ -109,8 +109,9 @@ pub(crate) struct SmallStep<'a, A, F> {
 }
 
 impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
+    /// The evaluation and the size of `∂L_d/∂Q₀` (the scale of the residual's terms).
     #[inline(always)]
-    fn evaluate<const N: usize, D: SmallDual<N>>(&self, delta: &[f64; N]) -> Evaluation<N> {
+    fn evaluate<const N: usize, D: SmallDual<N>>(&self, delta: &[f64; N]) -> (Evaluation<N>, f64) {
         let q: [D; N] = std::array::from_fn(|i| D::seeded(self.q0[i], Some((i, 1.0)), None));
         let d: [D; N] = std::array::from_fn(|i| D::seeded(delta[i], Some((i, -1.0)), Some(i)));
         let l = self.action.action(self.t0, self.h, &q, &d);
@@ -120,6 +121,7 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
             jacobian: std::array::from_fn(|i| std::array::from_fn(|j| l.eps12(i, j))),
             p_next: std::array::from_fn(|j| l.eps2(j)),
         };
+        let term_scale = e.residual.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
         if self.force.is_active() {
             self.add_forces::<N, D>(&q, &d, &mut e);
         }
@@ -127,7 +129,7 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
             .iter_mut()
             .zip(self.p0)
             .for_each(|(r, p)| *r += p);
-        e
+        (e, term_scale)
     }
 
     /// Adds `f_d⁻` (and its Jacobian) to the residual and `f_d⁺` to `p_{k+1}`.
@@ -157,14 +159,19 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
         options: &NewtonOptions,
     ) -> Result<(NewtonReport, [f64; N]), NewtonFailure> {
         let mut delta: [f64; N] = std::array::from_fn(|i| z[i]);
-        let scale = self.p0.iter().fold(1.0_f64, |m, p| m.max(p.abs()));
-        let tol = options.residual_tolerance * scale;
+        let p_scale = self.p0.iter().fold(0.0_f64, |m, p| m.max(p.abs()));
+        let q_scale = self
+            .q0
+            .iter()
+            .fold(f64::MIN_POSITIVE, |m, q| m.max(q.abs()));
         let mut report = NewtonReport::default();
         let mut update_converged = false;
         loop {
-            let mut e = self.evaluate::<N, D>(&delta);
+            let (mut e, term_scale) = self.evaluate::<N, D>(&delta);
             report.evaluations += 1;
             report.residual = e.residual.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
+            // Relative to the size of the residual's terms, as in `StepSystem`.
+            let tol = options.residual_tolerance * p_scale.max(term_scale);
             if !report.residual.is_finite() {
                 return Err(NewtonFailure::NonFinite(report));
             }
@@ -185,7 +192,7 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
             report.iterations += 1;
             let size = update.iter().fold(0.0_f64, |m, u| m.max(u.abs()));
             delta.iter_mut().zip(&update).for_each(|(d, u)| *d += u);
-            let znorm = delta.iter().fold(1.0_f64, |m, d| m.max(d.abs()));
+            let znorm = delta.iter().fold(q_scale, |m, d| m.max(d.abs()));
             update_converged = size <= options.step_tolerance * znorm;
         }
     }

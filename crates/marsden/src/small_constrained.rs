@@ -29,6 +29,8 @@ const MAX_UNKNOWNS: usize = 8;
 
 /// Residual, Jacobian (row-major `m × m`, `m = n + d`) and `p_{k+1}` of one step.
 struct Evaluation<const N: usize> {
+    /// `max |∂L_d/∂Q₀|`, the size of the residual's terms (as in `StepSystem`).
+    term_scale: f64,
     residual: [f64; MAX_UNKNOWNS],
     jacobian: [f64; MAX_UNKNOWNS * MAX_UNKNOWNS],
     p_next: [f64; N],
@@ -57,12 +59,14 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallConstrainedStep<'_
         let delta: [D; N] = std::array::from_fn(|i| D::seeded(z[i], Some((i, -1.0)), Some(i)));
         let l = self.action.action(self.t0, self.h, &q, &delta);
         let mut e = Evaluation {
+            term_scale: 0.0,
             residual: [0.0; MAX_UNKNOWNS],
             jacobian: [0.0; MAX_UNKNOWNS * MAX_UNKNOWNS],
             p_next: std::array::from_fn(|j| l.eps2(j)),
         };
         for i in 0..N {
             e.residual[i] = l.eps1(i);
+            e.term_scale = e.term_scale.max(e.residual[i].abs());
             for j in 0..N {
                 e.jacobian[i * m + j] = l.eps12(i, j);
             }
@@ -133,14 +137,24 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallConstrainedStep<'_
         let m = N + self.d;
         let mut x = [0.0; MAX_UNKNOWNS];
         x[..m].copy_from_slice(&z[..m]);
-        let scale = self.p0.iter().fold(1.0_f64, |s, p| s.max(p.abs()));
-        let tol = options.residual_tolerance * scale;
+        // Scale-free criteria, as in `StepSystem`: the residual relative to its terms
+        // `max(|p_k|, |∂L_d/∂Q₀|)`, the update relative to the positions and unknowns.
+        let p_scale = self
+            .p0
+            .iter()
+            .fold(0.0_f64, |s, p| s.max(p.abs()))
+            .max(crate::step::constraint_term_scale(self.q0, self.dphi0));
+        let q_scale = self
+            .q0
+            .iter()
+            .fold(f64::MIN_POSITIVE, |s, q| s.max(q.abs()));
         let mut report = NewtonReport::default();
         let mut update_converged = false;
         loop {
             let mut e = self.evaluate::<N, D>(&x[..m]);
             report.evaluations += 1;
             report.residual = e.residual[..m].iter().fold(0.0_f64, |s, r| s.max(r.abs()));
+            let tol = options.residual_tolerance * p_scale.max(e.term_scale);
             if !report.residual.is_finite() {
                 z[..m].copy_from_slice(&x[..m]);
                 return Err(NewtonFailure::NonFinite(report));
@@ -168,7 +182,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallConstrainedStep<'_
             report.iterations += 1;
             let size = update[..m].iter().fold(0.0_f64, |s, u| s.max(u.abs()));
             x[..m].iter_mut().zip(&update).for_each(|(a, u)| *a += u);
-            let xnorm = x[..m].iter().fold(1.0_f64, |s, a| s.max(a.abs()));
+            let xnorm = x[..m].iter().fold(q_scale, |s, a| s.max(a.abs()));
             update_converged = size <= options.step_tolerance * xnorm;
         }
     }

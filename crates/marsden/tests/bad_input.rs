@@ -1,7 +1,7 @@
 //! Bad input is a typed error with a clear message: a singular Lagrangian, NaN initial data, a
 //! negative or zero step, a Newton failure (which keeps the trajectory computed so far).
-// Tests: helpers unwrap, and reference values keep all their published digits.
-#![allow(clippy::unwrap_used, clippy::excessive_precision)]
+// Tests may unwrap; reference values are quoted with all the digits the reference cases give.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::excessive_precision)]
 
 use marsden::{
     Error, Initial, Integrator, Lagrangian, Midpoint, NewtonOptions, Problem, Rule, Scalar,

@@ -30,7 +30,7 @@ where
         .with_projection(Rattle::new(l, c))
         .with_options(tight())
         .unwrap()
-        .with_static_sizes(fast);
+        .with_fast_paths(fast);
     let mut state = start.clone();
     let mut out = Vec::new();
     for _ in 0..1000 {

@@ -1,7 +1,7 @@
 //! Work statistics pinned for reference runs (as diffsol snapshots its solver statistics): a
 //! change in the predictor or the convergence test shows up here first.
-// Tests: helpers unwrap, and reference values keep all their published digits.
-#![allow(clippy::unwrap_used, clippy::excessive_precision)]
+// Tests may unwrap; reference values are quoted with all the digits the reference cases give.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::excessive_precision)]
 
 use marsden::systems::{Kepler, Pendulum};
 use marsden::{Initial, Midpoint, Problem, SolveOptions, TimeGrid, Trapezoid};
@@ -15,13 +15,14 @@ fn pendulum_midpoint_work_is_pinned() {
     let s = traj.statistics;
     assert_eq!(s.steps, 1000);
     assert_eq!(s.failed_steps, 0);
-    // One Newton update per step once the predictor has history; two on the first steps.
+    // One Newton update per step once the predictor has history; up to three on the first
+    // steps (the first starts from rest, where the residual's terms are small).
     assert_eq!(s.newton_iterations, PENDULUM_ITERATIONS, "{s:?}");
-    assert_eq!(s.max_newton_iterations, 2);
+    assert_eq!(s.max_newton_iterations, 3);
     assert_eq!(s.system_evaluations, s.newton_iterations + s.steps);
 }
 
-const PENDULUM_ITERATIONS: usize = 1002;
+const PENDULUM_ITERATIONS: usize = 1003;
 
 #[test]
 fn kepler_trapezoid_work_is_pinned() {
@@ -30,11 +31,21 @@ fn kepler_trapezoid_work_is_pinned() {
     let problem = Problem::new(Kepler::default(), Initial::momentum(&q, &p), grid).unwrap();
     let traj = problem.solve(&Trapezoid, &SolveOptions::default()).unwrap();
     let s = traj.statistics;
-    // The trapezoid step is linear in q_{k+1} for this Lagrangian: one update always suffices.
-    assert_eq!(
-        (s.newton_iterations, s.max_newton_iterations),
-        (1000, 1),
-        "{s:?}"
+    // Kepler is separable: the trapezoid rule runs as explicit Störmer–Verlet, no Newton.
+    let explicit = (s.explicit_steps, s.newton_iterations, s.system_evaluations);
+    assert_eq!(explicit, (1000, 0, 0), "{s:?}");
+    // On the Newton path the step is linear in q_{k+1}: one update always suffices.
+    let integrator = problem.integrator(&Trapezoid, Default::default()).unwrap();
+    let mut integrator = integrator.with_fast_paths(false);
+    let mut state = problem.start().clone();
+    for _ in 0..1000 {
+        integrator.step(&mut state, 0.01).unwrap();
+    }
+    let s = integrator.statistics();
+    let newton = (
+        s.newton_iterations,
+        s.max_newton_iterations,
+        s.system_evaluations,
     );
-    assert_eq!(s.system_evaluations, 2000);
+    assert_eq!(newton, (1000, 1, 2000), "{s:?}");
 }

@@ -81,7 +81,7 @@ mod ops;
 mod parser;
 mod program;
 mod set;
-mod suggest;
+pub(crate) mod suggest;
 mod symbols;
 
 pub use ast::{Expr, Identifier};

@@ -73,7 +73,24 @@ impl<L: Lagrangian, H: HamiltonianForce> FromHamiltonian<L, H> {
     }
 }
 
-/// `p = ∂L/∂v(t, q, v)` at any scalar type, by nested duals.
+/// `L` as a function of `z = (t, q, v)`, for the nested-dual gradient in `v`.
+struct OnTangentBundle<'a, L>(&'a L);
+
+impl<L: Lagrangian> ad::MultiFunction for OnTangentBundle<'_, L> {
+    fn inputs(&self) -> usize {
+        2 * self.0.dof() + 1
+    }
+    fn outputs(&self) -> usize {
+        1
+    }
+    #[inline]
+    fn eval<S: Scalar>(&self, z: &[S], out: &mut [S]) {
+        let n = self.0.dof();
+        out[0] = self.0.lagrangian(z[0], &z[1..=n], &z[n + 1..]);
+    }
+}
+
+/// `p = ∂L/∂v(t, q, v)` at any scalar type, by nested duals ([`ad::nested_gradient`]).
 fn momenta<L: Lagrangian, S: Scalar>(l: &L, t: S, q: &[S], v: &[S], p: &mut [S]) {
     let n = q.len();
     let entry = |i: usize| match i {
@@ -82,12 +99,7 @@ fn momenta<L: Lagrangian, S: Scalar>(l: &L, t: S, q: &[S], v: &[S], p: &mut [S])
         i => v[i - n - 1],
     };
     with_buffer::<S, { 2 * NODE + 1 }, ()>(2 * n + 1, t, entry, |z| {
-        ad::nested_gradient(
-            |z| l.lagrangian(z[0], &z[1..=n], &z[n + 1..]),
-            z,
-            n + 1..2 * n + 1,
-            p,
-        );
+        ad::nested_gradient(&OnTangentBundle(l), z, n + 1..2 * n + 1, p);
     });
 }
 

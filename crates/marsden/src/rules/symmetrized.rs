@@ -6,6 +6,7 @@
 //! α = 0, `(h/2) f` at each end).
 
 use super::{Rule, at_node, with_displacement};
+use crate::explicit::{ExplicitStep, InverseMass, velocity_verlet};
 use crate::scratch::{NODE, with_buffer};
 use crate::{DiscreteForce, DiscreteLagrangian, Force, Lagrangian, Scalar};
 
@@ -27,6 +28,40 @@ pub struct SymmetrizedLd<L> {
     pub lagrangian: L,
     /// Nodes at α and 1 − α.
     pub alpha: f64,
+    /// `M⁻¹` when α = 0 and `L` is separable: the step is then explicit Störmer–Verlet.
+    inverse_mass: Option<InverseMass>,
+}
+
+impl<L: Lagrangian> SymmetrizedLd<L> {
+    /// `L_d^{sym,α}` of `lagrangian`; notes whether the explicit Verlet form applies.
+    pub fn new(lagrangian: L, alpha: f64) -> Self {
+        let inverse_mass = if alpha == 0.0 {
+            InverseMass::of(&lagrangian.structure())
+        } else {
+            None
+        };
+        Self {
+            lagrangian,
+            alpha,
+            inverse_mass,
+        }
+    }
+}
+
+impl<L: Lagrangian> ExplicitStep for SymmetrizedLd<L> {
+    fn explicit_step(
+        &self,
+        t: f64,
+        h: f64,
+        q: &[f64],
+        p: &mut [f64],
+        delta: &mut [f64],
+        work: &mut Vec<f64>,
+    ) {
+        if let Some(inverse_mass) = &self.inverse_mass {
+            velocity_verlet(&self.lagrangian, inverse_mass, (t, h), (q, p), delta, work);
+        }
+    }
 }
 
 impl<L: Lagrangian> DiscreteLagrangian for SymmetrizedLd<L> {
@@ -36,6 +71,11 @@ impl<L: Lagrangian> DiscreteLagrangian for SymmetrizedLd<L> {
     #[inline]
     fn discrete_lagrangian<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], q1: &[S]) -> S {
         with_displacement(q0, q1, |d| self.discrete_lagrangian_offset(t0, h, q0, d))
+    }
+    fn explicit(&self) -> Option<&dyn ExplicitStep> {
+        self.inverse_mass
+            .as_ref()
+            .map(|_| self as &dyn ExplicitStep)
     }
     #[inline]
     fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
@@ -95,10 +135,7 @@ impl Rule for Trapezoid {
     type Discrete<L: Lagrangian> = SymmetrizedLd<L>;
     type DiscreteForce<F: Force> = SymmetrizedForce<F>;
     fn discretize<L: Lagrangian>(&self, lagrangian: L) -> SymmetrizedLd<L> {
-        SymmetrizedLd {
-            lagrangian,
-            alpha: 0.0,
-        }
+        SymmetrizedLd::new(lagrangian, 0.0)
     }
     fn discretize_force<F: Force>(&self, force: F, dof: usize) -> SymmetrizedForce<F> {
         SymmetrizedForce {
@@ -119,10 +156,7 @@ impl Rule for SymmetrizedMidpoint {
     type Discrete<L: Lagrangian> = SymmetrizedLd<L>;
     type DiscreteForce<F: Force> = SymmetrizedForce<F>;
     fn discretize<L: Lagrangian>(&self, lagrangian: L) -> SymmetrizedLd<L> {
-        SymmetrizedLd {
-            lagrangian,
-            alpha: self.alpha,
-        }
+        SymmetrizedLd::new(lagrangian, self.alpha)
     }
     fn discretize_force<F: Force>(&self, force: F, dof: usize) -> SymmetrizedForce<F> {
         SymmetrizedForce {

@@ -1,6 +1,6 @@
 //! Free fall in a uniform field, `L = ½ m v² − m g q` (reference case R9).
 
-use crate::{Lagrangian, Scalar};
+use crate::{Lagrangian, MassMatrix, Scalar, Structure};
 
 /// A particle in a linear potential; every variational integrator is exact here.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -34,5 +34,10 @@ impl Lagrangian for FreeFall {
     #[inline]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         v[0] * v[0] * (0.5 * self.m) - q[0] * (self.m * self.g)
+    }
+    fn structure(&self) -> Structure {
+        Structure::Separable {
+            mass: MassMatrix::Diagonal(vec![self.m]),
+        }
     }
 }

@@ -1,6 +1,6 @@
 //! The Hénon–Heiles system `L = ½(ẋ² + ẏ²) − ½(x² + y²) − λ(x²y − y³/3)` (HLW06 §I.3).
 
-use crate::{Lagrangian, Scalar};
+use crate::{Lagrangian, MassMatrix, Scalar, Structure};
 
 /// Hénon–Heiles with coupling `λ`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -34,5 +34,10 @@ impl Lagrangian for HenonHeiles {
         let (x, y) = (q[0], q[1]);
         let potential = (x * x + y * y) * 0.5 + (x * x * y - y * y * y * (1.0 / 3.0)) * self.lambda;
         (v[0] * v[0] + v[1] * v[1]) * 0.5 - potential
+    }
+    fn structure(&self) -> Structure {
+        Structure::Separable {
+            mass: MassMatrix::Diagonal(vec![1.0, 1.0]),
+        }
     }
 }

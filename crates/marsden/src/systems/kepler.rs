@@ -2,7 +2,7 @@
 
 use crate::special::SpecialError;
 use crate::special::kepler::KeplerOrbit;
-use crate::{Lagrangian, Scalar};
+use crate::{Lagrangian, MassMatrix, Scalar, Structure};
 
 /// Planar Kepler problem with gravitational parameter `μ` (unit mass).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -53,5 +53,10 @@ impl Lagrangian for Kepler {
     #[inline]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         (v[0] * v[0] + v[1] * v[1]) * 0.5 + (q[0] * q[0] + q[1] * q[1]).sqrt().recip() * self.mu
+    }
+    fn structure(&self) -> Structure {
+        Structure::Separable {
+            mass: MassMatrix::Diagonal(vec![1.0, 1.0]),
+        }
     }
 }

@@ -19,6 +19,7 @@
 //! | [`CartesianPendulum`] | `x, y`, `\|q\| = l` | m = l = g = 1 (+ constraint) | same motion as [`Pendulum`] |
 //! | [`CartesianDoublePendulum`] | `x₁ y₁ x₂ y₂`, two rods | as [`DoublePendulum`] (+ constraints) | same motion as [`DoublePendulum`] |
 //! | [`PendulumOnCart`] | `x, θ` | M = 1, m = 0.1, l = 0.5, g = 9.8, A = 1, ω = 3 (+ force) | horizontal momentum balance |
+//! | [`PointRigidBody`] | `x₁ y₁ z₁ …` + distance constraints | tetrahedron, masses 1–4 | momentum, angular momentum |
 //!
 //! Systems with forces or constraints implement [`crate::Force`] or [`crate::Constraint`]
 //! themselves, so `Problem::new(sys, …)?.with_force(sys)` / `.with_constraint(sys)?` sets them up.
@@ -35,6 +36,7 @@ mod nbody;
 mod oscillator;
 mod pendulum;
 mod pendulum_on_cart;
+mod rigid_body;
 mod spherical_pendulum;
 
 pub use cartesian_double_pendulum::CartesianDoublePendulum;
@@ -49,4 +51,5 @@ pub use nbody::NBody;
 pub use oscillator::HarmonicOscillator;
 pub use pendulum::Pendulum;
 pub use pendulum_on_cart::PendulumOnCart;
+pub use rigid_body::PointRigidBody;
 pub use spherical_pendulum::SphericalPendulum;

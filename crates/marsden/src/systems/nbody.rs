@@ -7,7 +7,7 @@
 //! Coordinates are `(x₁, y₁, z₁, x₂, …)`. This is the general (AD) form; large N belongs to the
 //! explicit fast path.
 
-use crate::{Lagrangian, Scalar};
+use crate::{Lagrangian, MassMatrix, Scalar, Structure};
 
 /// N point masses under mutual gravitation.
 #[derive(Debug, Clone, PartialEq)]
@@ -94,5 +94,10 @@ impl Lagrangian for NBody {
             }
         }
         kinetic + self.interaction(q)
+    }
+    fn structure(&self) -> Structure {
+        Structure::Separable {
+            mass: MassMatrix::Diagonal(self.masses.iter().flat_map(|&m| [m, m, m]).collect()),
+        }
     }
 }

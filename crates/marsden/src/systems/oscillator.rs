@@ -1,6 +1,6 @@
 //! The harmonic oscillator `L = ½ m v² − ½ k q²`.
 
-use crate::{Lagrangian, Scalar};
+use crate::{Lagrangian, MassMatrix, Scalar, Structure};
 
 /// Harmonic oscillator with mass `m` and stiffness `k` (ω = √(k/m)).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -43,5 +43,10 @@ impl Lagrangian for HarmonicOscillator {
     #[inline]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         (v[0] * v[0] * self.m - q[0] * q[0] * self.k) * 0.5
+    }
+    fn structure(&self) -> Structure {
+        Structure::Separable {
+            mass: MassMatrix::Diagonal(vec![self.m]),
+        }
     }
 }

@@ -1,7 +1,7 @@
 //! The planar pendulum `L = ½ m l² θ̇² + m g l cos θ` (θ from the downward vertical).
 
 use crate::special::{self, SpecialError};
-use crate::{Lagrangian, Scalar};
+use crate::{Lagrangian, MassMatrix, Scalar, Structure};
 
 /// Planar pendulum of mass `m`, length `l` in gravity `g`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -60,5 +60,10 @@ impl Lagrangian for Pendulum {
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         let (m, l, g) = (self.m, self.l, self.g);
         v[0] * v[0] * (0.5 * m * l * l) + q[0].cos() * (m * g * l)
+    }
+    fn structure(&self) -> Structure {
+        Structure::Separable {
+            mass: MassMatrix::Diagonal(vec![self.m * self.l * self.l]),
+        }
     }
 }

@@ -1,7 +1,11 @@
 //! Helpers shared by the reference-case tests.
-// Tests: helpers unwrap, and reference values keep all their published digits.
-#![allow(clippy::unwrap_used, clippy::excessive_precision)]
-#![allow(dead_code)]
+// Tests may unwrap; reference values are quoted with all the digits the reference cases give.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::excessive_precision,
+    dead_code
+)]
 
 use marsden::{DiscreteAction, Integrator, NewtonOptions, State};
 

@@ -1,0 +1,119 @@
+//! The command line: `marsden run | check | systems | plot`, parsed with clap's derive API.
+//!
+//! Exit statuses (a contract): 0 completed, 1 the simulation failed (partial trajectory and
+//! summary still written, status "failed"), 2 bad problem file or usage (nothing run).
+
+mod check;
+mod plot;
+mod run;
+mod systems;
+
+use std::ffi::OsString;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Args, Parser, Subcommand};
+
+use crate::error::{CliError, Status};
+use crate::problem::Overrides;
+
+/// Discrete mechanics and variational integrators from TOML problem files.
+#[derive(Debug, Parser)]
+#[command(name = "marsden", version, about, long_about = None)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Run a problem file: trajectory, summary.json and plots in the output directory.
+    Run(RunArgs),
+    /// Validate a problem file and print the resolved problem (nothing is run or written).
+    Check(FileArgs),
+    /// List the catalog systems (`builtin = "..."`) with coordinates, parameters, defaults.
+    Systems {
+        /// Show only this system.
+        name: Option<String>,
+    },
+    /// Draw the plots of a finished run again (from trajectory.csv, or the .npy files).
+    Plot {
+        /// The run's output directory.
+        dir: PathBuf,
+    },
+}
+
+/// A problem file and the overrides of its values.
+#[derive(Debug, Args)]
+pub struct FileArgs {
+    /// The problem file (TOML).
+    pub file: PathBuf,
+    /// Number of steps (replaces `steps` and `t_end` of the integrator table).
+    #[arg(long)]
+    pub steps: Option<u64>,
+    /// Time step (replaces `h`; with `t_end`, the number of steps follows).
+    #[arg(long, allow_negative_numbers = true)]
+    pub h: Option<f64>,
+    /// Output directory (replaces `dir` of the output table).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+impl FileArgs {
+    /// The overrides given.
+    pub fn overrides(&self) -> Overrides {
+        Overrides {
+            steps: self.steps,
+            h: self.h,
+            out: self.out.clone(),
+        }
+    }
+}
+
+/// `marsden run`.
+#[derive(Debug, Args)]
+pub struct RunArgs {
+    /// The problem file and overrides.
+    #[command(flatten)]
+    pub file: FileArgs,
+    /// Print nothing on stdout (errors still go to stderr).
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Never show the progress bar.
+    #[arg(long)]
+    pub no_progress: bool,
+}
+
+/// Parses `args` (the first is the program name) and runs the command; the process's exit
+/// code follows [`Status`].
+pub fn main_with<I, T>(args: I) -> ExitCode
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            return ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(Status::BadInput.code()));
+        }
+    };
+    match dispatch(cli.command) {
+        Ok(status) => status.into(),
+        Err(e) => {
+            eprintln!("{e}");
+            e.status.into()
+        }
+    }
+}
+
+fn dispatch(command: Command) -> Result<Status, CliError> {
+    match command {
+        Command::Run(args) => run::run(&args),
+        Command::Check(args) => check::check(&args),
+        Command::Systems { name } => systems::systems(name.as_deref()),
+        Command::Plot { dir } => plot::plot(&dir),
+    }
+}

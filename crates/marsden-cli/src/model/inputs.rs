@@ -1,0 +1,47 @@
+//! The inputs slice `[q, q̇, t]` of an expression, built on the stack.
+
+use marsden::Scalar;
+use marsden::scratch::with_buffer;
+
+/// Calls `body` with the slice `[q₀ … qₙ₋₁, v₀ … vₙ₋₁, t]`.
+///
+/// The slice lives in a stack array sized to fit (3, 5, 9 or 17 values: n ≤ 1, 2, 4, 8), so the
+/// unused tail that must be initialised stays short even for large dual numbers; more than 8
+/// coordinates use the heap.
+#[inline(always)]
+pub fn with_inputs<S: Scalar, R>(q: &[S], v: &[S], t: S, body: impl FnOnce(&[S]) -> R) -> R {
+    let n = q.len();
+    let len = 2 * n + 1;
+    let value = |i: usize| {
+        if i < n {
+            q[i]
+        } else if i < 2 * n {
+            v[i - n]
+        } else {
+            t
+        }
+    };
+    let body = |x: &mut [S]| body(x);
+    match len {
+        0..=3 => with_buffer::<S, 3, R>(len, t, value, body),
+        4..=5 => with_buffer::<S, 5, R>(len, t, value, body),
+        6..=9 => with_buffer::<S, 9, R>(len, t, value, body),
+        _ => with_buffer::<S, 17, R>(len, t, value, body),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lays_out_positions_velocities_time() {
+        for n in [1, 2, 3, 4, 8, 9, 12] {
+            let q: Vec<f64> = (0..n).map(|i| i as f64).collect();
+            let v: Vec<f64> = (0..n).map(|i| 100.0 + i as f64).collect();
+            let got = with_inputs(&q, &v, -1.0, |x| x.to_vec());
+            let want: Vec<f64> = q.iter().chain(&v).copied().chain([-1.0]).collect();
+            assert_eq!(got, want, "n = {n}");
+        }
+    }
+}

@@ -1,0 +1,189 @@
+//! Stage 2: the validated run specification. Everything here has been checked (lengths,
+//! finiteness, ranges, names, compiled expressions), so building the problem cannot fail on
+//! the file's account except for what only the core can judge (regularity of `L` at the
+//! initial state), which [`SpecSpans`] lets the command point at.
+
+use std::ops::Range;
+use std::path::PathBuf;
+
+use marsden::{Initial, NewtonOptions, TimeGrid};
+
+use super::method::Method;
+use crate::catalog::{Builtin, BuiltinSystem, WithLagrangian};
+use crate::model::{ExprConstraint, ExprForce, ExprLagrangian, Symmetry};
+use crate::source::SourceFile;
+
+/// Command-line overrides of the file's values (`marsden run --steps --h --out`).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Overrides {
+    /// Replaces `steps` (and `t_end`).
+    pub steps: Option<u64>,
+    /// Replaces `h`; with `t_end` in the file, the number of steps follows.
+    pub h: Option<f64>,
+    /// Replaces `[output] dir`.
+    pub out: Option<PathBuf>,
+}
+
+/// A validated problem file, ready to run.
+#[derive(Debug, Clone)]
+pub struct RunSpec {
+    /// The file it came from.
+    pub source: SourceFile,
+    /// The run's name (`[system] name`, else the builtin's name, else the file's stem).
+    pub name: String,
+    /// What is simulated.
+    pub system: SystemSpec,
+    /// The initial state.
+    pub initial: InitialSpec,
+    /// Method, grid and Newton options.
+    pub integrator: IntegratorSpec,
+    /// Where and how results go.
+    pub output: OutputSpec,
+    /// Spans of values the core may still reject.
+    pub spans: SpecSpans,
+}
+
+/// Where the values that only the core can judge were written.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SpecSpans {
+    /// The `lagrangian` or `builtin` value.
+    pub lagrangian: Option<Range<usize>>,
+    /// The `v` or `p` vector.
+    pub initial_data: Option<Range<usize>>,
+}
+
+/// The Lagrangian: a catalog system or an expression.
+#[derive(Debug, Clone)]
+pub enum LagrangianSpec {
+    /// `builtin = "…"`.
+    Builtin {
+        /// Which catalog entry.
+        builtin: Builtin,
+        /// The configured system.
+        system: BuiltinSystem,
+    },
+    /// `lagrangian = "…"`.
+    Expression(ExprLagrangian),
+}
+
+impl LagrangianSpec {
+    /// Calls `f` with the concrete Lagrangian type.
+    pub fn dispatch<W: WithLagrangian>(&self, f: W) -> W::Output {
+        match self {
+            LagrangianSpec::Builtin { system, .. } => system.dispatch(f),
+            LagrangianSpec::Expression(l) => f.call(l),
+        }
+    }
+
+    /// `builtin <name>` or the expression text.
+    pub fn describe(&self) -> String {
+        match self {
+            LagrangianSpec::Builtin { builtin, .. } => {
+                format!("builtin {}: L = {}", builtin.name(), builtin.formula())
+            }
+            LagrangianSpec::Expression(l) => format!("L = {}", l.program().text()),
+        }
+    }
+}
+
+/// `[system]`, validated.
+#[derive(Debug, Clone)]
+pub struct SystemSpec {
+    /// The Lagrangian.
+    pub lagrangian: LagrangianSpec,
+    /// Coordinate names (n of them).
+    pub coordinates: Vec<String>,
+    /// Every scalar parameter with its value: for a builtin its catalog parameters (defaults
+    /// filled in) then the others, for an expression Lagrangian in the file's order.
+    pub parameters: Vec<(String, f64)>,
+    /// `nbody` masses.
+    pub masses: Option<Vec<f64>>,
+    /// External force (empty: none).
+    pub force: ExprForce,
+    /// Constraints (empty: none).
+    pub constraint: ExprConstraint,
+    /// Monitored symmetries.
+    pub symmetries: Vec<Symmetry>,
+}
+
+impl SystemSpec {
+    /// Degrees of freedom.
+    pub fn dof(&self) -> usize {
+        self.coordinates.len()
+    }
+}
+
+/// How the initial state was given.
+#[derive(Debug, Clone, PartialEq)]
+pub enum InitialData {
+    /// `v = [...]`.
+    Velocity(Vec<f64>),
+    /// `p = [...]`.
+    Momentum(Vec<f64>),
+}
+
+/// `[initial]`, validated (lengths match the coordinates, all finite).
+#[derive(Debug, Clone, PartialEq)]
+pub struct InitialSpec {
+    /// Initial time.
+    pub t0: f64,
+    /// Positions.
+    pub q: Vec<f64>,
+    /// Velocities or momenta.
+    pub data: InitialData,
+}
+
+impl InitialSpec {
+    /// The core's form.
+    pub fn to_initial(&self) -> Initial {
+        match &self.data {
+            InitialData::Velocity(v) => Initial::velocity(&self.q, v),
+            InitialData::Momentum(p) => Initial::momentum(&self.q, p),
+        }
+    }
+}
+
+/// `[integrator]`, validated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IntegratorSpec {
+    /// The rule.
+    pub method: Method,
+    /// `t_k = t₀ + k h`, `k = 0 … steps`.
+    pub grid: TimeGrid,
+    /// Newton options of each step.
+    pub newton: NewtonOptions,
+    /// `t_end` as written, if the steps were derived from it.
+    pub t_end: Option<f64>,
+}
+
+/// Output format of the trajectory.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// `trajectory.csv`.
+    Csv,
+    /// `t.npy`, `q.npy`, `p.npy`, … (one per column group).
+    Npy,
+}
+
+impl Format {
+    /// `"csv"` or `"npy"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Csv => "csv",
+            Format::Npy => "npy",
+        }
+    }
+}
+
+/// `[output]`, validated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutputSpec {
+    /// Output directory.
+    pub dir: PathBuf,
+    /// Trajectory format.
+    pub format: Format,
+    /// Store every k-th step (and always the first and the last).
+    pub every: usize,
+    /// Draw PNG plots after the run.
+    pub plots: bool,
+}

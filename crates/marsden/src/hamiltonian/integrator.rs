@@ -1,0 +1,181 @@
+//! Stepping a Hamiltonian with a one-step method, and running it over a time grid.
+//!
+//! The Hamiltonian counterpart of [`crate::Integrator`] and [`crate::simulate`]: a
+//! [`HamiltonianMethod`] advances `(t, q, p)` by one step of `H` (and, on request, returns the
+//! Jacobian of the step map for the symplecticity certificate); a [`HamiltonianIntegrator`] owns
+//! the Hamiltonian and the method and produces the same [`Trajectory`] as the Lagrangian side,
+//! so all diagnostics apply to both.
+
+use std::ops::ControlFlow;
+
+use super::Hamiltonian;
+use crate::simulate::{Observer, RunOptions, StepView, TimeGrid};
+use crate::{Error, State, StepReport, Termination, Trajectory};
+
+/// A one-step method for Hamilton's equations of `H`.
+pub trait HamiltonianMethod<H> {
+    /// A short name, e.g. `"implicit midpoint"`.
+    fn name(&self) -> String;
+
+    /// Whether the method is symplectic (what the certificate should find).
+    fn is_symplectic(&self) -> bool;
+
+    /// Advances `state` by one step of size `h`. On error `state` is left unchanged.
+    fn step(&mut self, ham: &H, state: &mut State, h: f64) -> Result<StepReport, Error>;
+
+    /// Like [`HamiltonianMethod::step`], and writes the Jacobian `∂(q₁, p₁)/∂(q₀, p₀)` of the
+    /// step map (row-major 2n × 2n, exact derivatives, no finite differences) into `jac`.
+    fn step_with_jacobian(
+        &mut self,
+        ham: &H,
+        state: &mut State,
+        h: f64,
+        jac: &mut [f64],
+    ) -> Result<StepReport, Error>;
+}
+
+/// A Hamiltonian `H` and a method to step it.
+///
+/// ```
+/// use marsden::State;
+/// use marsden::hamiltonian::{HamiltonianIntegrator, ImplicitMidpoint};
+/// use marsden::systems::HarmonicOscillator;
+///
+/// let mut integrator = HamiltonianIntegrator::new(HarmonicOscillator::default(), ImplicitMidpoint::default());
+/// let mut state = State { t: 0.0, q: vec![1.0], p: vec![0.0] };
+/// integrator.step(&mut state, 0.1).unwrap();
+/// // Reference case R1: the midpoint map of the unit oscillator is [[399, 40], [−40, 399]]/401.
+/// assert!((state.q[0] - 399.0 / 401.0).abs() < 1e-15 && (state.p[0] + 40.0 / 401.0).abs() < 1e-15);
+/// ```
+#[derive(Debug, Clone)]
+pub struct HamiltonianIntegrator<H, M> {
+    ham: H,
+    method: M,
+    steps: usize,
+}
+
+impl<H: Hamiltonian, M: HamiltonianMethod<H>> HamiltonianIntegrator<H, M> {
+    /// Steps `ham` with `method`.
+    pub fn new(ham: H, method: M) -> Self {
+        Self {
+            ham,
+            method,
+            steps: 0,
+        }
+    }
+
+    /// The Hamiltonian.
+    pub fn hamiltonian(&self) -> &H {
+        &self.ham
+    }
+
+    /// The method.
+    pub fn method(&self) -> &M {
+        &self.method
+    }
+
+    fn check(&self, state: &State, h: f64) -> Result<(), Error> {
+        let n = self.ham.dof();
+        Error::check_len("q", &state.q, n)?;
+        Error::check_len("p", &state.p, n)?;
+        if h == 0.0 || !h.is_finite() {
+            return Err(Error::InvalidStep { h });
+        }
+        Ok(())
+    }
+
+    /// One step of size `h` from `state` (advanced in place).
+    pub fn step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error> {
+        self.check(state, h)?;
+        let k = self.steps;
+        let report = self
+            .method
+            .step(&self.ham, state, h)
+            .map_err(|e| at_step(e, k))?;
+        self.steps += 1;
+        Ok(report)
+    }
+
+    /// One step, also writing the step map's Jacobian (row-major 2n × 2n) into `jac`.
+    pub fn step_with_jacobian(
+        &mut self,
+        state: &mut State,
+        h: f64,
+        jac: &mut [f64],
+    ) -> Result<StepReport, Error> {
+        self.check(state, h)?;
+        let n = self.ham.dof();
+        Error::check_len("jacobian", jac, 4 * n * n)?;
+        let k = self.steps;
+        let report = self
+            .method
+            .step_with_jacobian(&self.ham, state, h, jac)
+            .map_err(|e| at_step(e, k))?;
+        self.steps += 1;
+        Ok(report)
+    }
+
+    /// Runs from `start` over `grid`, storing every `options.stride`-th state and showing each
+    /// step to `observer` (as [`crate::simulate()`] does for the Lagrangian side). A failing step
+    /// ends the run with [`Termination::Failed`] and the trajectory up to the last good state.
+    pub fn solve<O: Observer + ?Sized>(
+        &mut self,
+        start: State,
+        grid: &TimeGrid,
+        options: &RunOptions,
+        observer: &mut O,
+    ) -> Trajectory {
+        let n = self.ham.dof();
+        let mut traj = Trajectory::new(n, 0, grid.h);
+        let stride = options.stride.max(1);
+        let mut state = start;
+        let mut report = StepReport::default();
+        traj.push(0, state.t, &state.q, &state.p, &[], report);
+        observer.start(&view(0, &state, &report));
+        for k in 0..grid.steps {
+            match self.step(&mut state, grid.h) {
+                Ok(r) => report = r,
+                Err(e) => {
+                    traj.termination = Termination::Failed(e);
+                    break;
+                }
+            }
+            state.t = grid.time(k + 1);
+            traj.steps = k + 1;
+            let stop = observer.observe(&view(k + 1, &state, &report)) == ControlFlow::Break(());
+            if (k + 1) % stride == 0 || k + 1 == grid.steps || stop {
+                traj.push(k + 1, state.t, &state.q, &state.p, &[], report);
+            }
+            if stop {
+                traj.termination = Termination::Stopped { steps: k + 1 };
+                break;
+            }
+        }
+        if traj.step_indices.last() != Some(&traj.steps) {
+            traj.push(traj.steps, state.t, &state.q, &state.p, &[], report);
+        }
+        traj
+    }
+}
+
+fn view<'a>(step: usize, state: &'a State, report: &'a StepReport) -> StepView<'a> {
+    StepView {
+        step,
+        t: state.t,
+        q: &state.q,
+        p: &state.p,
+        multipliers: &[],
+        report,
+    }
+}
+
+/// Sets the step index of a run-time error raised by a method (which does not know it).
+fn at_step(mut e: Error, k: usize) -> Error {
+    match &mut e {
+        Error::NewtonDidNotConverge { step, .. }
+        | Error::SingularJacobian { step, .. }
+        | Error::NonFinite { step, .. } => *step = k,
+        _ => {}
+    }
+    e
+}
