@@ -86,16 +86,5 @@ fn angle_pendulum_step(bencher: Bencher) {
     bench_steps(bencher, integrator, problem.start().clone());
 }
 
-// Measured (issue 3, rustc 1.95, bench profile, shared 2-core machine with load ≈ 2.5; verlet.c
-// pendulum 24–44 ms per 1e6 steps in the same window, i.e. ~1.5× slower than bench/README.md):
-//
-// | bench | median | vs trep 8 240 ns |
-// |---|---|---|
-// | shake_rattle_step | 1.06–1.26 µs | 6.5–7.8× faster |
-// | shake_step | 0.41–0.73 µs | |
-// | angle_pendulum_step | 0.22 µs | |
-//
-// The 400 ns target is not reached: a step costs two static hyper-dual evaluations of
-// `(L_d, φ)` (SHAKE Newton: one update plus the confirming evaluation), two of `L` in `v`
-// (RATTLE: one KKT update plus its check), one dual evaluation of `Dφ(q_{k+1})` (shared with
-// the next step) and two 3 × 3 solves.
+// Measured (issue 3): see BENCHMARKS.md, section "Constrained pendulum". Median 784 ns per
+// SHAKE + RATTLE step (10.5× faster than trep's 8 240 ns; target ≤ 400 ns not met).
