@@ -93,7 +93,10 @@ impl LagrangianJet {
 
 /// `z = (t, q, v)`, the input of [`OnTangentBundle`].
 fn tangent_point(t: f64, q: &[f64], v: &[f64]) -> Vec<f64> {
-    std::iter::once(t).chain(q.iter().copied()).chain(v.iter().copied()).collect()
+    std::iter::once(t)
+        .chain(q.iter().copied())
+        .chain(v.iter().copied())
+        .collect()
 }
 
 /// Legendre transform `p = ∂L/∂v (t, q, v)`, written into `p`.
