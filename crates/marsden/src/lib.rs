@@ -22,12 +22,14 @@
 //! |---|---|---|
 //! | scalar | [`scalar`] | one generic axis: `f64` or dual numbers |
 //! | system | [`lagrangian`], [`force`], [`constraint`], [`systems`] | `L(t, q, v)`, `f_L`, `φ(q)`, the catalog |
+//! | forces | [`forces`] | damping, driving, controls, sums, `f_H ∘ FL`, user `f_d^±` |
+//! | constraints | [`holonomic`] | SHAKE + RATTLE, initial data on `T*N`, distance constraints |
 //! | continuous mechanics | [`mechanics`] | Legendre transform, energy, Euler–Lagrange, regularity |
 //! | discrete Lagrangian | [`discrete`], [`rules`] | `L_d`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; midpoint, trapezoid, α-rules |
-//! | step | [`step`], [`small`], [`explicit`], [`separable`], [`potential`], [`newton`], [`linalg`], [`banded`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians; structure-aware fast paths (explicit Störmer–Verlet, `M/h + (h/4)∇²V`, band solves) |
+//! | step | [`step`], [`small`], [`small_constrained`], [`explicit`], [`separable`], [`potential`], [`newton`], [`linalg`], [`banded`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians; structure-aware fast paths (explicit Störmer–Verlet, `M/h + (h/4)∇²V`, band solves) |
 //! | integrator | [`integrator`], [`maps`] | rule + forces + constraints + solver + buffers; `F_{L_d}`, `F̃_{L_d}` |
 //! | run | [`problem`], [`simulate`], [`trajectory`] | problem → trajectory, stride, observers, failures |
-//! | diagnostics | [`diagnostics`] | energy error and drift; momentum maps (Noether) and the force balance |
+//! | diagnostics | [`diagnostics`] | energy error and drift; momentum maps (Noether) and the force balance; energy balance with forces; constraint residuals and multipliers |
 //! | symmetry | [`symmetry`] | group actions, generators and lifts, `J_L`, `J_H`, `J^±_{L_d}`, symmetry checks |
 //! | Hamiltonian side | [`hamiltonian`] | `H(q, p)`, `X_H`, implicit midpoint, Störmer–Verlet, Legendre adapters |
 //! | certificates | [`certificate`] | exact Jacobian of the step map, symplecticity defect `‖DFᵀJDF − J‖` |
@@ -45,7 +47,9 @@ pub mod discrete;
 pub mod error;
 pub mod explicit;
 pub mod force;
+pub mod forces;
 pub mod hamiltonian;
+pub mod holonomic;
 pub mod integrator;
 pub mod lagrangian;
 pub mod linalg;
@@ -60,6 +64,7 @@ pub mod scratch;
 pub mod separable;
 pub mod simulate;
 pub mod small;
+pub mod small_constrained;
 pub mod special;
 pub mod step;
 pub mod structure;
