@@ -44,6 +44,7 @@ pub mod certificate;
 pub mod constraint;
 pub mod diagnostics;
 pub mod discrete;
+pub mod ensemble;
 pub mod error;
 pub mod explicit;
 pub mod force;
