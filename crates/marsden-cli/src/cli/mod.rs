@@ -16,6 +16,7 @@ use clap::{Args, Parser, Subcommand};
 
 use crate::error::{CliError, Status};
 use crate::problem::Overrides;
+use crate::run::shard::Shard;
 
 /// Discrete mechanics and variational integrators from TOML problem files.
 #[derive(Debug, Parser)]
@@ -84,6 +85,13 @@ pub struct RunArgs {
     /// Never show the progress bar.
     #[arg(long)]
     pub no_progress: bool,
+    /// With `[sweep]`: run only the members `k` with `k % n == i` (for array jobs; rows keep
+    /// their global member index; files `sweep.shard-i-of-n.csv`).
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<Shard>,
+    /// With `[sweep]`: number of worker threads (default: one per core).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+    pub threads: Option<u16>,
 }
 
 /// Parses `args` (the first is the program name) and runs the command; the process's exit

@@ -8,16 +8,19 @@
 
 pub mod check;
 pub mod method;
+pub mod nbody_file;
 pub mod parameters;
 pub mod raw;
 pub mod settings;
 pub mod spec;
+pub mod sweep;
 pub mod system;
 pub mod toml_error;
 
 use std::path::Path;
 
 pub use method::Method;
+pub use sweep::{SweepSpec, SweepTarget};
 pub use spec::{
     Format, InitialData, InitialSpec, IntegratorSpec, LagrangianSpec, OutputSpec, Overrides,
     RunSpec, SpecSpans, SystemSpec,
@@ -41,20 +44,57 @@ pub fn load(path: &Path, overrides: &Overrides) -> Result<RunSpec, Diagnostic> {
     validate(SourceFile::new(path, text), overrides)
 }
 
-/// Validates the text of a problem file (stage 1 then stage 2).
+/// Validates the text of a problem file (stage 1 then stage 2), its `[sweep]` included.
 ///
 /// # Errors
 /// A diagnostic for the first mistake found.
 pub fn validate(source: SourceFile, overrides: &Overrides) -> Result<RunSpec, Diagnostic> {
     let raw = raw::parse(source.text()).map_err(|e| toml_error::diagnose(&source, &e))?;
+    validate_raw(source, &raw, overrides, true)
+}
+
+/// Member `k` of the sweep of `base`: the file with the swept value replaced by the member's
+/// value, validated again (without its `[sweep]`).
+///
+/// # Errors
+/// A value the problem cannot take (e.g. initial positions off the constraints).
+pub fn member(base: &RunSpec, overrides: &Overrides, k: usize) -> Result<RunSpec, Diagnostic> {
+    let source = base.source.clone();
+    let mut raw = raw::parse(source.text()).map_err(|e| toml_error::diagnose(&source, &e))?;
+    if let Some(sweep) = &base.sweep
+        && let Some(value) = sweep.values.get(k)
+    {
+        sweep::apply(&mut raw, sweep, *value);
+    }
+    validate_raw(source, &raw, overrides, false)
+}
+
+fn validate_raw(
+    source: SourceFile,
+    raw: &raw::RawProblem,
+    overrides: &Overrides,
+    with_sweep: bool,
+) -> Result<RunSpec, Diagnostic> {
     let ck = Checker::new(&source);
-    let system = system::system(&ck, raw.system.as_ref())?;
-    let (initial, initial_spans) =
-        settings::initial(&ck, raw.initial.as_ref(), &system.coordinates)?;
+    let bodies = nbody_file::read(&ck, raw.initial.as_ref())?;
+    let system = system::system(&ck, raw.system.as_ref(), bodies.as_ref())?;
+    let (initial, initial_spans) = settings::initial(
+        &ck,
+        raw.initial.as_ref(),
+        &system.coordinates,
+        bodies.as_ref(),
+    )?;
     settings::constraints_at_start(&ck, &system.constraint, &initial.q, initial_spans.q)?;
     let integrator = settings::integrator(&ck, raw.integrator.as_ref(), initial.t0, overrides)?;
-    let name = run_name(&raw, &system, source.path());
+    let name = run_name(raw, &system, source.path());
     let output = settings::output(&ck, raw.output.as_ref(), &name, overrides)?;
+    let sweep = match with_sweep {
+        true => {
+            let parts = (&system, &initial, bodies.is_some());
+            sweep::sweep(&ck, raw.sweep.as_ref(), parts)?
+        }
+        false => None,
+    };
     let system_table = raw.system.as_ref().map(|s| s.get_ref());
     let lagrangian_span = system_table
         .and_then(|s| s.lagrangian.as_ref().or(s.builtin.as_ref()))
@@ -71,6 +111,7 @@ pub fn validate(source: SourceFile, overrides: &Overrides) -> Result<RunSpec, Di
         integrator,
         output,
         spans,
+        sweep,
     })
 }
 

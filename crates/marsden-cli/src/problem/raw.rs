@@ -31,6 +31,9 @@
 //! format = "csv"
 //! every = 1
 //! plots = true
+//! [sweep]                    # optional: an ensemble of runs
+//! parameter = "l"            # or initial = "q[0]"
+//! values = [0.5, 1.0]        # or range = { start = 0.1, stop = 1.0, count = 10 }
 //! ```
 
 use std::fmt;
@@ -55,6 +58,34 @@ pub struct RawProblem {
     pub integrator: Option<Spanned<RawIntegrator>>,
     /// `[output]`: where and how results are written.
     pub output: Option<Spanned<RawOutput>>,
+    /// `[sweep]`: one parameter or initial value over a list of values (an ensemble of runs).
+    pub sweep: Option<Spanned<RawSweep>>,
+}
+
+/// `[sweep]`: what is swept (`parameter` or `initial`) and over what (`values` or `range`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSweep {
+    /// A scalar parameter of `[system] parameters` (or a builtin's default).
+    pub parameter: Option<Spanned<String>>,
+    /// An initial value: `q[i]`, `v[i]` or `p[i]`.
+    pub initial: Option<Spanned<String>>,
+    /// The values, as a list.
+    pub values: Option<SpannedList<f64>>,
+    /// The values, evenly spaced from `start` to `stop` (both included).
+    pub range: Option<Spanned<RawRange>>,
+}
+
+/// `range = { start = 0.1, stop = 1.0, count = 10 }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawRange {
+    /// First value.
+    pub start: Option<Spanned<f64>>,
+    /// Last value (included).
+    pub stop: Option<Spanned<f64>>,
+    /// Number of values (at least 1).
+    pub count: Option<Spanned<i64>>,
 }
 
 /// `[system]`.
@@ -103,6 +134,9 @@ pub struct RawInitial {
     pub v: Option<SpannedList<f64>>,
     /// Momenta (exactly one of `v` and `p`).
     pub p: Option<SpannedList<f64>>,
+    /// `nbody` only: masses, positions and velocities from a file in the benchmark format
+    /// (`N`, then `m x y z vx vy vz` per body), relative to the problem file.
+    pub file: Option<Spanned<String>>,
 }
 
 /// `[integrator]`.

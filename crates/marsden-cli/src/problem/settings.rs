@@ -7,6 +7,7 @@ use marsden::{NewtonOptions, TimeGrid};
 use toml::Spanned;
 
 use super::check::Checker;
+use super::nbody_file::BodiesFile;
 use super::method::{METHOD_NAMES, Method};
 use super::raw::{RawInitial, RawIntegrator, RawOutput};
 use super::spec::{Format, InitialData, InitialSpec, IntegratorSpec, OutputSpec, Overrides};
@@ -24,17 +25,21 @@ pub struct InitialSpans {
     pub data: Range<usize>,
 }
 
-/// Validates `[initial]` against the coordinates.
+/// Validates `[initial]` against the coordinates (`bodies`: the data of `file = "…"`).
 pub fn initial(
     ck: &Checker<'_>,
     raw: Option<&Spanned<RawInitial>>,
     coordinates: &[String],
+    bodies: Option<&BodiesFile>,
 ) -> Result<(InitialSpec, InitialSpans), Diagnostic> {
     let Some(raw) = raw else {
         return Err(Diagnostic::new("the problem file has no [initial] table")
             .help("add [initial] with `q = [...]` and `v = [...]` (or `p = [...]`)"));
     };
     let table = raw.get_ref();
+    if let Some(bodies) = bodies {
+        return from_file(ck, table, bodies);
+    }
     let Some(q) = &table.q else {
         return Err(ck.error(
             Some(raw.span()),
@@ -76,6 +81,37 @@ pub fn initial(
         data: span,
     };
     Ok((InitialSpec { t0, q, data }, spans))
+}
+
+/// The initial state of an N-body file; `q`, `v` and `p` must not be written as well.
+fn from_file(
+    ck: &Checker<'_>,
+    table: &RawInitial,
+    bodies: &BodiesFile,
+) -> Result<(InitialSpec, InitialSpans), Diagnostic> {
+    let written = [&table.q, &table.v, &table.p];
+    if let Some(list) = written.into_iter().flatten().next() {
+        return Err(ck
+            .error(
+                Some(list.span()),
+                "give the initial state either in `file` or as `q`, `v`/`p`, not both",
+            )
+            .help("the file holds the positions and velocities of every body"));
+    }
+    let t0 = table
+        .t0
+        .as_ref()
+        .map_or(Ok(0.0), |t| ck.finite("initial.t0", t))?;
+    let spec = InitialSpec {
+        t0,
+        q: bodies.data.q.clone(),
+        data: InitialData::Velocity(bodies.data.v.clone()),
+    };
+    let spans = InitialSpans {
+        q: bodies.span.clone(),
+        data: bodies.span.clone(),
+    };
+    Ok((spec, spans))
 }
 
 /// Checks that the initial positions satisfy the constraints: `|φᵢ(q₀)| ≤ 1e-9 · max(1, |q₀|)`.

@@ -41,6 +41,9 @@ pub struct RunSpec {
     pub output: OutputSpec,
     /// Spans of values the core may still reject.
     pub spans: SpecSpans,
+    /// `[sweep]`: the ensemble to run instead of a single run (`None` for a plain file and
+    /// for each member of a sweep).
+    pub sweep: Option<super::SweepSpec>,
 }
 
 /// Where the values that only the core can judge were written.

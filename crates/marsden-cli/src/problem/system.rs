@@ -4,10 +4,11 @@
 use toml::Spanned;
 
 use super::check::{Checker, count_coordinates};
+use super::nbody_file::BodiesFile;
 use super::parameters::{self, Parameters};
 use super::raw::{RawSymmetry, RawSystem, SpannedList};
 use super::spec::{LagrangianSpec, SystemSpec};
-use crate::catalog::Builtin;
+use crate::catalog::{Builtin, MASSES};
 use crate::error::Diagnostic;
 use crate::expr::suggest::closest;
 use crate::expr::{Expr, Program, Symbols};
@@ -65,10 +66,11 @@ fn symmetry_label(s: &RawSymmetry, k: usize) -> String {
         .map_or(format!("#{}", k + 1), |n| format!("`{}`", n.get_ref()))
 }
 
-/// Validates `[system]`.
+/// Validates `[system]`; `bodies` are the masses of an `[initial] file` (N-body only).
 pub fn system(
     ck: &Checker<'_>,
     raw: Option<&Spanned<RawSystem>>,
+    bodies: Option<&BodiesFile>,
 ) -> Result<SystemSpec, Diagnostic> {
     let Some(raw) = raw else {
         return Err(Diagnostic::new("the problem file has no [system] table").help(
@@ -81,7 +83,10 @@ pub fn system(
             .error(Some(h.span()), "`hamiltonian` problems are not supported yet")
             .help("write the Lagrangian instead: `lagrangian = \"...\"` with `<coordinate>_dot` velocities"));
     }
-    let params = Parameters::read(ck, system)?;
+    let mut params = Parameters::read(ck, system)?;
+    if let Some(bodies) = bodies {
+        file_masses(ck, system, &mut params, bodies)?;
+    }
     let parsed = Parsed::read(ck, system)?;
     let (lagrangian, coordinates, constants, masses) = match (&system.lagrangian, &system.builtin) {
         (Some(_), Some(b)) => {
@@ -115,6 +120,37 @@ pub fn system(
         constraint,
         symmetries,
     })
+}
+
+/// The masses of an `[initial] file` become the `masses` parameter of `builtin = "nbody"`.
+fn file_masses(
+    ck: &Checker<'_>,
+    system: &RawSystem,
+    params: &mut Parameters,
+    bodies: &BodiesFile,
+) -> Result<(), Diagnostic> {
+    let builtin = system.builtin.as_ref().map(|b| b.get_ref().as_str());
+    if builtin != Some(Builtin::NBody.name()) {
+        return Err(ck
+            .error(
+                Some(bodies.span.clone()),
+                "`[initial] file` holds N-body data: it needs `builtin = \"nbody\"`",
+            )
+            .help("for other systems give `q = [...]` and `v = [...]` (or `p`)"));
+    }
+    if let Some((_, _, span)) = params.lists.iter().find(|(name, ..)| name == MASSES) {
+        return Err(ck
+            .error(
+                Some(span.clone()),
+                "the masses are given twice: in `parameters` and in `[initial] file`",
+            )
+            .help("remove `masses` from `parameters`: the file's masses are used"));
+    }
+    let masses = bodies.data.masses.clone();
+    params
+        .lists
+        .push((MASSES.to_owned(), masses, bodies.span.clone()));
+    Ok(())
 }
 
 type Resolved = (

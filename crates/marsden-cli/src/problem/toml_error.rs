@@ -50,6 +50,10 @@ fn table_of(valid: &[&str]) -> &'static str {
         "[integrator]"
     } else if has("format") {
         "[output]"
+    } else if has("values") {
+        "[sweep]"
+    } else if has("stop") {
+        "[sweep] range"
     } else if has("system") {
         "the top level of the file"
     } else {

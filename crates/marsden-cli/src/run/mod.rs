@@ -8,14 +8,19 @@
 //! * [`execute`] — the whole `marsden run`: directories, writer, runner, plots, summary.
 //! * [`output`] (columns, writers), [`diagnostics`], [`progress`], [`start`] (the initial
 //!   state), [`summary`] (`summary.json`), [`report`] (the text on stdout).
+//! * [`sweep`] — `marsden run` on a file with `[sweep]`: the members in parallel
+//!   ([`marsden::ensemble`]), a [`shard`] of them, one row each ([`sweep_table`]).
 
 pub mod diagnostics;
 pub mod observer;
 pub mod output;
 pub mod progress;
 pub mod report;
+pub mod shard;
 pub mod start;
 pub mod summary;
+pub mod sweep;
+pub mod sweep_table;
 
 use std::path::PathBuf;
 use std::time::Instant;

@@ -1,0 +1,53 @@
+//! `[initial] file = "bodies.txt"`: masses, positions and velocities of `builtin = "nbody"`
+//! from a file in the benchmark format (first line `N`, then `m x y z vx vy vz` per body),
+//! read with the core's loader ([`marsden::systems::nbody::parse_file`]). The path is relative
+//! to the problem file; every mistake in the file names its line.
+
+use std::ops::Range;
+use std::path::PathBuf;
+
+use marsden::systems::nbody::{NBodyData, parse_file};
+use toml::Spanned;
+
+use super::check::Checker;
+use super::raw::RawInitial;
+use crate::error::Diagnostic;
+
+/// The bodies read from the file, with the span of the `file` value.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodiesFile {
+    /// Masses, positions and velocities.
+    pub data: NBodyData,
+    /// Where `file = "…"` is written.
+    pub span: Range<usize>,
+    /// The path as resolved (relative to the problem file).
+    pub path: PathBuf,
+}
+
+/// Reads `[initial] file` if it is given.
+///
+/// # Errors
+/// The file cannot be read, or a line of it is malformed (the message has its line number).
+pub fn read(
+    ck: &Checker<'_>,
+    initial: Option<&Spanned<RawInitial>>,
+) -> Result<Option<BodiesFile>, Diagnostic> {
+    let Some(file) = initial.and_then(|i| i.get_ref().file.as_ref()) else {
+        return Ok(None);
+    };
+    let span = file.span();
+    let base = ck.source.path().parent().map(PathBuf::from);
+    let path = base.unwrap_or_default().join(file.get_ref());
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        ck.error(
+            Some(span.clone()),
+            format!("cannot read the N-body file {}: {e}", path.display()),
+        )
+        .help("the path is relative to the problem file's directory")
+    })?;
+    let data = parse_file(&text).map_err(|e| {
+        ck.error(Some(span.clone()), format!("in {}: {e}", path.display()))
+            .note("format: first line N, then one line `m x y z vx vy vz` per body")
+    })?;
+    Ok(Some(BodiesFile { data, span, path }))
+}
