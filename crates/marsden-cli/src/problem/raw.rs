@@ -20,6 +20,7 @@
 //! q = [1.5]
 //! v = [0.0]                  # or p = [...]
 //! t0 = 0.0                   # extension: initial time (default 0)
+//! project = false            # with constraints: project (q, v) onto the manifold first
 //! [integrator]
 //! method = "midpoint"
 //! h = 0.05
@@ -103,6 +104,9 @@ pub struct RawInitial {
     pub v: Option<SpannedList<f64>>,
     /// Momenta (exactly one of `v` and `p`).
     pub p: Option<SpannedList<f64>>,
+    /// Project `(q, v)` or `(q, p)` onto the constraint manifold before the run (default
+    /// false: initial data off the constraints are an error).
+    pub project: Option<bool>,
 }
 
 /// `[integrator]`.

@@ -75,7 +75,16 @@ pub fn initial(
         q: q_span,
         data: span,
     };
-    Ok((InitialSpec { t0, q, data }, spans))
+    let project = table.project.unwrap_or(false);
+    Ok((
+        InitialSpec {
+            t0,
+            q,
+            data,
+            project,
+        },
+        spans,
+    ))
 }
 
 /// Checks that the initial positions satisfy the constraints: `|φᵢ(q₀)| ≤ 1e-9 · max(1, |q₀|)`.

@@ -131,6 +131,9 @@ pub struct InitialSpec {
     pub q: Vec<f64>,
     /// Velocities or momenta.
     pub data: InitialData,
+    /// Project the data onto the constraint manifold (`φ(q) = 0`, `Dφ(q) v = 0`) before the
+    /// run; otherwise data off the manifold are refused.
+    pub project: bool,
 }
 
 impl InitialSpec {
