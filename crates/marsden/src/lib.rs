@@ -23,7 +23,8 @@
 //! | scalar | [`scalar`] | one generic axis: `f64` or dual numbers |
 //! | system | [`lagrangian`], [`force`], [`constraint`], [`systems`] | `L(t, q, v)`, `f_L`, `φ(q)`, the catalog |
 //! | continuous mechanics | [`mechanics`] | Legendre transform, energy, Euler–Lagrange, regularity |
-//! | discrete Lagrangian | [`discrete`], [`rules`] | `L_d`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; midpoint, trapezoid, α-rules |
+//! | discrete Lagrangian | [`discrete`], [`rules`] | `L_d`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; midpoint, trapezoid, α-rules, Galerkin (Gauss, Lobatto), compositions |
+//! | exact discrete Lagrangian | [`exact`] | `L_d^E` by shooting, `F^±L_d^E = FL`, local (variational) error |
 //! | step | [`step`], [`small`], [`explicit`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
 //! | integrator | [`integrator`], [`maps`] | rule + forces + constraints + solver + buffers; `F_{L_d}`, `F̃_{L_d}` |
 //! | run | [`problem`], [`simulate`], [`trajectory`] | problem → trajectory, stride, observers, failures |
@@ -42,6 +43,7 @@ pub mod constraint;
 pub mod diagnostics;
 pub mod discrete;
 pub mod error;
+pub mod exact;
 pub mod explicit;
 pub mod force;
 pub mod hamiltonian;
