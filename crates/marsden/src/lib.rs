@@ -28,6 +28,7 @@
 //! | step | [`step`], [`small`], [`explicit`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
 //! | integrator | [`integrator`], [`maps`] | rule + forces + constraints + solver + buffers; `F_{L_d}`, `F̃_{L_d}` |
 //! | run | [`problem`], [`simulate`], [`trajectory`] | problem → trajectory, stride, observers, failures |
+//! | order of convergence | [`order`] | empirical order (log–log slope before round-off), references |
 //! | diagnostics | [`diagnostics`] | energy error and drift; momentum maps (Noether) and the force balance |
 //! | symmetry | [`symmetry`] | group actions, generators and lifts, `J_L`, `J_H`, `J^±_{L_d}`, symmetry checks |
 //! | Hamiltonian side | [`hamiltonian`] | `H(q, p)`, `X_H`, implicit midpoint, Störmer–Verlet, Legendre adapters |
@@ -53,6 +54,7 @@ pub mod linalg;
 pub mod maps;
 pub mod mechanics;
 pub mod newton;
+pub mod order;
 pub mod problem;
 pub mod rules;
 pub mod scalar;
