@@ -21,12 +21,14 @@
 mod alpha;
 pub mod composition;
 pub mod galerkin;
+pub mod method;
 pub mod quadrature;
 mod symmetrized;
 
 pub use alpha::{AlphaForce, AlphaLd, GeneralizedMidpoint, Midpoint};
 pub use composition::{ComposedForce, ComposedLd, Composition, CompositionScheme};
 pub use galerkin::{Galerkin, GalerkinForce, GalerkinLd};
+pub use method::{BaseMethod, METHOD_GRAMMAR, Method, WithRule};
 pub use quadrature::{Quadrature, QuadratureFamily};
 pub use symmetrized::{SymmetrizedForce, SymmetrizedLd, SymmetrizedMidpoint, Trapezoid};
 
