@@ -265,3 +265,24 @@ fn a_new_run_replaces_the_files_of_the_previous_one() {
         "mine"
     );
 }
+
+/// A declared symmetry that is not one is reported (with ⟨dL, ξ_TQ⟩ by the core's check), and a
+/// true one is not.
+#[test]
+fn a_declared_non_symmetry_is_reported_and_a_true_one_is_not() {
+    let run = run_ok("henon_heiles_rotation.toml", &[]);
+    assert!(
+        run.stderr
+            .contains("\"Lz\" is not a symmetry of the Lagrangian: ⟨dL, ξ_TQ⟩ ="),
+        "{}",
+        run.stderr
+    );
+    // −λ(x³ − 3xy²) at (0.5, 0.2): 0.065 (the analytic defect of a rotation).
+    assert!(run.stderr.contains("6.500e-2"), "{}", run.stderr);
+    let kepler = run_ok("kepler_symmetry.toml", &["--steps", "10"]);
+    assert!(
+        !kepler.stderr.contains("not a symmetry"),
+        "{}",
+        kepler.stderr
+    );
+}

@@ -8,7 +8,8 @@
 //! ```
 //!
 //! are solved for `(q_{k+1}, λ_k)` in one Newton system; the multipliers are the (scaled)
-//! constraint forces.
+//! constraint forces. The RATTLE momentum projection, the checks and projections of initial
+//! data, and ready-made constraints live in [`crate::holonomic`].
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LMO08]: Leyendecker, Marsden, Ortiz,
 //! *Variational integrators for constrained dynamical systems*, ZAMM 88 (2008).
@@ -21,6 +22,11 @@ pub trait Constraint {
     fn count(&self) -> usize;
     /// Writes `φ(q)` into `out` (length d).
     fn constraint<S: Scalar>(&self, q: &[S], out: &mut [S]);
+    /// Checks that the constraints fit a system with `dof` coordinates (called once by
+    /// [`crate::Problem::with_constraint`]; the default accepts every `dof`).
+    fn validate(&self, _dof: usize) -> Result<(), crate::Error> {
+        Ok(())
+    }
 }
 
 /// No constraints (the default): `d = 0`.
@@ -41,5 +47,8 @@ impl<C: Constraint + ?Sized> Constraint for &C {
     #[inline(always)]
     fn constraint<S: Scalar>(&self, q: &[S], out: &mut [S]) {
         (**self).constraint(q, out)
+    }
+    fn validate(&self, dof: usize) -> Result<(), crate::Error> {
+        (**self).validate(dof)
     }
 }

@@ -143,6 +143,105 @@ pub enum Error {
         /// Final residual `|∂L/∂v(q, v) − p|`.
         residual: f64,
     },
+    // ---- Holonomic constraints and initial data (issue 3) ----
+    /// The initial positions violate the holonomic constraints beyond the tolerance.
+    #[error(
+        "the initial positions q0 violate constraint {index}: |φ_{index}(q0)| = {residual:.3e} \
+         > tolerance {tolerance:.1e}; move q0 onto the constraint manifold (e.g. with \
+         marsden::holonomic::project_position or Initial::project_onto)"
+    )]
+    InitialPositionOffConstraint {
+        /// Index of the most violated constraint.
+        index: usize,
+        /// Its value `φ_index(q₀)`.
+        residual: f64,
+        /// The tolerance it was checked against (already scaled).
+        tolerance: f64,
+    },
+    /// The initial velocities (or the velocities `FH(q₀, p₀)` of the initial momenta) are not
+    /// tangent to the constraint manifold.
+    #[error(
+        "the initial {what} is not tangent to the constraint manifold: the velocity constraint \
+         {index} has residual (Dφ(q0)·v0)_{index} = {residual:.3e} > tolerance {tolerance:.1e}; \
+         project it with Initial::project_onto"
+    )]
+    InitialVelocityNotTangent {
+        /// `"velocity v0"` or `"momentum p0"`.
+        what: &'static str,
+        /// Index of the most violated velocity constraint.
+        index: usize,
+        /// Its value `(Dφ(q₀) v₀)_index`.
+        residual: f64,
+        /// The tolerance it was checked against (already scaled).
+        tolerance: f64,
+    },
+    /// The constraint Jacobian `Dφ` does not have full row rank: some constraints are redundant.
+    #[error(
+        "the {count} constraints are redundant at q = {q:?}: Dφ has rank {rank} < {count} \
+         (singular values {singular_values:?}; rank counts those above {threshold:.1e}); remove \
+         the dependent constraints"
+    )]
+    RedundantConstraints {
+        /// Number of constraints `d`.
+        count: usize,
+        /// Numerical rank of `Dφ(q)`.
+        rank: usize,
+        /// The singular values of `Dφ(q)`, largest first.
+        singular_values: Vec<f64>,
+        /// The threshold below which a singular value counts as zero.
+        threshold: f64,
+        /// The positions at which `Dφ` was factored.
+        q: Vec<f64>,
+    },
+    /// A constrained step could not satisfy `φ(q_{k+1}) = 0`.
+    #[error(
+        "constraint {index} could not be satisfied in step {step} (t = {t}): |φ_{index}(q)| = \
+         {residual:.3e} after {iterations} Newton iterations; the constraint may have no \
+         solution near q_k (is it satisfiable?), or the step h is too large"
+    )]
+    ConstraintNotSatisfied {
+        /// Index of the step being taken.
+        step: usize,
+        /// Time at the start of the step.
+        t: f64,
+        /// Index of the most violated constraint at the last iterate.
+        index: usize,
+        /// Its value at the last iterate.
+        residual: f64,
+        /// Newton iterations performed.
+        iterations: usize,
+    },
+    /// Projecting positions onto the constraint manifold `φ(q) = 0` failed.
+    #[error(
+        "could not project q onto the constraint manifold: |φ_{index}(q)| = {residual:.3e} after \
+         {iterations} Newton iterations; the constraint may be unsatisfiable (φ(q) = 0 has no \
+         solution near q) or singular there"
+    )]
+    PositionProjectionFailed {
+        /// Iterations performed.
+        iterations: usize,
+        /// Index of the most violated constraint at the last iterate.
+        index: usize,
+        /// Its value at the last iterate.
+        residual: f64,
+    },
+    /// The RATTLE projection of the momenta onto the cotangent space of the constraint manifold
+    /// failed.
+    #[error(
+        "the momentum projection (RATTLE) failed after step {step} (t = {t}): residual \
+         {residual:.3e} after {iterations} Newton iterations (the KKT matrix [[∂²L/∂v², Dφᵀ], \
+         [Dφ, 0]] may be singular: redundant constraints or a singular Lagrangian)"
+    )]
+    MomentumProjectionFailed {
+        /// Number of the step after which the projection ran (0: initial data).
+        step: usize,
+        /// Time of the state being projected.
+        t: f64,
+        /// Newton iterations performed.
+        iterations: usize,
+        /// Residual (max-norm) at the last iterate.
+        residual: f64,
+    },
 
     // ---- Symmetries, momentum maps and the Hamiltonian side (issue 4) ----
     /// A group action acts on a configuration space of the wrong dimension: its generators

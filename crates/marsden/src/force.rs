@@ -14,6 +14,9 @@
 //! with its own quadrature (see [`crate::rules`]). Generalising to control points, a
 //! `DiscreteForce` returns the generalised force on every control point of a step, so forces
 //! work with Galerkin rules too.
+//!
+//! Ready-made forces (damping, constant and periodic driving, controls, sums, Hamiltonian forces
+//! `f_H(t, q, p)` and user-written discrete forces `f_d^±`) live in [`crate::forces`].
 
 use crate::Scalar;
 
@@ -24,6 +27,11 @@ pub trait Force {
     /// `false` for the no-op force, so the integrator can skip all force work.
     fn is_active(&self) -> bool {
         true
+    }
+    /// Checks that the force fits a system with `dof` coordinates (called once by
+    /// [`crate::Problem::integrator`] before any step; the default accepts every `dof`).
+    fn validate(&self, _dof: usize) -> Result<(), crate::Error> {
+        Ok(())
     }
 }
 
@@ -77,5 +85,8 @@ impl<F: Force + ?Sized> Force for &F {
     }
     fn is_active(&self) -> bool {
         (**self).is_active()
+    }
+    fn validate(&self, dof: usize) -> Result<(), crate::Error> {
+        (**self).validate(dof)
     }
 }

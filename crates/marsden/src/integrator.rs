@@ -1,16 +1,21 @@
 //! The integrator: a discrete action (rule applied to `L`), discrete forces, constraints,
 //! Newton's method and its buffers. One call to [`Integrator::step`] is one application of the
 //! (forced, constrained) discrete Hamiltonian map `F̃_{L_d}: (q_k, p_k) ↦ (q_{k+1}, p_{k+1})`
-//! ([MW01] §1.5, seed: *discrete Hamiltonian map*).
+//! ([MW01] §1.5, seed: *discrete Hamiltonian map*). With constraints, an optional
+//! [`MomentumProjection`] (RATTLE, [`crate::holonomic::Rattle`]) is applied to the momenta after
+//! the SHAKE solve ([`crate::holonomic`] describes the constrained scheme).
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 use num_dual::{HyperDual64, HyperDualSVec64};
 
 use crate::ad::HessianParts;
+use crate::holonomic::{MomentumProjection, NoProjection};
 use crate::newton::{self, NewtonFailure, NewtonOptions, NewtonReport, NewtonWorkspace};
 use crate::small::SmallStep;
-use crate::step::{StepFunction, StepShape, StepSystem, constraint_jacobian};
+use crate::small_constrained::constraint_jacobian;
+use crate::small_constrained::{MAX_CONSTRAINTS, SmallConstrainedStep};
+use crate::step::{StepFunction, StepShape, StepSystem};
 use crate::{Constraint, DiscreteAction, DiscreteForce, Error, NoForce, Unconstrained};
 
 /// A point of phase space `(t, q, p)`.
@@ -52,7 +57,8 @@ pub struct Statistics {
     pub explicit_steps: usize,
 }
 
-/// Steps a discrete action `A` with discrete forces `F` and constraints `C`.
+/// Steps a discrete action `A` with discrete forces `F`, constraints `C` and a momentum
+/// projection `P` (applied after each solved step; [`NoProjection`] by default).
 ///
 /// ```
 /// use marsden::{Integrator, Midpoint, Rule, State, systems::Pendulum};
@@ -64,10 +70,11 @@ pub struct Statistics {
 /// assert!((state.t - 0.1).abs() < 1e-15);
 /// ```
 #[derive(Debug, Clone)]
-pub struct Integrator<A, F = NoForce, C = Unconstrained> {
+pub struct Integrator<A, F = NoForce, C = Unconstrained, P = NoProjection> {
     action: A,
     force: F,
     constraint: C,
+    projection: P,
     options: NewtonOptions,
     shape: StepShape,
     buffers: Buffers,
@@ -86,6 +93,15 @@ struct Buffers {
     p_next: Vec<f64>,
     phi: Vec<f64>,
     dphi0: Vec<f64>,
+    /// `q_{k+1}` for the momentum projection, and `φ`, `Dφ` there.
+    q_next: Vec<f64>,
+    phi_next: Vec<f64>,
+    dphi_next: Vec<f64>,
+    /// Whether `dphi0` already holds `Dφ` at the current `state.q` (computed by the projection
+    /// of the previous step; checked against `q_next` before reuse).
+    dphi0_current: bool,
+    /// Projection multipliers `μ_k = ν/h` of the last step.
+    mu: Vec<f64>,
     work: Vec<f64>,
 }
 
@@ -102,6 +118,7 @@ impl<A: DiscreteAction> Integrator<A> {
             action,
             force: NoForce,
             constraint: Unconstrained,
+            projection: NoProjection,
             options: NewtonOptions::default(),
             shape,
             buffers: Buffers::default(),
@@ -112,9 +129,11 @@ impl<A: DiscreteAction> Integrator<A> {
     }
 }
 
-impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
+impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
+    Integrator<A, F, C, P>
+{
     /// Adds discrete forces (replacing any previous ones).
-    pub fn with_force<F2: DiscreteForce>(self, force: F2) -> Integrator<A, F2, C> {
+    pub fn with_force<F2: DiscreteForce>(self, force: F2) -> Integrator<A, F2, C, P> {
         let shape = StepShape {
             forced: force.is_active(),
             ..self.shape
@@ -123,6 +142,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
             action: self.action,
             force,
             constraint: self.constraint,
+            projection: self.projection,
             options: self.options,
             shape,
             buffers: Buffers::default(),
@@ -133,7 +153,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
     }
 
     /// Adds holonomic constraints (replacing any previous ones).
-    pub fn with_constraint<C2: Constraint>(self, constraint: C2) -> Integrator<A, F, C2> {
+    pub fn with_constraint<C2: Constraint>(self, constraint: C2) -> Integrator<A, F, C2, P> {
         let shape = StepShape {
             d: constraint.count(),
             ..self.shape
@@ -142,10 +162,31 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
             action: self.action,
             force: self.force,
             constraint,
+            projection: self.projection,
             options: self.options,
             shape,
             buffers: Buffers::default(),
             predictor: Predictor::default(),
+            statistics: self.statistics,
+            fast_paths: self.fast_paths,
+        }
+    }
+
+    /// Adds a momentum projection applied after every solved step (replacing any previous one),
+    /// e.g. [`crate::holonomic::Rattle`] for constrained systems.
+    pub fn with_projection<P2: MomentumProjection>(
+        self,
+        projection: P2,
+    ) -> Integrator<A, F, C, P2> {
+        Integrator {
+            action: self.action,
+            force: self.force,
+            constraint: self.constraint,
+            projection,
+            options: self.options,
+            shape: self.shape,
+            buffers: self.buffers,
+            predictor: self.predictor,
             statistics: self.statistics,
             fast_paths: self.fast_paths,
         }
@@ -182,6 +223,11 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         &self.constraint
     }
 
+    /// The momentum projection.
+    pub fn projection(&self) -> &P {
+        &self.projection
+    }
+
     /// Sizes of the step's Newton system.
     pub fn shape(&self) -> StepShape {
         self.shape
@@ -202,6 +248,13 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
     pub fn multipliers(&self) -> &[f64] {
         let sn = self.shape.s * self.shape.n;
         self.buffers.z.get(sn..).unwrap_or(&[])
+    }
+
+    /// Projection multipliers `μ_k` of the last completed step: the projection replaced
+    /// `p̃_{k+1}` by `p_{k+1} = p̃_{k+1} − h Dφ(q_{k+1})ᵀ μ_k` (length d; empty without an active
+    /// projection).
+    pub fn projection_multipliers(&self) -> &[f64] {
+        &self.buffers.mu
     }
 
     /// Offsets `Q_j − q_k` of the control points of the last completed step (`j = 1 … s`).
@@ -239,8 +292,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         self.predictor.predict(&mut z, h, self.shape);
         let outcome = self
             .solve(&mut z, state, h)
-            .map_err(|failure| self.newton_error(failure, step, state.t))
-            .and_then(|report| self.check_finite(&z, step, state.t).map(|_| report));
+            .map_err(|failure| self.newton_error(failure, step, state, &z))
+            .and_then(|report| self.check_finite(&z, step, state.t).map(|_| report))
+            .and_then(|report| self.project(&z, state, h, step).map(|_| report));
         let result = match outcome {
             Ok(report) => {
                 self.predictor.record(&z, h);
@@ -272,11 +326,18 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         let sh = self.shape;
         let b = &mut self.buffers;
         b.p_next.resize(sh.n, 0.0);
-        if sh.d > 0 {
+        // Dφ(q_k): reused from the previous step's projection when the state is the one it left.
+        let reuse = b.dphi0_current && b.q_next == state.q;
+        if sh.d > 0 && !reuse {
             b.phi.resize(sh.d, 0.0);
             b.dphi0.resize(sh.d * sh.n, 0.0);
             constraint_jacobian(&self.constraint, &state.q, &mut b.phi, &mut b.dphi0);
         }
+        b.dphi0_current = false;
+        if let Some(result) = self.solve_small_constrained(z, state, h) {
+            return result;
+        }
+        let b = &mut self.buffers;
         let mut system = StepSystem {
             func: StepFunction {
                 action: &self.action,
@@ -389,6 +450,59 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         Some(result)
     }
 
+    /// The statically sized constrained (SHAKE) step ([`crate::small_constrained`]) for
+    /// two-point steps with `n ≤ 4` and `1 ≤ d ≤ 4`, once `Dφ(q_k)` is in the buffers; `None`
+    /// when it does not apply.
+    fn solve_small_constrained(
+        &mut self,
+        z: &mut [f64],
+        state: &State,
+        h: f64,
+    ) -> Option<Result<NewtonReport, NewtonFailure>> {
+        let sh = self.shape;
+        let fits = sh.s == 1 && sh.n <= 4 && (1..=MAX_CONSTRAINTS).contains(&sh.d);
+        if !self.fast_paths || !fits {
+            return None;
+        }
+        let b = &mut self.buffers;
+        let small = SmallConstrainedStep {
+            action: &self.action,
+            force: &self.force,
+            constraint: &self.constraint,
+            t0: state.t,
+            h,
+            q0: &state.q,
+            p0: &state.p,
+            dphi0: &b.dphi0,
+            d: sh.d,
+        };
+        let (o, p_next) = (&self.options, &mut b.p_next);
+        let result = match sh.n {
+            1 => small
+                .solve::<1, HyperDual64>(z, o)
+                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+            2 => small
+                .solve::<2, HyperDualSVec64<2, 2>>(z, o)
+                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+            3 => small
+                .solve::<3, HyperDualSVec64<3, 3>>(z, o)
+                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+            _ => small
+                .solve::<4, HyperDualSVec64<4, 4>>(z, o)
+                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+        }
+        .map(|(report, ())| report);
+        let evaluations = match &result {
+            Ok(r) | Err(NewtonFailure::NotConverged(r)) | Err(NewtonFailure::NonFinite(r)) => {
+                r.evaluations
+            }
+            Err(NewtonFailure::Singular { iteration, .. }) => iteration + 1,
+        };
+        self.statistics.system_evaluations += evaluations;
+        self.statistics.action_evaluations += evaluations;
+        Some(result)
+    }
+
     /// Fails if the converged `Δ_s = q_{k+1} − q_k` or `p_{k+1}` is not finite.
     fn check_finite(&self, z: &[f64], step: usize, t: f64) -> Result<(), Error> {
         let sn = self.shape.s * self.shape.n;
@@ -408,6 +522,49 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         }
     }
 
+    /// Applies the momentum projection to `p_{k+1}` (in the buffers, so that a failure leaves
+    /// `state` untouched) and keeps its multipliers as `μ_k = ν/h`.
+    fn project(&mut self, z: &[f64], state: &State, h: f64, step: usize) -> Result<(), Error> {
+        if !self.projection.is_active() {
+            return Ok(());
+        }
+        let (n, sn) = (self.shape.n, self.shape.s * self.shape.n);
+        let (b, d) = (&mut self.buffers, self.shape.d);
+        b.q_next.clear();
+        b.q_next
+            .extend(state.q.iter().zip(&z[sn - n..sn]).map(|(q, d)| q + d));
+        b.phi_next.resize(d, 0.0);
+        b.dphi_next.resize(d * n, 0.0);
+        if d > 0 {
+            constraint_jacobian(
+                &self.constraint,
+                &b.q_next,
+                &mut b.phi_next,
+                &mut b.dphi_next,
+            );
+        }
+        let t = state.t + h;
+        let projected = self
+            .projection
+            .project(t, &b.q_next, &b.dphi_next, &mut b.p_next);
+        match projected {
+            Ok(_) => {
+                b.mu.clear();
+                b.mu.extend(self.projection.multipliers().iter().map(|nu| nu / h));
+                // Dφ(q_{k+1}) serves the next step too (see `solve`).
+                std::mem::swap(&mut b.dphi0, &mut b.dphi_next);
+                b.dphi0_current = d > 0;
+                Ok(())
+            }
+            Err(failure) => Err(Error::MomentumProjectionFailed {
+                step,
+                t,
+                iterations: failure.iterations,
+                residual: failure.residual,
+            }),
+        }
+    }
+
     /// Writes the converged step into `state`.
     fn accept(&self, z: &[f64], state: &mut State, h: f64) {
         let sn = self.shape.s * self.shape.n;
@@ -417,7 +574,11 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
         state.t += h;
     }
 
-    fn newton_error(&self, failure: NewtonFailure, step: usize, t: f64) -> Error {
+    fn newton_error(&self, failure: NewtonFailure, step: usize, state: &State, z: &[f64]) -> Error {
+        let t = state.t;
+        if let Some(error) = self.constraint_error(&failure, step, state, z) {
+            return error;
+        }
         match failure {
             NewtonFailure::NotConverged(r) => Error::NewtonDidNotConverge {
                 step,
@@ -438,6 +599,41 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> Integrator<A, F, C> {
                 what: "the Newton residual",
             },
         }
+    }
+
+    /// A failed constrained step whose constraint equations `φ(q_{k+1}) = 0` were left unsolved
+    /// is reported as [`Error::ConstraintNotSatisfied`] (e.g. an unsatisfiable constraint).
+    fn constraint_error(
+        &self,
+        failure: &NewtonFailure,
+        step: usize,
+        state: &State,
+        z: &[f64],
+    ) -> Option<Error> {
+        let sh = self.shape;
+        if sh.d == 0 {
+            return None;
+        }
+        // φ at the last Newton iterate q_k + Δ_s (both solvers leave it in `z`).
+        let delta = z.get(sh.s * sh.n - sh.n..sh.s * sh.n)?;
+        let q_end: Vec<f64> = state.q.iter().zip(delta).map(|(q, d)| q + d).collect();
+        let mut phi = vec![0.0; sh.d];
+        self.constraint.constraint(&q_end, &mut phi);
+        let (index, value) = phi.iter().enumerate().fold((0, 0.0_f64), |best, (i, &v)| {
+            if v.abs() > best.1.abs() { (i, v) } else { best }
+        });
+        let tol = self.options.residual_tolerance * crate::linalg::max_norm(&state.p).max(1.0);
+        let iterations = match *failure {
+            NewtonFailure::NotConverged(r) | NewtonFailure::NonFinite(r) => r.iterations,
+            NewtonFailure::Singular { iteration, .. } => iteration,
+        };
+        (value.is_finite() && value.abs() > tol).then_some(Error::ConstraintNotSatisfied {
+            step,
+            t: state.t,
+            index,
+            residual: value,
+            iterations,
+        })
     }
 
     fn count(&mut self, report: NewtonReport) {

@@ -22,14 +22,16 @@
 //! |---|---|---|
 //! | scalar | [`scalar`] | one generic axis: `f64` or dual numbers |
 //! | system | [`lagrangian`], [`force`], [`constraint`], [`systems`] | `L(t, q, v)`, `f_L`, `φ(q)`, the catalog |
+//! | forces | [`forces`] | damping, driving, controls, sums, `f_H ∘ FL`, user `f_d^±` |
+//! | constraints | [`holonomic`] | SHAKE + RATTLE, initial data on `T*N`, distance constraints |
 //! | continuous mechanics | [`mechanics`] | Legendre transform, energy, Euler–Lagrange, regularity |
 //! | discrete Lagrangian | [`discrete`], [`rules`] | `L_d`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; midpoint, trapezoid, α-rules, Galerkin (Gauss, Lobatto), compositions |
 //! | exact discrete Lagrangian | [`exact`] | `L_d^E` by shooting, `F^±L_d^E = FL`, local (variational) error |
-//! | step | [`step`], [`small`], [`explicit`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
+//! | step | [`step`], [`small`], [`small_constrained`], [`explicit`], [`newton`], [`linalg`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians |
 //! | integrator | [`integrator`], [`maps`] | rule + forces + constraints + solver + buffers; `F_{L_d}`, `F̃_{L_d}` |
 //! | run | [`problem`], [`simulate`], [`trajectory`] | problem → trajectory, stride, observers, failures |
 //! | order of convergence | [`order`] | empirical order (log–log slope before round-off), references |
-//! | diagnostics | [`diagnostics`] | energy error and drift; momentum maps (Noether) and the force balance |
+//! | diagnostics | [`diagnostics`] | energy error and drift; momentum maps (Noether) and the force balance; energy balance with forces; constraint residuals and multipliers |
 //! | symmetry | [`symmetry`] | group actions, generators and lifts, `J_L`, `J_H`, `J^±_{L_d}`, symmetry checks |
 //! | Hamiltonian side | [`hamiltonian`] | `H(q, p)`, `X_H`, implicit midpoint, Störmer–Verlet, Legendre adapters |
 //! | certificates | [`certificate`] | exact Jacobian of the step map, symplecticity defect `‖DFᵀJDF − J‖` |
@@ -47,7 +49,9 @@ pub mod error;
 pub mod exact;
 pub mod explicit;
 pub mod force;
+pub mod forces;
 pub mod hamiltonian;
+pub mod holonomic;
 pub mod integrator;
 pub mod lagrangian;
 pub mod linalg;
@@ -61,6 +65,7 @@ pub mod scalar;
 pub mod scratch;
 pub mod simulate;
 pub mod small;
+pub mod small_constrained;
 pub mod special;
 pub mod step;
 pub mod symmetry;

@@ -60,10 +60,7 @@ impl LagrangianJet {
     /// Evaluates all first derivatives and the second derivatives in `v` at `(t, q, v)`.
     pub fn at<L: Lagrangian>(l: &L, t: f64, q: &[f64], v: &[f64]) -> Self {
         let n = l.dof();
-        let mut z = Vec::with_capacity(2 * n + 1);
-        z.push(t);
-        z.extend_from_slice(q);
-        z.extend_from_slice(v);
+        let z = tangent_point(t, q, v);
         let mut parts = HessianParts::default();
         ad::partial_hessian(
             &OnTangentBundle(l),
@@ -94,26 +91,26 @@ impl LagrangianJet {
     }
 }
 
+/// `z = (t, q, v)`, the input of [`OnTangentBundle`].
+fn tangent_point(t: f64, q: &[f64], v: &[f64]) -> Vec<f64> {
+    std::iter::once(t)
+        .chain(q.iter().copied())
+        .chain(v.iter().copied())
+        .collect()
+}
+
 /// Legendre transform `p = ∂L/∂v (t, q, v)`, written into `p`.
 pub fn momentum<L: Lagrangian>(l: &L, t: f64, q: &[f64], v: &[f64], p: &mut [f64]) {
     let n = l.dof();
-    let mut z = Vec::with_capacity(2 * n + 1);
-    z.push(t);
-    z.extend_from_slice(q);
-    z.extend_from_slice(v);
-    let mut value = [0.0];
-    ad::jacobian(&OnTangentBundle(l), &z, n + 1..2 * n + 1, &mut value, p);
+    let z = tangent_point(t, q, v);
+    ad::jacobian(&OnTangentBundle(l), &z, n + 1..2 * n + 1, &mut [0.0], p);
 }
 
 /// `∂L/∂q (t, q, v)`, written into `out`.
 pub fn dl_dq<L: Lagrangian>(l: &L, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
     let n = l.dof();
-    let mut z = Vec::with_capacity(2 * n + 1);
-    z.push(t);
-    z.extend_from_slice(q);
-    z.extend_from_slice(v);
-    let mut value = [0.0];
-    ad::jacobian(&OnTangentBundle(l), &z, 1..n + 1, &mut value, out);
+    let z = tangent_point(t, q, v);
+    ad::jacobian(&OnTangentBundle(l), &z, 1..n + 1, &mut [0.0], out);
 }
 
 /// Energy `E = ⟨∂L/∂v, v⟩ − L` at `(t, q, v)`.

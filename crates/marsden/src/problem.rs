@@ -1,6 +1,11 @@
 //! The problem: a mechanical system (Lagrangian, forces, constraints), its initial state and
 //! the time grid — validated once, before any step is taken.
+//!
+//! With constraints, [`Problem::with_constraint`] checks that the initial data lie on the
+//! constraint manifold (and are tangent to it) and that the constraints are independent there,
+//! and [`Problem::integrator`] adds the RATTLE momentum projection ([`crate::holonomic`]).
 
+use crate::holonomic::{self, Rattle};
 use crate::mechanics;
 use crate::newton::NewtonOptions;
 use crate::simulate::{Observer, RunOptions, TimeGrid, simulate};
@@ -78,6 +83,8 @@ pub struct Problem<L, F = NoForce, C = Unconstrained> {
     start: State,
     v0: Vec<f64>,
     grid: TimeGrid,
+    /// How the initial data were given (`"velocity v0"` or `"momentum p0"`), for messages.
+    given: &'static str,
 }
 
 impl<L: Lagrangian> Problem<L> {
@@ -87,6 +94,10 @@ impl<L: Lagrangian> Problem<L> {
         TimeGrid::new(grid.t0, grid.h, grid.steps)?;
         let n = lagrangian.dof();
         let t = grid.t0;
+        let given = match initial {
+            Initial::Velocity { .. } => "velocity v0",
+            Initial::Momentum { .. } => "momentum p0",
+        };
         let (q, v, p) = match initial {
             Initial::Velocity { q, v } => {
                 check_vector("q0", &q, n)?;
@@ -113,6 +124,7 @@ impl<L: Lagrangian> Problem<L> {
             start: State { t, q, p },
             v0: v,
             grid,
+            given,
         })
     }
 }
@@ -132,19 +144,39 @@ impl<L: Lagrangian, F: Force, C: Constraint> Problem<L, F, C> {
             start: self.start,
             v0: self.v0,
             grid: self.grid,
+            given: self.given,
         }
     }
 
-    /// Adds holonomic constraints (replacing any previous ones).
-    pub fn with_constraint<C2: Constraint>(self, constraint: C2) -> Problem<L, F, C2> {
-        Problem {
+    /// Adds holonomic constraints `φ(q) = 0` (replacing any previous ones), after checking the
+    /// initial data with [`holonomic::check_initial`] at the default tolerance
+    /// [`holonomic::DEFAULT_TOLERANCE`]: `q₀` on the manifold, `Dφ(q₀)` of full rank, `v₀` tangent.
+    /// Data that fail are refused with a typed error naming the residual, never moved; project
+    /// them explicitly with [`Initial::project_onto`].
+    pub fn with_constraint<C2: Constraint>(
+        self,
+        constraint: C2,
+    ) -> Result<Problem<L, F, C2>, Error> {
+        self.with_constraint_tolerance(constraint, holonomic::DEFAULT_TOLERANCE)
+    }
+
+    /// [`Problem::with_constraint`] with a chosen relative tolerance for the initial-data check.
+    pub fn with_constraint_tolerance<C2: Constraint>(
+        self,
+        constraint: C2,
+        tolerance: f64,
+    ) -> Result<Problem<L, F, C2>, Error> {
+        constraint.validate(self.lagrangian.dof())?;
+        holonomic::check_initial(&constraint, &self.start.q, &self.v0, self.given, tolerance)?;
+        Ok(Problem {
             lagrangian: self.lagrangian,
             force: self.force,
             constraint,
             start: self.start,
             v0: self.v0,
             grid: self.grid,
-        }
+            given: self.given,
+        })
     }
 
     /// Replaces the time grid.
@@ -184,17 +216,22 @@ impl<L: Lagrangian, F: Force, C: Constraint> Problem<L, F, C> {
         &self.grid
     }
 
-    /// An integrator for this problem under `rule`, ready to start from [`Problem::start`].
+    /// An integrator for this problem under `rule`, ready to start from [`Problem::start`]: the
+    /// rule's `L_d` and `f_d^±`, the constraints, and the RATTLE momentum projection (inactive
+    /// without constraints) with the same Newton options.
     #[allow(clippy::type_complexity)]
     pub fn integrator<R: Rule>(
         &self,
         rule: &R,
         newton: NewtonOptions,
-    ) -> Result<Integrator<R::Discrete<&L>, R::DiscreteForce<&F>, &C>, Error> {
+    ) -> Result<Integrator<R::Discrete<&L>, R::DiscreteForce<&F>, &C, Rattle<&L, &C>>, Error> {
         let n = self.lagrangian.dof();
+        self.force.validate(n)?;
+        let rattle = Rattle::new(&self.lagrangian, &self.constraint).with_options(newton);
         let mut integrator = Integrator::new(rule.discretize(&self.lagrangian))
             .with_force(rule.discretize_force(&self.force, n))
             .with_constraint(&self.constraint)
+            .with_projection(rattle)
             .with_options(newton)?;
         integrator.set_velocity_hint(&self.v0);
         Ok(integrator)

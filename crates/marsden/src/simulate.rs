@@ -7,6 +7,7 @@
 
 use std::ops::ControlFlow;
 
+use crate::holonomic::MomentumProjection;
 use crate::{
     Constraint, DiscreteAction, DiscreteForce, Error, Integrator, State, StepReport, Termination,
     Trajectory,
@@ -123,8 +124,8 @@ impl Default for RunOptions {
 /// Steps `integrator` from `start` over `grid`, storing every `options.stride`-th state and showing
 /// each step to `observer`. Never fails as a call: a failing step ends the run with
 /// [`Termination::Failed`] and the trajectory up to the last good state.
-pub fn simulate<A, F, C, O>(
-    integrator: &mut Integrator<A, F, C>,
+pub fn simulate<A, F, C, P, O>(
+    integrator: &mut Integrator<A, F, C, P>,
     start: State,
     grid: &TimeGrid,
     options: &RunOptions,
@@ -134,6 +135,7 @@ where
     A: DiscreteAction,
     F: DiscreteForce,
     C: Constraint,
+    P: MomentumProjection,
     O: Observer + ?Sized,
 {
     let shape = integrator.shape();
@@ -172,12 +174,13 @@ where
         };
         let stop = observer.observe(&view).is_break();
         if (k + 1) % stride == 0 || k + 1 == grid.steps || stop {
-            traj.push(
+            traj.push_sample(
                 k + 1,
-                state.t,
-                &state.q,
-                &state.p,
-                integrator.multipliers(),
+                (state.t, &state.q, &state.p),
+                (
+                    integrator.multipliers(),
+                    integrator.projection_multipliers(),
+                ),
                 last_report,
             );
         }
@@ -186,15 +189,25 @@ where
             break;
         }
     }
-    store_last_good(&mut traj, &state, integrator.multipliers(), last_report);
+    let multipliers = (
+        integrator.multipliers(),
+        integrator.projection_multipliers(),
+    );
+    store_last_good(&mut traj, &state, multipliers, last_report);
     traj.statistics = difference(integrator.statistics(), &before);
     traj
 }
 
 /// After a failure, makes sure the last good state is the last sample.
-fn store_last_good(traj: &mut Trajectory, state: &State, lambda: &[f64], report: StepReport) {
+fn store_last_good(
+    traj: &mut Trajectory,
+    state: &State,
+    multipliers: (&[f64], &[f64]),
+    report: StepReport,
+) {
     if traj.step_indices.last() != Some(&traj.steps) {
-        traj.push(traj.steps, state.t, &state.q, &state.p, lambda, report);
+        let sample = (state.t, state.q.as_slice(), state.p.as_slice());
+        traj.push_sample(traj.steps, sample, multipliers, report);
     }
 }
 

@@ -134,9 +134,11 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> NonlinearSystem
 
     fn residual_scale(&self) -> f64 {
         let n = self.func.shape.n;
-        max_norm(self.p0).max(max_norm(
-            &self.parts.grad_rows[..n.min(self.parts.grad_rows.len())],
-        ))
+        max_norm(self.p0)
+            .max(max_norm(
+                &self.parts.grad_rows[..n.min(self.parts.grad_rows.len())],
+            ))
+            .max(constraint_term_scale(self.q0, self.dphi0))
     }
 
     fn unknown_scale(&self, z: &[f64]) -> f64 {
@@ -195,6 +197,18 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> NonlinearSystem
             };
             self.p_next[a] = parts.jac_cols[sn - n + a] + force;
         }
+    }
+}
+
+/// Size of the terms of the constraint rows `φ(q_{k+1}) = 0`, `‖q_k‖∞ ‖Dφ(q_k)‖_max` (for
+/// `φ = ½(|q|² − l²)` about `l²`): with constraints the residual tolerance is relative to the
+/// terms of both blocks, because `φ` can only be computed to `ε` times them — a scale from the
+/// momenta alone (zero for a system at rest) could never be met.
+pub(crate) fn constraint_term_scale(q0: &[f64], dphi0: &[f64]) -> f64 {
+    if dphi0.is_empty() {
+        0.0
+    } else {
+        max_norm(q0) * max_norm(dphi0)
     }
 }
 

@@ -19,9 +19,11 @@ pub enum Termination {
 
 /// Stored samples of a run (every `stride`-th step, plus the first and the last state).
 ///
-/// Samples are row-major: sample `i` has positions `q(i)` (length n), momenta `p(i)`, and
-/// multipliers `multipliers(i)` (length d, the multipliers of the step that ended at sample `i`;
-/// NaN for the initial sample).
+/// Samples are row-major: sample `i` has positions `q(i)` (length n), momenta `p(i)`,
+/// multipliers `multipliers(i)` (length d: the SHAKE multipliers `λ` of the step that ended at
+/// sample `i`; NaN for the initial sample) and `projection_multipliers(i)` (length d: the RATTLE
+/// multipliers `μ` of that step, `p_{k+1} = p̃_{k+1} − h Dφ(q_{k+1})ᵀμ_k`; NaN for the initial
+/// sample and when no projection ran; see [`crate::holonomic`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Trajectory {
     /// Degrees of freedom n.
@@ -36,8 +38,10 @@ pub struct Trajectory {
     pub positions: Vec<f64>,
     /// Momenta, `len() × n`.
     pub momenta: Vec<f64>,
-    /// Multipliers, `len() × d`.
+    /// Multipliers `λ`, `len() × d`.
     pub multipliers: Vec<f64>,
+    /// Projection multipliers `μ`, `len() × d`.
+    pub projection_multipliers: Vec<f64>,
     /// Report of the step that ended at each sample (default for the initial sample).
     pub reports: Vec<StepReport>,
     /// Index of the step that ended at each sample (0 for the initial state).
@@ -88,6 +92,7 @@ impl Trajectory {
             positions: Vec::new(),
             momenta: Vec::new(),
             multipliers: Vec::new(),
+            projection_multipliers: Vec::new(),
             reports: Vec::new(),
             step_indices: Vec::new(),
             steps: 0,
@@ -126,7 +131,12 @@ impl Trajectory {
         &self.multipliers[i * self.constraints..(i + 1) * self.constraints]
     }
 
-    /// Appends a sample.
+    /// Projection multipliers `μ` of the step that ended at sample `i`.
+    pub fn projection_multipliers(&self, i: usize) -> &[f64] {
+        &self.projection_multipliers[i * self.constraints..(i + 1) * self.constraints]
+    }
+
+    /// Appends a sample (without projection multipliers: stored as NaN).
     pub fn push(
         &mut self,
         step: usize,
@@ -136,15 +146,31 @@ impl Trajectory {
         lambda: &[f64],
         report: StepReport,
     ) {
+        self.push_sample(step, (t, q, p), (lambda, &[]), report);
+    }
+
+    /// Appends a sample `(t, q, p)` with its multipliers `(λ, μ)`; a multiplier slice of the
+    /// wrong length (e.g. empty) is stored as NaN.
+    pub fn push_sample(
+        &mut self,
+        step: usize,
+        (t, q, p): (f64, &[f64], &[f64]),
+        (lambda, mu): (&[f64], &[f64]),
+        report: StepReport,
+    ) {
         self.step_indices.push(step);
         self.times.push(t);
         self.positions.extend_from_slice(q);
         self.momenta.extend_from_slice(p);
-        if lambda.len() == self.constraints {
-            self.multipliers.extend_from_slice(lambda);
-        } else {
-            self.multipliers
-                .extend(std::iter::repeat_n(f64::NAN, self.constraints));
+        for (store, x) in [
+            (&mut self.multipliers, lambda),
+            (&mut self.projection_multipliers, mu),
+        ] {
+            if x.len() == self.constraints {
+                store.extend_from_slice(x);
+            } else {
+                store.extend(std::iter::repeat_n(f64::NAN, self.constraints));
+            }
         }
         self.reports.push(report);
     }

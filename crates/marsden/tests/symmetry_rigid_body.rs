@@ -17,7 +17,8 @@ fn tumble<R: Rule>(rule: &R) -> (Vec<NoetherReport>, f64, f64) {
     let grid = TimeGrid::new(0.0, 0.01, 10_000).unwrap();
     let problem = Problem::new(body.clone(), Initial::velocity(&q, &v), grid)
         .unwrap()
-        .with_constraint(body.clone());
+        .with_constraint(body.clone())
+        .unwrap();
     // Reference cases §0, solver note: conservation tests at a relative Newton tolerance of
     // 1e-14. (1e-15 is below the round-off floor of this 18-unknown system with multipliers:
     // Newton stalls at a residual of 2.3e-15.)

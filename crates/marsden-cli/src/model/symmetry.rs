@@ -5,10 +5,14 @@
 //! the discrete momentum map, conserved up to the Newton tolerance when `L` is invariant
 //! (discrete Noether theorem; Marsden & West, *Acta Numerica* 10 (2001), §1.3.3).
 
+use marsden::Scalar;
+use marsden::symmetry::GroupAction;
+
 use crate::expr::ProgramSet;
 
-/// Something whose value along a run is monitored: the momentum map of a symmetry (the core's
-/// group actions will implement this too when they land).
+/// Something whose value along a run is monitored: the momentum map of a symmetry, evaluated
+/// on `f64` samples as rows are streamed (the symmetry is also a core
+/// [`marsden::symmetry::GroupAction`], used to check it before the run).
 pub trait MomentumMap {
     /// Name (the CSV column is `J_<name>`).
     fn name(&self) -> &str;
@@ -57,5 +61,22 @@ impl MomentumMap for Symmetry {
         scratch.resize(self.generator.len(), 0.0);
         self.generator.eval_into(q, scratch);
         p.iter().zip(scratch.iter()).map(|(p, xi)| p * xi).sum()
+    }
+}
+
+/// A problem file's symmetry is a one-parameter group action of the core (so the core's checks
+/// and momentum maps apply): its Lie algebra is spanned by the one generator `ξ_Q(q)`.
+impl GroupAction for Symmetry {
+    fn name(&self) -> String {
+        self.name.clone()
+    }
+    fn dof(&self) -> usize {
+        self.generator.len()
+    }
+    fn algebra_dim(&self) -> usize {
+        1
+    }
+    fn generator<S: Scalar>(&self, _a: usize, q: &[S], out: &mut [S]) {
+        self.generator.eval_into(q, out);
     }
 }

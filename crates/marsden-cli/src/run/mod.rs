@@ -97,7 +97,10 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap>(
     let problem = Problem::new(lagrangian, spec.initial.to_initial(), grid)
         .map_err(|e| start::start_error(spec, &e))?
         .with_force(force)
-        .with_constraint(constraint);
+        // The CLI checks the initial data itself and warns (`start::tangency`); the core's
+        // strict initial-data check (issue 3) is relaxed here to keep that behaviour.
+        .with_constraint_tolerance(constraint, f64::INFINITY)
+        .map_err(|e| start::start_error(spec, &e))?;
     let options = SolveOptions {
         newton: spec.integrator.newton,
         // The observer stores the samples; the core keeps only the first and the last.

@@ -47,9 +47,10 @@ impl WithLagrangian for Prepare<'_> {
         let start = problem.start();
         let v = problem.initial_velocity().to_vec();
         let energy = mechanics::energy(lagrangian, start.t, &start.q, &v);
-        let warnings = tangency(&spec.system.constraint, &start.q, &v)
+        let mut warnings: Vec<String> = tangency(&spec.system.constraint, &start.q, &v)
             .into_iter()
             .collect();
+        warnings.extend(non_symmetries(lagrangian, spec, (start.t, &start.q, &v)));
         Ok(Start {
             t: start.t,
             q: start.q.clone(),
@@ -100,4 +101,30 @@ pub fn start_error(spec: &RunSpec, e: &marsden::Error) -> Diagnostic {
             .help("give the initial velocities `v` instead of the momenta `p`"),
         _ => Diagnostic::new(format!("cannot set up the problem: {e}")),
     }
+}
+
+/// A warning for each declared symmetry that is not one of the Lagrangian at the initial state
+/// (`⟨dL, ξ_TQ⟩ ≠ 0`, by the core's check): its momentum map is then monitored but not
+/// conserved.
+fn non_symmetries<L: Lagrangian>(
+    lagrangian: &L,
+    spec: &RunSpec,
+    (t, q, v): (f64, &[f64], &[f64]),
+) -> Vec<String> {
+    use marsden::symmetry::check::{DEFAULT_TOLERANCE, Sample, check_lagrangian};
+    let samples = [Sample::new(t, q, v)];
+    spec.system
+        .symmetries
+        .iter()
+        .filter_map(|s| check_lagrangian(lagrangian, s, &samples, DEFAULT_TOLERANCE).ok())
+        .filter(|report| !report.is_symmetry())
+        .map(|report| {
+            let defect = report.worst().map_or(f64::NAN, |w| w.max_defect);
+            format!(
+                "\"{}\" is not a symmetry of the Lagrangian: ⟨dL, ξ_TQ⟩ = {defect:.3e} at the \
+                 initial state, so J_{} is monitored but not conserved",
+                report.symmetry, report.symmetry
+            )
+        })
+        .collect()
 }

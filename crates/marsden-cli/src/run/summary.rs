@@ -195,12 +195,12 @@ impl Summary {
             t_final: record.final_state.t,
             wall_seconds: record.wall_seconds,
             energy: EnergySummary {
-                initial: d.energy.initial,
-                max_abs_error: d.energy.max_abs_error,
-                max_rel_error: d.energy.max_rel_error,
-                final_rel_error: d.energy.final_rel_error,
-                drift_per_unit_time: d.energy.drift_per_unit_time(),
-                samples: d.energy.samples,
+                initial: d.energy.report().initial,
+                max_abs_error: d.energy.report().max_abs_error,
+                max_rel_error: d.energy.report().max_rel_error,
+                final_rel_error: d.energy.report().final_rel_error,
+                drift_per_unit_time: d.energy.report().drift_per_unit_time,
+                samples: d.energy.report().samples,
             },
             momenta,
             constraints: ConstraintSummary {

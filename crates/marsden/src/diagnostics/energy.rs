@@ -29,17 +29,30 @@ pub struct EnergyReport {
     pub rel_drift_per_unit_time: f64,
     /// Number of samples used.
     pub samples: usize,
+    /// Samples whose energy was not finite (skipped, counted here).
+    pub failures: usize,
 }
 
-/// Accumulates energy errors sample by sample (shared by the batch and streaming forms).
+/// Accumulates energy errors sample by sample in O(1) memory (shared by the batch report, the
+/// [`EnergyMonitor`] and streaming writers that compute energies themselves).
 #[derive(Debug, Clone, Default)]
-struct Accumulator {
+pub struct EnergyAccumulator {
     report: EnergyReport,
     slope: OnlineSlope,
 }
 
-impl Accumulator {
-    fn push(&mut self, t: f64, e: f64) {
+impl EnergyAccumulator {
+    /// The report so far.
+    pub fn report(&self) -> &EnergyReport {
+        &self.report
+    }
+
+    /// Adds the energy `e` at time `t`; a non-finite value is counted as a failure and skipped.
+    pub fn push(&mut self, t: f64, e: f64) {
+        if !e.is_finite() {
+            self.report.failures += 1;
+            return;
+        }
         let r = &mut self.report;
         if r.samples == 0 {
             r.initial = e;
@@ -63,7 +76,7 @@ impl Accumulator {
 impl EnergyReport {
     /// The report of an energy series sampled at `times`.
     pub fn from_series(times: &[f64], energies: &[f64]) -> Self {
-        let mut acc = Accumulator::default();
+        let mut acc = EnergyAccumulator::default();
         times
             .iter()
             .zip(energies)
@@ -98,7 +111,7 @@ pub fn energy_series<L: Lagrangian>(
 pub struct EnergyMonitor<L> {
     lagrangian: L,
     velocity: Vec<f64>,
-    acc: Accumulator,
+    acc: EnergyAccumulator,
     error: Option<Error>,
 }
 
@@ -109,7 +122,7 @@ impl<L: Lagrangian> EnergyMonitor<L> {
         Self {
             lagrangian,
             velocity: vec![0.0; n],
-            acc: Accumulator::default(),
+            acc: EnergyAccumulator::default(),
             error: None,
         }
     }
@@ -148,5 +161,24 @@ impl<L: Lagrangian> Observer for EnergyMonitor<L> {
     }
     fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()> {
         self.record(view)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn non_finite_energies_are_counted_and_skipped() {
+        let mut acc = EnergyAccumulator::default();
+        for (t, e) in [(0.0, -2.0), (1.0, -2.1), (2.0, -1.95), (3.0, f64::NAN)] {
+            acc.push(t, e);
+        }
+        let batch = EnergyReport::from_series(&[0.0, 1.0, 2.0], &[-2.0, -2.1, -1.95]);
+        let r = acc.report();
+        assert_eq!((r.samples, r.failures), (3, 1));
+        assert_eq!(r.max_abs_error, batch.max_abs_error);
+        assert!((r.max_abs_error - 0.1).abs() < 1e-15 && (r.max_rel_error - 0.05).abs() < 1e-15);
+        assert_eq!(r.drift_per_unit_time, batch.drift_per_unit_time);
     }
 }

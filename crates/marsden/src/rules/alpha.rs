@@ -20,6 +20,13 @@ pub struct GeneralizedMidpoint {
     pub alpha: f64,
 }
 
+impl GeneralizedMidpoint {
+    /// The rule with parameter `alpha`, checked to lie in `[0, 1]`.
+    pub fn new(alpha: f64) -> Result<Self, crate::Error> {
+        super::check_alpha(alpha).map(|alpha| Self { alpha })
+    }
+}
+
 /// `L_d^α` of a Lagrangian (built by [`Midpoint`] and [`GeneralizedMidpoint`]).
 #[derive(Debug, Clone)]
 pub struct AlphaLd<L> {
@@ -84,22 +91,15 @@ impl<F: Force> DiscreteForce for AlphaForce<F> {
     }
 }
 
-fn alpha_rule_discretize<L: Lagrangian>(alpha: f64, lagrangian: L) -> AlphaLd<L> {
-    AlphaLd { lagrangian, alpha }
-}
-
+/// The named rule is the α = 0.5 member of its family.
 impl Rule for Midpoint {
     type Discrete<L: Lagrangian> = AlphaLd<L>;
     type DiscreteForce<F: Force> = AlphaForce<F>;
     fn discretize<L: Lagrangian>(&self, lagrangian: L) -> AlphaLd<L> {
-        alpha_rule_discretize(0.5, lagrangian)
+        GeneralizedMidpoint { alpha: 0.5 }.discretize(lagrangian)
     }
     fn discretize_force<F: Force>(&self, force: F, dof: usize) -> AlphaForce<F> {
-        AlphaForce {
-            force,
-            alpha: 0.5,
-            dof,
-        }
+        GeneralizedMidpoint { alpha: 0.5 }.discretize_force(force, dof)
     }
     fn name(&self) -> String {
         "midpoint".into()
@@ -113,7 +113,10 @@ impl Rule for GeneralizedMidpoint {
     type Discrete<L: Lagrangian> = AlphaLd<L>;
     type DiscreteForce<F: Force> = AlphaForce<F>;
     fn discretize<L: Lagrangian>(&self, lagrangian: L) -> AlphaLd<L> {
-        alpha_rule_discretize(self.alpha, lagrangian)
+        AlphaLd {
+            lagrangian,
+            alpha: self.alpha,
+        }
     }
     fn discretize_force<F: Force>(&self, force: F, dof: usize) -> AlphaForce<F> {
         AlphaForce {
@@ -123,7 +126,7 @@ impl Rule for GeneralizedMidpoint {
         }
     }
     fn name(&self) -> String {
-        format!("alpha({})", self.alpha)
+        format!("alpha-{}", self.alpha)
     }
     fn order(&self) -> u32 {
         if self.alpha == 0.5 { 2 } else { 1 }

@@ -50,6 +50,19 @@ pub trait Rule {
     fn order(&self) -> u32;
 }
 
+/// `alpha` if it lies in `[0, 1]`.
+pub(crate) fn check_alpha(alpha: f64) -> Result<f64, crate::Error> {
+    if (0.0..=1.0).contains(&alpha) {
+        Ok(alpha)
+    } else {
+        Err(crate::Error::InvalidOption {
+            name: "alpha",
+            value: alpha,
+            reason: "must lie in [0, 1]",
+        })
+    }
+}
+
 /// Calls `f(q_c, v)` at the node `q_c = q₀ + cΔ` with `v = Δ/h`, from the displacement
 /// `Δ = q₁ − q₀` (no difference of rounded positions, see
 /// [`crate::DiscreteLagrangian::discrete_lagrangian_offset`]).

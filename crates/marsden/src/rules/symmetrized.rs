@@ -21,6 +21,13 @@ pub struct SymmetrizedMidpoint {
     pub alpha: f64,
 }
 
+impl SymmetrizedMidpoint {
+    /// The rule with parameter `alpha`, checked to lie in `[0, 1]`.
+    pub fn new(alpha: f64) -> Result<Self, crate::Error> {
+        super::check_alpha(alpha).map(|alpha| Self { alpha })
+    }
+}
+
 /// `L_d^{sym,α}` of a Lagrangian (built by [`Trapezoid`] and [`SymmetrizedMidpoint`]).
 #[derive(Debug, Clone)]
 pub struct SymmetrizedLd<L> {
@@ -131,18 +138,15 @@ impl<F: Force> DiscreteForce for SymmetrizedForce<F> {
     }
 }
 
+/// The named rule is the α = 0.0 member of its family.
 impl Rule for Trapezoid {
     type Discrete<L: Lagrangian> = SymmetrizedLd<L>;
     type DiscreteForce<F: Force> = SymmetrizedForce<F>;
     fn discretize<L: Lagrangian>(&self, lagrangian: L) -> SymmetrizedLd<L> {
-        SymmetrizedLd::new(lagrangian, 0.0)
+        SymmetrizedMidpoint { alpha: 0.0 }.discretize(lagrangian)
     }
     fn discretize_force<F: Force>(&self, force: F, dof: usize) -> SymmetrizedForce<F> {
-        SymmetrizedForce {
-            force,
-            alpha: 0.0,
-            dof,
-        }
+        SymmetrizedMidpoint { alpha: 0.0 }.discretize_force(force, dof)
     }
     fn name(&self) -> String {
         "trapezoid".into()
@@ -166,7 +170,7 @@ impl Rule for SymmetrizedMidpoint {
         }
     }
     fn name(&self) -> String {
-        format!("symmetrized-alpha({})", self.alpha)
+        format!("symmetrized-{}", self.alpha)
     }
     fn order(&self) -> u32 {
         2

@@ -1,0 +1,59 @@
+//! Holonomic constraints `φ(q) = 0`: the SHAKE step, the RATTLE momentum projection, checks and
+//! projections of initial data, and ready-made distance constraints.
+//!
+//! Seed: *constrained Lagrangian systems*. Motion on `N = φ⁻¹(0) ⊂ Q` extremises the augmented
+//! action `∫ L − ⟨λ, φ(q)⟩ dt`, i.e. `∂L/∂q − d/dt ∂L/∂v = Dφ(q)ᵀλ`, `φ(q) = 0`.
+//!
+//! ## The constrained scheme
+//!
+//! One step `(q_k, p_k) ↦ (q_{k+1}, p_{k+1})` of [`crate::Integrator`] with constraints and a
+//! [`Rattle`] projection is ([MW01] §3.5, [LMO08] §3, [HLW06] §VII.1; conventions DESIGN.md §3):
+//!
+//! ```text
+//!  SHAKE:   p_k + D₁L_d(q_k, q_{k+1}) + f_d⁻ − h Dφ(q_k)ᵀ λ_k = 0,     φ(q_{k+1}) = 0,
+//!           p̃_{k+1} = D₂L_d(q_k, q_{k+1}) + f_d⁺,
+//!  RATTLE:  p_{k+1} = p̃_{k+1} − h Dφ(q_{k+1})ᵀ μ_k,   Dφ(q_{k+1}) · FH(t_{k+1}, q_{k+1}, p_{k+1}) = 0.
+//! ```
+//!
+//! The first line is solved by Newton's method for `(q_{k+1}, λ_k)` in one system
+//! ([`crate::step`]); the projection is linear in `μ_k` for a constant mass matrix and solved by
+//! Newton's method on `(v, μ)` in general ([`Rattle`]). Eliminating the momenta gives the
+//! constrained discrete Euler–Lagrange equations
+//! `D₂L_d(q_{k−1}, q_k) + D₁L_d(q_k, q_{k+1}) + f_d⁺ + f_d⁻ = h Dφ(q_k)ᵀ(λ_k + μ_{k−1})`: the
+//! positions are those of SHAKE (the projection only moves `μ_{k−1}` out of the next `λ_k`),
+//! while the momenta now lie on the cotangent bundle `T*N` (the *hidden* velocity constraint
+//! holds), which is what makes the reported energy and momenta meaningful. For
+//! `L = ½vᵀMv − V(q)` and the trapezoid rule the scheme is the classical RATTLE (Andersen 1983;
+//! [HLW06] §VII.1) with HLW's multipliers `2λ_k` and `2μ_k`; without forces the map on `T*N` is
+//! symplectic ([LR04] §7.3). The constraint force over a step is
+//! `h Dφ(q_k)ᵀλ_k + h Dφ(q_{k+1})ᵀμ_k`, so `λ_k + μ_{k−1} ≈ λ(t_k)` of the continuous equations.
+//!
+//! Both multiplier series are kept in the [`crate::Trajectory`]: `multipliers(i)` holds `λ` and
+//! `projection_multipliers(i)` holds `μ` of the step that ended at sample `i`.
+//!
+//! ## Initial data
+//!
+//! [`crate::Problem::with_constraint`] refuses initial data off the manifold or not tangent to it
+//! ([`check_initial`]), and constraints whose Jacobian is rank-deficient there
+//! ([`constraint_rank`]); it never moves the data silently. Projections are explicit:
+//! [`project_position`] (Newton on the minimum-norm correction), [`project_momentum`] (the RATTLE
+//! projection) and [`crate::Initial::project_onto`] for both.
+//!
+//! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LMO08]: Leyendecker, Marsden, Ortiz,
+//! *Variational integrators for constrained dynamical systems*, ZAMM 88 (2008). [HLW06]: Hairer,
+//! Lubich, Wanner, *Geometric Numerical Integration*, 2nd ed. (2006). [LR04]: Leimkuhler, Reich,
+//! *Simulating Hamiltonian Dynamics* (2004).
+
+mod distance;
+mod initial;
+mod rattle;
+
+pub use distance::DistanceConstraints;
+pub use initial::{
+    ConstraintRank, DEFAULT_TOLERANCE, PositionProjection, RANK_TOLERANCE, check_initial,
+    constraint_rank, project_momentum, project_position,
+};
+pub use rattle::{
+    MomentumProjection, NoProjection, ProjectionFailure, ProjectionReport, ProjectionStatistics,
+    Rattle,
+};

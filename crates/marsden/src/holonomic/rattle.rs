@@ -1,0 +1,437 @@
+//! The RATTLE momentum projection onto the cotangent bundle of the constraint manifold.
+//!
+//! After the SHAKE solve of a step the momenta `p̃ = D₂L_d + f_d⁺` satisfy the position
+//! constraint only; the projection replaces them by `p = p̃ − Dφ(q)ᵀν` with `ν ∈ ℝ^d` chosen so
+//! that the *hidden* velocity constraint `Dφ(q) · FH(t, q, p) = 0` holds ([HLW06] §VII.1,
+//! [LMO08] §3; module docs of [`crate::holonomic`]). With `v = FH(t, q, p)` the unknowns
+//! `(v, ν)` solve the saddle-point system
+//!
+//! ```text
+//!     ∂L/∂v(t, q, v) + Dφ(q)ᵀν = p̃,        Dφ(q) v = 0,
+//! ```
+//!
+//! by Newton's method with the KKT matrix `[[∂²L/∂v², Dφᵀ], [Dφ, 0]]`; for a Lagrangian
+//! quadratic in `v` (constant or position-dependent mass matrix) one Newton update solves it
+//! exactly (`ν = (Dφ M⁻¹ Dφᵀ)⁻¹ Dφ M⁻¹ p̃`) and a residual-only evaluation confirms it.
+//!
+//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006). [LMO08]:
+//! Leyendecker, Marsden, Ortiz, ZAMM 88 (2008).
+
+use crate::ad::{self, HessianParts, MultiFunction};
+use num_dual::{HyperDual64, HyperDualSVec64};
+
+use crate::linalg::{max_norm, solve_in_place};
+use crate::newton::NewtonOptions;
+use crate::scratch::{NODE, with_buffer};
+use crate::small::SmallDual;
+use crate::small_constrained::constraint_jacobian;
+use crate::{Constraint, Lagrangian, Scalar};
+
+/// What an [`crate::Integrator`] applies to the momenta after each solved step.
+///
+/// The default [`NoProjection`] leaves them alone (plain SHAKE); [`Rattle`] projects them onto
+/// the cotangent bundle of the constraint manifold.
+pub trait MomentumProjection {
+    /// `false` for the no-op projection, so the integrator can skip it.
+    fn is_active(&self) -> bool {
+        true
+    }
+    /// Replaces `p` at `(t, q)` by its projection, given `dphi = Dφ(q)` (row-major d × n, as the
+    /// integrator computes it once per configuration); on failure `p` is left unchanged.
+    fn project(
+        &mut self,
+        t: f64,
+        q: &[f64],
+        dphi: &[f64],
+        p: &mut [f64],
+    ) -> Result<ProjectionReport, ProjectionFailure>;
+    /// The multipliers `ν` of the last successful projection (`p ← p − Dφ(q)ᵀν`, length d).
+    fn multipliers(&self) -> &[f64];
+}
+
+/// How a projection went.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ProjectionReport {
+    /// Newton updates applied.
+    pub iterations: usize,
+    /// Final residual of the projection equations (max-norm).
+    pub residual: f64,
+}
+
+/// Why a projection failed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProjectionFailure {
+    /// Newton updates applied before the failure.
+    pub iterations: usize,
+    /// Residual (max-norm) at the last iterate.
+    pub residual: f64,
+}
+
+/// No projection (the default of [`crate::Integrator`]): SHAKE momenta are reported as they are.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct NoProjection;
+
+impl MomentumProjection for NoProjection {
+    fn is_active(&self) -> bool {
+        false
+    }
+    fn project(
+        &mut self,
+        _t: f64,
+        _q: &[f64],
+        _dphi: &[f64],
+        _p: &mut [f64],
+    ) -> Result<ProjectionReport, ProjectionFailure> {
+        Ok(ProjectionReport::default())
+    }
+    fn multipliers(&self) -> &[f64] {
+        &[]
+    }
+}
+
+/// Work counters of a [`Rattle`] projection.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ProjectionStatistics {
+    /// Successful projections.
+    pub projections: usize,
+    /// Newton updates (KKT solves) over all projections.
+    pub newton_iterations: usize,
+    /// Full evaluations: residual and KKT matrix (one hyper-dual evaluation of `L` each).
+    pub kkt_evaluations: usize,
+    /// Residual-only evaluations after an update (one first-order dual evaluation of `L` each).
+    pub residual_evaluations: usize,
+}
+
+/// The RATTLE projection for the Lagrangian `L` and the constraints `C` (see the module docs).
+///
+/// Newton's method on `(v, ν)`: a full evaluation gives the residual and the KKT matrix; after
+/// each update the residual alone is re-evaluated (gradient only, cheaper), so a Lagrangian
+/// quadratic in `v` costs one full and one residual evaluation per projection. It stops when
+/// `‖R‖∞ ≤ tol_R · max(1, ‖p‖∞)` or when the update is at round-off, like [`crate::newton`].
+///
+/// ```
+/// use marsden::holonomic::Rattle;
+/// use marsden::systems::SphericalPendulum;
+///
+/// let pendulum = SphericalPendulum::default(); // |q| = 1, unit mass
+/// let mut rattle = Rattle::new(pendulum, pendulum);
+/// let q = [0.0, 0.0, -1.0];
+/// let mut p = [0.3, 0.0, 0.5]; // the radial part 0.5 must go
+/// rattle.project_at(0.0, &q, &mut p).unwrap();
+/// assert!(p[2].abs() < 1e-15 && (p[0] - 0.3).abs() < 1e-15);
+/// ```
+#[derive(Debug, Clone)]
+pub struct Rattle<L, C> {
+    lagrangian: L,
+    constraint: C,
+    options: NewtonOptions,
+    ws: Workspace,
+    statistics: ProjectionStatistics,
+}
+
+#[derive(Debug, Clone, Default)]
+struct Workspace {
+    parts: HessianParts,
+
+    phi: Vec<f64>,
+    /// `Dφ(q)` when [`Rattle::project_at`] computes it.
+    g: Vec<f64>,
+    /// Newton unknowns `(v, ν)`, residual, KKT matrix (row-major), update.
+    z: Vec<f64>,
+    r: Vec<f64>,
+    kkt: Vec<f64>,
+    dz: Vec<f64>,
+    /// `∂L/∂v` from a residual-only evaluation.
+    grad: Vec<f64>,
+    /// `ν` of the last successful projection.
+    nu: Vec<f64>,
+    /// `v = FH(q, p)` of the last successful projection (and the next starting guess).
+    v: Vec<f64>,
+}
+
+impl<L: Lagrangian, C: Constraint> Rattle<L, C> {
+    /// The projection for `L` and `φ`, with default Newton options.
+    pub fn new(lagrangian: L, constraint: C) -> Self {
+        Self {
+            lagrangian,
+            constraint,
+            options: NewtonOptions::default(),
+            ws: Workspace::default(),
+            statistics: ProjectionStatistics::default(),
+        }
+    }
+
+    /// Sets the Newton options (the residual tolerance is relative to `max(1, ‖p‖∞)`).
+    pub fn with_options(mut self, options: NewtonOptions) -> Self {
+        self.options = options;
+        self
+    }
+
+    /// Projects `p` at `(t, q)`, computing `Dφ(q)` itself (for use outside an integrator).
+    pub fn project_at(
+        &mut self,
+        t: f64,
+        q: &[f64],
+        p: &mut [f64],
+    ) -> Result<ProjectionReport, ProjectionFailure> {
+        let d = self.constraint.count();
+        let mut g = std::mem::take(&mut self.ws.g);
+        g.resize(d * q.len(), 0.0);
+        self.ws.phi.resize(d, 0.0);
+        if d > 0 {
+            constraint_jacobian(&self.constraint, q, &mut self.ws.phi, &mut g);
+        }
+        let result = self.project(t, q, &g, p);
+        self.ws.g = g;
+        result
+    }
+
+    /// The velocities `v = FH(t, q, p)` of the last successful projection; they satisfy
+    /// `Dφ(q) v = 0` to the solver tolerance.
+    pub fn velocity(&self) -> &[f64] {
+        &self.ws.v
+    }
+
+    /// Work counters so far.
+    pub fn statistics(&self) -> &ProjectionStatistics {
+        &self.statistics
+    }
+
+    /// Sizes the buffers; starts from the last velocity (if any) and `ν = 0`.
+    fn start(&mut self, n: usize, d: usize) {
+        let ws = &mut self.ws;
+        let m = n + d;
+        ws.z.clear();
+        if ws.v.len() == n {
+            ws.z.extend_from_slice(&ws.v);
+        } else {
+            ws.z.resize(n, 0.0);
+        }
+        ws.z.resize(m, 0.0);
+        ws.r.resize(m, 0.0);
+        ws.kkt.resize(m * m, 0.0);
+        ws.dz.resize(m, 0.0);
+        ws.grad.resize(n, 0.0);
+    }
+
+    /// Newton's method on `(v, ν)`; see the type's docs.
+    fn solve(
+        &mut self,
+        t: f64,
+        q: &[f64],
+        g: &[f64],
+        p: &[f64],
+    ) -> Result<ProjectionReport, ProjectionFailure> {
+        let (n, m) = (q.len(), self.ws.z.len());
+        let tol = self.options.residual_tolerance * max_norm(p).max(1.0);
+        let velocity_lagrangian = InVelocity {
+            lagrangian: &self.lagrangian,
+            t,
+            q,
+        };
+        let ws = &mut self.ws;
+        let stats = &mut self.statistics;
+        let mut iterations = 0;
+        loop {
+            full_evaluation(&velocity_lagrangian, g, p, ws);
+            stats.kkt_evaluations += 1;
+            let residual = max_norm(&ws.r);
+            let failure = ProjectionFailure {
+                iterations,
+                residual,
+            };
+            if !residual.is_finite() {
+                return Err(failure);
+            }
+            if residual <= tol {
+                return Ok(ProjectionReport {
+                    iterations,
+                    residual,
+                });
+            }
+            if iterations >= self.options.max_iterations {
+                return Err(failure);
+            }
+
+            ws.dz.iter_mut().zip(&ws.r).for_each(|(d, r)| *d = -r);
+            // The KKT matrix is rebuilt by every full evaluation: solve it in place.
+            solve_in_place(&mut ws.kkt, &mut ws.dz, m).map_err(|_| failure)?;
+            ws.z.iter_mut().zip(&ws.dz).for_each(|(z, d)| *z += d);
+            iterations += 1;
+            stats.newton_iterations += 1;
+            let small = max_norm(&ws.dz) <= self.options.step_tolerance * max_norm(&ws.z).max(1.0);
+            residual_evaluation(&velocity_lagrangian, g, p, n, ws);
+            stats.residual_evaluations += 1;
+            let residual = max_norm(&ws.r);
+            if residual.is_finite() && (residual <= tol || small) {
+                return Ok(ProjectionReport {
+                    iterations,
+                    residual,
+                });
+            }
+        }
+    }
+
+    /// `p ← p − Dφᵀν`, and keeps `ν` and `v`.
+    fn accept(&mut self, n: usize, d: usize, g: &[f64], p: &mut [f64]) {
+        let ws = &mut self.ws;
+        let (v, nu) = ws.z.split_at(n);
+        for (i, pi) in p.iter_mut().enumerate() {
+            *pi -= (0..d).map(|c| g[c * n + i] * nu[c]).sum::<f64>();
+        }
+        ws.nu.clear();
+        ws.nu.extend_from_slice(nu);
+        ws.v.clear();
+        ws.v.extend_from_slice(v);
+        self.statistics.projections += 1;
+    }
+}
+
+impl<L: Lagrangian, C: Constraint> MomentumProjection for Rattle<L, C> {
+    fn is_active(&self) -> bool {
+        self.constraint.count() > 0
+    }
+
+    fn project(
+        &mut self,
+        t: f64,
+        q: &[f64],
+        dphi: &[f64],
+        p: &mut [f64],
+    ) -> Result<ProjectionReport, ProjectionFailure> {
+        let (n, d) = (q.len(), self.constraint.count());
+        if d == 0 {
+            return Ok(ProjectionReport::default());
+        }
+        if dphi.len() != d * n {
+            return Err(ProjectionFailure {
+                iterations: 0,
+                residual: f64::NAN,
+            });
+        }
+        self.start(n, d);
+        let report = self.solve(t, q, dphi, p)?;
+        self.accept(n, d, dphi, p);
+        Ok(report)
+    }
+
+    fn multipliers(&self) -> &[f64] {
+        &self.ws.nu
+    }
+}
+
+/// `v ↦ L(t, q, v)` at fixed `(t, q)`.
+struct InVelocity<'a, L> {
+    lagrangian: &'a L,
+    t: f64,
+    q: &'a [f64],
+}
+
+impl<L: Lagrangian> MultiFunction for InVelocity<'_, L> {
+    fn inputs(&self) -> usize {
+        self.q.len()
+    }
+    fn outputs(&self) -> usize {
+        1
+    }
+    #[inline]
+    fn eval<S: Scalar>(&self, v: &[S], out: &mut [S]) {
+        let zero = S::from(0.0);
+        with_buffer::<S, NODE, ()>(
+            self.q.len(),
+            zero,
+            |i| S::from(self.q[i]),
+            |q| {
+                out[0] = self.lagrangian.lagrangian(S::from(self.t), q, v);
+            },
+        );
+    }
+}
+
+/// `∂L/∂v` into `ws.grad` and `∂²L/∂v²` into `ws.parts.hess` at `v = ws.z[..n]`, by one
+/// hyper-dual evaluation: statically sized for `n ≤ 4` (as [`crate::small`]), by the chunked
+/// driver otherwise.
+fn velocity_jet<L: Lagrangian>(f: &InVelocity<'_, L>, n: usize, ws: &mut Workspace) {
+    match n {
+        1 => small_velocity_jet::<1, HyperDual64, L>(f, ws),
+        2 => small_velocity_jet::<2, HyperDualSVec64<2, 2>, L>(f, ws),
+        3 => small_velocity_jet::<3, HyperDualSVec64<3, 3>, L>(f, ws),
+        4 => small_velocity_jet::<4, HyperDualSVec64<4, 4>, L>(f, ws),
+        _ => {
+            ad::partial_hessian(f, &ws.z[..n], 0..n, 0..n, &mut ws.parts);
+            ws.grad.copy_from_slice(&ws.parts.grad_rows);
+        }
+    }
+}
+
+fn small_velocity_jet<const N: usize, D: SmallDual<N>, L: Lagrangian>(
+    f: &InVelocity<'_, L>,
+    ws: &mut Workspace,
+) {
+    let v: [D; N] = std::array::from_fn(|i| D::seeded(ws.z[i], Some((i, 1.0)), Some(i)));
+    let q: [D; N] = std::array::from_fn(|i| D::from(f.q[i]));
+    let l = f.lagrangian.lagrangian(D::from(f.t), &q, &v);
+    ws.parts.hess.resize(N * N, 0.0);
+    for i in 0..N {
+        ws.grad[i] = l.eps1(i);
+        for j in 0..N {
+            ws.parts.hess[i * N + j] = l.eps12(i, j);
+        }
+    }
+}
+
+/// Residual `R(v, ν) = (∂L/∂v − p + Dφᵀν, Dφ v)` and its KKT matrix
+/// `[[∂²L/∂v², Dφᵀ], [Dφ, 0]]` at `ws.z`, by one hyper-dual evaluation.
+fn full_evaluation<L: Lagrangian>(f: &InVelocity<'_, L>, g: &[f64], p: &[f64], ws: &mut Workspace) {
+    let (n, m) = (p.len(), ws.z.len());
+    let d = m - n;
+    velocity_jet(f, n, ws);
+    for i in 0..n {
+        let row = &mut ws.kkt[i * m..(i + 1) * m];
+        row[..n].copy_from_slice(&ws.parts.hess[i * n..(i + 1) * n]);
+        for c in 0..d {
+            row[n + c] = g[c * n + i];
+        }
+    }
+    for c in 0..d {
+        let row = &mut ws.kkt[(n + c) * m..(n + c + 1) * m];
+        row[..n].copy_from_slice(&g[c * n..(c + 1) * n]);
+        row[n..].fill(0.0);
+    }
+    assemble_residual(g, p, n, ws);
+}
+
+/// The residual alone at `ws.z`, by one first-order dual evaluation (`∂L/∂v` only).
+fn residual_evaluation<L: Lagrangian>(
+    f: &InVelocity<'_, L>,
+    g: &[f64],
+    p: &[f64],
+    n: usize,
+    ws: &mut Workspace,
+) {
+    if n <= 4 {
+        // The static hyper-dual jet is cheaper than the chunked first-order driver here.
+        velocity_jet(f, n, ws);
+    } else {
+        let mut value = [0.0];
+        ad::jacobian(f, &ws.z[..n], 0..n, &mut value, &mut ws.grad);
+    }
+    assemble_residual(g, p, n, ws);
+}
+
+/// `R` from `∂L/∂v` in `ws.grad`.
+fn assemble_residual(g: &[f64], p: &[f64], n: usize, ws: &mut Workspace) {
+    let d = ws.z.len() - n;
+    let (v, nu) = ws.z.split_at(n);
+    for i in 0..n {
+        let constraint_force: f64 = (0..d).map(|c| g[c * n + i] * nu[c]).sum();
+        ws.r[i] = ws.grad[i] - p[i] + constraint_force;
+    }
+    for c in 0..d {
+        ws.r[n + c] = g[c * n..(c + 1) * n]
+            .iter()
+            .zip(v)
+            .map(|(a, b)| a * b)
+            .sum();
+    }
+}
