@@ -150,7 +150,7 @@ pub fn integrator(
 
 fn method(ck: &Checker<'_>, raw: Option<&Spanned<String>>) -> Result<Method, Diagnostic> {
     let Some(name) = raw else {
-        return Ok(Method::Midpoint);
+        return Ok(Method::midpoint());
     };
     Method::parse(name.get_ref()).map_err(|e| {
         ck.error(Some(name.span()), e.message)
