@@ -31,6 +31,7 @@ fn error_at_t5(g: &Galerkin, n: usize) -> f64 {
 fn r6_error_values_and_orders() {
     use QuadratureFamily::{Gauss, Lobatto};
     // (s, family, r, expected order, e(10), e(20), e(40), e(80)); None: round-off.
+    #[allow(clippy::type_complexity)]
     let rows: [(usize, QuadratureFamily, usize, f64, [Option<f64>; 4]); 9] = [
         (
             1,

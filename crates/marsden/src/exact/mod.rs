@@ -62,8 +62,11 @@ use crate::{DiscreteLagrangian, Error, Lagrangian, Scalar};
 pub struct ExactDiscreteLagrangian<L> {
     flow: EulerLagrangeFlow<L>,
     /// Last solved problem `(h, q₀, q₁, v₀)`: a warm start for nearby evaluations.
-    last: Mutex<Option<(f64, Vec<f64>, Vec<f64>, Vec<f64>)>>,
+    last: Mutex<Option<WarmStart>>,
 }
+
+/// A solved shooting problem `(h, q₀, q₁, v₀)`.
+type WarmStart = (f64, Vec<f64>, Vec<f64>, Vec<f64>);
 
 impl<L: Lagrangian + Clone> Clone for ExactDiscreteLagrangian<L> {
     fn clone(&self) -> Self {
@@ -317,8 +320,8 @@ impl<L: Lagrangian> DiscreteLagrangian for ExactDiscreteLagrangian<L> {
         if !jet.hessian.is_empty() {
             for i in 0..m {
                 let mut row = S::from(0.0);
-                for j in 0..m {
-                    row += delta[j] * jet.hessian[i * m + j];
+                for (d, hij) in delta.iter().zip(&jet.hessian[i * m..(i + 1) * m]) {
+                    row += *d * *hij;
                 }
                 sum += delta[i] * row * 0.5;
             }

@@ -33,6 +33,8 @@
 //! | `suzuki-umeno-8` | 15 | 8 | Suzuki & Umeno 1993, McLachlan 1995 (HLW06 §V.3.2, eq. 3.12) |
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+// The published coefficients are quoted with all their digits.
+#![allow(clippy::excessive_precision)]
 
 use std::cell::Cell;
 use std::sync::Arc;
@@ -163,12 +165,12 @@ impl CompositionScheme {
 
     /// Parses a scheme name (`triple-jump-<p>` with even `4 ≤ p ≤ 10`, or a named scheme).
     pub fn parse(name: &str) -> Result<Self, Error> {
-        if let Some(p) = name.strip_prefix("triple-jump-") {
-            if let Ok(order) = p.parse::<u32>() {
-                if order % 2 == 0 && (4..=10).contains(&order) {
-                    return Ok(Self::TripleJump { order });
-                }
-            }
+        if let Some(order) = name
+            .strip_prefix("triple-jump-")
+            .and_then(|p| p.parse::<u32>().ok())
+            .filter(|order| order.is_multiple_of(2) && (4..=10).contains(order))
+        {
+            return Ok(Self::TripleJump { order });
         }
         SCHEMES
             .iter()
@@ -419,7 +421,7 @@ impl<R: Rule> Rule for Composition<R> {
     /// The scheme's order for a symmetric (even-order) base, at least the base's own order.
     fn order(&self) -> u32 {
         let base = self.base.order();
-        if base % 2 == 0 {
+        if base.is_multiple_of(2) {
             base.max(self.scheme.order())
         } else {
             base
