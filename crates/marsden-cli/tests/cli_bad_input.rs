@@ -147,7 +147,9 @@ fn unknown_method_lists_the_valid_names() {
         &[
             "unknown method `midpiont`",
             "did you mean `midpoint`?",
-            "methods: midpoint, trapezoid, alpha-<a> and symmetrized-<a>",
+            "methods: midpoint, trapezoid, alpha-<a>, symmetrized-<a>",
+            "gauss-<s>",
+            "kahan-li-6(trapezoid)",
         ],
     );
 }
