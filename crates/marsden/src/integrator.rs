@@ -390,7 +390,8 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         step: usize,
     ) -> Result<Option<StepReport>, Error> {
         let sh = self.shape;
-        if !self.fast_paths || sh.forced || sh.d != 0 || sh.s != 1 {
+        // An action with internal stages may be explicit too (a composition of Verlet steps).
+        if !self.fast_paths || sh.forced || sh.d != 0 {
             return Ok(None);
         }
         let Some(explicit) = self.action.explicit() else {

@@ -9,8 +9,9 @@ use marsden::systems::nbody::{NBodyFileError, file};
 use marsden::{Error, Integrator, Rule, State, Trapezoid};
 
 fn plummer(n: usize) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join(format!("../../../shared/bench/data/plummer_N{n}_seed20241121.txt"))
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!(
+        "../../../shared/bench/data/plummer_N{n}_seed20241121.txt"
+    ))
 }
 
 #[test]
@@ -59,7 +60,10 @@ fn a_malformed_line_is_reported_with_its_number() {
             text: "1 0 0 0 0 0".into()
         }
     );
-    assert!(err.to_string().starts_with("line 4: expected 7 numbers"), "{err}");
+    assert!(
+        err.to_string().starts_with("line 4: expected 7 numbers"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -76,7 +80,15 @@ fn a_non_numeric_field_is_reported_with_line_and_field() {
     );
     let err = file::parse("1\n1 0 0 0 NaN 0 0\n").unwrap_err();
     assert!(
-        matches!(err, NBodyFileError::BadNumber { line: 2, field: 5, name: "vx", .. }),
+        matches!(
+            err,
+            NBodyFileError::BadNumber {
+                line: 2,
+                field: 5,
+                name: "vx",
+                ..
+            }
+        ),
         "{err:?}"
     );
     let err = file::parse("N=2\n").unwrap_err();
@@ -120,11 +132,20 @@ fn a_missing_file_and_bad_parameters_are_typed_errors() {
     let data = file::parse("1\n1 0 0 0 0 0 0\n").unwrap();
     let err = data.clone().into_system(1.0, -0.1).unwrap_err();
     assert!(
-        matches!(err, NBodyFileError::InvalidParameter { name: "softening", .. }),
+        matches!(
+            err,
+            NBodyFileError::InvalidParameter {
+                name: "softening",
+                ..
+            }
+        ),
         "{err:?}"
     );
     let err = data.into_system(f64::NAN, 0.0).unwrap_err();
-    assert!(matches!(err, NBodyFileError::InvalidParameter { name: "G", .. }));
+    assert!(matches!(
+        err,
+        NBodyFileError::InvalidParameter { name: "G", .. }
+    ));
     assert!(matches!(
         NBody::with_parameters(vec![], 1.0, 0.0),
         Err(Error::InvalidOption { name: "masses", .. })

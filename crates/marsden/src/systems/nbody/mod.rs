@@ -60,7 +60,11 @@ impl NBody {
             return Err(invalid("masses", 0.0, "at least one body is needed"));
         }
         if let Some(&m) = masses.iter().find(|m| !(m.is_finite() && **m > 0.0)) {
-            return Err(invalid("masses", m, "every mass must be positive and finite"));
+            return Err(invalid(
+                "masses",
+                m,
+                "every mass must be positive and finite",
+            ));
         }
         if !(g.is_finite() && g > 0.0) {
             return Err(invalid("G", g, "must be positive and finite"));
