@@ -1,5 +1,12 @@
-"""Turns divan's text output and verlet.c's JSON into a markdown table of medians and ratios."""
+"""Turns divan's text output and verlet.c's JSON into a markdown table of medians and ratios.
+
+Reads target/bench-report/divan-<bench>.txt (one file per bench binary) and verlet-*.json, all
+written by scripts/bench.sh in one run. Rows are `<bench>/<path>`; the ratio column divides by
+the matching verlet.c run of the same invocation. For the chain bench it also fits the exponent
+a of `median ∝ n^a` (least squares in log-log).
+"""
 import json
+import math
 import pathlib
 import re
 import statistics
@@ -32,21 +39,52 @@ def divan_rows(text: str):
         yield "/".join(name for _, name in stack), float(value) * UNITS[unit]
 
 
+def reference(bench: str, name: str, refs: dict[str, float | None]) -> float | None:
+    """The verlet.c run a row compares with."""
+    parts = name.split("/")
+    if bench == "nbody" and parts[0] == "trapezoid":
+        return refs.get(f"nbody-{parts[-1]}")
+    if bench == "step":
+        group = parts[0]
+        for k in ("pendulum", "kepler", "ho"):
+            if group.startswith(k + "_h"):
+                return refs.get(k)
+    return None
+
+
+def fit_exponent(points: list[tuple[float, float]]) -> float:
+    xs = [math.log(n) for n, _ in points]
+    ys = [math.log(t) for _, t in points]
+    mx, my = statistics.fmean(xs), statistics.fmean(ys)
+    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+
+
 def main(out: str) -> None:
     d = pathlib.Path(out)
-    refs = {name: verlet_ns(d / f"verlet-{name}.json") for name in ("pendulum", "kepler", "ho")}
+    refs = {p.stem.removeprefix("verlet-"): verlet_ns(p) for p in sorted(d.glob("verlet-*.json"))}
     print("| benchmark | median | × verlet.c (same run) | vs trep |")
     print("|---|---|---|---|")
-    for name, ns in divan_rows((d / "divan.txt").read_text()):
-        group = name.split("/")[0]
-        ref = next((refs[k] for k in refs if refs[k] and group.startswith(k + "_h")), None)
-        ratio = f"{ns / ref:.1f}×" if ref else "–"
-        trep = next((TREP[k] for k in TREP if name.startswith(k + "_h") or name.startswith(k + "/")), None)
-        vs = f"{trep / ns:.0f}× faster" if trep else "–"
-        print(f"| {name} | {ns:.1f} ns | {ratio} | {vs} |")
+    chain: list[tuple[float, float]] = []
+    for path in sorted(d.glob("divan-*.txt")):
+        bench = path.stem.removeprefix("divan-")
+        for name, ns in divan_rows(path.read_text()):
+            ref = reference(bench, name, refs)
+            ratio = f"{ns / ref:.2f}×" if ref else "–"
+            trep = next((TREP[k] for k in TREP if name.startswith(k + "_h") or name.startswith(k + "/")), None)
+            vs = f"{trep / ns:.0f}× faster" if trep else "–"
+            shown = f"{ns / 1e6:.3f} ms" if ns >= 1e6 else f"{ns / 1e3:.2f} µs" if ns >= 1e4 else f"{ns:.1f} ns"
+            print(f"| {bench}/{name} | {shown} | {ratio} | {vs} |")
+            if bench == "chain" and name.split("/")[-1].isdigit():
+                chain.append((float(name.split("/")[-1]), ns))
     for k, v in refs.items():
         if v:
-            print(f"| verlet.c {k} | {v:.1f} ns | 1× | – |")
+            shown = f"{v / 1e6:.3f} ms" if v >= 1e6 else f"{v:.1f} ns"
+            print(f"| verlet.c {k} | {shown} | 1× | – |")
+    if len(chain) >= 2:
+        chain.sort()
+        a = fit_exponent(chain)
+        per = ", ".join(f"n={int(n)}: {t / n:.1f} ns/particle" for n, t in chain)
+        print(f"\nchain midpoint: cost ∝ n^{a:.3f} over n = {int(chain[0][0])} … {int(chain[-1][0])} ({per})")
 
 
 if __name__ == "__main__":

@@ -147,7 +147,9 @@ fn unknown_method_lists_the_valid_names() {
         &[
             "unknown method `midpiont`",
             "did you mean `midpoint`?",
-            "methods: midpoint, trapezoid, alpha-<a> and symmetrized-<a>",
+            "methods: midpoint, trapezoid, alpha-<a>, symmetrized-<a>",
+            "gauss-<s>",
+            "kahan-li-6(trapezoid)",
         ],
     );
 }
@@ -283,19 +285,50 @@ fn a_run_failing_at_the_first_step_keeps_the_initial_state() {
     assert_eq!(number(&s, "t_final"), 0.0);
 }
 
-#[test]
-fn velocities_off_the_constraint_are_a_warning_not_an_error() {
-    let tmp = tempfile::tempdir().unwrap();
+/// A copy of the Cartesian-pendulum fixture (`q = (0.6, −0.8)`, `|q| = l = 1`) with `v = (0, 0.3)`,
+/// whose velocity constraint `Dφ(q)·v = 2 q_y v_y = −0.48` is violated.
+fn off_constraint_file(tmp: &tempfile::TempDir, project: bool) -> std::path::PathBuf {
     let file = tmp.path().join("off.toml");
     let text = std::fs::read_to_string(fixture("cartesian_pendulum.toml")).unwrap();
-    std::fs::write(&file, text.replace("v = [0.0, 0.0]", "v = [0.0, 0.3]")).unwrap();
-    let run = marsden("run", &file, &["--steps", "20"]);
+    let data = if project {
+        "v = [0.0, 0.3]\nproject = true"
+    } else {
+        "v = [0.0, 0.3]"
+    };
+    std::fs::write(&file, text.replace("v = [0.0, 0.0]", data)).unwrap();
+    file
+}
+
+#[test]
+fn velocities_off_the_constraint_are_refused_with_the_residual() {
+    let tmp = tempfile::tempdir().unwrap();
+    let run = marsden("run", &off_constraint_file(&tmp, false), &["--steps", "20"]);
+    assert_eq!(run.code, 2, "{}", run.stderr);
+    for fragment in [
+        "not tangent to the constraint manifold",
+        "residual (Dφ(q0)·v0)_0 = -4.800e-1",
+        "project = true",
+    ] {
+        assert!(
+            run.stderr.contains(fragment),
+            "lacks {fragment:?}:\n{}",
+            run.stderr
+        );
+    }
+    assert!(!run.out.exists(), "nothing may be written for refused data");
+}
+
+/// With `project = true` the velocity is projected onto the tangent line of the circle
+/// (RATTLE's projection with M = I is orthogonal): `v = (v·τ) τ` with `τ = (0.8, 0.6)`, so
+/// `p₀ = 0.18 · (0.8, 0.6) = (0.144, 0.108)`.
+#[test]
+fn projected_initial_data_start_on_the_tangent_bundle() {
+    let tmp = tempfile::tempdir().unwrap();
+    let run = marsden("run", &off_constraint_file(&tmp, true), &["--steps", "20"]);
     assert_eq!(run.code, 0, "{}", run.stderr);
-    assert!(
-        run.stderr.contains(
-            "warning: the initial velocities are not tangent to constraint [0]: dφ/dt = -4.8e-1"
-        ),
-        "{}",
-        run.stderr
-    );
+    let table = run.trajectory();
+    let (px, py) = (column(&table, "p_x")[0], column(&table, "p_y")[0]);
+    assert!((px - 0.144).abs() < 1e-14, "p_x = {px}");
+    assert!((py - 0.108).abs() < 1e-14, "p_y = {py}");
+    assert!(!run.stderr.contains("warning"), "{}", run.stderr);
 }

@@ -203,8 +203,9 @@ impl BandLu {
                 r.swap(k, p);
             }
             let rk = r[k];
-            for i in k + 1..=(k + b).min(n.saturating_sub(1)) {
-                r[i] -= self.lu[self.at(i, k)] * rk;
+            let last = (k + b).min(n.saturating_sub(1));
+            for (i, ri) in r.iter_mut().enumerate().take(last + 1).skip(k + 1) {
+                *ri -= self.lu[self.at(i, k)] * rk;
             }
         }
         for i in (0..n).rev() {

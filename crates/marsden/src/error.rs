@@ -294,6 +294,77 @@ pub enum Error {
         /// Relative tolerance used.
         tolerance: f64,
     },
+
+    // ---- High-order rules, the exact discrete Lagrangian, order studies (issue 6) ----
+    /// A quadrature rule was asked for with an impossible number of points.
+    #[error("no {family} quadrature with {points} points: valid choices are {valid}")]
+    InvalidQuadrature {
+        /// `"gauss"` or `"lobatto"`.
+        family: &'static str,
+        /// Points asked for.
+        points: usize,
+        /// The valid range.
+        valid: String,
+    },
+    /// A Galerkin rule is inconsistent: degree out of range, or too few quadrature points for
+    /// the degree (the quadrature of the kinetic energy would be degenerate).
+    #[error(
+        "Galerkin rule P{degree} with {points} {family} points is not valid: {reason}; valid \
+         choices are 1 ≤ degree ≤ {max_degree} and points ≥ degree (gauss-s = P_s with s Gauss \
+         points, lobatto-s = P_(s−1) with s Lobatto points)"
+    )]
+    InvalidGalerkin {
+        /// Polynomial degree asked for.
+        degree: usize,
+        /// `"gauss"` or `"lobatto"`.
+        family: &'static str,
+        /// Quadrature points asked for.
+        points: usize,
+        /// What is wrong.
+        reason: String,
+        /// Largest degree accepted.
+        max_degree: usize,
+    },
+    /// A method name could not be parsed.
+    #[error("unknown method `{name}`: {reason}; valid methods are {valid}")]
+    UnknownMethod {
+        /// The name given.
+        name: String,
+        /// What is wrong with it.
+        reason: String,
+        /// The grammar of valid names.
+        valid: String,
+    },
+    /// The shooting method for the exact discrete Lagrangian did not converge.
+    #[error(
+        "shooting for the Euler–Lagrange boundary value problem over h = {h} did not converge: \
+         |q(h) − q₁| = {residual:.3e} after {iterations} Newton iterations (is h beyond the \
+         first conjugate point, or q₁ unreachable?)"
+    )]
+    ShootingDidNotConverge {
+        /// Step length of the boundary value problem.
+        h: f64,
+        /// Newton iterations performed.
+        iterations: usize,
+        /// Final mismatch of the end position (max-norm).
+        residual: f64,
+    },
+    /// The extrapolation integrator of the Euler–Lagrange equations could not reach its
+    /// tolerance even on very small substeps.
+    #[error(
+        "the Euler–Lagrange flow did not reach tolerance {tolerance:.1e} at t = {t} (substep \
+         {substep:.3e}): error estimate {estimate:.3e}"
+    )]
+    FlowDidNotConverge {
+        /// Time where the substep started.
+        t: f64,
+        /// Smallest substep tried.
+        substep: f64,
+        /// Error estimate of the last try.
+        estimate: f64,
+        /// Tolerance asked for.
+        tolerance: f64,
+    },
 }
 
 impl Error {

@@ -88,7 +88,8 @@ pub struct Integrator<A, F = NoForce, C = Unconstrained, P = NoProjection> {
     buffers: Buffers,
     predictor: Predictor,
     statistics: Statistics,
-    /// Use the fast paths ([`crate::explicit`], [`crate::small`]) when the step allows them.
+    /// Use the fast paths ([`crate::explicit`], [`crate::separable`], [`crate::small`]) when
+    /// the step allows them.
     fast_paths: bool,
 }
 
@@ -112,7 +113,6 @@ struct Buffers {
     dphi0_current: bool,
     /// Projection multipliers `μ_k = ν/h` of the last step.
     mu: Vec<f64>,
-    work: Vec<f64>,
 }
 
 impl<A: DiscreteAction> Integrator<A> {
@@ -210,9 +210,12 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     }
 
     /// Whether to use the fast paths (default: true): the explicit Störmer–Verlet step of the
-    /// trapezoid rule on separable Lagrangians ([`crate::explicit`]) and the statically sized
-    /// Newton step for small systems ([`crate::small`]). The general path solves the same
-    /// equations; switching is for testing and measurement.
+    /// trapezoid rule on separable Lagrangians ([`crate::explicit`]), the Newton step with
+    /// Jacobian `M/h + hα(1−α)∇²V` of the α rules on separable Lagrangians
+    /// ([`crate::separable`]) — both only without forces and constraints — and the statically
+    /// sized Newton steps for small systems ([`crate::small`], [`crate::small_constrained`]).
+    /// The general path solves the same equations (tests: equal to round-off); switching is
+    /// for testing and measurement.
     pub fn with_fast_paths(mut self, enabled: bool) -> Self {
         self.fast_paths = enabled;
         self
@@ -387,7 +390,8 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         step: usize,
     ) -> Result<Option<StepReport>, Error> {
         let sh = self.shape;
-        if !self.fast_paths || sh.forced || sh.d != 0 || sh.s != 1 {
+        // An action with internal stages may be explicit too (a composition of Verlet steps).
+        if !self.fast_paths || sh.forced || sh.d != 0 {
             return Ok(None);
         }
         let Some(explicit) = self.action.explicit() else {

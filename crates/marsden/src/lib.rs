@@ -25,10 +25,12 @@
 //! | forces | [`forces`] | damping, driving, controls, sums, `f_H ∘ FL`, user `f_d^±` |
 //! | constraints | [`holonomic`] | SHAKE + RATTLE, initial data on `T*N`, distance constraints |
 //! | continuous mechanics | [`mechanics`] | Legendre transform, energy, Euler–Lagrange, regularity |
-//! | discrete Lagrangian | [`discrete`], [`rules`] | `L_d`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; midpoint, trapezoid, α-rules |
+//! | discrete Lagrangian | [`discrete`], [`rules`] | `L_d`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; midpoint, trapezoid, α-rules, Galerkin (Gauss, Lobatto), compositions |
+//! | exact discrete Lagrangian | [`exact`] | `L_d^E` by shooting, `F^±L_d^E = FL`, local (variational) error |
 //! | step | [`step`], [`small`], [`small_constrained`], [`explicit`], [`separable`], [`potential`], [`newton`], [`linalg`], [`banded`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians; structure-aware fast paths (explicit Störmer–Verlet, `M/h + (h/4)∇²V`, band solves) |
 //! | integrator | [`integrator`], [`maps`] | rule + forces + constraints + solver + buffers; `F_{L_d}`, `F̃_{L_d}` |
 //! | run | [`problem`], [`simulate`], [`trajectory`] | problem → trajectory, stride, observers, failures |
+//! | order of convergence | [`order`] | empirical order (log–log slope before round-off), references |
 //! | diagnostics | [`diagnostics`] | energy error and drift; momentum maps (Noether) and the force balance; energy balance with forces; constraint residuals and multipliers |
 //! | symmetry | [`symmetry`] | group actions, generators and lifts, `J_L`, `J_H`, `J^±_{L_d}`, symmetry checks |
 //! | Hamiltonian side | [`hamiltonian`] | `H(q, p)`, `X_H`, implicit midpoint, Störmer–Verlet, Legendre adapters |
@@ -46,6 +48,7 @@ pub mod diagnostics;
 pub mod discrete;
 pub mod ensemble;
 pub mod error;
+pub mod exact;
 pub mod explicit;
 pub mod force;
 pub mod forces;
@@ -57,6 +60,7 @@ pub mod linalg;
 pub mod maps;
 pub mod mechanics;
 pub mod newton;
+pub mod order;
 pub mod potential;
 pub mod problem;
 pub mod rules;

@@ -59,6 +59,10 @@ pub struct SolveOptions {
     pub newton: NewtonOptions,
     /// Storage of the run.
     pub run: RunOptions,
+    /// Take the general Newton path even where a structure-aware fast path applies (explicit
+    /// Störmer–Verlet, the separable midpoint solve, the statically sized step): the reference
+    /// the fast paths are tested against ([`Integrator::with_fast_paths`]).
+    pub general_path: bool,
 }
 
 /// A mechanical system with initial data and a time grid.
@@ -254,11 +258,12 @@ impl<L: Lagrangian, F: Force, C: Constraint> Problem<L, F, C> {
         options: &SolveOptions,
         observer: &mut O,
     ) -> Result<Trajectory, Box<RunFailure>> {
-        let mut integrator = self.integrator(rule, options.newton).map_err(|error| {
+        let integrator = self.integrator(rule, options.newton).map_err(|error| {
             let trajectory =
                 Trajectory::new(self.lagrangian.dof(), self.constraint.count(), self.grid.h);
             Box::new(RunFailure { error, trajectory })
         })?;
+        let mut integrator = integrator.with_fast_paths(!options.general_path);
         simulate(
             &mut integrator,
             self.start.clone(),

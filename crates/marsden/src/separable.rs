@@ -18,7 +18,7 @@
 //! **Jacobian reuse** (simplified Newton, Hairer & Wanner, *Solving ODEs II*, §IV.8): for
 //! systems of at least [`REUSE_MIN_DOF`] degrees of freedom `A` is factored once and kept — across iterations and across steps of the same `h` — as long as the
 //! iteration contracts fast: when the ratio of successive updates `θ = ‖δ_k‖/‖δ_{k−1}‖` exceeds
-//! ½ with a Jacobian from an earlier step, a fresh one is assembled at the current iterate; an
+//! 0.1 with a Jacobian from an earlier step, a fresh one is assembled at the current iterate; an
 //! update that grows (`θ ≥ 1`) is discarded first. Smaller systems take exact Newton steps
 //! (a fresh `A` per update). The stopping tests are those of
 //! [`crate::newton`], so the solution is the general path's to round-off (test
@@ -33,7 +33,7 @@ use crate::newton::{NewtonFailure, NewtonOptions, NewtonReport};
 use crate::{Lagrangian, MassMatrix};
 
 /// Contraction rate above which a reused Jacobian is replaced by a fresh one.
-const THETA_REFRESH: f64 = 0.5;
+const THETA_REFRESH: f64 = 0.1;
 
 /// Systems with at least this many degrees of freedom keep their Jacobian across iterations
 /// and steps; smaller ones assemble a fresh one for every update (exact Newton), since for them

@@ -26,6 +26,7 @@ fn options(h: f64) -> SolveOptions {
         run: RunOptions {
             stride: (SAMPLE / h).round() as usize,
         },
+        ..SolveOptions::default()
     }
 }
 

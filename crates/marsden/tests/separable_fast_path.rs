@@ -3,7 +3,7 @@
 //! automatically, and reuses its Jacobian (pinned work counters).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::excessive_precision)]
 
-use marsden::systems::{HenonHeiles, Kepler, NBody, Pendulum};
+use marsden::systems::{Chain, HenonHeiles, Kepler, NBody, Pendulum};
 use marsden::{
     DiscreteAction, GeneralizedMidpoint, Integrator, Midpoint, NewtonOptions, Rule, State,
     Statistics,
@@ -197,5 +197,27 @@ fn separable_nbody_midpoint_agrees_with_the_general_path() {
         &state(&q, &p),
         0.01,
         300,
+    );
+}
+
+/// n = 40 ≥ `REUSE_MIN_DOF`: the Jacobian is reused across iterations and steps (linear
+/// convergence), and the answer is still the general path's to round-off.
+#[test]
+fn separable_chain_midpoint_with_jacobian_reuse_agrees_with_the_general_path() {
+    let n = 40;
+    assert!(n >= marsden::separable::REUSE_MIN_DOF);
+    let q: Vec<f64> = (0..n)
+        .map(|i| (std::f64::consts::PI * (i + 1) as f64 / (n + 1) as f64).sin())
+        .collect();
+    let stats = assert_round_off_agreement(
+        "fpu chain 40",
+        Midpoint.discretize(Chain::new(n)),
+        &state(&q, &vec![0.0; n]),
+        0.05,
+        300,
+    );
+    assert!(
+        stats.jacobian_factorizations * 4 < stats.newton_iterations,
+        "the Jacobian was reused: {stats:?}"
     );
 }

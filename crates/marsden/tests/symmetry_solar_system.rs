@@ -56,6 +56,7 @@ fn drifts<R: Rule>(rule: &R, steps: usize, newton: NewtonOptions) -> (f64, f64) 
     let options = SolveOptions {
         newton,
         run: RunOptions { stride: 10 },
+        ..SolveOptions::default()
     };
     let start = std::time::Instant::now();
     let trajectory = problem.solve(rule, &options).unwrap();

@@ -121,7 +121,7 @@ fn integrator(out: &mut Lines, spec: &RunSpec) {
         Some(t_end) => format!("t_end = {t_end} → {} steps", g.steps),
         None => format!("{} steps", g.steps),
     };
-    let (method, order) = (i.method, i.method.order());
+    let (method, order) = (&i.method, i.method.order());
     let span = format!("t = {} → {}", g.t0, g.t_end());
     out.line(
         "integrator",

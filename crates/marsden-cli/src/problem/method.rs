@@ -1,86 +1,72 @@
 //! `[integrator] method`: which rule turns `L` into `L_d`.
+//!
+//! The names are the core's ([`marsden::rules::Method`]): `midpoint`, `trapezoid`,
+//! `alpha-<a>`, `symmetrized-<a>`, `gauss-<s>`, `lobatto-<s>`, `galerkin-<s>-<family>-<r>` and
+//! compositions `<scheme>(<base>)`. This module adds the file-level error with a suggestion.
 
 use std::fmt;
+
+use marsden::rules::{METHOD_GRAMMAR, Method as CoreMethod, WithRule};
 
 use crate::expr::suggest::closest;
 
 /// A variational integrator's rule, by the name a problem file uses.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Method {
-    /// `midpoint`: [`marsden::Midpoint`], order 2.
-    Midpoint,
-    /// `trapezoid`: [`marsden::Trapezoid`] (Störmer–Verlet for mechanical systems), order 2.
-    Trapezoid,
-    /// `alpha-<a>`: [`marsden::GeneralizedMidpoint`], order 1 (2 for a = 0.5).
-    Alpha(f64),
-    /// `symmetrized-<a>`: [`marsden::SymmetrizedMidpoint`], order 2.
-    Symmetrized(f64),
-}
+#[derive(Debug, Clone, PartialEq)]
+pub struct Method(pub CoreMethod);
 
 /// The names accepted, for error messages and `--help`.
-pub const METHOD_NAMES: &str =
-    "midpoint, trapezoid, alpha-<a> and symmetrized-<a> with 0 <= a <= 1 (e.g. alpha-0.25)";
+pub const METHOD_NAMES: &str = METHOD_GRAMMAR;
 
-/// Families announced in the design that are not available yet.
-const LATER: [&str; 2] = ["gauss", "lobatto"];
+/// Typical names, for "did you mean" suggestions.
+const KNOWN: [&str; 10] = [
+    "midpoint",
+    "trapezoid",
+    "alpha-0.5",
+    "symmetrized-0.5",
+    "gauss-2",
+    "gauss-3",
+    "lobatto-3",
+    "lobatto-4",
+    "kahan-li-6(trapezoid)",
+    "suzuki-umeno-8(trapezoid)",
+];
 
 impl Method {
+    /// The midpoint rule (the default).
+    pub fn midpoint() -> Self {
+        Self(CoreMethod::Single(marsden::rules::BaseMethod::Midpoint))
+    }
+
     /// Parses a method name; the error says what is wrong and may suggest a name.
     pub fn parse(name: &str) -> Result<Method, MethodError> {
-        match name {
-            "midpoint" => return Ok(Method::Midpoint),
-            "trapezoid" => return Ok(Method::Trapezoid),
-            _ => {}
-        }
-        if let Some((family, arg)) = name.split_once('-') {
-            match family {
-                "alpha" => return parse_alpha(arg, name).map(Method::Alpha),
-                "symmetrized" => return parse_alpha(arg, name).map(Method::Symmetrized),
-                f if LATER.contains(&f) => {
-                    return Err(MethodError {
-                        message: format!(
-                            "method `{name}`: Galerkin methods ({f}-<s>) are not available yet"
-                        ),
-                        suggestion: None,
-                    });
+        CoreMethod::parse(name).map(Method).map_err(|e| {
+            let message = match e {
+                marsden::Error::UnknownMethod { reason, .. } => {
+                    format!("unknown method `{name}`: {reason}")
                 }
-                _ => {}
+                other => format!("method `{name}`: {other}"),
+            };
+            MethodError {
+                message,
+                suggestion: closest(name, KNOWN).map(str::to_owned),
             }
-        }
-        let known = ["midpoint", "trapezoid", "alpha-0.5", "symmetrized-0.5"];
-        Err(MethodError {
-            message: format!("unknown method `{name}`"),
-            suggestion: closest(name, known).map(str::to_owned),
         })
     }
 
     /// The classical order of the integrator.
-    pub fn order(self) -> u32 {
-        match self {
-            Method::Alpha(a) if a != 0.5 => 1,
-            _ => 2,
-        }
+    pub fn order(&self) -> u32 {
+        self.0.order()
     }
-}
 
-fn parse_alpha(arg: &str, name: &str) -> Result<f64, MethodError> {
-    match arg.parse::<f64>() {
-        Ok(a) if (0.0..=1.0).contains(&a) => Ok(a),
-        _ => Err(MethodError {
-            message: format!("method `{name}`: the parameter must be a number in [0, 1]"),
-            suggestion: None,
-        }),
+    /// Calls `visitor` with the concrete rule.
+    pub fn dispatch<V: WithRule>(&self, visitor: V) -> V::Output {
+        self.0.dispatch(visitor)
     }
 }
 
 impl fmt::Display for Method {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Method::Midpoint => f.write_str("midpoint"),
-            Method::Trapezoid => f.write_str("trapezoid"),
-            Method::Alpha(a) => write!(f, "alpha-{a}"),
-            Method::Symmetrized(a) => write!(f, "symmetrized-{a}"),
-        }
+        f.write_str(&self.0.name())
     }
 }
 
@@ -99,16 +85,20 @@ mod tests {
 
     #[test]
     fn names_round_trip() {
-        for m in [
-            Method::Midpoint,
-            Method::Trapezoid,
-            Method::Alpha(0.25),
-            Method::Symmetrized(0.0),
+        for name in [
+            "midpoint",
+            "trapezoid",
+            "alpha-0.25",
+            "symmetrized-0",
+            "gauss-2",
+            "lobatto-3",
+            "kahan-li-6(trapezoid)",
         ] {
-            assert_eq!(Method::parse(&m.to_string()), Ok(m));
+            let m = Method::parse(name).unwrap();
+            assert_eq!(m.to_string(), name);
         }
-        assert_eq!(Method::Alpha(0.25).order(), 1);
-        assert_eq!(Method::Alpha(0.5).order(), 2);
+        assert_eq!(Method::parse("alpha-0.25").unwrap().order(), 1);
+        assert_eq!(Method::parse("gauss-3").unwrap().order(), 6);
     }
 
     #[test]
@@ -121,11 +111,9 @@ mod tests {
                 .message
                 .contains("[0, 1]")
         );
-        assert!(
-            Method::parse("gauss-2")
-                .unwrap_err()
-                .message
-                .contains("not available yet")
-        );
+        let e = Method::parse("gauss-0").unwrap_err();
+        assert!(e.message.contains("valid"), "{}", e.message);
+        let e = Method::parse("galerkin-3-gauss-2").unwrap_err();
+        assert!(e.message.contains("too few"), "{}", e.message);
     }
 }

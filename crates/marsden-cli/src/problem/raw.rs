@@ -20,12 +20,14 @@
 //! q = [1.5]
 //! v = [0.0]                  # or p = [...]
 //! t0 = 0.0                   # extension: initial time (default 0)
+//! project = false            # with constraints: project (q, v) onto the manifold first
 //! [integrator]
 //! method = "midpoint"
 //! h = 0.05
 //! steps = 100000             # or t_end = ...
 //! tolerance = 1e-12
 //! max_iterations = 50
+//! fast_paths = true          # false: the general Newton path (the reference)
 //! [output]
 //! dir = "out/pendulum"
 //! format = "csv"
@@ -137,6 +139,9 @@ pub struct RawInitial {
     /// `nbody` only: masses, positions and velocities from a file in the benchmark format
     /// (`N`, then `m x y z vx vy vz` per body), relative to the problem file.
     pub file: Option<Spanned<String>>,
+    /// Project `(q, v)` or `(q, p)` onto the constraint manifold before the run (default
+    /// false: initial data off the constraints are an error).
+    pub project: Option<bool>,
 }
 
 /// `[integrator]`.
@@ -155,6 +160,9 @@ pub struct RawIntegrator {
     pub tolerance: Option<Spanned<f64>>,
     /// Newton iterations per step (default 50).
     pub max_iterations: Option<Spanned<i64>>,
+    /// Structure-aware fast paths where they apply (default true); `false` takes the general
+    /// Newton path, the reference they are tested against.
+    pub fast_paths: Option<Spanned<bool>>,
 }
 
 /// `[output]`.

@@ -80,7 +80,16 @@ pub fn initial(
         q: q_span,
         data: span,
     };
-    Ok((InitialSpec { t0, q, data }, spans))
+    let project = table.project.unwrap_or(false);
+    Ok((
+        InitialSpec {
+            t0,
+            q,
+            data,
+            project,
+        },
+        spans,
+    ))
 }
 
 /// The initial state of an N-body file; `q`, `v` and `p` must not be written as well.
@@ -167,17 +176,19 @@ pub fn integrator(
     if let Some(max) = &table.max_iterations {
         newton.max_iterations = count(ck, "max_iterations", max)?;
     }
+    let fast_paths = table.fast_paths.as_ref().is_none_or(|f| *f.get_ref());
     Ok(IntegratorSpec {
         method,
         grid,
         newton,
+        fast_paths,
         t_end,
     })
 }
 
 fn method(ck: &Checker<'_>, raw: Option<&Spanned<String>>) -> Result<Method, Diagnostic> {
     let Some(name) = raw else {
-        return Ok(Method::Midpoint);
+        return Ok(Method::midpoint());
     };
     Method::parse(name.get_ref()).map_err(|e| {
         ck.error(Some(name.span()), e.message)

@@ -134,6 +134,9 @@ pub struct InitialSpec {
     pub q: Vec<f64>,
     /// Velocities or momenta.
     pub data: InitialData,
+    /// Project the data onto the constraint manifold (`φ(q) = 0`, `Dφ(q) v = 0`) before the
+    /// run; otherwise data off the manifold are refused.
+    pub project: bool,
 }
 
 impl InitialSpec {
@@ -155,6 +158,8 @@ pub struct IntegratorSpec {
     pub grid: TimeGrid,
     /// Newton options of each step.
     pub newton: NewtonOptions,
+    /// Structure-aware fast paths allowed (`[integrator] fast_paths`, default true).
+    pub fast_paths: bool,
     /// `t_end` as written, if the steps were derived from it.
     pub t_end: Option<f64>,
 }

@@ -25,9 +25,10 @@ pub mod sweep_table;
 use std::path::PathBuf;
 use std::time::Instant;
 
+use marsden::rules::WithRule;
 use marsden::{
-    Constraint, Force, GeneralizedMidpoint, Lagrangian, Midpoint, Observer, Problem, RunFailure,
-    SolveOptions, Statistics, SymmetrizedMidpoint, Trajectory, Trapezoid,
+    Constraint, Force, Lagrangian, Observer, Problem, Rule, RunFailure, SolveOptions, Statistics,
+    Trajectory,
 };
 use marsden_io::{PlotOptions, RowSink, plot_run, read_csv, read_npy_dir};
 
@@ -59,24 +60,31 @@ pub struct RunRecord {
     pub rows: u64,
 }
 
-/// Solves `problem` with `method` (dispatch on the rule type; `midpoint` and `alpha-<a>`
-/// share one integrator type, as do `trapezoid` and `symmetrized-<a>`).
+/// Solves `problem` with `method` (dispatch on the rule type: one monomorphised run per rule).
 pub fn solve<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
     problem: &Problem<L, F, C>,
-    method: Method,
+    method: &Method,
     options: &SolveOptions,
     observer: &mut O,
 ) -> Result<Trajectory, Box<RunFailure>> {
-    match method {
-        Method::Midpoint => problem.solve_with(&Midpoint, options, observer),
-        Method::Trapezoid => problem.solve_with(&Trapezoid, options, observer),
-        Method::Alpha(alpha) => {
-            problem.solve_with(&GeneralizedMidpoint { alpha }, options, observer)
-        }
-        Method::Symmetrized(alpha) => {
-            problem.solve_with(&SymmetrizedMidpoint { alpha }, options, observer)
+    struct Solve<'a, L, F, C, O: ?Sized> {
+        problem: &'a Problem<L, F, C>,
+        options: &'a SolveOptions,
+        observer: &'a mut O,
+    }
+    impl<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized> WithRule
+        for Solve<'_, L, F, C, O>
+    {
+        type Output = Result<Trajectory, Box<RunFailure>>;
+        fn call<R: Rule>(self, rule: &R) -> Self::Output {
+            self.problem.solve_with(rule, self.options, self.observer)
         }
     }
+    method.dispatch(Solve {
+        problem,
+        options,
+        observer,
+    })
 }
 
 /// Runs `spec` with the given system parts, streaming rows into `sink`.
@@ -91,22 +99,17 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap>(
     progress: Progress,
 ) -> Result<RunRecord, Diagnostic> {
     let grid = spec.integrator.grid;
-    let problem = Problem::new(lagrangian, spec.initial.to_initial(), grid)
-        .map_err(|e| start::start_error(spec, &e))?
-        .with_force(force)
-        // The CLI checks the initial data itself and warns (`start::tangency`); the core's
-        // strict initial-data check (issue 3) is relaxed here to keep that behaviour.
-        .with_constraint_tolerance(constraint, f64::INFINITY)
-        .map_err(|e| start::start_error(spec, &e))?;
+    let problem = start::constrained_problem(spec, lagrangian, constraint)?.with_force(force);
     let options = SolveOptions {
         newton: spec.integrator.newton,
         // The observer stores the samples; the core keeps only the first and the last.
         run: marsden::RunOptions { stride: usize::MAX },
+        general_path: !spec.integrator.fast_paths,
     };
     let parts = (lagrangian, constraint, maps);
     let mut observer = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), progress);
     let clock = Instant::now();
-    let result = solve(&problem, spec.integrator.method, &options, &mut observer);
+    let result = solve(&problem, &spec.integrator.method, &options, &mut observer);
     let wall_seconds = clock.elapsed().as_secs_f64();
     observer.progress.finish();
     let (trajectory, error) = match result {

@@ -1,8 +1,7 @@
 //! The initial state completed by the core (`p` from `v` by the Legendre transform, or `v`
 //! from `p` by its inverse) and checked for regularity — before any file is written.
 
-use marsden::{Constraint, Lagrangian, Problem, mechanics};
-use num_dual::Dual64;
+use marsden::{Constraint, Initial, Lagrangian, Problem, mechanics};
 
 use crate::catalog::WithLagrangian;
 use crate::error::Diagnostic;
@@ -42,15 +41,11 @@ impl WithLagrangian for Prepare<'_> {
 
     fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output {
         let spec = self.0;
-        let problem = Problem::new(lagrangian, spec.initial.to_initial(), spec.integrator.grid)
-            .map_err(|e| start_error(spec, &e))?;
+        let problem = constrained_problem(spec, lagrangian, &spec.system.constraint)?;
         let start = problem.start();
         let v = problem.initial_velocity().to_vec();
         let energy = mechanics::energy(lagrangian, start.t, &start.q, &v);
-        let mut warnings: Vec<String> = tangency(&spec.system.constraint, &start.q, &v)
-            .into_iter()
-            .collect();
-        warnings.extend(non_symmetries(lagrangian, spec, (start.t, &start.q, &v)));
+        let warnings = non_symmetries(lagrangian, spec, (start.t, &start.q, &v));
         Ok(Start {
             t: start.t,
             q: start.q.clone(),
@@ -62,31 +57,41 @@ impl WithLagrangian for Prepare<'_> {
     }
 }
 
-/// A warning if the initial velocities leave the constraint manifold: `Dφ(q₀) v₀ ≠ 0`
-/// (beyond `1e-9 · max(1, |v₀|)`). SHAKE keeps `φ(q) = 0` anyway, but without RATTLE's
-/// projection the momenta keep the normal component.
-pub fn tangency<C: Constraint>(constraint: &C, q: &[f64], v: &[f64]) -> Option<String> {
-    let d = constraint.count();
-    if d == 0 {
-        return None;
+/// The initial data of `spec` in the core's form, projected onto the constraint manifold
+/// (`φ(q) = 0`, then `Dφ(q) v = 0` by RATTLE's projection) when `[initial] project = true`.
+///
+/// # Errors
+/// The core's objection to the projection (no point of the manifold nearby, redundant
+/// constraints), pointed at the initial data.
+pub fn initial_data<L: Lagrangian, C: Constraint>(
+    spec: &RunSpec,
+    lagrangian: &L,
+    constraint: &C,
+) -> Result<Initial, Diagnostic> {
+    let initial = spec.initial.to_initial();
+    if !spec.initial.project || constraint.count() == 0 {
+        return Ok(initial);
     }
-    // One dual evaluation at q + εv gives Dφ(q)·v in the ε parts.
-    let x: Vec<Dual64> = q.iter().zip(v).map(|(&q, &v)| Dual64::new(q, v)).collect();
-    let mut phi = vec![Dual64::from(0.0); d];
-    constraint.constraint(&x, &mut phi);
-    let scale = v.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
-    let (i, rate) = phi
-        .iter()
-        .map(|p| p.eps)
-        .enumerate()
-        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))?;
-    (rate.abs() > 1e-9 * scale || rate.is_nan()).then(|| {
-        format!(
-            "the initial velocities are not tangent to constraint [{i}]: dφ/dt = {rate:e}; \
-             the positions stay on the constraint, but the momenta keep the normal part \
-             (no RATTLE projection yet)"
-        )
-    })
+    initial
+        .project_onto(lagrangian, constraint, spec.initial.t0)
+        .map_err(|e| start_error(spec, &e))
+}
+
+/// The problem of `spec` with its constraints, the initial data checked against them (or
+/// projected first, see [`initial_data`]).
+///
+/// # Errors
+/// A singular Lagrangian, a Legendre transform that cannot be inverted, initial data off the
+/// constraint manifold: each pointed at the file.
+pub fn constrained_problem<L: Lagrangian, C: Constraint>(
+    spec: &RunSpec,
+    lagrangian: L,
+    constraint: C,
+) -> Result<Problem<L, marsden::NoForce, C>, Diagnostic> {
+    let initial = initial_data(spec, &lagrangian, &constraint)?;
+    Problem::new(lagrangian, initial, spec.integrator.grid)
+        .and_then(|p| p.with_constraint(constraint))
+        .map_err(|e| start_error(spec, &e))
 }
 
 /// The core's error about the initial state, pointed at the file.
@@ -99,6 +104,13 @@ pub fn start_error(spec: &RunSpec, e: &marsden::Error) -> Diagnostic {
         marsden::Error::InverseLegendre { .. } => Diagnostic::new(e.to_string())
             .at(source.locate_opt(spec.spans.initial_data.clone()))
             .help("give the initial velocities `v` instead of the momenta `p`"),
+        marsden::Error::InitialPositionOffConstraint { .. }
+        | marsden::Error::InitialVelocityNotTangent { .. } => Diagnostic::new(e.to_string())
+            .at(source.locate_opt(spec.spans.initial_data.clone()))
+            .help(
+                "set `project = true` in [initial] to project the data onto the constraint \
+                 manifold (φ(q) = 0, then Dφ(q)·v = 0 by RATTLE's projection)",
+            ),
         _ => Diagnostic::new(format!("cannot set up the problem: {e}")),
     }
 }

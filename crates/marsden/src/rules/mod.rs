@@ -10,6 +10,8 @@
 //! | [`Trapezoid`] | `(h/2)[L(t₀, q₀, v) + L(t₀+h, q₁, v)]` | `(h/2) f` at each end | 2 |
 //! | [`GeneralizedMidpoint`] α | `h L(t₀ + αh, (1−α)q₀ + αq₁, v)` | `h(1−α) f`, `hα f` at `q_α` | 1 (2 if α = ½) |
 //! | [`SymmetrizedMidpoint`] α | `½(L_d^α + L_d^{1−α})` | average of the two | 2 |
+//! | [`Galerkin`] `P_s`, r nodes | `h Σ b_i L(q(c_i h), q̇(c_i h))`, interior points as stages | `h Σ b_i ℓ_j(c_i) f` on point j | `min(2s, 2r)` Gauss, `min(2s, 2r−2)` Lobatto |
+//! | [`Composition`] of a rule | `Σ_i L_d(Q_{i−1}, Q_i, γ_i h)`, interior points as stages | each substep's forces | the scheme's (4, 6, 8) |
 //!
 //! Midpoint is the α = ½ member of the generalised family and trapezoid the symmetrised α = 0
 //! member; they share one implementation each ([`AlphaLd`], [`SymmetrizedLd`]).
@@ -17,9 +19,17 @@
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 mod alpha;
+pub mod composition;
+pub mod galerkin;
+pub mod method;
+pub mod quadrature;
 mod symmetrized;
 
 pub use alpha::{AlphaForce, AlphaLd, GeneralizedMidpoint, Midpoint};
+pub use composition::{ComposedForce, ComposedLd, Composition, CompositionScheme};
+pub use galerkin::{Galerkin, GalerkinForce, GalerkinLd};
+pub use method::{BaseMethod, METHOD_GRAMMAR, Method, WithRule};
+pub use quadrature::{Quadrature, QuadratureFamily};
 pub use symmetrized::{SymmetrizedForce, SymmetrizedLd, SymmetrizedMidpoint, Trapezoid};
 
 use crate::{DiscreteAction, DiscreteForce, Force, Lagrangian};

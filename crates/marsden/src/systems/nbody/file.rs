@@ -1,9 +1,25 @@
 //! The N-body initial-data format of the benchmark data (`shared/bench/data/`): the first line
 //! holds the number of bodies `N`, then one line per body `m x y z vx vy vz` (whitespace
 //! separated). Momenta are `p = m v`. Blank lines and lines starting with `#` are skipped.
-//! Every error names the line (1-based) it was found on.
+//! Every error about the contents names the line (1-based) it was found on.
+//!
+//! [`load`] reads a file into a ready system and its initial state `(NBody, q₀, p₀)` (what a
+//! `builtin = "nbody"` run needs); [`parse`] reads text into [`NBodyData`].
+//!
+//! ```
+//! use marsden::systems::nbody::file;
+//!
+//! let data = file::parse("2\n1.0 0 0 0 0 0 0\n1e-3 1 0 0 0 1 0\n")?;
+//! let (system, q0, p0) = data.into_system(1.0, 0.01)?;
+//! assert_eq!((system.bodies(), q0[3], p0[4]), (2, 1.0, 1e-3));
+//! # Ok::<(), marsden::systems::nbody::NBodyFileError>(())
+//! ```
+
+use std::path::Path;
 
 use thiserror::Error;
+
+use super::NBody;
 
 /// Masses, positions and velocities read from an N-body file (positions and velocities in the
 /// coordinate order of [`super::NBody`]: `x₁ y₁ z₁ x₂ …`).
@@ -26,12 +42,73 @@ impl NBodyData {
             .flat_map(|(v, m)| [m * v[0], m * v[1], m * v[2]])
             .collect()
     }
+
+    /// The system of these bodies with gravitational constant `g` and softening length
+    /// `softening` ([`NBody::with_parameters`]), and its initial positions and momenta.
+    pub fn into_system(
+        self,
+        g: f64,
+        softening: f64,
+    ) -> Result<(NBody, Vec<f64>, Vec<f64>), NBodyFileError> {
+        let p = self.momenta();
+        let system = NBody::with_parameters(self.masses, g, softening).map_err(|e| match e {
+            crate::Error::InvalidOption {
+                name,
+                value,
+                reason,
+            } => NBodyFileError::InvalidParameter {
+                name,
+                value,
+                reason,
+            },
+            // `with_parameters` reports nothing else.
+            _ => NBodyFileError::InvalidParameter {
+                name: "system",
+                value: f64::NAN,
+                reason: "invalid N-body parameters",
+            },
+        })?;
+        Ok((system, self.q, p))
+    }
+}
+
+/// Reads the N-body file at `path` and builds the system with gravitational constant `g` and
+/// softening length `softening`: `(system, q₀, p₀)`, momenta `p = m v`.
+pub fn load(
+    path: impl AsRef<Path>,
+    g: f64,
+    softening: f64,
+) -> Result<(NBody, Vec<f64>, Vec<f64>), NBodyFileError> {
+    let path = path.as_ref();
+    let text = std::fs::read_to_string(path).map_err(|e| NBodyFileError::Io {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    })?;
+    parse(&text)?.into_system(g, softening)
 }
 
 /// What is wrong with an N-body file, and where.
 #[derive(Debug, Clone, PartialEq, Error)]
 #[non_exhaustive]
 pub enum NBodyFileError {
+    /// The file could not be read.
+    #[error("cannot read `{path}`: {message}")]
+    Io {
+        /// The path given.
+        path: String,
+        /// The operating system's message.
+        message: String,
+    },
+    /// `G` or the softening length is out of range (see [`NBody::with_parameters`]).
+    #[error("invalid N-body parameter {name} = {value}: {reason}")]
+    InvalidParameter {
+        /// `G`, `softening` or `masses`.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// Valid range.
+        reason: &'static str,
+    },
     /// The file has no line with the number of bodies.
     #[error("the file is empty: the first line must hold the number of bodies N")]
     Empty,

@@ -9,12 +9,12 @@
 //! structure of arrays, vectorised), which tests compare with AD. Initial data can be read from
 //! the benchmark file format ([`file`]).
 
-mod file;
+pub mod file;
 pub mod gravity;
 
-pub use file::{NBodyData, NBodyFileError, parse as parse_file};
+pub use file::{NBodyData, NBodyFileError, load, parse as parse_file};
 
-use crate::{Lagrangian, MassMatrix, Scalar, Structure};
+use crate::{Error, Lagrangian, MassMatrix, Scalar, Structure};
 
 /// N point masses under mutual gravitation.
 #[derive(Debug, Clone, PartialEq)]
@@ -35,6 +35,48 @@ impl NBody {
             g: 1.0,
             softening: 0.0,
         }
+    }
+
+    /// Bodies of the given masses with gravitational constant `g` and Plummer softening length
+    /// `softening`, checked: at least one body, every mass positive and finite, `g` finite
+    /// and positive, `softening` finite and non-negative (else [`Error::InvalidOption`] naming
+    /// `masses`, `G` or `softening`).
+    ///
+    /// ```
+    /// use marsden::systems::NBody;
+    ///
+    /// let system = NBody::with_parameters(vec![1.0, 1e-3], 1.0, 0.01)?;
+    /// assert_eq!(system.bodies(), 2);
+    /// assert!(NBody::with_parameters(vec![1.0, -1.0], 1.0, 0.0).is_err());
+    /// # Ok::<(), marsden::Error>(())
+    /// ```
+    pub fn with_parameters(masses: Vec<f64>, g: f64, softening: f64) -> Result<Self, Error> {
+        let invalid = |name, value, reason| Error::InvalidOption {
+            name,
+            value,
+            reason,
+        };
+        if masses.is_empty() {
+            return Err(invalid("masses", 0.0, "at least one body is needed"));
+        }
+        if let Some(&m) = masses.iter().find(|m| !(m.is_finite() && **m > 0.0)) {
+            return Err(invalid(
+                "masses",
+                m,
+                "every mass must be positive and finite",
+            ));
+        }
+        if !(g.is_finite() && g > 0.0) {
+            return Err(invalid("G", g, "must be positive and finite"));
+        }
+        if !(softening.is_finite() && softening >= 0.0) {
+            return Err(invalid("softening", softening, "must be finite and ≥ 0"));
+        }
+        Ok(Self {
+            masses,
+            g,
+            softening,
+        })
     }
 
     /// Number of bodies.
