@@ -34,14 +34,21 @@ fn ensemble_is_independent_of_thread_count() {
     let solve = || ensemble::solve(&problems, &Midpoint, &options);
     let one: Outcome = in_pool(1, solve);
     let two: Outcome = in_pool(2, solve);
-    assert_eq!(one, two, "1 and 2 threads must give the same members, bit for bit");
+    assert_eq!(
+        one, two,
+        "1 and 2 threads must give the same members, bit for bit"
+    );
     for (k, member) in one.iter().enumerate() {
         assert_eq!(member.index, k);
         let report = member.result.as_ref().unwrap();
         assert_eq!(report.steps, 400);
         // 41 samples with stride 10 over 400 steps (the first and every 10th).
         assert_eq!(report.energy.samples, 41);
-        assert!(report.energy.max_rel_error < 1e-2, "member {k}: {:?}", report.energy);
+        assert!(
+            report.energy.max_rel_error < 1e-2,
+            "member {k}: {:?}",
+            report.energy
+        );
         // Each member is the run of its own problem alone.
         let alone = problems[k].solve(&Midpoint, &options).unwrap();
         assert_eq!(report.q, alone.q(alone.len() - 1));

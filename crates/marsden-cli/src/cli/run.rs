@@ -16,10 +16,16 @@ pub fn run(args: &RunArgs) -> Result<Status, CliError> {
         return run_sweep(args, &spec, sweep);
     }
     if args.shard.is_some() || args.threads.is_some() {
-        let flag = if args.shard.is_some() { "--shard" } else { "--threads" };
+        let flag = if args.shard.is_some() {
+            "--shard"
+        } else {
+            "--threads"
+        };
         return Err(CliError::bad_input(
-            Diagnostic::new(format!("{flag} applies to sweeps, but the problem file has no [sweep] table"))
-                .help("add [sweep] with `parameter = \"...\"` and `values = [...]`"),
+            Diagnostic::new(format!(
+                "{flag} applies to sweeps, but the problem file has no [sweep] table"
+            ))
+            .help("add [sweep] with `parameter = \"...\"` and `values = [...]`"),
         ));
     }
     let outcome = run::execute(&spec, !args.no_progress)?;
@@ -60,8 +66,15 @@ fn run_sweep(args: &RunArgs, spec: &RunSpec, sweep: &SweepSpec) -> Result<Status
             outcome.rows.len(),
             spec.integrator.method
         );
-        print!("{}", run::sweep_table::render(&outcome.label, &outcome.rows));
-        println!("wrote {} in {}", outcome.files.join(", "), outcome.dir.display());
+        print!(
+            "{}",
+            run::sweep_table::render(&outcome.label, &outcome.rows)
+        );
+        println!(
+            "wrote {} in {}",
+            outcome.files.join(", "),
+            outcome.dir.display()
+        );
     }
     match outcome.failed() {
         0 => Ok(Status::Completed),

@@ -20,11 +20,11 @@ pub mod toml_error;
 use std::path::Path;
 
 pub use method::Method;
-pub use sweep::{SweepSpec, SweepTarget};
 pub use spec::{
     Format, InitialData, InitialSpec, IntegratorSpec, LagrangianSpec, OutputSpec, Overrides,
     RunSpec, SpecSpans, SystemSpec,
 };
+pub use sweep::{SweepSpec, SweepTarget};
 
 use crate::error::Diagnostic;
 use crate::source::SourceFile;

@@ -7,8 +7,8 @@ use marsden::{NewtonOptions, TimeGrid};
 use toml::Spanned;
 
 use super::check::Checker;
-use super::nbody_file::BodiesFile;
 use super::method::{METHOD_NAMES, Method};
+use super::nbody_file::BodiesFile;
 use super::raw::{RawInitial, RawIntegrator, RawOutput};
 use super::spec::{Format, InitialData, InitialSpec, IntegratorSpec, OutputSpec, Overrides};
 use crate::error::Diagnostic;
@@ -115,6 +115,7 @@ fn from_file(
         t0,
         q: bodies.data.q.clone(),
         data: InitialData::Velocity(bodies.data.v.clone()),
+        project: table.project.unwrap_or(false),
     };
     let spans = InitialSpans {
         q: bodies.span.clone(),

@@ -143,7 +143,13 @@ fn initial_value(
         InitialData::Velocity(_) => InitialVector::V,
         InitialData::Momentum(_) => InitialVector::P,
     };
-    let valid = format!("q[0] … q[{}] or {}[0] … {}[{}]", n - 1, given.name(), given.name(), n - 1);
+    let valid = format!(
+        "q[0] … q[{}] or {}[0] … {}[{}]",
+        n - 1,
+        given.name(),
+        given.name(),
+        n - 1
+    );
     let bad = |why: String| {
         ck.error(Some(text.span()), why)
             .note(format!("initial values of this file: {valid}"))
@@ -166,7 +172,11 @@ fn initial_value(
         return Err(bad(format!(
             "cannot sweep `{}`: the file gives the initial {} `{}`, not `{}`",
             text.get_ref(),
-            if given == InitialVector::V { "velocities" } else { "momenta" },
+            if given == InitialVector::V {
+                "velocities"
+            } else {
+                "momenta"
+            },
             given.name(),
             vector.name()
         )));
@@ -223,14 +233,23 @@ fn range_values(ck: &Checker<'_>, raw: &Spanned<RawRange>) -> Result<Vec<f64>, D
         ck.error(Some(raw.span()), format!("`range` needs `{key}`"))
             .help("`range = { start = 0.1, stop = 1.0, count = 10 }`")
     };
-    let start = ck.finite("range.start", r.start.as_ref().ok_or_else(|| missing("start"))?)?;
-    let stop = ck.finite("range.stop", r.stop.as_ref().ok_or_else(|| missing("stop"))?)?;
+    let start = ck.finite(
+        "range.start",
+        r.start.as_ref().ok_or_else(|| missing("start"))?,
+    )?;
+    let stop = ck.finite(
+        "range.stop",
+        r.stop.as_ref().ok_or_else(|| missing("stop"))?,
+    )?;
     let count_value = r.count.as_ref().ok_or_else(|| missing("count"))?;
     let count = usize::try_from(*count_value.get_ref()).unwrap_or(0);
     if count == 0 {
         return Err(ck.error(
             Some(count_value.span()),
-            format!("the range is empty: count = {}, it must be at least 1", count_value.get_ref()),
+            format!(
+                "the range is empty: count = {}, it must be at least 1",
+                count_value.get_ref()
+            ),
         ));
     }
     if start > stop || (start == stop && count > 1) {
@@ -239,7 +258,9 @@ fn range_values(ck: &Checker<'_>, raw: &Spanned<RawRange>) -> Result<Vec<f64>, D
                 Some(raw.span()),
                 format!("the range is empty: start = {start} must be below stop = {stop}"),
             )
-            .help("the values run upwards from `start` to `stop`; `count = 1` runs `start` alone"));
+            .help(
+                "the values run upwards from `start` to `stop`; `count = 1` runs `start` alone",
+            ));
     }
     if count == 1 {
         return Ok(vec![start]);

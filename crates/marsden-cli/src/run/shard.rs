@@ -58,7 +58,9 @@ impl FromStr for Shard {
         };
         let (index, count) = (parse(i, "the shard index")?, parse(n, "the shard count")?);
         if count == 0 {
-            return Err(format!("the shard count must be at least 1, got `{text}`; {usage}"));
+            return Err(format!(
+                "the shard count must be at least 1, got `{text}`; {usage}"
+            ));
         }
         if index >= count {
             return Err(format!(

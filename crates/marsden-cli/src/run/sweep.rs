@@ -107,7 +107,10 @@ pub fn execute(
         .collect();
     let dir = base.output.dir.clone();
     std::fs::create_dir_all(&dir).map_err(|e| {
-        Diagnostic::new(format!("cannot create the output directory {}: {e}", dir.display()))
+        Diagnostic::new(format!(
+            "cannot create the output directory {}: {e}",
+            dir.display()
+        ))
     })?;
     let label = sweep.target.label();
     let files = sweep_table::write(&dir, options.shard, &label, &rows, sweep.values.len())

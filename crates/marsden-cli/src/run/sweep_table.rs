@@ -100,7 +100,12 @@ pub fn render(label: &str, rows: &[SweepRow]) -> String {
         let _ = write!(
             out,
             "{:>6}  {:>12.6e}  {:>12.6e}  {:>9}  {:>12.3e}  {:>12.3e}  {}",
-            r.member, r.value, r.t_final, r.steps, r.energy_max_rel_error, r.energy_rel_drift,
+            r.member,
+            r.value,
+            r.t_final,
+            r.steps,
+            r.energy_max_rel_error,
+            r.energy_rel_drift,
             r.status()
         );
         match &r.error {
