@@ -192,6 +192,16 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
                 piece
             };
             let (end, estimate, row) = self.extrapolate(t0 + done, step, y)?;
+            if step != remaining && negligible(step, t0 + done, h) {
+                // The accepted substeps shrink to nothing (a solution running into a
+                // singularity): stop instead of creeping towards it.
+                return Err(Error::FlowDidNotConverge {
+                    t: t0 + done,
+                    substep: step,
+                    estimate,
+                    tolerance: self.options.tolerance,
+                });
+            }
             if estimate <= self.options.tolerance * max_norm(&end).max(1.0) {
                 y.copy_from_slice(&end);
                 done = if step == remaining { h } else { done + step };
@@ -348,3 +358,9 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
         .map(|(x, y)| (x - y).abs())
         .fold(0.0, f64::max)
 }
+
+/// A substep too small to advance the time: `|step| ≤ 64 ε · max(|t|, |h|)`.
+fn negligible(step: f64, t: f64, h: f64) -> bool {
+    step.abs() <= 64.0 * f64::EPSILON * t.abs().max(h.abs())
+}
+
