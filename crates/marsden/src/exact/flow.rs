@@ -192,16 +192,6 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
                 piece
             };
             let (end, estimate, row) = self.extrapolate(t0 + done, step, y)?;
-            if step != remaining && negligible(step, t0 + done, h) {
-                // The accepted substeps shrink to nothing (a solution running into a
-                // singularity): stop instead of creeping towards it.
-                return Err(Error::FlowDidNotConverge {
-                    t: t0 + done,
-                    substep: step,
-                    estimate,
-                    tolerance: self.options.tolerance,
-                });
-            }
             if estimate <= self.options.tolerance * max_norm(&end).max(1.0) {
                 y.copy_from_slice(&end);
                 done = if step == remaining { h } else { done + step };
@@ -215,7 +205,9 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
                 rejections = 0;
             } else {
                 rejections += 1;
-                if rejections > self.options.max_halvings {
+                // A rejected substep too small to advance the time: the solution runs into a
+                // singularity, and the accepted substeps would shrink towards it forever.
+                if rejections > self.options.max_halvings || negligible(step, t0 + done, h) {
                     return Err(Error::FlowDidNotConverge {
                         t: t0 + done,
                         substep: step,
