@@ -62,11 +62,27 @@ fn r6_pendulum_orders_of_midpoint_and_gauss_2() {
     assert_eq!(run.code, 0, "stderr:\n{}", run.stderr);
     let midpoint = fitted(&run.stdout, "midpoint");
     let gauss = fitted(&run.stdout, "gauss-2");
-    assert!((midpoint - 2.0).abs() < 0.2, "midpoint: {midpoint}\n{}", run.stdout);
-    assert!((gauss - 4.0).abs() < 0.2, "gauss-2: {gauss}\n{}", run.stdout);
+    assert!(
+        (midpoint - 2.0).abs() < 0.2,
+        "midpoint: {midpoint}\n{}",
+        run.stdout
+    );
+    assert!(
+        (gauss - 4.0).abs() < 0.2,
+        "gauss-2: {gauss}\n{}",
+        run.stdout
+    );
     let r6 = [
-        ("midpoint", "2", ["4.914e-2", "1.225e-2", "3.059e-3", "7.647e-4"]),
-        ("gauss-2", "4", ["2.192e-4", "1.374e-5", "8.594e-7", "5.373e-8"]),
+        (
+            "midpoint",
+            "2",
+            ["4.914e-2", "1.225e-2", "3.059e-3", "7.647e-4"],
+        ),
+        (
+            "gauss-2",
+            "4",
+            ["2.192e-4", "1.374e-5", "8.594e-7", "5.373e-8"],
+        ),
     ];
     for (method, expected, errors) in r6 {
         let cells = row(&run.stdout, method);
@@ -120,7 +136,10 @@ fn empty_lists_and_non_positive_steps_are_refused() {
     for (args, message) in [
         (&["--methods="][..], "--methods is empty"),
         (&["--h="][..], "--h is empty"),
-        (&["--h", "0.1,-0.05"][..], "must be positive and finite, got -0.05"),
+        (
+            &["--h", "0.1,-0.05"][..],
+            "must be positive and finite, got -0.05",
+        ),
         (&["--h", "0"][..], "must be positive and finite, got 0"),
     ] {
         let run = order("pendulum_builtin.toml", args);
@@ -158,7 +177,10 @@ fn csv_has_one_line_per_run() {
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines[0], "method,expected_order,h,steps,error,fitted_order");
     assert_eq!(lines.len(), 5);
-    assert!(lines[1].starts_with("\"midpoint\",2,0.5,10,0.0491"), "{text}");
+    assert!(
+        lines[1].starts_with("\"midpoint\",2,0.5,10,0.0491"),
+        "{text}"
+    );
 }
 
 /// The solution of `failure_mid_run.toml` runs into the singular mass at t ≈ 1.33: the
@@ -179,7 +201,10 @@ fn a_reference_past_a_singularity_fails_quickly() {
 /// `failed` in its cell, and the table is still printed (status 1).
 #[test]
 fn failed_runs_are_cells_not_aborts() {
-    let run = order("failure_first_step.toml", &["--methods", "midpoint,gauss-2"]);
+    let run = order(
+        "failure_first_step.toml",
+        &["--methods", "midpoint,gauss-2"],
+    );
     assert_eq!(run.code, 1, "{}", run.stderr);
     let cells = row(&run.stdout, "gauss-2");
     assert_eq!(cells[2], "failed", "{}", run.stdout);

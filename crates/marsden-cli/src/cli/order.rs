@@ -55,7 +55,7 @@ pub fn order(args: &OrderArgs) -> Result<Status, CliError> {
     }
     eprintln!(
         "error: {failed} of the runs failed (shown as `failed`)\n  = help: a Newton failure \
-         at a large h usually means h is too large for the method; try smaller step sizes"
+         usually means h is too large for the method, or [integrator] max_iterations too small"
     );
     Ok(Status::Failed)
 }

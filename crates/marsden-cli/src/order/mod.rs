@@ -202,15 +202,28 @@ mod tests {
         assert_eq!(g, [(0.5, 10), (0.25, 20)]);
         let e = grids(&[0.3], 0.0, 5.0).unwrap_err();
         assert!(e.message.contains("h = 0.3"), "{}", e.message);
-        assert!(grids(&[0.1], 0.0, 1.0).is_ok(), "1/0.1 is 10 within round-off");
+        assert!(
+            grids(&[0.1], 0.0, 1.0).is_ok(),
+            "1/0.1 is 10 within round-off"
+        );
     }
 
     #[test]
     fn empty_lists_and_bad_numbers_are_refused() {
         assert!(step_sizes("").unwrap_err().message.contains("empty"));
-        assert!(step_sizes("0.1,,0.2").unwrap_err().message.contains("item 2"));
+        assert!(
+            step_sizes("0.1,,0.2")
+                .unwrap_err()
+                .message
+                .contains("item 2")
+        );
         assert!(step_sizes("-0.1").unwrap_err().message.contains("positive"));
-        assert!(step_sizes("abc").unwrap_err().message.contains("not a number"));
+        assert!(
+            step_sizes("abc")
+                .unwrap_err()
+                .message
+                .contains("not a number")
+        );
         assert!(methods(" ").unwrap_err().message.contains("empty"));
     }
 }

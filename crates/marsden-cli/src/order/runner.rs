@@ -31,8 +31,9 @@ pub struct Results {
 pub fn measure(spec: &RunSpec, plan: &Plan) -> Result<Results, CliError> {
     if spec.system.constraint.count() > 0 {
         return Err(CliError::bad_input(
-            Diagnostic::new("marsden order does not support constrained problems")
-                .note("the reference solution integrates the unconstrained Euler–Lagrange equations"),
+            Diagnostic::new("marsden order does not support constrained problems").note(
+                "the reference solution integrates the unconstrained Euler–Lagrange equations",
+            ),
         ));
     }
     spec.system.lagrangian.dispatch(Study { spec, plan })
@@ -45,9 +46,7 @@ pub fn options(spec: &RunSpec) -> OrderOptions {
     let file = spec.integrator.newton;
     OrderOptions {
         newton: NewtonOptions {
-            residual_tolerance: file
-                .residual_tolerance
-                .min(study.newton.residual_tolerance),
+            residual_tolerance: file.residual_tolerance.min(study.newton.residual_tolerance),
             ..file
         },
         ..study

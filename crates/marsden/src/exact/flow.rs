@@ -355,4 +355,3 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
 fn negligible(step: f64, t: f64, h: f64) -> bool {
     step.abs() <= 64.0 * f64::EPSILON * t.abs().max(h.abs())
 }
-
