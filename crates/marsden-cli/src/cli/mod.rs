@@ -1,9 +1,10 @@
-//! The command line: `marsden run | check | systems | plot`, parsed with clap's derive API.
+//! The command line: `marsden run | check | order | systems | plot`, parsed with clap's derive API.
 //!
 //! Exit statuses (a contract): 0 completed, 1 the simulation failed (partial trajectory and
 //! summary still written, status "failed"), 2 bad problem file or usage (nothing run).
 
 mod check;
+mod order;
 mod plot;
 mod run;
 mod systems;
@@ -34,6 +35,8 @@ pub enum Command {
     Run(RunArgs),
     /// Validate a problem file and print the resolved problem (nothing is run or written).
     Check(FileArgs),
+    /// Empirical order of convergence: run methods at several step sizes, fit the log–log slope.
+    Order(OrderArgs),
     /// List the catalog systems (`builtin = "..."`) with coordinates, parameters, defaults.
     Systems {
         /// Show only this system.
@@ -94,6 +97,26 @@ pub struct RunArgs {
     pub threads: Option<u16>,
 }
 
+/// `marsden order`.
+#[derive(Debug, Args)]
+pub struct OrderArgs {
+    /// The problem file (TOML).
+    pub file: PathBuf,
+    /// Methods to compare, comma-separated (default: the file's method).
+    #[arg(long, value_name = "M1,M2,...")]
+    pub methods: Option<String>,
+    /// Step sizes, comma-separated; each must divide T − t0 (default: the file's h × 1, 1/2,
+    /// 1/4, 1/8).
+    #[arg(long, value_name = "H1,H2,...", allow_hyphen_values = true)]
+    pub h: Option<String>,
+    /// Final time T (default: the file's t_end = t0 + h·steps).
+    #[arg(long, allow_negative_numbers = true)]
+    pub t_end: Option<f64>,
+    /// Also write the errors as CSV to this file.
+    #[arg(long)]
+    pub csv: Option<PathBuf>,
+}
+
 /// Parses `args` (the first is the program name) and runs the command; the process's exit
 /// code follows [`Status`].
 pub fn main_with<I, T>(args: I) -> ExitCode
@@ -121,6 +144,7 @@ fn dispatch(command: Command) -> Result<Status, CliError> {
     match command {
         Command::Run(args) => run::run(&args),
         Command::Check(args) => check::check(&args),
+        Command::Order(args) => order::order(&args),
         Command::Systems { name } => systems::systems(name.as_deref()),
         Command::Plot { dir } => plot::plot(&dir),
     }

@@ -205,7 +205,9 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
                 rejections = 0;
             } else {
                 rejections += 1;
-                if rejections > self.options.max_halvings {
+                // A rejected substep too small to advance the time: the solution runs into a
+                // singularity, and the accepted substeps would shrink towards it forever.
+                if rejections > self.options.max_halvings || negligible(step, t0 + done, h) {
                     return Err(Error::FlowDidNotConverge {
                         t: t0 + done,
                         substep: step,
@@ -347,4 +349,9 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
         .zip(b)
         .map(|(x, y)| (x - y).abs())
         .fold(0.0, f64::max)
+}
+
+/// A substep too small to advance the time: `|step| ≤ 64 ε · max(|t|, |h|)`.
+fn negligible(step: f64, t: f64, h: f64) -> bool {
+    step.abs() <= 64.0 * f64::EPSILON * t.abs().max(h.abs())
 }
