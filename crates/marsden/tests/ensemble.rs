@@ -1,6 +1,8 @@
 //! Ensembles (issue 7): results in member order, independent of the number of threads, one
 //! failing member reported without stopping the others.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
 use marsden::ensemble::{self, Member, MemberFailure, MemberReport};
 use marsden::systems::Pendulum;
 use marsden::{Initial, Midpoint, NewtonOptions, Problem, RunOptions, SolveOptions, TimeGrid};
