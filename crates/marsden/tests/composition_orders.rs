@@ -78,6 +78,16 @@ fn explicit_composition_equals_the_general_newton_path() {
     };
     let ((fast, stats), (slow, _)) = (run(true), run(false));
     assert_eq!(stats.explicit_steps, 200);
+    // One gradient per substep (9 for Kahan–Li 6) once the first-same-as-last cache is warm:
+    // each substep starts where the previous one ended, bit for bit. The time stamps rewritten
+    // by the run (`s.t = k h`) may cost a refresh at a step boundary, never more than one.
+    let substeps = rule.coefficients().len();
+    assert_eq!(substeps, 9);
+    println!("{stats:?}");
+    assert!(
+        stats.potential_gradients <= 200 * (substeps + 1) + 1,
+        "{stats:?}: the gradient cache misses inside the composition"
+    );
     for a in 0..2 {
         assert_close(fast.q[a], slow.q[a], 1e-12, "q");
         assert_close(fast.p[a], slow.p[a], 1e-12, "p");
