@@ -38,7 +38,7 @@ const METHODS: [(&str, bool); 7] = [
     ("gauss-3", true),
 ];
 /// Step sizes in days.
-const STEP_SIZES: [f64; 4] = [10.0, 20.0, 40.0, 80.0];
+const STEP_SIZES: [f64; 6] = [10.0, 20.0, 40.0, 50.0, 60.0, 80.0];
 /// Timed repeats (the median is reported).
 const REPEATS: usize = 3;
 
