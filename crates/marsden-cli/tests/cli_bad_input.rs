@@ -6,32 +6,7 @@
 
 mod e2e;
 
-use e2e::{Run, column, fixture, marsden, number};
-
-/// Runs `marsden run` on `bad/<name>` and checks status 2, every expected fragment of the
-/// message on stderr, and that no output directory was created.
-fn assert_rejected(name: &str, fragments: &[&str]) -> Run {
-    assert_rejected_with(name, &[], fragments)
-}
-
-fn assert_rejected_with(name: &str, extra: &[&str], fragments: &[&str]) -> Run {
-    let run = marsden("run", &fixture(&format!("bad/{name}")), extra);
-    assert_eq!(run.code, 2, "{name}: exit code; stderr:\n{}", run.stderr);
-    for fragment in fragments {
-        assert!(
-            run.stderr.contains(fragment),
-            "{name}: message lacks {fragment:?}:\n{}",
-            run.stderr
-        );
-    }
-    assert!(run.stderr.starts_with("error: "), "{}", run.stderr);
-    assert!(run.stdout.is_empty(), "{name}: stdout: {}", run.stdout);
-    assert!(
-        !run.out.exists(),
-        "{name}: nothing may be written for a bad file"
-    );
-    run
-}
+use e2e::{assert_rejected, assert_rejected_with, column, fixture, marsden, number};
 
 #[test]
 fn unknown_key_names_the_key_and_its_table() {

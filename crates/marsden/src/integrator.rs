@@ -450,12 +450,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             p0: &state.p,
         };
         let result = step.solve_separable(frame, z, &mut b.p_next, &self.options, &mut b.separable);
-        let evaluations = match &result {
-            Ok(r) | Err(NewtonFailure::NotConverged(r)) | Err(NewtonFailure::NonFinite(r)) => {
-                r.evaluations
-            }
-            Err(NewtonFailure::Singular { iteration, .. }) => iteration + 1,
-        };
+        let evaluations = evaluations_of(&result);
         self.statistics.system_evaluations += evaluations;
         self.statistics.potential_gradients += evaluations;
         Some(result)
@@ -499,12 +494,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
         }
         .map(|(report, ())| report);
-        let evaluations = match &result {
-            Ok(r) | Err(NewtonFailure::NotConverged(r)) | Err(NewtonFailure::NonFinite(r)) => {
-                r.evaluations
-            }
-            Err(NewtonFailure::Singular { iteration, .. }) => iteration + 1,
-        };
+        let evaluations = evaluations_of(&result);
         self.statistics.system_evaluations += evaluations;
         self.statistics.action_evaluations += evaluations;
         Some(result)
@@ -552,12 +542,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
         }
         .map(|(report, ())| report);
-        let evaluations = match &result {
-            Ok(r) | Err(NewtonFailure::NotConverged(r)) | Err(NewtonFailure::NonFinite(r)) => {
-                r.evaluations
-            }
-            Err(NewtonFailure::Singular { iteration, .. }) => iteration + 1,
-        };
+        let evaluations = evaluations_of(&result);
         self.statistics.system_evaluations += evaluations;
         self.statistics.action_evaluations += evaluations;
         Some(result)
@@ -778,5 +763,16 @@ impl Predictor {
         self.len = (self.len + 1).min(3);
         self.h = h;
         self.velocity = None;
+    }
+}
+
+/// System evaluations of one Newton solve, converged or not (a singular Jacobian at iteration
+/// `i` follows `i + 1` evaluations).
+fn evaluations_of(result: &Result<NewtonReport, NewtonFailure>) -> usize {
+    match result {
+        Ok(r) | Err(NewtonFailure::NotConverged(r)) | Err(NewtonFailure::NonFinite(r)) => {
+            r.evaluations
+        }
+        Err(NewtonFailure::Singular { iteration, .. }) => iteration + 1,
     }
 }

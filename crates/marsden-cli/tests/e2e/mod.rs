@@ -120,3 +120,29 @@ pub fn number(v: &Value, path: &str) -> f64 {
     at.as_f64()
         .unwrap_or_else(|| panic!("summary.{path} is not a number: {at}"))
 }
+
+/// Runs `marsden run` on `bad/<name>` and checks status 2, every expected fragment of the
+/// message on stderr, and that no output directory was created.
+pub fn assert_rejected(name: &str, fragments: &[&str]) -> Run {
+    assert_rejected_with(name, &[], fragments)
+}
+
+/// [`assert_rejected`] with extra command-line arguments.
+pub fn assert_rejected_with(name: &str, extra: &[&str], fragments: &[&str]) -> Run {
+    let run = marsden("run", &fixture(&format!("bad/{name}")), extra);
+    assert_eq!(run.code, 2, "{name}: exit code; stderr:\n{}", run.stderr);
+    for fragment in fragments {
+        assert!(
+            run.stderr.contains(fragment),
+            "{name}: message lacks {fragment:?}:\n{}",
+            run.stderr
+        );
+    }
+    assert!(run.stderr.starts_with("error: "), "{}", run.stderr);
+    assert!(run.stdout.is_empty(), "{name}: stdout: {}", run.stdout);
+    assert!(
+        !run.out.exists(),
+        "{name}: nothing may be written for a bad file"
+    );
+    run
+}
