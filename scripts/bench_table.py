@@ -2,7 +2,8 @@
 
 Reads target/bench-report/divan-<bench>.txt (one file per bench binary) and verlet-*.json, all
 written by scripts/bench.sh in one run. Rows are `<bench>/<path>`; the ratio column divides by
-the matching verlet.c run of the same invocation. For the chain bench it also fits the exponent
+the matching verlet.c run of the same invocation. Rows of a `*_run1000` group time 1000 steps
+and are shown per step. For the chain bench it also fits the exponent
 a of `median ∝ n^a` (least squares in log-log).
 """
 import json
@@ -68,6 +69,8 @@ def main(out: str) -> None:
     for path in sorted(d.glob("divan-*.txt")):
         bench = path.stem.removeprefix("divan-")
         for name, ns in divan_rows(path.read_text()):
+            if name.split("/")[0].endswith("_run1000"):
+                ns /= 1000.0  # runs of 1000 steps: per step
             ref = reference(bench, name, refs)
             ratio = f"{ns / ref:.2f}×" if ref else "–"
             trep = next((TREP[k] for k in TREP if name.startswith(k + "_h") or name.startswith(k + "/")), None)

@@ -104,3 +104,41 @@ rules!(
     0.01
 );
 rules!(kepler_h001, Kepler::default(), kepler(), 0.01);
+
+/// Steps per iteration of the run benchmarks; `scripts/bench_table.py` divides by it.
+const RUN: usize = 1000;
+
+/// `RUN` steps per iteration by [`Integrator::advance`]: the bare loop that `verlet.c` times
+/// (for explicit steps one loop, no per-step dispatch; otherwise repeated steps).
+fn bench_run<A: DiscreteAction>(bencher: Bencher, action: A, start: State, h: f64) {
+    let mut integrator = Integrator::new(action);
+    let mut state = start;
+    if integrator.advance(&mut state, h, 8).is_err() {
+        return;
+    }
+    bencher.bench_local(|| {
+        let _ = divan::black_box(integrator.advance(&mut state, h, RUN));
+    });
+}
+
+/// Runs of 1000 steps (per-step time = median / 1000).
+macro_rules! runs {
+    ($name:ident, $system:expr, $start:expr, $h:expr) => {
+        mod $name {
+            use super::*;
+
+            #[divan::bench]
+            fn trapezoid(b: Bencher) {
+                bench_run(b, Trapezoid.discretize($system), $start, $h);
+            }
+
+            #[divan::bench]
+            fn midpoint(b: Bencher) {
+                bench_run(b, Midpoint.discretize($system), $start, $h);
+            }
+        }
+    };
+}
+
+runs!(pendulum_h005_run1000, Pendulum::default(), pendulum(), 0.05);
+runs!(kepler_h001_run1000, Kepler::default(), kepler(), 0.01);

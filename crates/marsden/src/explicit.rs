@@ -20,6 +20,13 @@
 //! the trapezoid rule when the Lagrangian declares [`crate::Structure::Separable`] and there are
 //! no forces or constraints; a test checks it against the general Newton path to round-off.
 //!
+//! A run of many steps ([`ExplicitStep::explicit_run`], behind
+//! [`crate::Integrator::advance`]) takes the same steps in one loop: the gradient is simply
+//! carried from one step to the next, the times are `t₀ + k h`, and for diagonal masses and
+//! `n ≤ 4` the state lives in fixed-size arrays, so the loop is the bare kick–drift–kick of
+//! `verlet.c`. It gives the same numbers, bit for bit, as repeated single steps (test
+//! `explicit_run.rs`).
+//!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 use crate::linalg::Lu;
@@ -39,6 +46,63 @@ pub trait ExplicitStep {
         delta: &mut [f64],
         ws: &mut ExplicitWorkspace,
     ) -> usize;
+
+    /// `steps` steps from `(q, p)` at the grid times `t_k = t₀ + k h`, in place. Stops before
+    /// the first step whose new state is not finite, leaving `(q, p)` at the last finite state.
+    ///
+    /// Default: repeated [`ExplicitStep::explicit_step`].
+    fn explicit_run(
+        &self,
+        (t0, h): (f64, f64),
+        steps: usize,
+        (q, p): (&mut [f64], &mut [f64]),
+        ws: &mut ExplicitWorkspace,
+    ) -> ExplicitRun {
+        run_by_steps(self, (t0, h), steps, (q, p), ws)
+    }
+}
+
+/// [`ExplicitStep::explicit_run`] by repeated [`ExplicitStep::explicit_step`].
+pub(crate) fn run_by_steps<E: ExplicitStep + ?Sized>(
+    step: &E,
+    (t0, h): (f64, f64),
+    steps: usize,
+    (q, p): (&mut [f64], &mut [f64]),
+    ws: &mut ExplicitWorkspace,
+) -> ExplicitRun {
+    let mut buffers = std::mem::take(&mut ws.run);
+    buffers.resize(2 * q.len(), 0.0);
+    let (delta, p_next) = buffers.split_at_mut(q.len());
+    let mut run = ExplicitRun::default();
+    for k in 0..steps {
+        p_next.copy_from_slice(p);
+        let t = t0 + k as f64 * h;
+        run.gradients += step.explicit_step(t, h, q, p_next, delta, ws);
+        if !all_finite(delta, p_next) {
+            ws.cache_valid = false;
+            break;
+        }
+        q.iter_mut().zip(delta.iter()).for_each(|(x, d)| *x += d);
+        p.copy_from_slice(p_next);
+        run.steps += 1;
+    }
+    ws.run = buffers;
+    run
+}
+
+/// What a run of explicit steps did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ExplicitRun {
+    /// Steps completed (fewer than asked when a step went non-finite).
+    pub steps: usize,
+    /// Potential gradients evaluated.
+    pub gradients: usize,
+}
+
+/// Whether every entry of `a` and `b` is finite.
+#[inline]
+fn all_finite(a: &[f64], b: &[f64]) -> bool {
+    a.iter().chain(b).all(|x| x.is_finite())
 }
 
 /// Buffers of the explicit step and the gradient that ended the last step.
@@ -54,6 +118,8 @@ pub struct ExplicitWorkspace {
     scratch: Vec<f64>,
     /// Storage for the dense mass solve.
     solve: Vec<f64>,
+    /// Offsets and new momenta of [`ExplicitStep::explicit_run`]'s default loop.
+    run: Vec<f64>,
 }
 
 impl ExplicitWorkspace {
@@ -109,6 +175,23 @@ impl InverseMass {
             Self::Dense(lu) => lu.solve(x, scratch),
         }
     }
+
+    /// The drift `Δ = h M⁻¹ p`, written into `delta` (`scratch` for the dense solve). For a
+    /// diagonal mass it is `Δᵢ = (h/mᵢ) pᵢ`, the product a run loop hoists out of its steps.
+    #[inline]
+    fn drift(&self, h: f64, p: &[f64], delta: &mut [f64], scratch: &mut Vec<f64>) {
+        match self {
+            Self::Diagonal(d) => delta
+                .iter_mut()
+                .zip(p.iter().zip(d))
+                .for_each(|(x, (pi, di))| *x = (h * di) * pi),
+            Self::Dense(lu) => {
+                delta.copy_from_slice(p);
+                lu.solve(delta, scratch);
+                delta.iter_mut().for_each(|x| *x *= h);
+            }
+        }
+    }
 }
 
 /// `p ← p − (h/2) ∇V`.
@@ -135,9 +218,7 @@ pub(crate) fn velocity_verlet<L: Lagrangian>(
         gradients += 1;
     }
     half_kick(h, &ws.grad, p);
-    delta.copy_from_slice(p);
-    inverse_mass.apply(delta, &mut ws.solve);
-    delta.iter_mut().for_each(|d| *d *= h);
+    inverse_mass.drift(h, p, delta, &mut ws.solve);
     ws.q_next
         .iter_mut()
         .zip(q.iter().zip(delta.iter()))
@@ -148,4 +229,75 @@ pub(crate) fn velocity_verlet<L: Lagrangian>(
     ws.cache_t = t + h;
     ws.cache_valid = true;
     gradients
+}
+
+/// `steps` velocity Störmer–Verlet steps of a separable `L` in one loop
+/// ([`ExplicitStep::explicit_run`]): fixed-size arrays for a diagonal mass and `n ≤ 4`, else
+/// `None` (the caller then repeats [`velocity_verlet`]).
+pub(crate) fn velocity_verlet_run<L: Lagrangian>(
+    l: &L,
+    inverse_mass: &InverseMass,
+    grid: (f64, f64),
+    steps: usize,
+    state: (&mut [f64], &mut [f64]),
+    ws: &mut ExplicitWorkspace,
+) -> Option<ExplicitRun> {
+    let InverseMass::Diagonal(inverse) = inverse_mass else {
+        return None;
+    };
+    match inverse.len() {
+        1 => verlet_run_fixed::<L, 1>(l, inverse, grid, steps, state, ws),
+        2 => verlet_run_fixed::<L, 2>(l, inverse, grid, steps, state, ws),
+        3 => verlet_run_fixed::<L, 3>(l, inverse, grid, steps, state, ws),
+        4 => verlet_run_fixed::<L, 4>(l, inverse, grid, steps, state, ws),
+        _ => None,
+    }
+}
+
+/// The run loop on `N`-arrays: kick, drift, gradient, kick, exactly as [`velocity_verlet`]
+/// computes them (so bit for bit the same numbers), with the gradient carried in registers.
+#[inline]
+fn verlet_run_fixed<L: Lagrangian, const N: usize>(
+    l: &L,
+    inverse: &[f64],
+    (t0, h): (f64, f64),
+    steps: usize,
+    (q, p): (&mut [f64], &mut [f64]),
+    ws: &mut ExplicitWorkspace,
+) -> Option<ExplicitRun> {
+    let (Ok(q_out), Ok(p_out)) = (<&mut [f64; N]>::try_from(q), <&mut [f64; N]>::try_from(p))
+    else {
+        return None;
+    };
+    let (mut x, mut y) = (*q_out, *p_out);
+    let hm: [f64; N] = std::array::from_fn(|i| h * inverse[i]);
+    let c = 0.5 * h;
+    ws.resize(N);
+    let mut run = ExplicitRun::default();
+    let mut g = [0.0; N];
+    if ws.holds(t0, h, &x) {
+        g.copy_from_slice(&ws.grad);
+    } else {
+        l.potential_gradient(t0, &x, &mut g, &mut ws.scratch);
+        run.gradients += 1;
+    }
+    for k in 1..=steps {
+        let p_half: [f64; N] = std::array::from_fn(|i| y[i] - c * g[i]);
+        let q_next: [f64; N] = std::array::from_fn(|i| x[i] + hm[i] * p_half[i]);
+        let mut g_next = [0.0; N];
+        l.potential_gradient(t0 + k as f64 * h, &q_next, &mut g_next, &mut ws.scratch);
+        run.gradients += 1;
+        let p_next: [f64; N] = std::array::from_fn(|i| p_half[i] - c * g_next[i]);
+        if !all_finite(&q_next, &p_next) {
+            break;
+        }
+        (x, y, g) = (q_next, p_next, g_next);
+        run.steps = k;
+    }
+    (*q_out, *p_out) = (x, y);
+    ws.grad.copy_from_slice(&g);
+    ws.cache_q.copy_from_slice(&x);
+    ws.cache_t = t0 + run.steps as f64 * h;
+    ws.cache_valid = true;
+    Some(run)
 }

@@ -327,6 +327,88 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         result
     }
 
+    /// `steps` steps from `state` on the grid `t_k = t₀ + k h` (`t₀ = state.t`): in one loop
+    /// when the step is explicit ([`crate::explicit`], no per-step dispatch, copies or cache
+    /// checks; the same numbers as repeated steps), else by repeated [`Integrator::step`].
+    /// Returns the report of the last step.
+    ///
+    /// On error `state` holds the last good state, at its grid time, and the error names the
+    /// failing step.
+    ///
+    /// ```
+    /// use marsden::{Integrator, Rule, State, Trapezoid, systems::Kepler};
+    ///
+    /// let mut integrator = Integrator::new(Trapezoid.discretize(Kepler::default()));
+    /// let mut state = State { t: 0.0, q: vec![1.0, 0.0], p: vec![0.0, 1.0] };
+    /// integrator.advance(&mut state, 0.01, 1000)?;
+    /// assert_eq!(integrator.statistics().steps, 1000);
+    /// assert!((state.t - 10.0).abs() < 1e-12);
+    /// # Ok::<(), marsden::Error>(())
+    /// ```
+    pub fn advance(
+        &mut self,
+        state: &mut State,
+        h: f64,
+        steps: usize,
+    ) -> Result<StepReport, Error> {
+        Error::check_len("q", &state.q, self.shape.n)?;
+        Error::check_len("p", &state.p, self.shape.n)?;
+        if h == 0.0 || !h.is_finite() {
+            return Err(Error::InvalidStep { h });
+        }
+        if self.is_explicit() {
+            return self.advance_explicit(state, h, steps);
+        }
+        let t0 = state.t;
+        let mut report = StepReport::default();
+        for k in 1..=steps {
+            report = self.step(state, h)?;
+            state.t = t0 + k as f64 * h;
+        }
+        Ok(report)
+    }
+
+    /// Whether the steps take the explicit path ([`crate::explicit`]): the action has an
+    /// explicit form, nothing else (forces, constraints) enters the step, and the fast paths
+    /// are on.
+    pub fn is_explicit(&self) -> bool {
+        let sh = self.shape;
+        self.fast_paths && !sh.forced && sh.d == 0 && self.action.explicit().is_some()
+    }
+
+    /// [`Integrator::advance`] on the explicit path: one [`crate::explicit::ExplicitStep::explicit_run`].
+    fn advance_explicit(
+        &mut self,
+        state: &mut State,
+        h: f64,
+        steps: usize,
+    ) -> Result<StepReport, Error> {
+        let Some(explicit) = self.action.explicit() else {
+            return Ok(StepReport::default());
+        };
+        let t0 = state.t;
+        let run = explicit.explicit_run(
+            (t0, h),
+            steps,
+            (&mut state.q, &mut state.p),
+            &mut self.buffers.explicit,
+        );
+        let st = &mut self.statistics;
+        st.potential_gradients += run.gradients;
+        st.steps += run.steps;
+        st.explicit_steps += run.steps;
+        state.t = t0 + run.steps as f64 * h;
+        if run.steps < steps {
+            st.failed_steps += 1;
+            return Err(Error::NonFinite {
+                step: st.steps,
+                t: state.t,
+                what: "the new state",
+            });
+        }
+        Ok(StepReport::default())
+    }
+
     fn solve(
         &mut self,
         z: &mut [f64],
@@ -391,7 +473,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     ) -> Result<Option<StepReport>, Error> {
         let sh = self.shape;
         // An action with internal stages may be explicit too (a composition of Verlet steps).
-        if !self.fast_paths || sh.forced || sh.d != 0 {
+        if !self.is_explicit() {
             return Ok(None);
         }
         let Some(explicit) = self.action.explicit() else {

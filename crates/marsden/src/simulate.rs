@@ -91,12 +91,21 @@ pub trait Observer {
     fn start(&mut self, _initial: &StepView<'_>) {}
     /// Called after every completed step; return `ControlFlow::Break(())` to stop the run.
     fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()>;
+    /// Whether [`Observer::observe`] must see every step (default: true). When false, it may
+    /// see only the stored samples, and [`simulate`] takes explicit steps between samples in
+    /// one loop ([`Integrator::advance`]).
+    fn every_step(&self) -> bool {
+        true
+    }
 }
 
 /// Observes nothing.
 impl Observer for () {
     fn observe(&mut self, _view: &StepView<'_>) -> ControlFlow<()> {
         ControlFlow::Continue(())
+    }
+    fn every_step(&self) -> bool {
+        false
     }
 }
 
@@ -154,18 +163,29 @@ where
     });
     let before = *integrator.statistics();
     let mut last_report = initial;
-    for k in 0..grid.steps {
-        match integrator.step(&mut state, grid.h) {
+    // Explicit steps between stored samples run in one loop when nobody watches each step.
+    let chunked = integrator.is_explicit() && !observer.every_step();
+    let mut k = 0;
+    while k < grid.steps {
+        let chunk = if chunked {
+            (stride - k % stride).min(grid.steps - k)
+        } else {
+            1
+        };
+        let done_before = integrator.statistics().steps;
+        let outcome = integrator.advance(&mut state, grid.h, chunk);
+        k += integrator.statistics().steps - done_before;
+        state.t = grid.time(k);
+        traj.steps = k;
+        match outcome {
             Ok(report) => last_report = report,
             Err(e) => {
                 traj.termination = Termination::Failed(e);
                 break;
             }
         }
-        state.t = grid.time(k + 1);
-        traj.steps = k + 1;
         let view = StepView {
-            step: k + 1,
+            step: k,
             t: state.t,
             q: &state.q,
             p: &state.p,
@@ -173,9 +193,9 @@ where
             report: &last_report,
         };
         let stop = observer.observe(&view).is_break();
-        if (k + 1) % stride == 0 || k + 1 == grid.steps || stop {
+        if k % stride == 0 || k == grid.steps || stop {
             traj.push_sample(
-                k + 1,
+                k,
                 (state.t, &state.q, &state.p),
                 (
                     integrator.multipliers(),
@@ -185,7 +205,7 @@ where
             );
         }
         if stop {
-            traj.termination = Termination::Stopped { steps: k + 1 };
+            traj.termination = Termination::Stopped { steps: k };
             break;
         }
     }

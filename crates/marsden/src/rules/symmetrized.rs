@@ -6,7 +6,10 @@
 //! α = 0, `(h/2) f` at each end).
 
 use super::{Rule, at_node, with_displacement};
-use crate::explicit::{ExplicitStep, ExplicitWorkspace, InverseMass, velocity_verlet};
+use crate::explicit::{
+    ExplicitRun, ExplicitStep, ExplicitWorkspace, InverseMass, run_by_steps, velocity_verlet,
+    velocity_verlet_run,
+};
 use crate::scratch::{NODE, with_buffer};
 use crate::{DiscreteForce, DiscreteLagrangian, Force, Lagrangian, Scalar};
 
@@ -71,6 +74,21 @@ impl<L: Lagrangian> ExplicitStep for SymmetrizedLd<L> {
             }
             None => 0,
         }
+    }
+
+    fn explicit_run(
+        &self,
+        grid: (f64, f64),
+        steps: usize,
+        (q, p): (&mut [f64], &mut [f64]),
+        ws: &mut ExplicitWorkspace,
+    ) -> ExplicitRun {
+        let Some(inverse_mass) = &self.inverse_mass else {
+            return ExplicitRun::default();
+        };
+        let state = (&mut *q, &mut *p);
+        velocity_verlet_run(&self.lagrangian, inverse_mass, grid, steps, state, ws)
+            .unwrap_or_else(|| run_by_steps(self, grid, steps, (q, p), ws))
     }
 }
 
