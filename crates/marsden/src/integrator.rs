@@ -7,7 +7,7 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
-use num_dual::{HyperDual64, HyperDualSVec64};
+use num_dual::{DualSVec64, HyperDual64, HyperDualSVec64};
 
 use crate::ad::HessianParts;
 use crate::explicit::ExplicitWorkspace;
@@ -563,16 +563,16 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         p_next.resize(sh.n, 0.0);
         let result = match sh.n {
             1 => small
-                .solve::<1, HyperDual64>(z, o)
+                .solve::<1, HyperDual64, DualSVec64<2>>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
             2 => small
-                .solve::<2, HyperDualSVec64<2, 2>>(z, o)
+                .solve::<2, HyperDualSVec64<2, 2>, DualSVec64<4>>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
             3 => small
-                .solve::<3, HyperDualSVec64<3, 3>>(z, o)
+                .solve::<3, HyperDualSVec64<3, 3>, DualSVec64<6>>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
             _ => small
-                .solve::<4, HyperDualSVec64<4, 4>>(z, o)
+                .solve::<4, HyperDualSVec64<4, 4>, DualSVec64<8>>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
         }
         .map(|(report, ())| report);

@@ -7,13 +7,24 @@
 //! displacement `Δ` with eps₁ = −eᵢ, eps₂ = eᵢ, so eps₁ differentiates along `Q₀` with `Q₁` fixed),
 //! and the N × N Newton system is solved in place. The integrator dispatches here once per
 //! step on `n`; the general path remains the reference (a test checks both agree to round-off).
+//!
+//! The last evaluation of a step, the one that finds the residual below tolerance, needs no
+//! Jacobian: only the residual `p_k + ∂L_d/∂Q₀` and `p_{k+1} = ∂L_d/∂Q₁`, first derivatives —
+//! a dual number with `2N` parts ([`SmallGradient`]) instead of a hyper-dual one with
+//! `1 + 2N + N²`. After an update small enough that Newton's quadratic convergence leaves an
+//! error below round-off, the next evaluation takes the cheap form; the iterates stay exactly
+//! those of Newton's method with a fresh Jacobian per update.
 
-use nalgebra::{Const, U1};
-use num_dual::{Derivative, HyperDual64, HyperDualSVec64};
+use nalgebra::{Const, SVector, U1};
+use num_dual::{Derivative, DualSVec64, HyperDual64, HyperDualSVec64};
 
 use crate::linalg::solve_in_place;
 use crate::newton::{NewtonFailure, NewtonOptions, NewtonReport};
 use crate::{DiscreteAction, DiscreteForce, Scalar};
+
+/// Relative update size below which the next evaluation is expected to end the iteration
+/// (its square is below the round-off of the offset).
+const SPECULATE: f64 = 1e-8;
 
 /// A hyper-dual number with `N`-dimensional eps₁ and eps₂ parts.
 pub(crate) trait SmallDual<const N: usize>: Scalar {
@@ -91,6 +102,49 @@ impl<const N: usize> SmallDual<N> for HyperDualSVec64<N, N> {
     }
 }
 
+/// A dual number with `2N` parts: `∂/∂Q₀` in parts `0 … N−1` and `∂/∂Q₁` in parts `N … 2N−1`
+/// (the residual and `p_{k+1}` of the step, without its Jacobian).
+pub(crate) trait SmallGradient<const N: usize>: Scalar {
+    /// `q₀ᵢ`: part `i` is 1 (`Q₀` moves, `Q₁` stays).
+    fn position(re: f64, i: usize) -> Self;
+    /// `Δᵢ = Q₁ᵢ − Q₀ᵢ`: part `i` is −1 and part `N + i` is 1.
+    fn offset(re: f64, i: usize) -> Self;
+    /// Real part.
+    fn value(&self) -> f64;
+    /// Part `k`.
+    fn part(&self, k: usize) -> f64;
+}
+
+macro_rules! small_gradient {
+    ($n:literal, $m:literal) => {
+        impl SmallGradient<$n> for DualSVec64<$m> {
+            #[inline(always)]
+            fn position(re: f64, i: usize) -> Self {
+                DualSVec64::new(re, Derivative::some(SVector::<f64, $m>::ith(i, 1.0)))
+            }
+            #[inline(always)]
+            fn offset(re: f64, i: usize) -> Self {
+                let mut eps = SVector::<f64, $m>::zeros();
+                eps[i] = -1.0;
+                eps[$n + i] = 1.0;
+                DualSVec64::new(re, Derivative::some(eps))
+            }
+            #[inline(always)]
+            fn value(&self) -> f64 {
+                self.re
+            }
+            #[inline(always)]
+            fn part(&self, k: usize) -> f64 {
+                self.eps.0.as_ref().map_or(0.0, |m| m[k])
+            }
+        }
+    };
+}
+small_gradient!(1, 2);
+small_gradient!(2, 4);
+small_gradient!(3, 6);
+small_gradient!(4, 8);
+
 /// Residual, Jacobian and `p_{k+1}` of one step at the offset `delta`.
 struct Evaluation<const N: usize> {
     residual: [f64; N],
@@ -132,6 +186,38 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
         (e, term_scale)
     }
 
+    /// The residual and `p_{k+1}` only ([`SmallGradient`]; the Jacobian is left zero), and the
+    /// size of `∂L_d/∂Q₀`.
+    #[inline(always)]
+    fn evaluate_residual<const N: usize, G: SmallGradient<N>>(
+        &self,
+        delta: &[f64; N],
+    ) -> (Evaluation<N>, f64) {
+        let q: [G; N] = std::array::from_fn(|i| G::position(self.q0[i], i));
+        let d: [G; N] = std::array::from_fn(|i| G::offset(delta[i], i));
+        let l = self.action.action(self.t0, self.h, &q, &d);
+        let mut e = Evaluation {
+            residual: std::array::from_fn(|i| l.part(i)),
+            jacobian: [[0.0; N]; N],
+            p_next: std::array::from_fn(|j| l.part(N + j)),
+        };
+        let term_scale = e.residual.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
+        if self.force.is_active() {
+            let mut f = [G::from(0.0); 8];
+            self.force
+                .discrete_force(self.t0, self.h, &q, &d, &mut f[..2 * N]);
+            for i in 0..N {
+                e.residual[i] += f[i].value();
+                e.p_next[i] += f[N + i].value();
+            }
+        }
+        e.residual
+            .iter_mut()
+            .zip(self.p0)
+            .for_each(|(r, p)| *r += p);
+        (e, term_scale)
+    }
+
     /// Adds `f_d⁻` (and its Jacobian) to the residual and `f_d⁺` to `p_{k+1}`.
     fn add_forces<const N: usize, D: SmallDual<N>>(
         &self,
@@ -153,7 +239,13 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
 
     /// Newton's method on the step equations from the offset `z` (overwritten with the
     /// solution); returns the report and `p_{k+1}`.
-    pub fn solve<const N: usize, D: SmallDual<N>>(
+    ///
+    /// Every update uses a fresh Jacobian (hyper-dual `D`), so the iterates are those of the
+    /// general path. An evaluation that is expected to end the iteration — after an update so
+    /// small that the quadratic convergence leaves an error below round-off — only needs the
+    /// residual and `p_{k+1}` and takes the cheaper dual `G`; should it not end the iteration
+    /// after all, the Jacobian is evaluated at the same point.
+    pub fn solve<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
         &self,
         z: &mut [f64],
         options: &NewtonOptions,
@@ -166,8 +258,13 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
             .fold(f64::MIN_POSITIVE, |m, q| m.max(q.abs()));
         let mut report = NewtonReport::default();
         let mut update_converged = false;
+        let mut expect_convergence = false;
         loop {
-            let (mut e, term_scale) = self.evaluate::<N, D>(&delta);
+            let (mut e, term_scale) = if expect_convergence {
+                self.evaluate_residual::<N, G>(&delta)
+            } else {
+                self.evaluate::<N, D>(&delta)
+            };
             report.evaluations += 1;
             report.residual = e.residual.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
             // Relative to the size of the residual's terms, as in `StepSystem`.
@@ -182,6 +279,11 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
             if report.iterations >= options.max_iterations {
                 return Err(NewtonFailure::NotConverged(report));
             }
+            if expect_convergence {
+                // The speculation failed: the Jacobian at this iterate.
+                e = self.evaluate::<N, D>(&delta).0;
+                report.evaluations += 1;
+            }
             let mut update = e.residual.map(|r| -r);
             solve_in_place(e.jacobian.as_flattened_mut(), &mut update, N).map_err(|s| {
                 NewtonFailure::Singular {
@@ -195,6 +297,8 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
             delta.iter_mut().zip(&update).for_each(|(d, u)| *d += u);
             let znorm = delta.iter().fold(q_scale, |m, d| m.max(d.abs()));
             update_converged = size <= options.step_tolerance * znorm;
+            // Quadratic convergence: the next error is about ‖δ‖²/‖Δ‖ in relative terms.
+            expect_convergence = size <= SPECULATE * znorm;
         }
     }
 }

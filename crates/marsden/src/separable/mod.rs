@@ -27,6 +27,8 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
+mod small;
+
 use crate::banded::{BandLu, Banded};
 use crate::linalg::max_norm;
 use crate::newton::{NewtonFailure, NewtonOptions, NewtonReport};
@@ -191,6 +193,11 @@ pub(crate) fn solve_alpha<L: Lagrangian>(
     options: &NewtonOptions,
     ws: &mut SeparableWorkspace,
 ) -> Result<NewtonReport, NewtonFailure> {
+    if let Some(result) =
+        small::solve_alpha_small(l, alpha, frame, (&mut *z, &mut *p_next), options, ws)
+    {
+        return result;
+    }
     let n = frame.q0.len();
     ws.resize(n);
     let q_scale = frame
