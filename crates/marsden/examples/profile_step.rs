@@ -1,14 +1,50 @@
-//! Tight stepping loop for profilers: `cargo run --profile profiling --example profile_step -- pendulum 100000`.
-use marsden::systems::{DoublePendulum, Kepler, Pendulum};
-use marsden::{DiscreteAction, Integrator, Midpoint, Rule, State, Trapezoid};
+//! Tight stepping loop for profilers:
+//! `cargo run --profile profiling --example profile_step -- [pendulum|double|kepler|constrained] 100000`.
+use marsden::holonomic::MomentumProjection;
+use marsden::systems::{CartesianPendulum, DoublePendulum, Kepler, Pendulum};
+use marsden::{
+    Constraint, DiscreteAction, DiscreteForce, Integrator, Midpoint, NewtonOptions, Problem, Rule,
+    State, TimeGrid, Trapezoid,
+};
 
 fn run<A: DiscreteAction>(action: A, q: &[f64], p: &[f64], h: f64, n: usize) -> f64 {
-    let mut integrator = Integrator::new(action);
-    let mut s = State {
+    let s = State {
         t: 0.0,
         q: q.to_vec(),
         p: p.to_vec(),
     };
+    run_integrator(Integrator::new(action), s, h, n)
+}
+
+/// The SHAKE + RATTLE pendulum of `benches/constrained.rs` (`h = 0.01`, `θ₀ = 1.5`).
+fn constrained(n: usize) -> f64 {
+    let sys = CartesianPendulum::default();
+    let Ok(grid) = TimeGrid::new(0.0, 0.01, 1) else {
+        return f64::NAN;
+    };
+    let problem =
+        Problem::new(sys, sys.initial(1.5, 0.0), grid).and_then(|p| p.with_constraint(sys));
+    let Ok(problem) = problem else {
+        return f64::NAN;
+    };
+    match problem.integrator(&Midpoint, NewtonOptions::default()) {
+        Ok(integrator) => run_integrator(integrator, problem.start().clone(), 0.01, n),
+        Err(_) => f64::NAN,
+    }
+}
+
+fn run_integrator<A, F, C, P>(
+    mut integrator: Integrator<A, F, C, P>,
+    mut s: State,
+    h: f64,
+    n: usize,
+) -> f64
+where
+    A: DiscreteAction,
+    F: DiscreteForce,
+    C: Constraint,
+    P: MomentumProjection,
+{
     let start = std::time::Instant::now();
     for _ in 0..n {
         if integrator.step(&mut s, h).is_err() {
@@ -32,6 +68,7 @@ fn main() {
             0.01,
             n,
         ),
+        Some("constrained") => constrained(n),
         Some("kepler") => run(Trapezoid.discretize(Kepler::default()), &q, &p, 0.01, n),
         _ => run(
             Midpoint.discretize(Pendulum::default()),

@@ -611,16 +611,16 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         let (o, p_next) = (&self.options, &mut b.p_next);
         let result = match sh.n {
             1 => small
-                .solve::<1, HyperDual64>(z, o)
+                .solve::<1, HyperDual64, DualSVec64<2>>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
             2 => small
-                .solve::<2, HyperDualSVec64<2, 2>>(z, o)
+                .solve::<2, HyperDualSVec64<2, 2>, DualSVec64<4>>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
             3 => small
-                .solve::<3, HyperDualSVec64<3, 3>>(z, o)
+                .solve::<3, HyperDualSVec64<3, 3>, DualSVec64<6>>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
             _ => small
-                .solve::<4, HyperDualSVec64<4, 4>>(z, o)
+                .solve::<4, HyperDualSVec64<4, 4>, DualSVec64<8>>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
         }
         .map(|(report, ())| report);

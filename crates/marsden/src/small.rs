@@ -24,7 +24,7 @@ use crate::{DiscreteAction, DiscreteForce, Scalar};
 
 /// Relative update size below which the next evaluation is expected to end the iteration
 /// (its square is below the round-off of the offset).
-const SPECULATE: f64 = 1e-8;
+pub(crate) const SPECULATE: f64 = 1e-8;
 
 /// A hyper-dual number with `N`-dimensional eps₁ and eps₂ parts.
 pub(crate) trait SmallDual<const N: usize>: Scalar {

@@ -12,14 +12,16 @@
 //! eps₁ = −eᵢ and eps₂ = eᵢ): one evaluation of `L_d` gives `D₁L_d`, its Jacobian in `Δ` and
 //! `p_{k+1} = D₂L_d`, and `φ` at `q₀ + Δ` (whose eps₁ parts cancel) gives `φ` and `Dφ` there.
 //! The integrator dispatches here once per step on `n`; the general path remains the reference
-//! (a test checks both agree to round-off).
+//! (a test checks both agree to round-off). As in [`crate::small`], an evaluation expected to
+//! end the iteration takes first-order duals ([`SmallGradient`]: residual and `p_{k+1}`, no
+//! Jacobian), and the iterates are those of Newton's method with a fresh Jacobian per update.
 
 use nalgebra::{Const, U1};
 use num_dual::{Derivative, Dual64, DualSVec64};
 
 use crate::linalg::solve_in_place;
 use crate::newton::{NewtonFailure, NewtonOptions, NewtonReport};
-use crate::small::SmallDual;
+use crate::small::{SPECULATE, SmallDual, SmallGradient};
 use crate::{Constraint, DiscreteAction, DiscreteForce, Scalar};
 
 /// Largest number of constraints handled here.
@@ -88,6 +90,45 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallConstrainedStep<'_
         e
     }
 
+    /// The residual and `p_{k+1}` only (the Jacobian is left zero): first-order duals for
+    /// `L_d` and `f_d`, plain numbers for `φ`.
+    #[inline(always)]
+    fn evaluate_residual<const N: usize, G: SmallGradient<N>>(&self, z: &[f64]) -> Evaluation<N> {
+        let m = N + self.d;
+        let q: [G; N] = std::array::from_fn(|i| G::position(self.q0[i], i));
+        let delta: [G; N] = std::array::from_fn(|i| G::offset(z[i], i));
+        let l = self.action.action(self.t0, self.h, &q, &delta);
+        let mut e = Evaluation {
+            term_scale: 0.0,
+            residual: [0.0; MAX_UNKNOWNS],
+            jacobian: [0.0; MAX_UNKNOWNS * MAX_UNKNOWNS],
+            p_next: std::array::from_fn(|j| l.part(N + j)),
+        };
+        for i in 0..N {
+            e.residual[i] = l.part(i);
+            e.term_scale = e.term_scale.max(e.residual[i].abs());
+        }
+        if self.force.is_active() {
+            let mut f = [G::from(0.0); 8];
+            self.force
+                .discrete_force(self.t0, self.h, &q, &delta, &mut f[..2 * N]);
+            for i in 0..N {
+                e.residual[i] += f[i].value();
+                e.p_next[i] += f[N + i].value();
+            }
+        }
+        let lambda = &z[N..m];
+        for i in 0..N {
+            e.residual[i] += self.p0[i];
+            for (c, l) in lambda.iter().enumerate() {
+                e.residual[i] -= self.h * self.dphi0[c * N + i] * l;
+            }
+        }
+        let q_end: [f64; N] = std::array::from_fn(|i| self.q0[i] + z[i]);
+        self.constraint.constraint(&q_end, &mut e.residual[N..m]);
+        e
+    }
+
     /// Adds `f_d⁻` (and its Jacobian) to the residual and `f_d⁺` to `p_{k+1}`.
     fn add_forces<const N: usize, D: SmallDual<N>>(
         &self,
@@ -128,8 +169,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallConstrainedStep<'_
     }
 
     /// Newton's method on the step equations from `z = (Δ, λ)` (overwritten with the solution);
-    /// returns the report and `p_{k+1}`.
-    pub fn solve<const N: usize, D: SmallDual<N>>(
+    /// returns the report and `p_{k+1}`. An evaluation expected to end the iteration takes the
+    /// cheaper duals `G` (see [`crate::small`]).
+    pub fn solve<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
         &self,
         z: &mut [f64],
         options: &NewtonOptions,
@@ -150,8 +192,13 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallConstrainedStep<'_
             .fold(f64::MIN_POSITIVE, |s, q| s.max(q.abs()));
         let mut report = NewtonReport::default();
         let mut update_converged = false;
+        let mut expect_convergence = false;
         loop {
-            let mut e = self.evaluate::<N, D>(&x[..m]);
+            let mut e = if expect_convergence {
+                self.evaluate_residual::<N, G>(&x[..m])
+            } else {
+                self.evaluate::<N, D>(&x[..m])
+            };
             report.evaluations += 1;
             report.residual = e.residual[..m].iter().fold(0.0_f64, |s, r| s.max(r.abs()));
             let tol = options.residual_tolerance * p_scale.max(e.term_scale);
@@ -166,6 +213,11 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallConstrainedStep<'_
             if report.iterations >= options.max_iterations {
                 z[..m].copy_from_slice(&x[..m]);
                 return Err(NewtonFailure::NotConverged(report));
+            }
+            if expect_convergence {
+                // The speculation failed: the Jacobian at this iterate.
+                e = self.evaluate::<N, D>(&x[..m]);
+                report.evaluations += 1;
             }
             let mut update = [0.0; MAX_UNKNOWNS];
             update[..m]
@@ -184,6 +236,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallConstrainedStep<'_
             x[..m].iter_mut().zip(&update).for_each(|(a, u)| *a += u);
             let xnorm = x[..m].iter().fold(q_scale, |s, a| s.max(a.abs()));
             update_converged = size <= options.step_tolerance * xnorm;
+            expect_convergence = size <= SPECULATE * xnorm;
         }
     }
 }

@@ -14,12 +14,19 @@
 //! quadratic in `v` (constant or position-dependent mass matrix) one Newton update solves it
 //! exactly (`ν = (Dφ M⁻¹ Dφᵀ)⁻¹ Dφ M⁻¹ p̃`) and a residual-only evaluation confirms it.
 //!
+//! When the Lagrangian declares itself separable ([`crate::Structure::Separable`], a constant
+//! mass matrix `M`), the projection takes that closed form directly, with no derivatives of `L`
+//! at all: `w = M⁻¹p̃`, `uᶜ = M⁻¹Dφᶜᵀ`, `S = Dφ U` (d × d), `S ν = Dφ w`, `v = w − U ν`
+//! ([HLW06] §VII.1.4). [`Rattle::with_closed_form`] switches it off (the Newton form is the
+//! reference; a test checks both agree to round-off).
+//!
 //! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006). [LMO08]:
 //! Leyendecker, Marsden, Ortiz, ZAMM 88 (2008).
 
 use crate::ad::{self, HessianParts, MultiFunction};
 use num_dual::{HyperDual64, HyperDualSVec64};
 
+use crate::explicit::InverseMass;
 use crate::linalg::{max_norm, solve_in_place};
 use crate::newton::NewtonOptions;
 use crate::scratch::{NODE, with_buffer};
@@ -100,6 +107,8 @@ pub struct ProjectionStatistics {
     pub kkt_evaluations: usize,
     /// Residual-only evaluations after an update (one first-order dual evaluation of `L` each).
     pub residual_evaluations: usize,
+    /// Projections by the closed form of a constant mass matrix (no evaluation of `L`).
+    pub closed_form: usize,
 }
 
 /// The RATTLE projection for the Lagrangian `L` and the constraints `C` (see the module docs).
@@ -127,6 +136,8 @@ pub struct Rattle<L, C> {
     options: NewtonOptions,
     ws: Workspace,
     statistics: ProjectionStatistics,
+    /// `M⁻¹` of a separable Lagrangian: the projection's closed form.
+    closed_form: Option<InverseMass>,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -147,18 +158,35 @@ struct Workspace {
     nu: Vec<f64>,
     /// `v = FH(q, p)` of the last successful projection (and the next starting guess).
     v: Vec<f64>,
+    /// Closed form: `U = M⁻¹Dφᵀ` (d columns of length n, stored by column) and the solve's
+    /// scratch.
+    u: Vec<f64>,
+    scratch: Vec<f64>,
 }
 
 impl<L: Lagrangian, C: Constraint> Rattle<L, C> {
     /// The projection for `L` and `φ`, with default Newton options.
     pub fn new(lagrangian: L, constraint: C) -> Self {
+        let closed_form = InverseMass::of(&lagrangian.structure());
         Self {
             lagrangian,
             constraint,
             options: NewtonOptions::default(),
             ws: Workspace::default(),
             statistics: ProjectionStatistics::default(),
+            closed_form,
         }
+    }
+
+    /// Whether to use the closed form of a separable Lagrangian (default: whenever it declares
+    /// a constant, invertible mass matrix); `false` forces the Newton form, the reference.
+    pub fn with_closed_form(mut self, enabled: bool) -> Self {
+        self.closed_form = if enabled {
+            InverseMass::of(&self.lagrangian.structure())
+        } else {
+            None
+        };
+        self
     }
 
     /// Sets the Newton options (the residual tolerance is relative to `max(1, ‖p‖∞)`).
@@ -272,6 +300,65 @@ impl<L: Lagrangian, C: Constraint> Rattle<L, C> {
         }
     }
 
+    /// The closed form for a constant mass matrix (see the module docs): `(v, ν)` into `ws.z`;
+    /// the residual reported is the hidden constraint `‖Dφ v‖∞`.
+    fn solve_closed_form(
+        &mut self,
+        inverse_mass: &InverseMass,
+        g: &[f64],
+        p: &[f64],
+    ) -> Result<ProjectionReport, ProjectionFailure> {
+        let ws = &mut self.ws;
+        let n = p.len();
+        let d = ws.z.len() - n;
+        let failure = ProjectionFailure {
+            iterations: 0,
+            residual: f64::NAN,
+        };
+        // U = M⁻¹Dφᵀ, column by column; w = M⁻¹p̃.
+        ws.u.clear();
+        ws.u.extend_from_slice(&g[..d * n]);
+        for column in ws.u.chunks_exact_mut(n) {
+            inverse_mass.apply(column, &mut ws.scratch);
+        }
+        let (v, nu) = ws.z.split_at_mut(n);
+        v.copy_from_slice(p);
+        inverse_mass.apply(v, &mut ws.scratch);
+        // S ν = Dφ w, with S = Dφ U (row-major d × d, in the KKT buffer).
+        let dot = |row: usize, x: &[f64]| -> f64 {
+            g[row * n..(row + 1) * n]
+                .iter()
+                .zip(x)
+                .map(|(a, b)| a * b)
+                .sum()
+        };
+        let s = &mut ws.kkt[..d * d];
+        for a in 0..d {
+            nu[a] = dot(a, v);
+            for c in 0..d {
+                s[a * d + c] = dot(a, &ws.u[c * n..(c + 1) * n]);
+            }
+        }
+        solve_in_place(s, nu, d).map_err(|_| failure)?;
+        for (c, column) in ws.u.chunks_exact(n).enumerate() {
+            v.iter_mut()
+                .zip(column)
+                .for_each(|(vi, ui)| *vi -= nu[c] * ui);
+        }
+        let residual = (0..d).fold(0.0_f64, |m, a| m.max(dot(a, v).abs()));
+        self.statistics.closed_form += 1;
+        if !residual.is_finite() {
+            return Err(ProjectionFailure {
+                iterations: 0,
+                residual,
+            });
+        }
+        Ok(ProjectionReport {
+            iterations: 0,
+            residual,
+        })
+    }
+
     /// `p ← p − Dφᵀν`, and keeps `ν` and `v`.
     fn accept(&mut self, n: usize, d: usize, g: &[f64], p: &mut [f64]) {
         let ws = &mut self.ws;
@@ -310,7 +397,14 @@ impl<L: Lagrangian, C: Constraint> MomentumProjection for Rattle<L, C> {
             });
         }
         self.start(n, d);
-        let report = self.solve(t, q, dphi, p)?;
+        let report = match self.closed_form.take() {
+            Some(inverse_mass) => {
+                let report = self.solve_closed_form(&inverse_mass, dphi, p);
+                self.closed_form = Some(inverse_mass);
+                report?
+            }
+            None => self.solve(t, q, dphi, p)?,
+        };
         self.accept(n, d, dphi, p);
         Ok(report)
     }

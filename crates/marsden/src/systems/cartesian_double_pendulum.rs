@@ -12,7 +12,7 @@
 //! descriptions give the same motion; their discretisations differ at `O(h²)`.
 
 use super::DoublePendulum;
-use crate::{Constraint, Error, Initial, Lagrangian, Scalar};
+use crate::{Constraint, Error, Initial, Lagrangian, MassMatrix, Scalar, Structure};
 
 /// Cartesian double pendulum; it is both the [`Lagrangian`] and the [`Constraint`] (two rods) of
 /// the system.
@@ -82,6 +82,13 @@ impl CartesianDoublePendulum {
 impl Lagrangian for CartesianDoublePendulum {
     fn dof(&self) -> usize {
         4
+    }
+    /// Separable with a constant diagonal mass: RATTLE takes its closed form
+    /// ([`crate::holonomic::Rattle`]).
+    fn structure(&self) -> Structure {
+        Structure::Separable {
+            mass: MassMatrix::Diagonal(vec![self.m1, self.m1, self.m2, self.m2]),
+        }
     }
     #[inline]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {

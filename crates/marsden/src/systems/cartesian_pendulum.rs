@@ -9,7 +9,7 @@
 //! `q = l (sin θ, −cos θ)`), written with a distance constraint; it is the benchmark problem
 //! "pendulum with distance constraint" of `bench/README.md` (trep's constrained MidpointVI).
 
-use crate::{Constraint, Error, Initial, Lagrangian, Scalar};
+use crate::{Constraint, Error, Initial, Lagrangian, MassMatrix, Scalar, Structure};
 
 /// Planar pendulum in Cartesian coordinates; it is both the [`Lagrangian`] and the
 /// [`Constraint`] of the system.
@@ -56,6 +56,13 @@ impl CartesianPendulum {
 impl Lagrangian for CartesianPendulum {
     fn dof(&self) -> usize {
         2
+    }
+    /// Separable with a constant diagonal mass: RATTLE takes its closed form
+    /// ([`crate::holonomic::Rattle`]).
+    fn structure(&self) -> Structure {
+        Structure::Separable {
+            mass: MassMatrix::Diagonal(vec![self.m; 2]),
+        }
     }
     #[inline]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {

@@ -13,7 +13,7 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001). [HLW06]: Hairer, Lubich, Wanner (2006).
 
-use crate::{Constraint, Error, Initial, Lagrangian, Scalar};
+use crate::{Constraint, Error, Initial, Lagrangian, MassMatrix, Scalar, Structure};
 
 /// Spherical pendulum of mass `m` and length `l` in gravity `g`; it is both the [`Lagrangian`]
 /// and the [`Constraint`] of the system.
@@ -74,6 +74,13 @@ impl SphericalPendulum {
 impl Lagrangian for SphericalPendulum {
     fn dof(&self) -> usize {
         3
+    }
+    /// Separable with a constant diagonal mass: RATTLE takes its closed form
+    /// ([`crate::holonomic::Rattle`]).
+    fn structure(&self) -> Structure {
+        Structure::Separable {
+            mass: MassMatrix::Diagonal(vec![self.m; 3]),
+        }
     }
     #[inline]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
