@@ -86,5 +86,4 @@ fn angle_pendulum_step(bencher: Bencher) {
     bench_steps(bencher, integrator, problem.start().clone());
 }
 
-// Measured (issue 3): see BENCHMARKS.md, section "Constrained pendulum". Median 784 ns per
-// SHAKE + RATTLE step (10.5× faster than trep's 8 240 ns; target ≤ 400 ns not met).
+// Measured: see BENCHMARKS.md, section "Constrained pendulum".

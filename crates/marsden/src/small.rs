@@ -11,9 +11,10 @@
 //! The last evaluation of a step, the one that finds the residual below tolerance, needs no
 //! Jacobian: only the residual `p_k + ∂L_d/∂Q₀` and `p_{k+1} = ∂L_d/∂Q₁`, first derivatives —
 //! a dual number with `2N` parts ([`SmallGradient`]) instead of a hyper-dual one with
-//! `1 + 2N + N²`. After an update small enough that Newton's quadratic convergence leaves an
-//! error below round-off, the next evaluation takes the cheap form; the iterates stay exactly
-//! those of Newton's method with a fresh Jacobian per update.
+//! `1 + 2N + N²`. After an update small enough that Newton's quadratic convergence should
+//! leave only round-off ([`SPECULATE`]), the next evaluation takes the cheap form (should the
+//! iteration go on after all, the Jacobian is evaluated at the same point); the iterates stay
+//! exactly those of Newton's method with a fresh Jacobian per update.
 
 use nalgebra::{Const, SVector, U1};
 use num_dual::{Derivative, DualSVec64, HyperDual64, HyperDualSVec64};
@@ -22,9 +23,12 @@ use crate::linalg::solve_in_place;
 use crate::newton::{NewtonFailure, NewtonOptions, NewtonReport};
 use crate::{DiscreteAction, DiscreteForce, Scalar};
 
-/// Relative update size below which the next evaluation is expected to end the iteration
-/// (its square is below the round-off of the offset).
-pub(crate) const SPECULATE: f64 = 1e-8;
+/// Relative update size below which the next evaluation is expected to end the iteration.
+/// The step equations are nearly linear in the offset (their curvature is `O(h²)` relative to
+/// `M/h`), so Newton's quadratic convergence leaves round-off after any update this small; a
+/// wrong guess costs one cheap evaluation (145 in 20 000 double-pendulum steps, against
+/// 3 730 instead of 4 580 instructions per step, callgrind).
+pub(crate) const SPECULATE: f64 = 1e-3;
 
 /// A hyper-dual number with `N`-dimensional eps₁ and eps₂ parts.
 pub(crate) trait SmallDual<const N: usize>: Scalar {
@@ -241,8 +245,8 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
     /// solution); returns the report and `p_{k+1}`.
     ///
     /// Every update uses a fresh Jacobian (hyper-dual `D`), so the iterates are those of the
-    /// general path. An evaluation that is expected to end the iteration — after an update so
-    /// small that the quadratic convergence leaves an error below round-off — only needs the
+    /// general path. An evaluation that is expected to end the iteration — after an update
+    /// below [`SPECULATE`] — only needs the
     /// residual and `p_{k+1}` and takes the cheaper dual `G`; should it not end the iteration
     /// after all, the Jacobian is evaluated at the same point.
     pub fn solve<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
