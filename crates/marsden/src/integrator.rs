@@ -376,37 +376,44 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         self.fast_paths && !sh.forced && sh.d == 0 && self.action.explicit().is_some()
     }
 
-    /// [`Integrator::advance`] on the explicit path: one [`crate::explicit::ExplicitStep::explicit_run`].
+    /// [`Integrator::advance`] on the explicit path: the first `steps − 1` steps in one
+    /// [`crate::explicit::ExplicitStep::explicit_run`], the last by [`Integrator::step`], so
+    /// that [`Integrator::stage_offsets`] holds the last step's exact offset, as after single
+    /// steps (the run loop keeps no offsets).
     fn advance_explicit(
         &mut self,
         state: &mut State,
         h: f64,
         steps: usize,
     ) -> Result<StepReport, Error> {
-        let Some(explicit) = self.action.explicit() else {
+        let Some(last) = steps.checked_sub(1) else {
             return Ok(StepReport::default());
         };
         let t0 = state.t;
-        let run = explicit.explicit_run(
-            (t0, h),
-            steps,
-            (&mut state.q, &mut state.p),
-            &mut self.buffers.explicit,
-        );
-        let st = &mut self.statistics;
-        st.potential_gradients += run.gradients;
-        st.steps += run.steps;
-        st.explicit_steps += run.steps;
-        state.t = t0 + run.steps as f64 * h;
-        if run.steps < steps {
-            st.failed_steps += 1;
-            return Err(Error::NonFinite {
-                step: st.steps,
-                t: state.t,
-                what: "the new state",
-            });
+        if let (Some(explicit), true) = (self.action.explicit(), last > 0) {
+            let run = explicit.explicit_run(
+                (t0, h),
+                last,
+                (&mut state.q, &mut state.p),
+                &mut self.buffers.explicit,
+            );
+            let st = &mut self.statistics;
+            st.potential_gradients += run.gradients;
+            st.steps += run.steps;
+            st.explicit_steps += run.steps;
+            state.t = t0 + run.steps as f64 * h;
+            if run.steps < last {
+                st.failed_steps += 1;
+                return Err(Error::NonFinite {
+                    step: st.steps,
+                    t: state.t,
+                    what: "the new state",
+                });
+            }
         }
-        Ok(StepReport::default())
+        let report = self.step(state, h)?;
+        state.t = t0 + steps as f64 * h;
+        Ok(report)
     }
 
     fn solve(

@@ -21,7 +21,7 @@ use num_dual::{Derivative, Dual64, DualSVec64};
 
 use crate::linalg::solve_in_place;
 use crate::newton::{NewtonFailure, NewtonOptions, NewtonReport};
-use crate::small::{SPECULATE, SmallDual, SmallGradient};
+use crate::small::{SPECULATE, SmallDual, SmallGradient, first_derivatives};
 use crate::{Constraint, DiscreteAction, DiscreteForce, Scalar};
 
 /// Largest number of constraints handled here.
@@ -95,28 +95,16 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallConstrainedStep<'_
     #[inline(always)]
     fn evaluate_residual<const N: usize, G: SmallGradient<N>>(&self, z: &[f64]) -> Evaluation<N> {
         let m = N + self.d;
-        let q: [G; N] = std::array::from_fn(|i| G::position(self.q0[i], i));
-        let delta: [G; N] = std::array::from_fn(|i| G::offset(z[i], i));
-        let l = self.action.action(self.t0, self.h, &q, &delta);
+        let step = (self.t0, self.h);
+        let (d_q0, p_next, term_scale) =
+            first_derivatives::<N, G, A, F>(self.action, self.force, step, self.q0, &z[..N]);
         let mut e = Evaluation {
-            term_scale: 0.0,
+            term_scale,
             residual: [0.0; MAX_UNKNOWNS],
             jacobian: [0.0; MAX_UNKNOWNS * MAX_UNKNOWNS],
-            p_next: std::array::from_fn(|j| l.part(N + j)),
+            p_next,
         };
-        for i in 0..N {
-            e.residual[i] = l.part(i);
-            e.term_scale = e.term_scale.max(e.residual[i].abs());
-        }
-        if self.force.is_active() {
-            let mut f = [G::from(0.0); 8];
-            self.force
-                .discrete_force(self.t0, self.h, &q, &delta, &mut f[..2 * N]);
-            for i in 0..N {
-                e.residual[i] += f[i].value();
-                e.p_next[i] += f[N + i].value();
-            }
-        }
+        e.residual[..N].copy_from_slice(&d_q0);
         let lambda = &z[N..m];
         for i in 0..N {
             e.residual[i] += self.p0[i];

@@ -32,15 +32,19 @@ fn nbody_start() -> (NBody, State) {
     (system, State { t: 0.0, q, p })
 }
 
+/// What a run leaves: the state, the gradients counted and the last step's offsets.
+type Outcome = (State, usize, Vec<f64>);
+
 /// `steps` single steps, with the time rewritten to the grid as `simulate` does.
-fn by_steps<A: DiscreteAction>(action: A, start: &State, h: f64, steps: usize) -> (State, usize) {
+fn by_steps<A: DiscreteAction>(action: A, start: &State, h: f64, steps: usize) -> Outcome {
     let mut integrator = Integrator::new(action);
     let mut s = start.clone();
     for k in 1..=steps {
         integrator.step(&mut s, h).unwrap();
         s.t = start.t + k as f64 * h;
     }
-    (s, integrator.statistics().potential_gradients)
+    let offsets = integrator.stage_offsets().to_vec();
+    (s, integrator.statistics().potential_gradients, offsets)
 }
 
 /// The same steps in chunks of `chunk` by `advance`.
@@ -50,7 +54,7 @@ fn by_advance<A: DiscreteAction>(
     h: f64,
     steps: usize,
     chunk: usize,
-) -> (State, usize) {
+) -> Outcome {
     let mut integrator = Integrator::new(action);
     assert!(integrator.is_explicit());
     let mut s = start.clone();
@@ -61,12 +65,21 @@ fn by_advance<A: DiscreteAction>(
         done += n;
     }
     assert_eq!(integrator.statistics().explicit_steps, steps);
-    (s, integrator.statistics().potential_gradients)
+    let offsets = integrator.stage_offsets().to_vec();
+    (s, integrator.statistics().potential_gradients, offsets)
 }
 
 fn assert_same_bits(a: &State, b: &State) {
     let bits = |s: &State| -> Vec<u64> { s.q.iter().chain(&s.p).map(|x| x.to_bits()).collect() };
     assert_eq!(bits(a), bits(b), "runs differ: {a:?} against {b:?}");
+}
+
+/// Same state, same gradient count, and the same offsets of the last step (which the
+/// symplecticity certificate and the discrete momentum maps read).
+fn assert_same_runs(a: &Outcome, b: &Outcome) {
+    assert_same_bits(&a.0, &b.0);
+    assert_eq!(a.1, b.1, "gradients");
+    assert_eq!(a.2, b.2, "offsets of the last step");
 }
 
 #[test]
@@ -75,11 +88,13 @@ fn advance_equals_repeated_steps_bit_for_bit() {
     // composition (repeated composed steps): one gradient per step plus one to start, whatever
     // the chunking.
     let kepler = || Trapezoid.discretize(Kepler::default());
-    let (a, ga) = by_steps(kepler(), &kepler_start(), 0.01, 3000);
-    for chunk in [1, 7, 3000] {
-        let (b, gb) = by_advance(kepler(), &kepler_start(), 0.01, 3000, chunk);
-        assert_same_bits(&a, &b);
-        assert_eq!((ga, gb), (3001, 3001), "chunk {chunk}");
+    let a = by_steps(kepler(), &kepler_start(), 0.01, 3000);
+    assert_eq!(a.1, 3001);
+    for chunk in [1, 2, 7, 3000] {
+        assert_same_runs(
+            &a,
+            &by_advance(kepler(), &kepler_start(), 0.01, 3000, chunk),
+        );
     }
     let hh_start = State {
         t: 0.0,
@@ -87,20 +102,21 @@ fn advance_equals_repeated_steps_bit_for_bit() {
         p: vec![0.3, 0.25],
     };
     let hh = || Trapezoid.discretize(HenonHeiles::default());
-    let (a, _) = by_steps(hh(), &hh_start, 0.1, 500);
-    let (b, _) = by_advance(hh(), &hh_start, 0.1, 500, 500);
-    assert_same_bits(&a, &b);
+    assert_same_runs(
+        &by_steps(hh(), &hh_start, 0.1, 500),
+        &by_advance(hh(), &hh_start, 0.1, 500, 500),
+    );
     let (system, start) = nbody_start();
-    let (a, ga) = by_steps(Trapezoid.discretize(system.clone()), &start, 0.01, 400);
-    let (b, gb) = by_advance(Trapezoid.discretize(system), &start, 0.01, 400, 64);
-    assert_same_bits(&a, &b);
-    assert_eq!(ga, gb);
+    assert_same_runs(
+        &by_steps(Trapezoid.discretize(system.clone()), &start, 0.01, 400),
+        &by_advance(Trapezoid.discretize(system), &start, 0.01, 400, 64),
+    );
     let composed =
         || Composition::new(Trapezoid, CompositionScheme::Suzuki4).discretize(Kepler::default());
-    let (a, ga) = by_steps(composed(), &kepler_start(), 0.05, 200);
-    let (b, gb) = by_advance(composed(), &kepler_start(), 0.05, 200, 50);
-    assert_same_bits(&a, &b);
-    assert_eq!(ga, gb);
+    assert_same_runs(
+        &by_steps(composed(), &kepler_start(), 0.05, 200),
+        &by_advance(composed(), &kepler_start(), 0.05, 200, 50),
+    );
 }
 
 /// `V = −q⁴`: the particle is pushed out ever harder and leaves the floats in finite time.
@@ -155,6 +171,18 @@ fn a_blow_up_keeps_the_last_finite_state_and_names_the_step() {
     assert_eq!(run.statistics().failed_steps, 1);
 }
 
+/// Counts what it is shown, and asks to be shown only the stored samples.
+struct SamplesOnly(usize);
+impl marsden::Observer for SamplesOnly {
+    fn observe(&mut self, _view: &marsden::StepView<'_>) -> ControlFlow<()> {
+        self.0 += 1;
+        ControlFlow::Continue(())
+    }
+    fn every_step(&self) -> bool {
+        false
+    }
+}
+
 /// `simulate` with nobody watching each step (chunks between samples) and with a watcher
 /// (single steps) store the same samples, bit for bit; a failure keeps the last good state.
 #[test]
@@ -183,6 +211,19 @@ fn simulate_in_chunks_stores_the_same_samples() {
         }
     };
     let (chunked, single) = (run(false), run(true));
+    // An observer that does not watch every step sees only the stored samples (after step
+    // 64, 128, …, 1000): proof that the steps between samples ran in one loop.
+    let mut samples_only = SamplesOnly(0);
+    let mut integrator = Integrator::new(Trapezoid.discretize(Kepler::default()));
+    simulate(
+        &mut integrator,
+        kepler_start(),
+        &grid,
+        &options,
+        &mut samples_only,
+    );
+    assert_eq!(samples_only.0, chunked.len() - 1);
+    assert_eq!(samples_only.0, 16);
     assert_eq!(chunked.step_indices, single.step_indices);
     assert_eq!(chunked.times, single.times);
     for i in 0..chunked.len() {

@@ -17,7 +17,7 @@
 
 use super::{Frame, Mass, SeparableWorkspace, node};
 use crate::Lagrangian;
-use crate::linalg::solve_in_place;
+use crate::linalg::{max_norm, solve_in_place};
 use crate::newton::{NewtonFailure, NewtonOptions, NewtonReport};
 
 /// The step for `n ≤ 4` with a diagonal mass; `None` for other systems.
@@ -126,10 +126,7 @@ fn solve<L: Lagrangian, const N: usize>(
         mass,
     };
     let mut delta: [f64; N] = z.get(..N)?.try_into().ok()?;
-    let q_scale = frame
-        .q0
-        .iter()
-        .fold(f64::MIN_POSITIVE, |m, q| m.max(q.abs()));
+    let q_scale = max_norm(frame.q0).max(f64::MIN_POSITIVE);
     let mut report = NewtonReport::default();
     let mut update_converged = false;
     loop {
