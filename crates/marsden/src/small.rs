@@ -19,7 +19,7 @@
 use nalgebra::{Const, SVector, U1};
 use num_dual::{Derivative, DualSVec64, HyperDual64, HyperDualSVec64};
 
-use crate::linalg::solve_in_place;
+use crate::linalg::solve_fixed;
 use crate::newton::{NewtonFailure, NewtonOptions, NewtonReport};
 use crate::{DiscreteAction, DiscreteForce, Scalar};
 
@@ -311,11 +311,9 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
                 report.evaluations += 1;
             }
             let mut update = e.residual.map(|r| -r);
-            solve_in_place(e.jacobian.as_flattened_mut(), &mut update, N).map_err(|s| {
-                NewtonFailure::Singular {
-                    iteration: report.iterations,
-                    pivot: s.pivot,
-                }
+            solve_fixed(&mut e.jacobian, &mut update).map_err(|s| NewtonFailure::Singular {
+                iteration: report.iterations,
+                pivot: s.pivot,
             })?;
             report.iterations += 1;
             report.factorizations += 1;

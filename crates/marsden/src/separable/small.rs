@@ -17,7 +17,7 @@
 
 use super::{Frame, Mass, SeparableWorkspace, node};
 use crate::Lagrangian;
-use crate::linalg::{max_norm, solve_in_place};
+use crate::linalg::{max_norm, solve_fixed};
 use crate::newton::{NewtonFailure, NewtonOptions, NewtonReport};
 
 /// The step for `n ≤ 4` with a diagonal mass; `None` for other systems.
@@ -147,7 +147,7 @@ fn solve<L: Lagrangian, const N: usize>(
         let mut a = step.jacobian(&delta, ws);
         report.factorizations += 1;
         let mut update = it.residual;
-        if let Err(s) = solve_in_place(a.as_flattened_mut(), &mut update, N) {
+        if let Err(s) = solve_fixed(&mut a, &mut update) {
             return Some(Err(NewtonFailure::Singular {
                 iteration: report.iterations,
                 pivot: s.pivot,
