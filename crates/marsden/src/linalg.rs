@@ -23,7 +23,7 @@ pub struct SingularMatrix {
 }
 
 /// Relative pivot threshold below which a matrix is treated as singular.
-const PIVOT_TOLERANCE: f64 = 1e-13;
+pub(crate) const PIVOT_TOLERANCE: f64 = 1e-13;
 
 impl Lu {
     /// An empty factorisation; call [`Lu::factor`] before solving.

@@ -12,8 +12,9 @@
 //!   transform `v = FH(q, p)` by Newton's method ([`velocity`]).
 //!
 //! Large separable Lagrangians (more than [`structure::LARGE`] degrees of freedom) take the
-//! shortcuts of [`crate::structure`] in [`momentum`], [`velocity`], [`check_regular`] and
-//! [`check_structure`]: the AD jet would cost `O(n)` evaluations of `L`.
+//! shortcuts of [`crate::structure`] in [`momentum`], [`check_regular`] and
+//! [`check_structure`]: the AD jet would cost `O(n)` evaluations of `L`. Every separable
+//! Lagrangian, whatever its size, inverts the Legendre transform as `v = M⁻¹ p` ([`velocity`]).
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001). [HLW06]: Hairer, Lubich, Wanner, *Geometric
 //! Numerical Integration* (2006).
@@ -194,7 +195,8 @@ pub fn acceleration<L: Lagrangian>(
 
 /// Inverse Legendre transform `v = FH(t, q, p)`: solves `∂L/∂v(t, q, v) = p` by Newton's
 /// method from the guess already in `v` (zero is a fine guess for mechanical systems, whose
-/// momenta are linear in `v`). Converges to `|∂L/∂v − p| ≤ 1e-14 · max(1, |p|)`.
+/// momenta are linear in `v`). Converges to `|∂L/∂v − p| ≤ 1e-14 · max(1, |p|)`. A Lagrangian
+/// that declares itself separable gets `v = M⁻¹ p` directly.
 pub fn velocity<L: Lagrangian>(
     l: &L,
     t: f64,
@@ -203,7 +205,7 @@ pub fn velocity<L: Lagrangian>(
     v: &mut [f64],
 ) -> Result<(), Error> {
     const MAX_ITERATIONS: usize = 50;
-    if let Some(mass) = structure::large_separable(l) {
+    if let Some(mass) = structure::separable_mass(l) {
         return structure::velocity(&mass, t, q, p, v);
     }
     let n = l.dof();
