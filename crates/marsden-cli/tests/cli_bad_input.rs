@@ -170,6 +170,10 @@ fn constraints_may_not_use_velocities() {
         "constraint_violated.toml",
         &["the initial positions violate constraint [0]: x^2 + y^2 - 4 = -3e0"],
     );
+    assert_rejected(
+        "constrained_compensated.toml",
+        &["`compensated = true` applies to unconstrained problems only"],
+    );
 }
 
 #[test]

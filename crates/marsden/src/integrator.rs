@@ -10,6 +10,7 @@
 use num_dual::{DualSVec64, HyperDual64, HyperDualSVec64};
 
 use crate::ad::HessianParts;
+use crate::compensated::Compensation;
 use crate::explicit::ExplicitWorkspace;
 use crate::holonomic::{MomentumProjection, NoProjection};
 use crate::newton::{self, NewtonFailure, NewtonOptions, NewtonReport, NewtonWorkspace};
@@ -91,6 +92,8 @@ pub struct Integrator<A, F = NoForce, C = Unconstrained, P = NoProjection> {
     /// Use the fast paths ([`crate::explicit`], [`crate::separable`], [`crate::small`]) when
     /// the step allows them.
     fast_paths: bool,
+    /// Compensated summation of the state update ([`crate::compensated`]).
+    compensation: Compensation,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -135,6 +138,7 @@ impl<A: DiscreteAction> Integrator<A> {
             predictor: Predictor::default(),
             statistics: Statistics::default(),
             fast_paths: true,
+            compensation: Compensation::default(),
         }
     }
 }
@@ -159,6 +163,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             predictor: Predictor::default(),
             statistics: self.statistics,
             fast_paths: self.fast_paths,
+            compensation: self.compensation,
         }
     }
 
@@ -179,6 +184,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             predictor: Predictor::default(),
             statistics: self.statistics,
             fast_paths: self.fast_paths,
+            compensation: self.compensation,
         }
     }
 
@@ -199,6 +205,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             predictor: self.predictor,
             statistics: self.statistics,
             fast_paths: self.fast_paths,
+            compensation: self.compensation,
         }
     }
 
@@ -219,6 +226,36 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     pub fn with_fast_paths(mut self, enabled: bool) -> Self {
         self.fast_paths = enabled;
         self
+    }
+
+    /// Whether to add each step's increments to the state with compensated summation
+    /// (default: false; [`crate::compensated`]). For long runs of high-order rules, whose
+    /// truncation error is below the rounding error of `q + Δ`: over 10⁵ steps of Kepler's
+    /// problem gauss-4 keeps the angular momentum to 1.4e-15 instead of 1.6e-11. Costs one
+    /// gradient of the discrete action per step, and the explicit run loop is not used (the
+    /// explicit step of the trapezoid rule goes through Newton's method). Constrained steps are
+    /// not compensated.
+    ///
+    /// ```
+    /// use marsden::{Integrator, Rule, State, rules::Galerkin, systems::Kepler};
+    ///
+    /// let rule = Galerkin::gauss(4)?;
+    /// let mut integrator =
+    ///     Integrator::new(rule.discretize(Kepler::default())).with_compensated_summation(true);
+    /// let mut state = State { t: 0.0, q: vec![0.4, 0.0], p: vec![0.0, 2.0] };
+    /// integrator.advance(&mut state, 0.05, 100)?;
+    /// assert!(integrator.is_compensated());
+    /// # Ok::<(), marsden::Error>(())
+    /// ```
+    pub fn with_compensated_summation(mut self, enabled: bool) -> Self {
+        self.compensation.enabled = enabled;
+        self
+    }
+
+    /// Whether steps are compensated: asked for and unconstrained
+    /// ([`Integrator::with_compensated_summation`]).
+    pub fn is_compensated(&self) -> bool {
+        self.compensation.enabled && self.shape.d == 0
     }
 
     /// The discrete action being stepped.
@@ -373,7 +410,11 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     /// are on.
     pub fn is_explicit(&self) -> bool {
         let sh = self.shape;
-        self.fast_paths && !sh.forced && sh.d == 0 && self.action.explicit().is_some()
+        self.fast_paths
+            && !sh.forced
+            && sh.d == 0
+            && !self.compensation.enabled
+            && self.action.explicit().is_some()
     }
 
     /// [`Integrator::advance`] on the explicit path: the first `steps − 1` steps in one
@@ -700,11 +741,20 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     }
 
     /// Writes the converged step into `state`.
-    fn accept(&self, z: &[f64], state: &mut State, h: f64) {
+    fn accept(&mut self, z: &[f64], state: &mut State, h: f64) {
         let sn = self.shape.s * self.shape.n;
-        let delta = &z[sn - self.shape.n..sn];
-        state.q.iter_mut().zip(delta).for_each(|(q, d)| *q += d);
-        state.p.copy_from_slice(&self.buffers.p_next);
+        if self.is_compensated() {
+            self.compensation.update(
+                (&self.action, &self.force),
+                (state.t, h),
+                (&mut state.q, &mut state.p),
+                &z[..sn],
+            );
+        } else {
+            let delta = &z[sn - self.shape.n..sn];
+            state.q.iter_mut().zip(delta).for_each(|(q, d)| *q += d);
+            state.p.copy_from_slice(&self.buffers.p_next);
+        }
         state.t += h;
     }
 

@@ -125,7 +125,7 @@ where
     let solve = SolveOptions {
         newton: options.newton,
         run: RunOptions { stride: usize::MAX },
-        general_path: false,
+        ..SolveOptions::default()
     };
     let mut points = Vec::with_capacity(steps.len());
     for &n in steps {

@@ -63,6 +63,10 @@ pub struct SolveOptions {
     /// Störmer–Verlet, the separable midpoint solve, the statically sized step): the reference
     /// the fast paths are tested against ([`Integrator::with_fast_paths`]).
     pub general_path: bool,
+    /// Add each step's increments with compensated summation
+    /// ([`Integrator::with_compensated_summation`]; unconstrained problems only).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub compensated: bool,
 }
 
 /// A mechanical system with initial data and a time grid.
@@ -263,7 +267,20 @@ impl<L: Lagrangian, F: Force, C: Constraint> Problem<L, F, C> {
                 Trajectory::new(self.lagrangian.dof(), self.constraint.count(), self.grid.h);
             Box::new(RunFailure { error, trajectory })
         })?;
-        let mut integrator = integrator.with_fast_paths(!options.general_path);
+        let mut integrator = integrator
+            .with_fast_paths(!options.general_path)
+            .with_compensated_summation(options.compensated);
+        if options.compensated && self.constraint.count() > 0 {
+            let error = Error::InvalidOption {
+                name: "compensated",
+                value: 1.0,
+                reason: "compensated summation applies to unconstrained problems only (the \
+                         momenta of a constrained step come from its projection)",
+            };
+            let trajectory =
+                Trajectory::new(self.lagrangian.dof(), self.constraint.count(), self.grid.h);
+            return Err(Box::new(RunFailure { error, trajectory }));
+        }
         simulate(
             &mut integrator,
             self.start.clone(),

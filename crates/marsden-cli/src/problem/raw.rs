@@ -28,6 +28,7 @@
 //! tolerance = 1e-12
 //! max_iterations = 50
 //! fast_paths = true          # false: the general Newton path (the reference)
+//! compensated = false        # true: compensated summation of the update (long high-order runs)
 //! [output]
 //! dir = "out/pendulum"
 //! format = "csv"
@@ -163,6 +164,9 @@ pub struct RawIntegrator {
     /// Structure-aware fast paths where they apply (default true); `false` takes the general
     /// Newton path, the reference they are tested against.
     pub fast_paths: Option<Spanned<bool>>,
+    /// Compensated summation of each step's increments (default false; unconstrained
+    /// problems only).
+    pub compensated: Option<Spanned<bool>>,
 }
 
 /// `[output]`.

@@ -178,11 +178,13 @@ pub fn integrator(
         newton.max_iterations = count(ck, "max_iterations", max)?;
     }
     let fast_paths = table.fast_paths.as_ref().is_none_or(|f| *f.get_ref());
+    let compensated = table.compensated.as_ref().is_some_and(|c| *c.get_ref());
     Ok(IntegratorSpec {
         method,
         grid,
         newton,
         fast_paths,
+        compensated,
         t_end,
     })
 }

@@ -160,6 +160,8 @@ pub struct IntegratorSpec {
     pub newton: NewtonOptions,
     /// Structure-aware fast paths allowed (`[integrator] fast_paths`, default true).
     pub fast_paths: bool,
+    /// Compensated summation of the state update (`[integrator] compensated`, default false).
+    pub compensated: bool,
     /// `t_end` as written, if the steps were derived from it.
     pub t_end: Option<f64>,
 }

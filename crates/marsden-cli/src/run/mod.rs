@@ -105,6 +105,7 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap>(
         // The observer stores the samples; the core keeps only the first and the last.
         run: marsden::RunOptions { stride: usize::MAX },
         general_path: !spec.integrator.fast_paths,
+        compensated: spec.integrator.compensated,
     };
     let parts = (lagrangian, constraint, maps);
     let mut observer = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), progress);

@@ -88,6 +88,13 @@ pub fn constrained_problem<L: Lagrangian, C: Constraint>(
     lagrangian: L,
     constraint: C,
 ) -> Result<Problem<L, marsden::NoForce, C>, Diagnostic> {
+    if spec.integrator.compensated && constraint.count() > 0 {
+        return Err(Diagnostic::new(
+            "`compensated = true` applies to unconstrained problems only: the momenta of a \
+             constrained step come from RATTLE's projection, not from a sum of increments",
+        )
+        .help("remove `compensated` from [integrator], or the constraints"));
+    }
     let initial = initial_data(spec, &lagrangian, &constraint)?;
     Problem::new(lagrangian, initial, spec.integrator.grid)
         .and_then(|p| p.with_constraint(constraint))
