@@ -1,6 +1,7 @@
 //! Tight stepping loop for profilers:
-//! `cargo run --profile profiling --example profile_step -- [pendulum|double|kepler|constrained] 100000`.
+//! `cargo run --profile profiling --example profile_step -- [pendulum|double|kepler|constrained|gauss4|gauss4-compensated] 100000`.
 use marsden::holonomic::MomentumProjection;
+use marsden::rules::Galerkin;
 use marsden::systems::{CartesianPendulum, DoublePendulum, Kepler, Pendulum};
 use marsden::{
     Constraint, DiscreteAction, DiscreteForce, Integrator, Midpoint, NewtonOptions, Problem, Rule,
@@ -8,12 +9,23 @@ use marsden::{
 };
 
 fn run<A: DiscreteAction>(action: A, q: &[f64], p: &[f64], h: f64, n: usize) -> f64 {
+    run_compensated(action, (q, p), h, n, false)
+}
+
+fn run_compensated<A: DiscreteAction>(
+    action: A,
+    (q, p): (&[f64], &[f64]),
+    h: f64,
+    n: usize,
+    compensated: bool,
+) -> f64 {
     let s = State {
         t: 0.0,
         q: q.to_vec(),
         p: p.to_vec(),
     };
-    run_integrator(Integrator::new(action), s, h, n)
+    let integrator = Integrator::new(action).with_compensated_summation(compensated);
+    run_integrator(integrator, s, h, n)
 }
 
 /// The SHAKE + RATTLE pendulum of `benches/constrained.rs` (`h = 0.01`, `θ₀ = 1.5`).
@@ -70,6 +82,16 @@ fn main() {
         ),
         Some("constrained") => constrained(n),
         Some("kepler") => run(Trapezoid.discretize(Kepler::default()), &q, &p, 0.01, n),
+        Some(mode @ ("gauss4" | "gauss4-compensated")) => match Galerkin::gauss(4) {
+            Ok(rule) => run_compensated(
+                rule.discretize(Kepler::default()),
+                (&q, &p),
+                2.0 * std::f64::consts::PI / 200.0,
+                n,
+                mode == "gauss4-compensated",
+            ),
+            Err(_) => f64::NAN,
+        },
         _ => run(
             Midpoint.discretize(Pendulum::default()),
             &[1.5],
