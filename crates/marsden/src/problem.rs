@@ -262,25 +262,25 @@ impl<L: Lagrangian, F: Force, C: Constraint> Problem<L, F, C> {
         options: &SolveOptions,
         observer: &mut O,
     ) -> Result<Trajectory, Box<RunFailure>> {
-        let integrator = self.integrator(rule, options.newton).map_err(|error| {
+        // Set-up errors come back with an empty trajectory (nothing was computed).
+        let failure = |error| {
             let trajectory =
                 Trajectory::new(self.lagrangian.dof(), self.constraint.count(), self.grid.h);
             Box::new(RunFailure { error, trajectory })
-        })?;
-        let mut integrator = integrator
-            .with_fast_paths(!options.general_path)
-            .with_compensated_summation(options.compensated);
+        };
         if options.compensated && self.constraint.count() > 0 {
-            let error = Error::InvalidOption {
+            return Err(failure(Error::InvalidOption {
                 name: "compensated",
                 value: 1.0,
                 reason: "compensated summation applies to unconstrained problems only (the \
                          momenta of a constrained step come from its projection)",
-            };
-            let trajectory =
-                Trajectory::new(self.lagrangian.dof(), self.constraint.count(), self.grid.h);
-            return Err(Box::new(RunFailure { error, trajectory }));
+            }));
         }
+        let mut integrator = self
+            .integrator(rule, options.newton)
+            .map_err(failure)?
+            .with_fast_paths(!options.general_path)
+            .with_compensated_summation(options.compensated);
         simulate(
             &mut integrator,
             self.start.clone(),

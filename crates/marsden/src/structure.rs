@@ -23,10 +23,7 @@ pub fn large_separable<L: Lagrangian + ?Sized>(l: &L) -> Option<MassMatrix> {
     if l.dof() <= LARGE {
         return None;
     }
-    let Structure::Separable { mass } = l.structure() else {
-        return None;
-    };
-    Some(mass)
+    separable_mass(l)
 }
 
 /// The mass matrix if `l` declares itself separable, whatever its size: the inverse Legendre

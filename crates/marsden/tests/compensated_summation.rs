@@ -10,7 +10,7 @@ use common::tight;
 use marsden::rules::Galerkin;
 use marsden::systems::{CartesianPendulum, DampedOscillator, Kepler};
 use marsden::{
-    Error, Initial, Integrator, Problem, Rule, SolveOptions, State, TimeGrid, Trapezoid,
+    Error, Initial, Integrator, Midpoint, Problem, Rule, SolveOptions, State, TimeGrid, Trapezoid,
 };
 
 fn max_difference(a: &State, b: &State) -> f64 {
@@ -52,6 +52,39 @@ fn forced_runs_agree_with_plain_summation_r12() {
     assert!(difference < 1e-13, "difference {difference:e}");
     // The run is damped: the final amplitude is e^{−0.05·100} of the initial one.
     assert!(plain.q[0].abs() < 0.05, "q = {}", plain.q[0]);
+}
+
+/// R12's one-step matrix of the forced midpoint rule, `[[401, 40], [−40, 397]] / 403` for
+/// h = 0.1, from a compensated step: the increment's force sum `f_d⁻ + f_d⁺` must be complete.
+#[test]
+fn compensated_midpoint_step_is_r12s_matrix() {
+    let osc = DampedOscillator::default();
+    let step = |q: f64, p: f64| {
+        let mut integrator = Integrator::new(Midpoint.discretize(osc))
+            .with_force(Midpoint.discretize_force(osc, 1))
+            .with_options(tight())
+            .unwrap()
+            .with_compensated_summation(true);
+        let mut state = State {
+            t: 0.0,
+            q: vec![q],
+            p: vec![p],
+        };
+        integrator.step(&mut state, 0.1).unwrap();
+        [state.q[0], state.p[0]]
+    };
+    let (a, b) = (step(1.0, 0.0), step(0.0, 1.0));
+    let exact = [[401.0, 40.0], [-40.0, 397.0]];
+    for i in 0..2 {
+        for (j, column) in [a, b].iter().enumerate() {
+            let expected = exact[i][j] / 403.0;
+            assert!(
+                (column[i] - expected).abs() <= 1e-15,
+                "M[{i}][{j}] = {} against {expected}",
+                column[i]
+            );
+        }
+    }
 }
 
 fn kepler_state() -> State {
