@@ -7,6 +7,7 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
+use crate::small_dual::{Dual4x64, HyperDual2x64};
 use num_dual::{DualSVec64, HyperDual64, HyperDualSVec64};
 
 use crate::ad::HessianParts;
@@ -615,7 +616,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
                 .solve::<1, HyperDual64, DualSVec64<2>>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
             2 => small
-                .solve::<2, HyperDualSVec64<2, 2>, DualSVec64<4>>(z, o)
+                .solve::<2, HyperDual2x64, Dual4x64>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
             3 => small
                 .solve::<3, HyperDualSVec64<3, 3>, DualSVec64<6>>(z, o)
@@ -663,7 +664,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
                 .solve::<1, HyperDual64, DualSVec64<2>>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
             2 => small
-                .solve::<2, HyperDualSVec64<2, 2>, DualSVec64<4>>(z, o)
+                .solve::<2, HyperDual2x64, Dual4x64>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
             3 => small
                 .solve::<3, HyperDualSVec64<3, 3>, DualSVec64<6>>(z, o)

@@ -71,6 +71,7 @@ pub mod separable;
 pub mod simulate;
 pub mod small;
 pub mod small_constrained;
+pub mod small_dual;
 pub mod special;
 pub mod step;
 pub mod structure;

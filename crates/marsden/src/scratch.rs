@@ -7,7 +7,8 @@
 //! still work.
 
 /// Runs `body` on a buffer of `len` values `init(0) … init(len − 1)`, on the stack if
-/// `len ≤ CAP` (`fill` pads the unused part of the array).
+/// `len ≤ CAP` (`fill` pads the unused part of the array). Up to two values take an array of
+/// two: padding eight hyper-dual numbers cost 4.5 % of a double-pendulum step (callgrind).
 #[inline(always)]
 pub fn with_buffer<S: Copy, const CAP: usize, R>(
     len: usize,
@@ -15,7 +16,13 @@ pub fn with_buffer<S: Copy, const CAP: usize, R>(
     mut init: impl FnMut(usize) -> S,
     body: impl FnOnce(&mut [S]) -> R,
 ) -> R {
-    if len <= CAP {
+    if len <= 2 {
+        let mut buf = [fill; 2];
+        for (i, slot) in buf[..len].iter_mut().enumerate() {
+            *slot = init(i);
+        }
+        body(&mut buf[..len])
+    } else if len <= CAP {
         let mut buf = [fill; CAP];
         for (i, slot) in buf[..len].iter_mut().enumerate() {
             *slot = init(i);
