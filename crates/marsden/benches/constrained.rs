@@ -21,6 +21,10 @@ use marsden::{
 
 const H: f64 = 0.01;
 
+/// Steps timed together in one sample (left to divan, a cold first call can make it time
+/// single ~200 ns steps with a 20 ns timer; see `benches/step.rs`).
+const STEPS_PER_SAMPLE: u32 = 64;
+
 fn main() {
     divan::main();
 }
@@ -53,7 +57,7 @@ fn constrained() -> Option<Problem<CartesianPendulum, marsden::NoForce, Cartesia
         .ok()
 }
 
-#[divan::bench]
+#[divan::bench(sample_size = STEPS_PER_SAMPLE)]
 fn shake_rattle_step(bencher: Bencher) {
     let Some(problem) = constrained() else { return };
     let Ok(integrator) = problem.integrator(&Midpoint, NewtonOptions::default()) else {
@@ -62,7 +66,7 @@ fn shake_rattle_step(bencher: Bencher) {
     bench_steps(bencher, integrator, problem.start().clone());
 }
 
-#[divan::bench]
+#[divan::bench(sample_size = STEPS_PER_SAMPLE)]
 fn shake_step(bencher: Bencher) {
     let Some(problem) = constrained() else { return };
     let sys = *problem.lagrangian();
@@ -71,7 +75,7 @@ fn shake_step(bencher: Bencher) {
     bench_steps(bencher, integrator, problem.start().clone());
 }
 
-#[divan::bench]
+#[divan::bench(sample_size = STEPS_PER_SAMPLE)]
 fn angle_pendulum_step(bencher: Bencher) {
     let sys = Pendulum::default();
     let Ok(grid) = TimeGrid::new(0.0, H, 1) else {

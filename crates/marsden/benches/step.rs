@@ -19,6 +19,12 @@ fn main() {
     divan::main();
 }
 
+/// Steps timed together in one sample. Divan sizes samples by itself, and when an early
+/// iteration is slow (a cold cache) it settles on one step per sample: each ~300 ns sample then
+/// carries the timer's 20 ns precision and its overhead, and the double pendulum's median came
+/// out at 430–520 ns in runs where 64 steps per sample give 270 ns. Fixed for every step row.
+const STEPS_PER_SAMPLE: u32 = 64;
+
 fn bench_steps<A: DiscreteAction>(bencher: Bencher, action: A, start: State, h: f64) {
     let mut integrator = Integrator::new(action);
     let mut state = start;
@@ -63,17 +69,17 @@ macro_rules! rules {
         mod $name {
             use super::*;
 
-            #[divan::bench]
+            #[divan::bench(sample_size = STEPS_PER_SAMPLE)]
             fn midpoint(b: Bencher) {
                 bench_steps(b, Midpoint.discretize($system), $start, $h);
             }
 
-            #[divan::bench]
+            #[divan::bench(sample_size = STEPS_PER_SAMPLE)]
             fn trapezoid(b: Bencher) {
                 bench_steps(b, Trapezoid.discretize($system), $start, $h);
             }
 
-            #[divan::bench]
+            #[divan::bench(sample_size = STEPS_PER_SAMPLE)]
             fn alpha_quarter(b: Bencher) {
                 bench_steps(
                     b,
@@ -83,7 +89,7 @@ macro_rules! rules {
                 );
             }
 
-            #[divan::bench]
+            #[divan::bench(sample_size = STEPS_PER_SAMPLE)]
             fn symmetrized_quarter(b: Bencher) {
                 bench_steps(
                     b,

@@ -5,7 +5,7 @@
 //! ([`crate::small`]) every part is always present, and the branches on the options and the
 //! products that are not inlined are a third of an evaluation of the double pendulum's `L_d`
 //! (1 710 instructions per hyper-dual evaluation with `HyperDualSVec64<2, 2>`, 1 110 with
-//! [`HyperDual2`], callgrind). The two types here are num-dual's scalar [`num_dual::HyperDual`]
+//! `HyperDual2`, callgrind). The two types here are num-dual's scalar [`num_dual::HyperDual`]
 //! and [`num_dual::Dual`] with the parts written out as fields: the sums, the elementary
 //! functions and the trait impls come from num-dual's own exported macros; only the product,
 //! the quotient and the chain rule are spelled out (Fike & Alonso 2011, *The development of
