@@ -7,7 +7,6 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
-use crate::small_dual::{Dual4x64, HyperDual2x64};
 use num_dual::{DualSVec64, HyperDual64, HyperDualSVec64};
 
 use crate::ad::HessianParts;
@@ -19,6 +18,7 @@ use crate::separable::{Frame, SeparableWorkspace};
 use crate::small::SmallStep;
 use crate::small_constrained::constraint_jacobian;
 use crate::small_constrained::{MAX_CONSTRAINTS, SmallConstrainedStep};
+use crate::small_dual::{Dual4x64, HyperDual2x64};
 use crate::step::{StepFunction, StepShape, StepSystem};
 use crate::{Constraint, DiscreteAction, DiscreteForce, Error, NoForce, Unconstrained};
 

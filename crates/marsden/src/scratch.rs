@@ -43,8 +43,10 @@ mod tests {
 
     #[test]
     fn inline_and_heap_buffers_hold_the_same_values() {
+        let two = with_buffer::<f64, 4, _>(2, 0.0, |i| i as f64, |b| b.to_vec());
         let small = with_buffer::<f64, 4, _>(3, 0.0, |i| i as f64, |b| b.to_vec());
         let large = with_buffer::<f64, 4, _>(6, 0.0, |i| i as f64, |b| b.to_vec());
+        assert_eq!(two, [0.0, 1.0]);
         assert_eq!(small, [0.0, 1.0, 2.0]);
         assert_eq!(large, [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]);
     }

@@ -129,6 +129,17 @@ fn static_and_general_paths_agree_for_two_and_four_degrees_of_freedom() {
         false,
     );
     assert!(max_difference(&a, &b) <= 1e-13);
+    // With a force: its ε₂ parts enter the Jacobian of the n = 2 kernel.
+    let forced = |fast| {
+        trajectory(
+            Midpoint.discretize(DoublePendulum::default()),
+            Midpoint.discretize_force(Drag, 2),
+            &start,
+            0.01,
+            fast,
+        )
+    };
+    assert!(max_difference(&forced(true), &forced(false)) <= 1e-13);
     let start = State {
         t: 0.0,
         q: vec![0.1, -0.2],
