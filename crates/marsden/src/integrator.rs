@@ -7,7 +7,7 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
-use num_dual::{DualSVec64, HyperDual64, HyperDualSVec64};
+use num_dual::{DualSVec64, HyperDual64};
 
 use crate::ad::HessianParts;
 use crate::compensated::Compensation;
@@ -18,7 +18,9 @@ use crate::separable::{Frame, SeparableWorkspace};
 use crate::small::SmallStep;
 use crate::small_constrained::constraint_jacobian;
 use crate::small_constrained::{MAX_CONSTRAINTS, SmallConstrainedStep};
-use crate::small_dual::{Dual4x64, HyperDual2x64};
+use crate::small_dual::{
+    Dual4x64, Dual6x64, Dual8x64, HyperDual2x64, HyperDual3x64, HyperDual4x64,
+};
 use crate::step::{StepFunction, StepShape, StepSystem};
 use crate::{Constraint, DiscreteAction, DiscreteForce, Error, NoForce, Unconstrained};
 
@@ -619,10 +621,10 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
                 .solve::<2, HyperDual2x64, Dual4x64>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
             3 => small
-                .solve::<3, HyperDualSVec64<3, 3>, DualSVec64<6>>(z, o)
+                .solve::<3, HyperDual3x64, Dual6x64>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
             _ => small
-                .solve::<4, HyperDualSVec64<4, 4>, DualSVec64<8>>(z, o)
+                .solve::<4, HyperDual4x64, Dual8x64>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
         }
         .map(|(report, ())| report);
@@ -667,10 +669,10 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
                 .solve::<2, HyperDual2x64, Dual4x64>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
             3 => small
-                .solve::<3, HyperDualSVec64<3, 3>, DualSVec64<6>>(z, o)
+                .solve::<3, HyperDual3x64, Dual6x64>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
             _ => small
-                .solve::<4, HyperDualSVec64<4, 4>, DualSVec64<8>>(z, o)
+                .solve::<4, HyperDual4x64, Dual8x64>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
         }
         .map(|(report, ())| report);

@@ -3,7 +3,7 @@
 //! Same equations as [`crate::step`] for a two-point discrete Lagrangian (no internal stages)
 //! without constraints, solved by the same Newton iteration — but for `n ≤ 4` degrees of freedom
 //! every buffer is a stack array of length `N`, the hyper-dual numbers are `HyperDual64`
-//! (n = 1), [`crate::small_dual`]'s `HyperDual2` (n = 2) or `HyperDualSVec64<N, N>`, seeded directly in offset form (`q₀` with eps₁ = eᵢ; the
+//! (n = 1) or [`crate::small_dual`]'s `HyperDual2`, `HyperDual3`, `HyperDual4`, seeded directly in offset form (`q₀` with eps₁ = eᵢ; the
 //! displacement `Δ` with eps₁ = −eᵢ, eps₂ = eᵢ, so eps₁ differentiates along `Q₀` with `Q₁` fixed),
 //! and the N × N Newton system is solved in place. The integrator dispatches here once per
 //! step on `n`; the general path remains the reference (a test checks both agree to round-off).
