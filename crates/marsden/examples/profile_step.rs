@@ -1,12 +1,32 @@
 //! Tight stepping loop for profilers:
-//! `cargo run --profile profiling --example profile_step -- [pendulum|double|kepler|constrained|gauss4|gauss4-compensated] 100000`.
+//! `cargo run --profile profiling --example profile_step -- [pendulum|double|coupled4|kepler|constrained|gauss4|gauss4-compensated] 100000`.
 use marsden::holonomic::MomentumProjection;
 use marsden::rules::Galerkin;
 use marsden::systems::{CartesianPendulum, DoublePendulum, Kepler, Pendulum};
 use marsden::{
-    Constraint, DiscreteAction, DiscreteForce, Integrator, Midpoint, NewtonOptions, Problem, Rule,
-    State, TimeGrid, Trapezoid,
+    Constraint, DiscreteAction, DiscreteForce, Integrator, Lagrangian, Midpoint, NewtonOptions,
+    Problem, Rule, Scalar, State, TimeGrid, Trapezoid,
 };
+
+/// Four angles with a configuration-dependent mass (the n = 4 static kernel):
+/// `L = ½ Σ vᵢ² + 0.3 Σ_{i<j} vᵢ vⱼ cos(qᵢ − qⱼ) + Σ cos qᵢ`.
+struct Coupled4;
+
+impl Lagrangian for Coupled4 {
+    fn dof(&self) -> usize {
+        4
+    }
+    fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
+        let mut l = S::from(0.0);
+        for i in 0..4 {
+            l += v[i] * v[i] * 0.5 + q[i].cos();
+            for j in i + 1..4 {
+                l += v[i] * v[j] * (q[i] - q[j]).cos() * 0.3;
+            }
+        }
+        l
+    }
+}
 
 fn run<A: DiscreteAction>(action: A, q: &[f64], p: &[f64], h: f64, n: usize) -> f64 {
     run_compensated(action, (q, p), h, n, false)
@@ -77,6 +97,13 @@ fn main() {
             Midpoint.discretize(DoublePendulum::default()),
             &[1.0, 0.5],
             &[0.0, 0.0],
+            0.01,
+            n,
+        ),
+        Some("coupled4") => run(
+            Midpoint.discretize(Coupled4),
+            &[0.4, 0.1, -0.2, -0.5],
+            &[0.0, 0.1, 0.2, 0.3],
             0.01,
             n,
         ),
