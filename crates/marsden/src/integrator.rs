@@ -7,7 +7,7 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
-use num_dual::{DualSVec64, HyperDual64};
+use num_dual::HyperDual64;
 
 use crate::ad::HessianParts;
 use crate::compensated::Compensation;
@@ -19,7 +19,7 @@ use crate::small::SmallStep;
 use crate::small_constrained::constraint_jacobian;
 use crate::small_constrained::{MAX_CONSTRAINTS, SmallConstrainedStep};
 use crate::small_dual::{
-    Dual4x64, Dual6x64, Dual8x64, HyperDual2x64, HyperDual3x64, HyperDual4x64,
+    Dual2x64, Dual4x64, Dual6x64, Dual8x64, HyperDual2x64, HyperDual3x64, HyperDual4x64,
 };
 use crate::step::{StepFunction, StepShape, StepSystem};
 use crate::{Constraint, DiscreteAction, DiscreteForce, Error, NoForce, Unconstrained};
@@ -615,7 +615,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         p_next.resize(sh.n, 0.0);
         let result = match sh.n {
             1 => small
-                .solve::<1, HyperDual64, DualSVec64<2>>(z, o)
+                .solve::<1, HyperDual64, Dual2x64>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
             2 => small
                 .solve::<2, HyperDual2x64, Dual4x64>(z, o)
@@ -663,7 +663,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         let (o, p_next) = (&self.options, &mut b.p_next);
         let result = match sh.n {
             1 => small
-                .solve::<1, HyperDual64, DualSVec64<2>>(z, o)
+                .solve::<1, HyperDual64, Dual2x64>(z, o)
                 .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
             2 => small
                 .solve::<2, HyperDual2x64, Dual4x64>(z, o)

@@ -1,5 +1,5 @@
 //! Dual numbers of fixed size with every part stored, for the step kernels of 2 to 4 degrees
-//! of freedom.
+//! of freedom (and the first-order one of 1).
 //!
 //! num-dual's vector duals (`HyperDualSVec64<N, N>`, `DualSVec64<2N>`) keep each derivative part
 //! as an `Option` of a matrix, so that a constant costs nothing. In the small step kernels
@@ -8,7 +8,7 @@
 //! of the double pendulum's `L_d` (1 710 instructions per hyper-dual evaluation with
 //! `HyperDualSVec64<2, 2>`, 1 110 with `HyperDual2`, callgrind). The types here are num-dual's
 //! scalar [`num_dual::HyperDual`] and [`num_dual::Dual`] with the parts written out as fields
-//! (`hyper_dual!` and `gradient_dual!` below, for N = 2, 3, 4): the sums, the elementary
+//! (`hyper_dual!` and `gradient_dual!` below, for N = 2, 3, 4; `Dual2` for N = 1): the sums, the elementary
 //! functions and the trait impls come from num-dual's own exported macros; only the product,
 //! the quotient and the chain rule are spelled out (Fike & Alonso 2011, *The development of
 //! hyper-dual numbers for exact second-derivative calculations*, AIAA 2011-886):
@@ -334,6 +334,7 @@ hyper_dual!(HyperDual4, HyperDual4x64, 4,
     e1: [e1_0, e1_1, e1_2, e1_3], e2: [e2_0, e2_1, e2_2, e2_3],
     e12: [[e12_00, e12_01, e12_02, e12_03], [e12_10, e12_11, e12_12, e12_13],
           [e12_20, e12_21, e12_22, e12_23], [e12_30, e12_31, e12_32, e12_33]]);
+gradient_dual!(Dual2, Dual2x64, 1, 2, [e0, e1]);
 gradient_dual!(Dual4, Dual4x64, 2, 4, [e0, e1, e2, e3]);
 gradient_dual!(Dual6, Dual6x64, 3, 6, [e0, e1, e2, e3, e4, e5]);
 gradient_dual!(Dual8, Dual8x64, 4, 8, [e0, e1, e2, e3, e4, e5, e6, e7]);
@@ -409,6 +410,7 @@ mod tests {
 
     #[test]
     fn gradient_duals_match_num_dual_vector_types() {
+        gradients_agree::<1, Dual2x64, DualSVec64<2>>();
         gradients_agree::<2, Dual4x64, DualSVec64<4>>();
         gradients_agree::<3, Dual6x64, DualSVec64<6>>();
         gradients_agree::<4, Dual8x64, DualSVec64<8>>();
