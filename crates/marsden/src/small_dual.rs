@@ -55,6 +55,19 @@ fn write_parts<T: fmt::Display>(f: &mut fmt::Formatter, parts: &[T]) -> fmt::Res
     write!(f, "]")
 }
 
+/// The quotient rule as `a / b = a · (1/b)`, the reciprocal by the type's chain rule.
+macro_rules! quotient_by_reciprocal {
+    ($name:ident) => {
+        impl<T: DualNum> Div<&$name<T>> for &$name<T> {
+            type Output = $name<T>;
+            #[inline]
+            fn div(self, other: &$name<T>) -> $name<T> {
+                self * &other.recip()
+            }
+        }
+    };
+}
+
 /// A hyper-dual type `$name<T>` with `$n`-dimensional ε₁ and ε₂ parts and the `$n × $n`
 /// ε₁ε₂ parts as fields (the layout of `HyperDualSVec64<$n, $n>`), and its use in the small
 /// kernel ([`SmallDual`]).
@@ -159,14 +172,7 @@ macro_rules! hyper_dual {
             }
         }
 
-        /* quotient rule: a / b = a · (1/b), the reciprocal by the chain rule */
-        impl<T: DualNum> Div<&$name<T>> for &$name<T> {
-            type Output = $name<T>;
-            #[inline]
-            fn div(self, other: &$name<T>) -> $name<T> {
-                self * &other.recip()
-            }
-        }
+        quotient_by_reciprocal!($name);
 
         impl<T: DualNum> fmt::Display for $name<T> {
             fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
@@ -279,14 +285,7 @@ macro_rules! gradient_dual {
             }
         }
 
-        /* quotient rule: a / b = a · (1/b) */
-        impl<T: DualNum> Div<&$name<T>> for &$name<T> {
-            type Output = $name<T>;
-            #[inline]
-            fn div(self, other: &$name<T>) -> $name<T> {
-                self * &other.recip()
-            }
-        }
+        quotient_by_reciprocal!($name);
 
         impl<T: DualNum> fmt::Display for $name<T> {
             fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
