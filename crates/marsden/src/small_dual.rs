@@ -30,6 +30,8 @@
 
 use crate::small::{SmallDual, SmallGradient};
 use num_dual::{DualNum, DualNumFloat, DualStruct};
+// num-dual's exported macros call one another, and name these traits, by bare name: all of
+// them must be in scope where `impl_dual!` and `impl_*_derivatives!` expand.
 use num_dual::{
     chain_rule, first, forward_binop, impl_add_sub_rem, impl_assign_ops, impl_comparisons,
     impl_derivatives, impl_dual, impl_dual_struct, impl_first_derivatives, impl_float_const,
