@@ -31,7 +31,8 @@
 //! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration*, 2nd ed. (2006).
 
 use crate::ad::{self, MultiFunction};
-use crate::{DiscreteAction, DiscreteForce, Scalar};
+use crate::discrete::ActionAndForces;
+use crate::{DiscreteAction, DiscreteForce};
 
 /// The carried rounding errors of `q` and `p`, and the state they belong to.
 #[derive(Debug, Clone, Default)]
@@ -45,8 +46,8 @@ pub(crate) struct Compensation {
     last_p: Vec<f64>,
     /// `(Q₀, offsets)`, the input of the momentum increment's gradient.
     point: Vec<f64>,
-    /// Forces on the control points, and the increment `δp`.
-    forces: Vec<f64>,
+    /// Scratch of [`momentum_increment`], and the increment `δp`.
+    scratch: IncrementScratch,
     increment: Vec<f64>,
 }
 
@@ -76,7 +77,7 @@ impl Compensation {
             (action, force),
             (t0, h),
             &self.point,
-            &mut self.forces,
+            &mut self.scratch,
             &mut self.increment,
         );
         let delta = &offsets[offsets.len() - n..];
@@ -99,51 +100,35 @@ fn kahan_add(y: &mut [f64], error: &mut [f64], delta: &[f64]) {
     }
 }
 
+/// Values and Jacobian of [`ActionAndForces`] for [`momentum_increment`].
+#[derive(Debug, Clone, Default)]
+pub(crate) struct IncrementScratch {
+    values: Vec<f64>,
+    jacobian: Vec<f64>,
+}
+
 /// `δp = ∇_{Q₀} L_d(Q₀; offsets) + Σ_j f_j`, the momentum increment of a solved step, at
-/// `point = (Q₀, offsets)` (module doc). `forces` is scratch.
+/// `point = (Q₀, offsets)` (module doc): one first-order AD pass over `(L_d, f₀ … f_s)` with
+/// the `n` columns of `Q₀` seeded; row 0 of the Jacobian is the gradient, the force values are
+/// summed over the control points.
 pub(crate) fn momentum_increment<A: DiscreteAction, F: DiscreteForce>(
     (action, force): (&A, &F),
     (t0, h): (f64, f64),
     point: &[f64],
-    forces: &mut Vec<f64>,
+    scratch: &mut IncrementScratch,
     increment: &mut [f64],
 ) {
     let n = increment.len();
-    let start = ActionAlongStart { action, t0, h, n };
-    ad::jacobian(&start, point, 0..n, &mut [0.0], increment);
-    if force.is_active() {
-        let (q0, offsets) = point.split_at(n);
-        forces.clear();
-        forces.resize(n + offsets.len(), 0.0);
-        force.discrete_force(t0, h, q0, offsets, forces);
-        for point_force in forces.chunks_exact(n) {
-            increment
-                .iter_mut()
-                .zip(point_force)
-                .for_each(|(d, f)| *d += f);
-        }
-    }
-}
-
-/// `L_d` as a function of `(Q₀, offsets)`; its gradient in the first `n` inputs is the
-/// derivative along `Q₀` with the offsets fixed.
-struct ActionAlongStart<'a, A> {
-    action: &'a A,
-    t0: f64,
-    h: f64,
-    n: usize,
-}
-
-impl<A: DiscreteAction> MultiFunction for ActionAlongStart<'_, A> {
-    fn inputs(&self) -> usize {
-        self.n * (self.action.internal_stages() + 2)
-    }
-    fn outputs(&self) -> usize {
-        1
-    }
-    fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
-        let (q0, offsets) = x.split_at(self.n);
-        out[0] = self.action.action(self.t0, self.h, q0, offsets);
+    let f = ActionAndForces::new(action, force, (t0, h));
+    scratch.values.resize(f.outputs(), 0.0);
+    scratch.jacobian.resize(f.outputs() * n, 0.0);
+    ad::jacobian(&f, point, 0..n, &mut scratch.values, &mut scratch.jacobian);
+    increment.copy_from_slice(&scratch.jacobian[..n]);
+    for point_force in scratch.values[1..].chunks_exact(n) {
+        increment
+            .iter_mut()
+            .zip(point_force)
+            .for_each(|(d, f)| *d += f);
     }
 }
 
@@ -180,7 +165,7 @@ mod tests {
             (integrator.action(), &NoForce),
             (0.0, 0.01),
             &point,
-            &mut Vec::new(),
+            &mut IncrementScratch::default(),
             &mut increment,
         );
         for i in 0..2 {

@@ -141,6 +141,56 @@ impl<T: DiscreteLagrangian> DiscreteAction for T {
     }
 }
 
+/// `(L_d, F₀ … F_s)` as functions of `x = (q₀, Δ₁ … Δ_s)`, the offset form of
+/// [`DiscreteAction::action`] and [`crate::DiscreteForce::discrete_force`] (no re-seeding of
+/// offsets): output 0 is the action, outputs `1 + j·n + a` the force on control point `j`,
+/// component `a` (only when the force is active). For the AD drivers of the step's exact
+/// Jacobian ([`crate::certificate`]) and of the momentum increment ([`crate::compensated`]).
+pub(crate) struct ActionAndForces<'a, A, F> {
+    action: &'a A,
+    force: &'a F,
+    t0: f64,
+    h: f64,
+    n: usize,
+    s: usize,
+}
+
+impl<'a, A: DiscreteAction, F: crate::DiscreteForce> ActionAndForces<'a, A, F> {
+    /// The step of `action` and `force` from `t0` with step size `h`.
+    pub fn new(action: &'a A, force: &'a F, (t0, h): (f64, f64)) -> Self {
+        let (n, s) = (action.dof(), action.internal_stages() + 1);
+        Self {
+            action,
+            force,
+            t0,
+            h,
+            n,
+            s,
+        }
+    }
+}
+
+impl<A: DiscreteAction, F: crate::DiscreteForce> MultiFunction for ActionAndForces<'_, A, F> {
+    fn inputs(&self) -> usize {
+        (self.s + 1) * self.n
+    }
+    fn outputs(&self) -> usize {
+        1 + if self.force.is_active() {
+            self.inputs()
+        } else {
+            0
+        }
+    }
+    fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
+        let (q0, offsets) = x.split_at(self.n);
+        out[0] = self.action.action(self.t0, self.h, q0, offsets);
+        if self.force.is_active() {
+            self.force
+                .discrete_force(self.t0, self.h, q0, offsets, &mut out[1..]);
+        }
+    }
+}
+
 /// `L_d` as a function of `(q₀, q₁)` for the AD drivers.
 struct TwoPoint<'a, D> {
     ld: &'a D,

@@ -13,25 +13,32 @@
 pub fn with_buffer<S: Copy, const CAP: usize, R>(
     len: usize,
     fill: S,
-    mut init: impl FnMut(usize) -> S,
+    init: impl FnMut(usize) -> S,
     body: impl FnOnce(&mut [S]) -> R,
 ) -> R {
     if len <= 2 {
-        let mut buf = [fill; 2];
-        for (i, slot) in buf[..len].iter_mut().enumerate() {
-            *slot = init(i);
-        }
-        body(&mut buf[..len])
+        on_stack::<S, 2, R>(len, fill, init, body)
     } else if len <= CAP {
-        let mut buf = [fill; CAP];
-        for (i, slot) in buf[..len].iter_mut().enumerate() {
-            *slot = init(i);
-        }
-        body(&mut buf[..len])
+        on_stack::<S, CAP, R>(len, fill, init, body)
     } else {
         let mut heap: Vec<S> = (0..len).map(init).collect();
         body(&mut heap)
     }
+}
+
+/// [`with_buffer`] in an array of `K ≥ len` values.
+#[inline(always)]
+fn on_stack<S: Copy, const K: usize, R>(
+    len: usize,
+    fill: S,
+    mut init: impl FnMut(usize) -> S,
+    body: impl FnOnce(&mut [S]) -> R,
+) -> R {
+    let mut buf = [fill; K];
+    for (i, slot) in buf[..len].iter_mut().enumerate() {
+        *slot = init(i);
+    }
+    body(&mut buf[..len])
 }
 
 /// Inline capacity for per-node vectors of length n (positions, velocities, forces).

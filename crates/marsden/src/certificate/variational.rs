@@ -25,42 +25,10 @@
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 use super::DifferentiableStep;
-use crate::ad::{self, HessianParts, MultiFunction};
+use crate::ad::{self, HessianParts};
+use crate::discrete::ActionAndForces;
 use crate::linalg::Lu;
-use crate::{
-    DiscreteAction, DiscreteForce, Error, Integrator, Scalar, State, StepReport, Unconstrained,
-};
-
-/// `(L_d, F₀ … F_s)` as functions of `x = (q₀, Δ₁ … Δ_s)` (no re-seeding of offsets).
-struct ActionAndForces<'a, A, F> {
-    action: &'a A,
-    force: &'a F,
-    t0: f64,
-    h: f64,
-    n: usize,
-    s: usize,
-}
-
-impl<A: DiscreteAction, F: DiscreteForce> MultiFunction for ActionAndForces<'_, A, F> {
-    fn inputs(&self) -> usize {
-        (self.s + 1) * self.n
-    }
-    fn outputs(&self) -> usize {
-        1 + if self.force.is_active() {
-            self.inputs()
-        } else {
-            0
-        }
-    }
-    fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
-        let (q0, offsets) = x.split_at(self.n);
-        out[0] = self.action.action(self.t0, self.h, q0, offsets);
-        if self.force.is_active() {
-            self.force
-                .discrete_force(self.t0, self.h, q0, offsets, &mut out[1..]);
-        }
-    }
-}
+use crate::{DiscreteAction, DiscreteForce, Error, Integrator, State, StepReport, Unconstrained};
 
 /// Derivative blocks of the step equations, read from one full Hessian evaluation.
 struct Blocks<'a> {
@@ -111,14 +79,7 @@ pub fn step_jacobian<A: DiscreteAction, F: DiscreteForce>(
     let (sn, m) = (s * n, 2 * n);
     Error::check_len("offsets", offsets, sn)?;
     let x: Vec<f64> = q0.iter().chain(offsets).copied().collect();
-    let f = ActionAndForces {
-        action,
-        force,
-        t0,
-        h,
-        n,
-        s,
-    };
+    let f = ActionAndForces::new(action, force, (t0, h));
     let mut parts = HessianParts::default();
     ad::partial_hessian(&f, &x, 0..x.len(), 0..x.len(), &mut parts);
     let b = Blocks {
