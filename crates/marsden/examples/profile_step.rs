@@ -1,5 +1,7 @@
 //! Tight stepping loop for profilers:
-//! `cargo run --profile profiling --example profile_step -- [pendulum|double|coupled4|kepler|constrained|gauss4|gauss4-compensated] 100000`.
+//! `cargo run --profile profiling --example profile_step -- [pendulum|double|coupled4|kepler|constrained|gauss4|gauss4-compensated] 100000 [baseline]`.
+//! `baseline` keeps the small kernels in baseline x86-64 code (`Integrator::with_wide_instructions`),
+//! for valgrind 3.19, which does not decode every AVX instruction of the x86-64-v3 copy.
 use marsden::holonomic::MomentumProjection;
 use marsden::rules::Galerkin;
 use marsden::systems::{CartesianPendulum, DoublePendulum, Kepler, Pendulum};
@@ -66,7 +68,7 @@ fn constrained(n: usize) -> f64 {
 }
 
 fn run_integrator<A, F, C, P>(
-    mut integrator: Integrator<A, F, C, P>,
+    integrator: Integrator<A, F, C, P>,
     mut s: State,
     h: f64,
     n: usize,
@@ -77,6 +79,8 @@ where
     C: Constraint,
     P: MomentumProjection,
 {
+    let wide = std::env::args().nth(3).as_deref() != Some("baseline");
+    let mut integrator = integrator.with_wide_instructions(wide);
     let start = std::time::Instant::now();
     for _ in 0..n {
         if integrator.step(&mut s, h).is_err() {

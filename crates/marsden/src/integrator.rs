@@ -11,6 +11,7 @@ use num_dual::HyperDual64;
 
 use crate::ad::HessianParts;
 use crate::compensated::Compensation;
+use crate::dispatch::Dispatch;
 use crate::explicit::ExplicitWorkspace;
 use crate::holonomic::{MomentumProjection, NoProjection};
 use crate::newton::{self, NewtonFailure, NewtonOptions, NewtonReport, NewtonWorkspace};
@@ -97,6 +98,8 @@ pub struct Integrator<A, F = NoForce, C = Unconstrained, P = NoProjection> {
     fast_paths: bool,
     /// Compensated summation of the state update ([`crate::compensated`]).
     compensation: Compensation,
+    /// The instruction set of the small kernels ([`crate::dispatch`]).
+    dispatch: Dispatch,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -142,6 +145,7 @@ impl<A: DiscreteAction> Integrator<A> {
             statistics: Statistics::default(),
             fast_paths: true,
             compensation: Compensation::default(),
+            dispatch: Dispatch::detect(),
         }
     }
 }
@@ -167,6 +171,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             statistics: self.statistics,
             fast_paths: self.fast_paths,
             compensation: self.compensation,
+            dispatch: self.dispatch,
         }
     }
 
@@ -188,6 +193,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             statistics: self.statistics,
             fast_paths: self.fast_paths,
             compensation: self.compensation,
+            dispatch: self.dispatch,
         }
     }
 
@@ -209,6 +215,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             statistics: self.statistics,
             fast_paths: self.fast_paths,
             compensation: self.compensation,
+            dispatch: self.dispatch,
         }
     }
 
@@ -228,6 +235,33 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     /// for testing and measurement.
     pub fn with_fast_paths(mut self, enabled: bool) -> Self {
         self.fast_paths = enabled;
+        self
+    }
+
+    /// Whether the small kernels ([`crate::small`], [`crate::small_constrained`]) may run in code
+    /// compiled for x86-64-v3 (AVX2, FMA) when the CPU has it (default: true; chosen at run
+    /// time, [`crate::dispatch`]). Both give the same bits; switch it off for tools that do not
+    /// decode every AVX instruction (valgrind 3.19) or to measure the difference.
+    ///
+    /// ```
+    /// use marsden::{Integrator, Midpoint, Rule, State, systems::DoublePendulum};
+    ///
+    /// let mut wide = Integrator::new(Midpoint.discretize(DoublePendulum::default()));
+    /// let mut baseline = Integrator::new(Midpoint.discretize(DoublePendulum::default()))
+    ///     .with_wide_instructions(false);
+    /// let start = State { t: 0.0, q: vec![1.0, 0.5], p: vec![0.0, 0.0] };
+    /// let (mut a, mut b) = (start.clone(), start);
+    /// wide.advance(&mut a, 0.01, 100)?;
+    /// baseline.advance(&mut b, 0.01, 100)?;
+    /// assert_eq!(a.q, b.q);
+    /// # Ok::<(), marsden::Error>(())
+    /// ```
+    pub fn with_wide_instructions(mut self, enabled: bool) -> Self {
+        self.dispatch = if enabled {
+            Dispatch::detect()
+        } else {
+            Dispatch::baseline()
+        };
         self
     }
 
@@ -613,21 +647,26 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         let o = &self.options;
         let p_next = &mut self.buffers.p_next;
         p_next.resize(sh.n, 0.0);
-        let result = match sh.n {
-            1 => small
-                .solve::<1, HyperDual64, Dual2x64>(z, o)
-                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
-            2 => small
-                .solve::<2, HyperDual2x64, Dual4x64>(z, o)
-                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
-            3 => small
-                .solve::<3, HyperDual3x64, Dual6x64>(z, o)
-                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
-            _ => small
-                .solve::<4, HyperDual4x64, Dual8x64>(z, o)
-                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
-        }
-        .map(|(report, ())| report);
+        let result = self
+            .dispatch
+            .run(
+                #[inline(always)]
+                || match sh.n {
+                    1 => small
+                        .solve::<1, HyperDual64, Dual2x64>(z, o)
+                        .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+                    2 => small
+                        .solve::<2, HyperDual2x64, Dual4x64>(z, o)
+                        .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+                    3 => small
+                        .solve::<3, HyperDual3x64, Dual6x64>(z, o)
+                        .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+                    _ => small
+                        .solve::<4, HyperDual4x64, Dual8x64>(z, o)
+                        .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+                },
+            )
+            .map(|(report, ())| report);
         let evaluations = evaluations_of(&result);
         self.statistics.system_evaluations += evaluations;
         self.statistics.action_evaluations += evaluations;
@@ -661,21 +700,26 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             d: sh.d,
         };
         let (o, p_next) = (&self.options, &mut b.p_next);
-        let result = match sh.n {
-            1 => small
-                .solve::<1, HyperDual64, Dual2x64>(z, o)
-                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
-            2 => small
-                .solve::<2, HyperDual2x64, Dual4x64>(z, o)
-                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
-            3 => small
-                .solve::<3, HyperDual3x64, Dual6x64>(z, o)
-                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
-            _ => small
-                .solve::<4, HyperDual4x64, Dual8x64>(z, o)
-                .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
-        }
-        .map(|(report, ())| report);
+        let result = self
+            .dispatch
+            .run(
+                #[inline(always)]
+                || match sh.n {
+                    1 => small
+                        .solve::<1, HyperDual64, Dual2x64>(z, o)
+                        .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+                    2 => small
+                        .solve::<2, HyperDual2x64, Dual4x64>(z, o)
+                        .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+                    3 => small
+                        .solve::<3, HyperDual3x64, Dual6x64>(z, o)
+                        .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+                    _ => small
+                        .solve::<4, HyperDual4x64, Dual8x64>(z, o)
+                        .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
+                },
+            )
+            .map(|(report, ())| report);
         let evaluations = evaluations_of(&result);
         self.statistics.system_evaluations += evaluations;
         self.statistics.action_evaluations += evaluations;

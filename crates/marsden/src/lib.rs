@@ -27,7 +27,7 @@
 //! | continuous mechanics | [`mechanics`] | Legendre transform, energy, Euler–Lagrange, regularity |
 //! | discrete Lagrangian | [`discrete`], [`rules`] | `L_d`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; midpoint, trapezoid, α-rules, Galerkin (Gauss, Lobatto), compositions |
 //! | exact discrete Lagrangian | [`exact`] | `L_d^E` by shooting, `F^±L_d^E = FL`, local (variational) error |
-//! | step | [`step`], [`small`], [`small_constrained`], [`small_dual`], [`explicit`], [`separable`], [`potential`], [`newton`], [`linalg`], [`banded`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians; structure-aware fast paths (explicit Störmer–Verlet, `M/h + (h/4)∇²V`, band solves) |
+//! | step | [`step`], [`small`], [`small_constrained`], [`small_dual`], [`dispatch`], [`explicit`], [`separable`], [`potential`], [`newton`], [`linalg`], [`banded`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians; structure-aware fast paths (explicit Störmer–Verlet, `M/h + (h/4)∇²V`, band solves); x86-64-v3 code chosen at run time |
 //! | integrator | [`integrator`], [`compensated`], [`maps`] | rule + forces + constraints + solver + buffers; compensated summation of the update; `F_{L_d}`, `F̃_{L_d}` |
 //! | run | [`problem`], [`simulate`], [`trajectory`] | problem → trajectory, stride, observers, failures |
 //! | order of convergence | [`order`] | empirical order (log–log slope before round-off), references |
@@ -47,6 +47,7 @@ pub mod compensated;
 pub mod constraint;
 pub mod diagnostics;
 pub mod discrete;
+pub mod dispatch;
 pub mod ensemble;
 pub mod error;
 pub mod exact;

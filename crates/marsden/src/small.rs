@@ -245,6 +245,7 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
     }
 
     /// Adds `f_d⁻` (and its Jacobian) to the residual and `f_d⁺` to `p_{k+1}`.
+    #[inline(always)]
     fn add_forces<const N: usize, D: SmallDual<N>>(
         &self,
         q: &[D; N],
@@ -271,6 +272,7 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
     /// below [`SPECULATE`] — only needs the residual and `p_{k+1}` and takes the cheaper dual
     /// `G`; should it not end the iteration after all, the Jacobian is evaluated at the same
     /// point.
+    #[inline(always)]
     pub fn solve<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
         &self,
         z: &mut [f64],

@@ -118,6 +118,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallConstrainedStep<'_
     }
 
     /// Adds `f_d⁻` (and its Jacobian) to the residual and `f_d⁺` to `p_{k+1}`.
+    #[inline(always)]
     fn add_forces<const N: usize, D: SmallDual<N>>(
         &self,
         q: &[D; N],
@@ -138,6 +139,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallConstrainedStep<'_
     }
 
     /// Rows `N..m`: `φ(q₀ + Δ)` and `Dφ(q₀ + Δ)` (the eps₁ parts of `q₀` and `Δ` cancel).
+    #[inline(always)]
     fn add_constraints<const N: usize, D: SmallDual<N>>(
         &self,
         q: &[D; N],
@@ -159,6 +161,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallConstrainedStep<'_
     /// Newton's method on the step equations from `z = (Δ, λ)` (overwritten with the solution);
     /// returns the report and `p_{k+1}`. An evaluation expected to end the iteration takes the
     /// cheaper duals `G` (see [`crate::small`]).
+    #[inline(always)]
     pub fn solve<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
         &self,
         z: &mut [f64],

@@ -1,6 +1,7 @@
 //! The statically sized constrained step (`marsden::small_constrained`) and the general path
 //! solve the same SHAKE equations: with and without forces, for both second-order rules and for
-//! one and two constraints, the trajectories (with the RATTLE projection) agree to round-off.
+//! one and two constraints, the trajectories (with the RATTLE projection) agree to round-off;
+//! the kernel's x86-64-v3 copy (`marsden::dispatch`) and its baseline code agree bit for bit.
 
 // Tests: helpers unwrap.
 #![allow(clippy::unwrap_used)]
@@ -15,7 +16,15 @@ use marsden::{
     Trapezoid,
 };
 
-fn run<L, C, F, R>(sys: (L, C), force: F, rule: &R, start: &State, fast: bool) -> (Vec<f64>, usize)
+/// 1000 steps with the fast paths on or off and the wide instructions (`marsden::dispatch`) on
+/// or off; the trajectory with the multipliers, and the Newton iterations.
+fn run<L, C, F, R>(
+    sys: (L, C),
+    force: F,
+    rule: &R,
+    start: &State,
+    (fast, wide): (bool, bool),
+) -> (Vec<f64>, usize)
 where
     L: Lagrangian + Clone,
     C: Constraint + Clone,
@@ -30,7 +39,8 @@ where
         .with_projection(Rattle::new(l, c))
         .with_options(tight())
         .unwrap()
-        .with_fast_paths(fast);
+        .with_fast_paths(fast)
+        .with_wide_instructions(wide);
     let mut state = start.clone();
     let mut out = Vec::new();
     for _ in 0..1000 {
@@ -54,8 +64,15 @@ where
     R: Rule,
     R::DiscreteForce<F>: DiscreteForce,
 {
-    let (fast, iterations_fast) = run(sys.clone(), force.clone(), &rule, &start, true);
-    let (general, iterations_general) = run(sys, force, &rule, &start, false);
+    let (fast, iterations_fast) = run(sys.clone(), force.clone(), &rule, &start, (true, true));
+    // The x86-64-v3 copy of the kernel and the baseline code: the same bits.
+    let (baseline, _) = run(sys.clone(), force.clone(), &rule, &start, (true, false));
+    let same = fast
+        .iter()
+        .zip(&baseline)
+        .all(|(a, b)| a.to_bits() == b.to_bits());
+    assert!(same, "{name}: wide and baseline instructions differ");
+    let (general, iterations_general) = run(sys, force, &rule, &start, (false, true));
     let diff = fast
         .iter()
         .zip(&general)

@@ -17,9 +17,22 @@ fn trajectory<A: DiscreteAction, F: DiscreteForce>(
     h: f64,
     fast: bool,
 ) -> Vec<f64> {
+    trajectory_in(action, force, start, h, (fast, true))
+}
+
+/// 1000 steps with the fast paths on or off and the wide instructions (`marsden::dispatch`) on
+/// or off.
+fn trajectory_in<A: DiscreteAction, F: DiscreteForce>(
+    action: A,
+    force: F,
+    start: &State,
+    h: f64,
+    (fast, wide): (bool, bool),
+) -> Vec<f64> {
     let mut integrator = Integrator::new(action)
         .with_force(force)
-        .with_fast_paths(fast);
+        .with_fast_paths(fast)
+        .with_wide_instructions(wide);
     let mut s = start.clone();
     let mut out = Vec::new();
     // 1000 steps: long enough for many Newton solves, short enough that a drag force does not
@@ -211,5 +224,53 @@ fn static_and_general_paths_agree_for_three_and_four_coupled_angles() {
             d <= 1e-13,
             "n = {n}, forced: static vs general differ by {d:e}"
         );
+    }
+}
+
+/// The x86-64-v3 copy of the small kernels (`marsden::dispatch`) and the baseline code give the
+/// same bits: no fused multiply–adds, no reassociation. Forced pendulum (n = 1), double pendulum
+/// free and forced (n = 2), three and four coupled angles (a user's Lagrangian, forced). On a
+/// CPU without AVX2 both runs take the baseline code and the test checks nothing new.
+#[test]
+fn wide_and_baseline_instructions_give_the_same_bits() {
+    fn same<A: DiscreteAction + Clone, F: DiscreteForce + Clone>(
+        name: &str,
+        (action, force): (A, F),
+        start: &State,
+    ) {
+        let run = |wide| trajectory_in(action.clone(), force.clone(), start, 0.01, (true, wide));
+        let (wide, baseline) = (run(true), run(false));
+        let first = wide
+            .iter()
+            .zip(&baseline)
+            .position(|(a, b)| a.to_bits() != b.to_bits());
+        assert_eq!(
+            first, None,
+            "{name}: the copies differ (first at value {first:?})"
+        );
+    }
+    let state = |q: Vec<f64>| State {
+        t: 0.0,
+        p: vec![0.1; q.len()],
+        q,
+    };
+    let m = Midpoint;
+    let pendulum = (
+        m.discretize(Pendulum::default()),
+        m.discretize_force(Drag, 1),
+    );
+    same("forced pendulum", pendulum, &state(vec![1.5]));
+    let double = m.discretize(DoublePendulum::default());
+    same(
+        "double pendulum",
+        (double.clone(), NoForce),
+        &state(vec![1.0, 0.5]),
+    );
+    let forced = (double, m.discretize_force(Drag, 2));
+    same("forced double pendulum", forced, &state(vec![1.0, 0.5]));
+    for n in [3, 4] {
+        let coupled = (m.discretize(Coupled(n)), m.discretize_force(Drag, n));
+        let q = (0..n).map(|i| 0.4 - 0.3 * i as f64).collect();
+        same(&format!("{n} coupled angles, forced"), coupled, &state(q));
     }
 }

@@ -46,12 +46,16 @@ impl<L: Lagrangian> DiscreteLagrangian for AlphaLd<L> {
     fn discrete_lagrangian<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], q1: &[S]) -> S {
         with_displacement(q0, q1, |d| self.discrete_lagrangian_offset(t0, h, q0, d))
     }
-    #[inline]
+    #[inline(always)]
     fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
         let t = S::from(t0 + self.alpha * h);
-        at_node(self.alpha, h, (q0, delta), |q, v| {
-            self.lagrangian.lagrangian(t, q, v)
-        }) * h
+        at_node(
+            self.alpha,
+            h,
+            (q0, delta),
+            #[inline(always)]
+            |q, v| self.lagrangian.lagrangian(t, q, v),
+        ) * h
     }
     fn separable(&self) -> Option<&dyn SeparableStep> {
         Some(self)
@@ -98,26 +102,33 @@ pub struct AlphaForce<F> {
 }
 
 impl<F: Force> DiscreteForce for AlphaForce<F> {
-    #[inline]
+    #[inline(always)]
     fn discrete_force<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], offsets: &[S], out: &mut [S]) {
         let n = self.dof;
         let t = S::from(t0 + self.alpha * h);
         let (w0, w1) = (h * (1.0 - self.alpha), h * self.alpha);
-        at_node(self.alpha, h, (q0, offsets), |q, v| {
-            let zero = S::from(0.0);
-            with_buffer::<S, NODE, ()>(
-                n,
-                zero,
-                |_| zero,
-                |f| {
-                    self.force.force(t, q, v, f);
-                    for i in 0..n {
-                        out[i] = f[i] * w0;
-                        out[n + i] = f[i] * w1;
-                    }
-                },
-            )
-        })
+        at_node(
+            self.alpha,
+            h,
+            (q0, offsets),
+            #[inline(always)]
+            |q, v| {
+                let zero = S::from(0.0);
+                with_buffer::<S, NODE, ()>(
+                    n,
+                    zero,
+                    |_| zero,
+                    #[inline(always)]
+                    |f| {
+                        self.force.force(t, q, v, f);
+                        for i in 0..n {
+                            out[i] = f[i] * w0;
+                            out[n + i] = f[i] * w1;
+                        }
+                    },
+                )
+            },
+        )
     }
     fn is_active(&self) -> bool {
         self.force.is_active()

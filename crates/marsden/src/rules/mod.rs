@@ -80,9 +80,21 @@ pub(crate) fn at_node<S: crate::Scalar, R>(
         1.0 => q0[i] + delta[i],
         _ => q0[i] + delta[i] * c,
     };
-    with_buffer::<S, NODE, R>(n, zero, position, |q| {
-        with_buffer::<S, NODE, R>(n, zero, |i| delta[i] * inv_h, |v| f(q, v))
-    })
+    with_buffer::<S, NODE, R>(
+        n,
+        zero,
+        position,
+        #[inline(always)]
+        |q| {
+            with_buffer::<S, NODE, R>(
+                n,
+                zero,
+                |i| delta[i] * inv_h,
+                #[inline(always)]
+                |v| f(q, v),
+            )
+        },
+    )
 }
 
 /// Calls `f(q₁ − q₀)`.

@@ -90,7 +90,7 @@ impl Lagrangian for CartesianDoublePendulum {
             mass: MassMatrix::Diagonal(vec![self.m1, self.m1, self.m2, self.m2]),
         }
     }
-    #[inline]
+    #[inline(always)]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         let kinetic = (v[0] * v[0] + v[1] * v[1]) * (0.5 * self.m1)
             + (v[2] * v[2] + v[3] * v[3]) * (0.5 * self.m2);
@@ -102,7 +102,7 @@ impl Constraint for CartesianDoublePendulum {
     fn count(&self) -> usize {
         2
     }
-    #[inline]
+    #[inline(always)]
     fn constraint<S: Scalar>(&self, q: &[S], out: &mut [S]) {
         let (dx, dy) = (q[2] - q[0], q[3] - q[1]);
         out[0] = (q[0] * q[0] + q[1] * q[1] - self.l1 * self.l1) * 0.5;

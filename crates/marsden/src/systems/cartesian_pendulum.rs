@@ -64,7 +64,7 @@ impl Lagrangian for CartesianPendulum {
             mass: MassMatrix::Diagonal(vec![self.m; 2]),
         }
     }
-    #[inline]
+    #[inline(always)]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         (v[0] * v[0] + v[1] * v[1]) * (0.5 * self.m) - q[1] * (self.m * self.g)
     }
@@ -74,7 +74,7 @@ impl Constraint for CartesianPendulum {
     fn count(&self) -> usize {
         1
     }
-    #[inline]
+    #[inline(always)]
     fn constraint<S: Scalar>(&self, q: &[S], out: &mut [S]) {
         out[0] = (q[0] * q[0] + q[1] * q[1] - self.l * self.l) * 0.5;
     }

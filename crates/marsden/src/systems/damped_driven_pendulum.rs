@@ -57,7 +57,7 @@ impl Lagrangian for DampedDrivenPendulum {
     fn dof(&self) -> usize {
         1
     }
-    #[inline]
+    #[inline(always)]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         let (m, l, g) = (self.m, self.l, self.g);
         v[0] * v[0] * (0.5 * m * l * l) + q[0].cos() * (m * g * l)
@@ -65,7 +65,7 @@ impl Lagrangian for DampedDrivenPendulum {
 }
 
 impl Force for DampedDrivenPendulum {
-    #[inline]
+    #[inline(always)]
     fn force<S: Scalar>(&self, t: S, _q: &[S], v: &[S], out: &mut [S]) {
         out[0] = v[0] * (-self.c) + (t * self.omega + self.phase).cos() * self.amplitude;
     }

@@ -58,14 +58,14 @@ impl Lagrangian for DampedOscillator {
     fn dof(&self) -> usize {
         1
     }
-    #[inline]
+    #[inline(always)]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         (v[0] * v[0] * self.m - q[0] * q[0] * self.k) * 0.5
     }
 }
 
 impl Force for DampedOscillator {
-    #[inline]
+    #[inline(always)]
     fn force<S: Scalar>(&self, _t: S, _q: &[S], v: &[S], out: &mut [S]) {
         out[0] = v[0] * (-self.c);
     }

@@ -48,7 +48,7 @@ impl Lagrangian for DoublePendulum {
     fn dof(&self) -> usize {
         2
     }
-    #[inline]
+    #[inline(always)]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         let (m1, m2, l1, l2, g) = (self.m1, self.m2, self.l1, self.l2, self.g);
         let kinetic = v[0] * v[0] * (0.5 * (m1 + m2) * l1 * l1)

@@ -31,7 +31,7 @@ impl Lagrangian for FreeFall {
     fn dof(&self) -> usize {
         1
     }
-    #[inline]
+    #[inline(always)]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         v[0] * v[0] * (0.5 * self.m) - q[0] * (self.m * self.g)
     }

@@ -29,7 +29,7 @@ impl Lagrangian for HenonHeiles {
     fn dof(&self) -> usize {
         2
     }
-    #[inline]
+    #[inline(always)]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         let (x, y) = (q[0], q[1]);
         let potential = (x * x + y * y) * 0.5 + (x * x * y - y * y * y * (1.0 / 3.0)) * self.lambda;

@@ -51,7 +51,7 @@ impl Lagrangian for Kepler {
     fn dof(&self) -> usize {
         2
     }
-    #[inline]
+    #[inline(always)]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         (v[0] * v[0] + v[1] * v[1]) * 0.5 + (q[0] * q[0] + q[1] * q[1]).sqrt().recip() * self.mu
     }

@@ -40,7 +40,7 @@ impl Lagrangian for HarmonicOscillator {
     fn dof(&self) -> usize {
         1
     }
-    #[inline]
+    #[inline(always)]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         (v[0] * v[0] * self.m - q[0] * q[0] * self.k) * 0.5
     }

@@ -57,7 +57,7 @@ impl Lagrangian for Pendulum {
     fn dof(&self) -> usize {
         1
     }
-    #[inline]
+    #[inline(always)]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         let (m, l, g) = (self.m, self.l, self.g);
         v[0] * v[0] * (0.5 * m * l * l) + q[0].cos() * (m * g * l)

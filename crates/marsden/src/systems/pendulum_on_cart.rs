@@ -68,7 +68,7 @@ impl Lagrangian for PendulumOnCart {
     fn dof(&self) -> usize {
         2
     }
-    #[inline]
+    #[inline(always)]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         let (big_m, m, l, g) = (self.cart_mass, self.bob_mass, self.l, self.g);
         let (xd, thd) = (v[0], v[1]);
@@ -80,7 +80,7 @@ impl Lagrangian for PendulumOnCart {
 }
 
 impl Force for PendulumOnCart {
-    #[inline]
+    #[inline(always)]
     fn force<S: Scalar>(&self, t: S, _q: &[S], _v: &[S], out: &mut [S]) {
         out[0] = (t * self.omega + self.phase).cos() * self.amplitude;
         out[1] = S::from(0.0);

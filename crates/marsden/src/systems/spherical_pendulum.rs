@@ -82,7 +82,7 @@ impl Lagrangian for SphericalPendulum {
             mass: MassMatrix::Diagonal(vec![self.m; 3]),
         }
     }
-    #[inline]
+    #[inline(always)]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * (0.5 * self.m) - q[2] * (self.m * self.g)
     }
@@ -92,7 +92,7 @@ impl Constraint for SphericalPendulum {
     fn count(&self) -> usize {
         1
     }
-    #[inline]
+    #[inline(always)]
     fn constraint<S: Scalar>(&self, q: &[S], out: &mut [S]) {
         out[0] = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] - self.l * self.l) * 0.5;
     }
