@@ -18,6 +18,7 @@ impl Lagrangian for Coupled4 {
     fn dof(&self) -> usize {
         4
     }
+    #[inline(always)]
     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
         let mut l = S::from(0.0);
         for i in 0..4 {
