@@ -7,8 +7,6 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
-use num_dual::HyperDual64;
-
 use crate::ad::HessianParts;
 use crate::compensated::Compensation;
 use crate::dispatch::Dispatch;
@@ -16,12 +14,9 @@ use crate::explicit::ExplicitWorkspace;
 use crate::holonomic::{MomentumProjection, NoProjection};
 use crate::newton::{self, NewtonFailure, NewtonOptions, NewtonReport, NewtonWorkspace};
 use crate::separable::{Frame, SeparableWorkspace};
-use crate::small::SmallStep;
+use crate::small::{SmallStep, solve_sized};
 use crate::small_constrained::constraint_jacobian;
 use crate::small_constrained::{MAX_CONSTRAINTS, SmallConstrainedStep};
-use crate::small_dual::{
-    Dual2x64, Dual4x64, Dual6x64, Dual8x64, HyperDual2x64, HyperDual3x64, HyperDual4x64,
-};
 use crate::step::{StepFunction, StepShape, StepSystem};
 use crate::{Constraint, DiscreteAction, DiscreteForce, Error, NoForce, Unconstrained};
 
@@ -647,26 +642,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         let o = &self.options;
         let p_next = &mut self.buffers.p_next;
         p_next.resize(sh.n, 0.0);
-        let result = self
-            .dispatch
-            .run(
-                #[inline(always)]
-                || match sh.n {
-                    1 => small
-                        .solve::<1, HyperDual64, Dual2x64>(z, o)
-                        .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
-                    2 => small
-                        .solve::<2, HyperDual2x64, Dual4x64>(z, o)
-                        .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
-                    3 => small
-                        .solve::<3, HyperDual3x64, Dual6x64>(z, o)
-                        .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
-                    _ => small
-                        .solve::<4, HyperDual4x64, Dual8x64>(z, o)
-                        .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
-                },
-            )
-            .map(|(report, ())| report);
+        let result = solve_sized(self.dispatch, &small, sh.n, z, o, p_next);
         let evaluations = evaluations_of(&result);
         self.statistics.system_evaluations += evaluations;
         self.statistics.action_evaluations += evaluations;
@@ -700,26 +676,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             d: sh.d,
         };
         let (o, p_next) = (&self.options, &mut b.p_next);
-        let result = self
-            .dispatch
-            .run(
-                #[inline(always)]
-                || match sh.n {
-                    1 => small
-                        .solve::<1, HyperDual64, Dual2x64>(z, o)
-                        .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
-                    2 => small
-                        .solve::<2, HyperDual2x64, Dual4x64>(z, o)
-                        .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
-                    3 => small
-                        .solve::<3, HyperDual3x64, Dual6x64>(z, o)
-                        .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
-                    _ => small
-                        .solve::<4, HyperDual4x64, Dual8x64>(z, o)
-                        .map(|(r, p)| (r, p_next.copy_from_slice(&p))),
-                },
-            )
-            .map(|(report, ())| report);
+        let result = solve_sized(self.dispatch, &small, sh.n, z, o, p_next);
         let evaluations = evaluations_of(&result);
         self.statistics.system_evaluations += evaluations;
         self.statistics.action_evaluations += evaluations;

@@ -19,8 +19,12 @@
 use nalgebra::{Const, SVector, U1};
 use num_dual::{Derivative, DualSVec64, HyperDual64, HyperDualSVec64};
 
+use crate::dispatch::Dispatch;
 use crate::linalg::solve_fixed;
 use crate::newton::{NewtonFailure, NewtonOptions, NewtonReport};
+use crate::small_dual::{
+    Dual2x64, Dual4x64, Dual6x64, Dual8x64, HyperDual2x64, HyperDual3x64, HyperDual4x64,
+};
 use crate::{DiscreteAction, DiscreteForce, Scalar};
 
 /// Relative update size below which the next evaluation is expected to end the iteration.
@@ -327,4 +331,62 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
             expect_convergence = size <= SPECULATE * znorm;
         }
     }
+}
+
+/// A statically sized Newton step ([`SmallStep`], [`crate::small_constrained::SmallConstrainedStep`]):
+/// solved for `N` degrees of freedom with hyper-duals `D` and the cheaper duals `G` of the
+/// confirming evaluation; returns the report and `p_{k+1}`.
+pub(crate) trait SmallKernel {
+    /// Newton's method on the step equations from `z` (overwritten with the solution).
+    fn solve_n<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
+        &self,
+        z: &mut [f64],
+        options: &NewtonOptions,
+    ) -> Result<(NewtonReport, [f64; N]), NewtonFailure>;
+}
+
+impl<A: DiscreteAction, F: DiscreteForce> SmallKernel for SmallStep<'_, A, F> {
+    #[inline(always)]
+    fn solve_n<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
+        &self,
+        z: &mut [f64],
+        options: &NewtonOptions,
+    ) -> Result<(NewtonReport, [f64; N]), NewtonFailure> {
+        self.solve::<N, D, G>(z, options)
+    }
+}
+
+/// `kernel` for the run-time `n ≤ 4` (the duals of each size: `HyperDual64`/`Dual2` for n = 1,
+/// [`crate::small_dual`]'s for n = 2…4) in the instruction set `dispatch` chose
+/// ([`crate::dispatch`]); writes `p_{k+1}` into `p_next`.
+#[inline(always)]
+pub(crate) fn solve_sized<K: SmallKernel>(
+    dispatch: Dispatch,
+    kernel: &K,
+    n: usize,
+    z: &mut [f64],
+    options: &NewtonOptions,
+    p_next: &mut [f64],
+) -> Result<NewtonReport, NewtonFailure> {
+    let mut keep = |(report, p): (NewtonReport, &[f64])| {
+        p_next.copy_from_slice(p);
+        report
+    };
+    dispatch.run(
+        #[inline(always)]
+        || match n {
+            1 => kernel
+                .solve_n::<1, HyperDual64, Dual2x64>(z, options)
+                .map(|(r, p)| keep((r, &p))),
+            2 => kernel
+                .solve_n::<2, HyperDual2x64, Dual4x64>(z, options)
+                .map(|(r, p)| keep((r, &p))),
+            3 => kernel
+                .solve_n::<3, HyperDual3x64, Dual6x64>(z, options)
+                .map(|(r, p)| keep((r, &p))),
+            _ => kernel
+                .solve_n::<4, HyperDual4x64, Dual8x64>(z, options)
+                .map(|(r, p)| keep((r, &p))),
+        },
+    )
 }

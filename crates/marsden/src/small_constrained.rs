@@ -21,7 +21,7 @@ use num_dual::{Derivative, Dual64, DualSVec64};
 
 use crate::linalg::solve_in_place;
 use crate::newton::{NewtonFailure, NewtonOptions, NewtonReport};
-use crate::small::{SPECULATE, SmallDual, SmallGradient, first_derivatives};
+use crate::small::{SPECULATE, SmallDual, SmallGradient, SmallKernel, first_derivatives};
 use crate::{Constraint, DiscreteAction, DiscreteForce, Scalar};
 
 /// Largest number of constraints handled here.
@@ -299,5 +299,18 @@ pub(crate) fn constraint_jacobian<C: Constraint>(
         3 => small_constraint_jacobian::<3, DualSVec64<3>, C>(c, q, values, jac),
         4 => small_constraint_jacobian::<4, DualSVec64<4>, C>(c, q, values, jac),
         _ => crate::step::constraint_jacobian(c, q, values, jac),
+    }
+}
+
+impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallKernel
+    for SmallConstrainedStep<'_, A, F, C>
+{
+    #[inline(always)]
+    fn solve_n<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
+        &self,
+        z: &mut [f64],
+        options: &NewtonOptions,
+    ) -> Result<(NewtonReport, [f64; N]), NewtonFailure> {
+        self.solve::<N, D, G>(z, options)
     }
 }
