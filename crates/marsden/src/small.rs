@@ -267,7 +267,21 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
             }
         }
     }
+}
 
+/// A statically sized Newton step ([`SmallStep`], [`crate::small_constrained::SmallConstrainedStep`]):
+/// solved for `N` degrees of freedom with hyper-duals `D` and the cheaper duals `G` of the
+/// confirming evaluation; returns the report and `p_{k+1}`.
+pub(crate) trait SmallKernel {
+    /// Newton's method on the step equations from `z` (overwritten with the solution).
+    fn solve<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
+        &self,
+        z: &mut [f64],
+        options: &NewtonOptions,
+    ) -> Result<(NewtonReport, [f64; N]), NewtonFailure>;
+}
+
+impl<A: DiscreteAction, F: DiscreteForce> SmallKernel for SmallStep<'_, A, F> {
     /// Newton's method on the step equations from the offset `z` (overwritten with the
     /// solution); returns the report and `p_{k+1}`.
     ///
@@ -277,7 +291,7 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
     /// `G`; should it not end the iteration after all, the Jacobian is evaluated at the same
     /// point.
     #[inline(always)]
-    pub fn solve<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
+    fn solve<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
         &self,
         z: &mut [f64],
         options: &NewtonOptions,
@@ -333,29 +347,6 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
     }
 }
 
-/// A statically sized Newton step ([`SmallStep`], [`crate::small_constrained::SmallConstrainedStep`]):
-/// solved for `N` degrees of freedom with hyper-duals `D` and the cheaper duals `G` of the
-/// confirming evaluation; returns the report and `p_{k+1}`.
-pub(crate) trait SmallKernel {
-    /// Newton's method on the step equations from `z` (overwritten with the solution).
-    fn solve_n<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
-        &self,
-        z: &mut [f64],
-        options: &NewtonOptions,
-    ) -> Result<(NewtonReport, [f64; N]), NewtonFailure>;
-}
-
-impl<A: DiscreteAction, F: DiscreteForce> SmallKernel for SmallStep<'_, A, F> {
-    #[inline(always)]
-    fn solve_n<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
-        &self,
-        z: &mut [f64],
-        options: &NewtonOptions,
-    ) -> Result<(NewtonReport, [f64; N]), NewtonFailure> {
-        self.solve::<N, D, G>(z, options)
-    }
-}
-
 /// `kernel` for the run-time `n ≤ 4` (the duals of each size: `HyperDual64`/`Dual2` for n = 1,
 /// [`crate::small_dual`]'s for n = 2…4) in the instruction set `dispatch` chose
 /// ([`crate::dispatch`]); writes `p_{k+1}` into `p_next`.
@@ -376,16 +367,16 @@ pub(crate) fn solve_sized<K: SmallKernel>(
         #[inline(always)]
         || match n {
             1 => kernel
-                .solve_n::<1, HyperDual64, Dual2x64>(z, options)
+                .solve::<1, HyperDual64, Dual2x64>(z, options)
                 .map(|(r, p)| keep((r, &p))),
             2 => kernel
-                .solve_n::<2, HyperDual2x64, Dual4x64>(z, options)
+                .solve::<2, HyperDual2x64, Dual4x64>(z, options)
                 .map(|(r, p)| keep((r, &p))),
             3 => kernel
-                .solve_n::<3, HyperDual3x64, Dual6x64>(z, options)
+                .solve::<3, HyperDual3x64, Dual6x64>(z, options)
                 .map(|(r, p)| keep((r, &p))),
             _ => kernel
-                .solve_n::<4, HyperDual4x64, Dual8x64>(z, options)
+                .solve::<4, HyperDual4x64, Dual8x64>(z, options)
                 .map(|(r, p)| keep((r, &p))),
         },
     )

@@ -157,79 +157,6 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallConstrainedStep<'_
             }
         }
     }
-
-    /// Newton's method on the step equations from `z = (Δ, λ)` (overwritten with the solution);
-    /// returns the report and `p_{k+1}`. An evaluation expected to end the iteration takes the
-    /// cheaper duals `G` (see [`crate::small`]).
-    #[inline(always)]
-    pub fn solve<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
-        &self,
-        z: &mut [f64],
-        options: &NewtonOptions,
-    ) -> Result<(NewtonReport, [f64; N]), NewtonFailure> {
-        let m = N + self.d;
-        let mut x = [0.0; MAX_UNKNOWNS];
-        x[..m].copy_from_slice(&z[..m]);
-        // Scale-free criteria, as in `StepSystem`: the residual relative to its terms
-        // `max(|p_k|, |∂L_d/∂Q₀|)`, the update relative to the positions and unknowns.
-        let p_scale = self
-            .p0
-            .iter()
-            .fold(0.0_f64, |s, p| s.max(p.abs()))
-            .max(crate::step::constraint_term_scale(self.q0, self.dphi0));
-        let q_scale = self
-            .q0
-            .iter()
-            .fold(f64::MIN_POSITIVE, |s, q| s.max(q.abs()));
-        let mut report = NewtonReport::default();
-        let mut update_converged = false;
-        let mut expect_convergence = false;
-        loop {
-            let mut e = if expect_convergence {
-                self.evaluate_residual::<N, G>(&x[..m])
-            } else {
-                self.evaluate::<N, D>(&x[..m])
-            };
-            report.evaluations += 1;
-            report.residual = e.residual[..m].iter().fold(0.0_f64, |s, r| s.max(r.abs()));
-            let tol = options.residual_tolerance * p_scale.max(e.term_scale);
-            if !report.residual.is_finite() {
-                z[..m].copy_from_slice(&x[..m]);
-                return Err(NewtonFailure::NonFinite(report));
-            }
-            if report.residual <= tol || update_converged {
-                z[..m].copy_from_slice(&x[..m]);
-                return Ok((report, e.p_next));
-            }
-            if report.iterations >= options.max_iterations {
-                z[..m].copy_from_slice(&x[..m]);
-                return Err(NewtonFailure::NotConverged(report));
-            }
-            if expect_convergence {
-                // The speculation failed: the Jacobian at this iterate.
-                e = self.evaluate::<N, D>(&x[..m]);
-                report.evaluations += 1;
-            }
-            let mut update = [0.0; MAX_UNKNOWNS];
-            update[..m]
-                .iter_mut()
-                .zip(&e.residual)
-                .for_each(|(u, r)| *u = -r);
-            if let Err(s) = solve_in_place(&mut e.jacobian[..m * m], &mut update[..m], m) {
-                z[..m].copy_from_slice(&x[..m]);
-                return Err(NewtonFailure::Singular {
-                    iteration: report.iterations,
-                    pivot: s.pivot,
-                });
-            }
-            report.iterations += 1;
-            let size = update[..m].iter().fold(0.0_f64, |s, u| s.max(u.abs()));
-            x[..m].iter_mut().zip(&update).for_each(|(a, u)| *a += u);
-            let xnorm = x[..m].iter().fold(q_scale, |s, a| s.max(a.abs()));
-            update_converged = size <= options.step_tolerance * xnorm;
-            expect_convergence = size <= SPECULATE * xnorm;
-        }
-    }
 }
 
 /// A first-order dual number with an `N`-dimensional derivative part.
@@ -305,12 +232,76 @@ pub(crate) fn constraint_jacobian<C: Constraint>(
 impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallKernel
     for SmallConstrainedStep<'_, A, F, C>
 {
+    /// Newton's method on the step equations from `z = (Δ, λ)` (overwritten with the solution);
+    /// returns the report and `p_{k+1}`. An evaluation expected to end the iteration takes the
+    /// cheaper duals `G` (see [`crate::small`]).
     #[inline(always)]
-    fn solve_n<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
+    fn solve<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
         &self,
         z: &mut [f64],
         options: &NewtonOptions,
     ) -> Result<(NewtonReport, [f64; N]), NewtonFailure> {
-        self.solve::<N, D, G>(z, options)
+        let m = N + self.d;
+        let mut x = [0.0; MAX_UNKNOWNS];
+        x[..m].copy_from_slice(&z[..m]);
+        // Scale-free criteria, as in `StepSystem`: the residual relative to its terms
+        // `max(|p_k|, |∂L_d/∂Q₀|)`, the update relative to the positions and unknowns.
+        let p_scale = self
+            .p0
+            .iter()
+            .fold(0.0_f64, |s, p| s.max(p.abs()))
+            .max(crate::step::constraint_term_scale(self.q0, self.dphi0));
+        let q_scale = self
+            .q0
+            .iter()
+            .fold(f64::MIN_POSITIVE, |s, q| s.max(q.abs()));
+        let mut report = NewtonReport::default();
+        let mut update_converged = false;
+        let mut expect_convergence = false;
+        loop {
+            let mut e = if expect_convergence {
+                self.evaluate_residual::<N, G>(&x[..m])
+            } else {
+                self.evaluate::<N, D>(&x[..m])
+            };
+            report.evaluations += 1;
+            report.residual = e.residual[..m].iter().fold(0.0_f64, |s, r| s.max(r.abs()));
+            let tol = options.residual_tolerance * p_scale.max(e.term_scale);
+            if !report.residual.is_finite() {
+                z[..m].copy_from_slice(&x[..m]);
+                return Err(NewtonFailure::NonFinite(report));
+            }
+            if report.residual <= tol || update_converged {
+                z[..m].copy_from_slice(&x[..m]);
+                return Ok((report, e.p_next));
+            }
+            if report.iterations >= options.max_iterations {
+                z[..m].copy_from_slice(&x[..m]);
+                return Err(NewtonFailure::NotConverged(report));
+            }
+            if expect_convergence {
+                // The speculation failed: the Jacobian at this iterate.
+                e = self.evaluate::<N, D>(&x[..m]);
+                report.evaluations += 1;
+            }
+            let mut update = [0.0; MAX_UNKNOWNS];
+            update[..m]
+                .iter_mut()
+                .zip(&e.residual)
+                .for_each(|(u, r)| *u = -r);
+            if let Err(s) = solve_in_place(&mut e.jacobian[..m * m], &mut update[..m], m) {
+                z[..m].copy_from_slice(&x[..m]);
+                return Err(NewtonFailure::Singular {
+                    iteration: report.iterations,
+                    pivot: s.pivot,
+                });
+            }
+            report.iterations += 1;
+            let size = update[..m].iter().fold(0.0_f64, |s, u| s.max(u.abs()));
+            x[..m].iter_mut().zip(&update).for_each(|(a, u)| *a += u);
+            let xnorm = x[..m].iter().fold(q_scale, |s, a| s.max(a.abs()));
+            update_converged = size <= options.step_tolerance * xnorm;
+            expect_convergence = size <= SPECULATE * xnorm;
+        }
     }
 }
