@@ -6,9 +6,10 @@
 //! elsewhere, or when switched off ([`crate::Integrator::with_wide_instructions`]), the closure
 //! runs as baseline code. Three-operand VEX instructions drop the register copies of SSE2 code;
 //! fewer instructions matter most when the core is shared with another busy thread, where the
-//! double-pendulum step takes 0.8× the time of the baseline code (BENCHMARKS.md). Rust never
-//! contracts `a * b + c` into a fused multiply–add and never reassociates floating-point sums,
-//! so both copies give the same bits (`tests/wide_instructions.rs`).
+//! double-pendulum step now takes 0.8× its former time (BENCHMARKS.md). Rust never contracts
+//! `a * b + c` into a fused multiply–add and never reassociates floating-point sums, so both
+//! copies give the same bits (tests `static_kernel_equivalence.rs` and
+//! `static_constrained_kernel.rs` compare them).
 //!
 //! Only code inlined into the dispatched copy is compiled for the wider set. The small kernels
 //! ([`crate::small`], [`crate::small_constrained`]) and the layers between them and the user's
