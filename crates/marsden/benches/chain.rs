@@ -1,6 +1,6 @@
 //! The midpoint rule on the FPU-β chain (`systems::Chain`, n = 10³ … 10⁶ particles): Newton
-//! with the tridiagonal Jacobian `M/h + (h/4)∇²V`, banded LU ([`marsden::banded`]), Jacobian
-//! reused across iterations and steps ([`marsden::separable`]). The cost per step should be
+//! with the tridiagonal Jacobian `M/h + (h/4)∇²V`, banded LU ([`marsden::numerics::banded`]), Jacobian
+//! reused across iterations and steps ([`marsden::separable::alpha`]). The cost per step should be
 //! linear in n; `scripts/bench_table.py` fits the exponent of `median ∝ n^a` to the rows.
 //!
 //! Run: `cargo bench -p marsden --bench chain` (fewer samples for large n keep it to about a

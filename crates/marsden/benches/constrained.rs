@@ -13,10 +13,11 @@
 //! * `angle_pendulum_step`: the same pendulum in its angle coordinate, unconstrained, for scale.
 
 use divan::Bencher;
+use marsden::holonomic::MomentumProjection;
 use marsden::systems::{CartesianPendulum, Pendulum};
 use marsden::{
     DiscreteAction, DiscreteForce, Initial, Integrator, Midpoint, NewtonOptions, Problem, Rule,
-    State, TimeGrid, holonomic::MomentumProjection,
+    State, TimeGrid,
 };
 
 const H: f64 = 0.01;

@@ -9,7 +9,7 @@
 //! ensemble in interleaved pairs and reports the median pair ratio.
 
 use divan::Bencher;
-use marsden::ensemble;
+use marsden::studies::ensemble;
 use marsden::systems::Pendulum;
 use marsden::{Initial, Midpoint, Problem, RunOptions, SolveOptions, TimeGrid};
 

@@ -15,7 +15,7 @@
 
 use std::time::Instant;
 
-use marsden::ensemble::{self, Member, MemberFailure, MemberReport};
+use marsden::studies::ensemble::{self, Member, MemberFailure, MemberReport};
 use marsden::systems::Pendulum;
 use marsden::{Initial, Midpoint, Problem, RunOptions, SolveOptions, TimeGrid};
 

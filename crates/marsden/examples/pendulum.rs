@@ -2,8 +2,9 @@
 //!
 //! `cargo run --release --example pendulum [steps] [h]`
 
-use marsden::diagnostics::EnergyReport;
-use marsden::{Initial, Midpoint, Problem, SolveOptions, TimeGrid, systems::Pendulum};
+use marsden::analysis::diagnostics::EnergyReport;
+use marsden::systems::Pendulum;
+use marsden::{Initial, Midpoint, Problem, SolveOptions, TimeGrid};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);

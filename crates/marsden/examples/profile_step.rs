@@ -2,8 +2,8 @@
 //! `cargo run --profile profiling --example profile_step -- [pendulum|double|coupled4|kepler|constrained|gauss4|gauss4-compensated] 100000 [baseline]`.
 //! `baseline` keeps the small kernels in baseline x86-64 code (`Integrator::with_wide_instructions`),
 //! for valgrind 3.19, which does not decode every AVX instruction of the x86-64-v3 copy.
+use marsden::discrete::rules::Galerkin;
 use marsden::holonomic::MomentumProjection;
-use marsden::rules::Galerkin;
 use marsden::systems::{CartesianPendulum, DoublePendulum, Kepler, Pendulum};
 use marsden::{
     Constraint, DiscreteAction, DiscreteForce, Integrator, Lagrangian, Midpoint, NewtonOptions,

@@ -19,8 +19,8 @@
 use std::ops::ControlFlow;
 use std::time::Instant;
 
-use marsden::rules::{Method, WithRule};
-use marsden::simulate::{RunOptions, StepView};
+use marsden::discrete::rules::{Method, WithRule};
+use marsden::run::{RunOptions, StepView};
 use marsden::systems::NBody;
 use marsden::systems::nbody::file;
 use marsden::{Initial, Problem, Rule, SolveOptions, TimeGrid};

@@ -2,7 +2,7 @@
 //!
 //! Every fallible function of the crate returns [`Error`]. Run-time failures name the step and
 //! time at which they happened, and a failed run still hands back the trajectory computed up to
-//! the failure (see [`crate::RunFailure`]).
+//! the failure (see [`crate::run::RunFailure`]).
 
 use thiserror::Error;
 

@@ -40,55 +40,33 @@
 //! Conventions (`q, v, p, h, t, n`) and the discrete Legendre transforms
 //! `p_k = −D₁L_d(q_k, q_{k+1}) − f_d⁻`, `p_{k+1} = D₂L_d(q_k, q_{k+1}) + f_d⁺` follow DESIGN.md §3.
 
-pub mod ad;
-pub mod banded;
-pub mod certificate;
-pub mod compensated;
-pub mod constraint;
-pub mod diagnostics;
+pub mod analysis;
 pub mod discrete;
-pub mod dispatch;
-pub mod ensemble;
 pub mod error;
-pub mod exact;
-pub mod explicit;
-pub mod force;
 pub mod forces;
 pub mod hamiltonian;
 pub mod holonomic;
 pub mod integrator;
-pub mod lagrangian;
-pub mod linalg;
-pub mod maps;
 pub mod mechanics;
-pub mod newton;
-pub mod order;
-pub mod potential;
-pub mod problem;
-pub mod rules;
+pub mod numerics;
+pub mod run;
 pub mod scalar;
-pub mod scratch;
 pub mod separable;
-pub mod simulate;
-pub mod small;
-pub mod small_constrained;
-pub mod small_dual;
 pub mod special;
-pub mod step;
-pub mod structure;
+pub mod studies;
 pub mod symmetry;
 pub mod systems;
-pub mod trajectory;
 
-pub use constraint::{Constraint, Unconstrained};
-pub use discrete::{DiscreteAction, DiscreteLagrangian};
+pub use discrete::rules::{GeneralizedMidpoint, Midpoint, Rule, SymmetrizedMidpoint, Trapezoid};
+pub use discrete::{DiscreteAction, DiscreteForce, DiscreteLagrangian};
 pub use error::Error;
-pub use force::{DiscreteForce, Force, NoForce};
-pub use integrator::{Integrator, State, Statistics, StepReport};
-pub use lagrangian::{Lagrangian, MassMatrix, Structure};
-pub use newton::NewtonOptions;
-pub use problem::{Initial, Problem, SolveOptions};
-pub use rules::{GeneralizedMidpoint, Midpoint, Rule, SymmetrizedMidpoint, Trapezoid};
+pub use integrator::{Integrator, Statistics, StepReport};
+pub use mechanics::{
+    Constraint, Force, Initial, Lagrangian, MassMatrix, NoForce, State, Structure, Unconstrained,
+};
+pub use numerics::newton::NewtonOptions;
+pub use run::{
+    Observer, Problem, RunFailure, RunOptions, SolveOptions, StepView, Termination, TimeGrid,
+    Trajectory, simulate,
+};
 pub use scalar::Scalar;
-pub use simulate::{Observer, RunOptions, StepView, TimeGrid, simulate};
-pub use trajectory::{RunFailure, Termination, Trajectory};

@@ -3,9 +3,10 @@
 // Tests may unwrap; reference values are quoted with all the digits the reference cases give.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::excessive_precision)]
 
+use marsden::systems::Pendulum;
 use marsden::{
     Error, Initial, Integrator, Lagrangian, Midpoint, NewtonOptions, Problem, Rule, Scalar,
-    SolveOptions, State, Termination, TimeGrid, systems::Pendulum,
+    SolveOptions, State, Termination, TimeGrid,
 };
 
 /// `L = ½ v₀² + q₀ v₁`: linear in v₁, so `∂²L/∂v²` is singular everywhere.

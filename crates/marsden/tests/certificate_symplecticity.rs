@@ -6,7 +6,7 @@
 
 mod common;
 use common::tight;
-use marsden::certificate::{DifferentiableStep, certify, symplectic_defect};
+use marsden::analysis::certificate::{DifferentiableStep, certify, symplectic_defect};
 use marsden::hamiltonian::{
     ExplicitMidpoint, Hamiltonian, HamiltonianIntegrator, ImplicitMidpoint, Splitting,
 };

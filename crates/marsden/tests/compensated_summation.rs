@@ -1,4 +1,4 @@
-//! Compensated summation of the state update (`marsden::compensated`): the same trajectory as
+//! Compensated summation of the state update (`marsden::integrator::compensated`): the same trajectory as
 //! plain summation up to round-off, forces included; the carried errors never leak into a state
 //! the integrator did not produce; the explicit path steps aside; constrained problems refuse
 //! it. Its effect on long runs is measured in `kepler_high_order.rs` (gauss-4: |ΔL| 1.4e-15
@@ -7,7 +7,7 @@
 
 mod common;
 use common::tight;
-use marsden::rules::Galerkin;
+use marsden::discrete::rules::Galerkin;
 use marsden::systems::{CartesianPendulum, DampedOscillator, Kepler};
 use marsden::{
     Error, Initial, Integrator, Midpoint, Problem, Rule, SolveOptions, State, TimeGrid, Trapezoid,

@@ -6,12 +6,11 @@
 
 mod common;
 use common::{assert_close, tight};
-use marsden::order::{OrderOptions, measure_order, reference_solution};
-use marsden::rules::{Composition, CompositionScheme, Galerkin, composition::SCHEMES};
-use marsden::{
-    Initial, Integrator, Midpoint, Problem, Rule, State, TimeGrid, Trapezoid,
-    systems::{Kepler, Pendulum},
-};
+use marsden::discrete::rules::composition::SCHEMES;
+use marsden::discrete::rules::{Composition, CompositionScheme, Galerkin};
+use marsden::studies::order::{OrderOptions, measure_order, reference_solution};
+use marsden::systems::{Kepler, Pendulum};
+use marsden::{Initial, Integrator, Midpoint, Problem, Rule, State, TimeGrid, Trapezoid};
 
 fn pendulum_problem() -> Problem<Pendulum> {
     Problem::new(

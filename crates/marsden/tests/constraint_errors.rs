@@ -8,9 +8,9 @@
 mod common;
 use common::tight;
 use marsden::holonomic::{self, project_position};
+use marsden::systems::{CartesianPendulum, SphericalPendulum};
 use marsden::{
     Constraint, Error, Initial, Integrator, Midpoint, Problem, Rule, Scalar, State, TimeGrid,
-    systems::{CartesianPendulum, SphericalPendulum},
 };
 
 /// `φ(q) = ½(|q|² + 1)`: never zero.

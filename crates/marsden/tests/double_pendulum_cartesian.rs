@@ -9,11 +9,9 @@
 
 mod common;
 use common::{loglog_slope, tight};
-use marsden::diagnostics::ConstraintReport;
-use marsden::{
-    Initial, Midpoint, Problem, RunOptions, SolveOptions, TimeGrid, Trajectory,
-    systems::{CartesianDoublePendulum, DoublePendulum},
-};
+use marsden::analysis::diagnostics::ConstraintReport;
+use marsden::systems::{CartesianDoublePendulum, DoublePendulum};
+use marsden::{Initial, Midpoint, Problem, RunOptions, SolveOptions, TimeGrid, Trajectory};
 
 const THETA: [f64; 2] = [0.8, 0.3];
 const T_END: f64 = 10.0;

@@ -3,7 +3,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use marsden::ensemble::{self, Member, MemberFailure, MemberReport};
+use marsden::studies::ensemble::{self, Member, MemberFailure, MemberReport};
 use marsden::systems::Pendulum;
 use marsden::{Initial, Midpoint, NewtonOptions, Problem, RunOptions, SolveOptions, TimeGrid};
 

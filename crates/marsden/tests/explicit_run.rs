@@ -1,4 +1,4 @@
-//! The explicit run loop ([`Integrator::advance`], `marsden::explicit`) takes the same steps as
+//! The explicit run loop ([`Integrator::advance`], `marsden::separable::explicit`) takes the same steps as
 //! repeated [`Integrator::step`], bit for bit, counts the same work, and on a blow-up keeps the
 //! last finite state and names the failing step. [`simulate`] uses it between stored samples
 //! when its observer does not watch every step, without changing the trajectory.
@@ -8,7 +8,7 @@
 
 use std::ops::ControlFlow;
 
-use marsden::rules::{Composition, CompositionScheme};
+use marsden::discrete::rules::{Composition, CompositionScheme};
 use marsden::systems::{HenonHeiles, Kepler, NBody};
 use marsden::{
     DiscreteAction, Error, Integrator, Lagrangian, MassMatrix, Rule, RunOptions, Scalar, State,

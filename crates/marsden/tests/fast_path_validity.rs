@@ -1,5 +1,5 @@
 //! The structure-aware fast paths (explicit Störmer–Verlet for the trapezoid rule,
-//! `M/h + (h/4)∇²V` Newton for the midpoint rule, [`marsden::explicit`], [`marsden::separable`])
+//! `M/h + (h/4)∇²V` Newton for the midpoint rule, [`marsden::separable::explicit`], [`marsden::separable::alpha`])
 //! solve the *unforced, unconstrained* step only. With forces or constraints the integrator must
 //! not take them: the work counters `explicit_steps` and `potential_gradients` stay zero, the
 //! forces and constraints act (energy decays, `φ(q_k) = 0`), and the result is the general

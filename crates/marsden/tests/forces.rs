@@ -6,15 +6,17 @@
 
 mod common;
 use common::{assert_close, tight};
-use marsden::diagnostics::{ConstraintReport, EnergyBalance, energy_series};
+use marsden::analysis::diagnostics::{ConstraintReport, EnergyBalance, energy_series};
 use marsden::forces::{
     ConstantForce, Control, ForceExt, FromHamiltonian, HamiltonianForce, LinearDamping,
     PeriodicForce, hamiltonian_form,
 };
+use marsden::systems::{
+    DampedDrivenPendulum, FreeFall, Pendulum, PendulumOnCart, SphericalPendulum,
+};
 use marsden::{
     DiscreteForce, Force, Initial, Lagrangian, Midpoint, Problem, Rule, Scalar, SolveOptions,
     TimeGrid, Trajectory, Trapezoid,
-    systems::{DampedDrivenPendulum, FreeFall, Pendulum, PendulumOnCart, SphericalPendulum},
 };
 
 fn options() -> SolveOptions {

@@ -20,9 +20,9 @@
 
 mod common;
 use common::tight;
-use marsden::exact::EulerLagrangeFlow;
-use marsden::order::{OrderOptions, OrderStudy, measure_order};
-use marsden::rules::{Method, WithRule};
+use marsden::discrete::exact::EulerLagrangeFlow;
+use marsden::discrete::rules::{Method, WithRule};
+use marsden::studies::order::{OrderOptions, OrderStudy, measure_order};
 use marsden::systems::{DampedOscillator, SphericalPendulum};
 use marsden::{Initial, Lagrangian, Problem, Rule, Scalar, TimeGrid};
 

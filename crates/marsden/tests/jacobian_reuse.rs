@@ -1,4 +1,4 @@
-//! Jacobian reuse on the separable midpoint path ([`marsden::separable`]): for n ≥
+//! Jacobian reuse on the separable midpoint path ([`marsden::separable::alpha`]): for n ≥
 //! `REUSE_MIN_DOF` the factored `M/h + (h/4)∇²V` is kept across Newton iterations and steps,
 //! and replaced by a fresh one when the iteration contracts slowly or `h` changes. The work
 //! counters of [`marsden::Statistics`] show it; the counts of a reference run are pinned (a
@@ -6,7 +6,7 @@
 //! the answer stays the general path's (`separable_fast_path` checks that to round-off).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use marsden::separable::REUSE_MIN_DOF;
+use marsden::separable::alpha::REUSE_MIN_DOF;
 use marsden::systems::Chain;
 use marsden::{Integrator, Midpoint, Rule, State, Statistics};
 

@@ -18,7 +18,7 @@
 //! | gauss-4 | 200 | 1.6e-11 → **1.4e-15** | 2.1e-12 / 2.0e-11 → **2.51e-13 / 2.52e-13** | — |
 //!
 //! The arrows give the runs with compensated summation of the state update
-//! ([`marsden::compensated`]). Without it, lobatto-3 misses the 1e-12 bound on `L` by 8 %, and
+//! ([`marsden::integrator::compensated`]). Without it, lobatto-3 misses the 1e-12 bound on `L` by 8 %, and
 //! gauss-4 (and every rule of degree ≥ 4 tried: gauss-5, lobatto-4, lobatto-5) shows a *linear*
 //! round-off drift of `L` (~1e-16 per step) and of `H`, which swamps its 1e-12 truncation
 //! error. The drift is round-off, not the Newton tolerance: tightening the residual tolerance
@@ -32,9 +32,10 @@
 
 mod common;
 use common::tight;
-use marsden::order::empirical_order;
-use marsden::rules::{Method, WithRule};
-use marsden::{Integrator, Rule, State, systems::Kepler};
+use marsden::discrete::rules::{Method, WithRule};
+use marsden::studies::order::empirical_order;
+use marsden::systems::Kepler;
+use marsden::{Integrator, Rule, State};
 
 /// Energy and angular-momentum errors of one run.
 struct Run {
@@ -131,7 +132,7 @@ fn check_long_run(name: &str, per_period: usize, compensated: bool) -> Errors {
 
 /// The energy error's order, fitted on 4 periods at N, 2N, 4N steps per period (N that of the
 /// long run, the asymptotic regime), leaving out points at round-off
-/// ([`marsden::order::empirical_order`]).
+/// ([`marsden::studies::order::empirical_order`]).
 fn check_energy_order(name: &str, per_period: usize) {
     let method = Method::parse(name).unwrap();
     let order = method.order() as f64;

@@ -5,9 +5,9 @@
 
 use std::ops::ControlFlow;
 
-use marsden::diagnostics::{EnergyMonitor, EnergyReport};
-use marsden::discrete::legendre_plus;
-use marsden::maps::{discrete_hamiltonian_map, two_step_map};
+use marsden::analysis::diagnostics::{EnergyMonitor, EnergyReport};
+use marsden::discrete::legendre::legendre_plus;
+use marsden::integrator::maps::{discrete_hamiltonian_map, two_step_map};
 use marsden::systems::Pendulum;
 use marsden::{
     Initial, Midpoint, NewtonOptions, Problem, Rule, RunOptions, SolveOptions, StepView,

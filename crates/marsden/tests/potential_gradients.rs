@@ -1,8 +1,8 @@
 //! Hand-written potential gradients and Hessians agree with the AD defaults
-//! (`marsden::potential`), and large separable systems skip the dense AD jet.
+//! (`marsden::mechanics::potential`), and large separable systems skip the dense AD jet.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::excessive_precision)]
 
-use marsden::potential::{gradient_defect, hessian_defect};
+use marsden::mechanics::potential::{gradient_defect, hessian_defect};
 use marsden::systems::{Chain, Kepler, NBody, Pendulum};
 use marsden::{Error, Initial, Lagrangian, MassMatrix, Problem, Scalar, Structure, TimeGrid};
 

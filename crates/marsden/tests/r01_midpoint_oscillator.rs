@@ -5,7 +5,8 @@
 
 mod common;
 use common::{assert_close, one_step_matrix, run, run_with};
-use marsden::{Midpoint, Rule, systems::HarmonicOscillator};
+use marsden::systems::HarmonicOscillator;
+use marsden::{Midpoint, Rule};
 
 const TABLE: [(usize, f64, f64); 3] = [
     (10, 0.54100229460035897, -0.84102111580931570),

@@ -5,7 +5,8 @@
 
 mod common;
 use common::{assert_close, one_step_matrix, run_with};
-use marsden::{Rule, Trapezoid, systems::HarmonicOscillator};
+use marsden::systems::HarmonicOscillator;
+use marsden::{Rule, Trapezoid};
 
 #[test]
 fn r2_table_of_states_and_modified_energy_over_a_million_steps() {

@@ -1,17 +1,16 @@
 //! Reference case R3 with the exact discrete Lagrangian computed by shooting
-//! ([`marsden::exact`]): its discrete Hamiltonian map is the exact flow, and the local errors of
+//! ([`marsden::discrete::exact`]): its discrete Hamiltonian map is the exact flow, and the local errors of
 //! midpoint and trapezoid against it are the closed-form values; the local order of Galerkin
 //! rules is `2s + 1` against it on the pendulum.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::excessive_precision)]
 
 mod common;
 use common::{assert_close, loglog_slope};
-use marsden::exact::{ExactDiscreteLagrangian, local_error};
-use marsden::rules::Galerkin;
+use marsden::discrete::exact::{ExactDiscreteLagrangian, local_error};
+use marsden::discrete::rules::Galerkin;
+use marsden::systems::{HarmonicOscillator, Pendulum};
 use marsden::{
-    DiscreteAction, DiscreteLagrangian, Integrator, Midpoint, NewtonOptions, Rule, State,
-    Trapezoid,
-    systems::{HarmonicOscillator, Pendulum},
+    DiscreteAction, DiscreteLagrangian, Integrator, Midpoint, NewtonOptions, Rule, State, Trapezoid,
 };
 
 #[test]

@@ -6,7 +6,8 @@
 
 mod common;
 use common::{assert_close, run};
-use marsden::{DiscreteLagrangian, Midpoint, Rule, Scalar, Trapezoid, systems::HarmonicOscillator};
+use marsden::systems::HarmonicOscillator;
+use marsden::{DiscreteLagrangian, Midpoint, Rule, Scalar, Trapezoid};
 
 /// Hamilton's principal function of the unit oscillator:
 /// `L_d^E = (mω / 2 sin ωh) [(q0² + q1²) cos ωh − 2 q0 q1]`.

@@ -6,8 +6,9 @@
 mod common;
 use common::assert_close;
 use marsden::discrete::{del_residual, legendre_minus, legendre_plus};
-use marsden::maps::discrete_hamiltonian_map;
-use marsden::{DiscreteLagrangian, Midpoint, NewtonOptions, Rule, Trapezoid, systems::Pendulum};
+use marsden::integrator::maps::discrete_hamiltonian_map;
+use marsden::systems::Pendulum;
+use marsden::{DiscreteLagrangian, Midpoint, NewtonOptions, Rule, Trapezoid};
 
 fn check<D: DiscreteLagrangian>(ld: &D, expected: [f64; 3], name: &str) {
     let (q0, q1, h) = ([1.5], [1.49], 0.1);

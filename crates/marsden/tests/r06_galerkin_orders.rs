@@ -6,8 +6,9 @@
 
 mod common;
 use common::{assert_close, run, tight};
-use marsden::rules::{Galerkin, QuadratureFamily};
-use marsden::{Initial, Problem, Rule, SolveOptions, TimeGrid, systems::Pendulum};
+use marsden::discrete::rules::{Galerkin, QuadratureFamily};
+use marsden::systems::Pendulum;
+use marsden::{Initial, Problem, Rule, SolveOptions, TimeGrid};
 
 const EXACT_T5: (f64, f64) = (-0.6247457443050779, 1.2168604323725019);
 

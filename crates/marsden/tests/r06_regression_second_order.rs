@@ -5,7 +5,8 @@
 
 mod common;
 use common::{assert_close, run};
-use marsden::{Midpoint, Rule, Trapezoid, systems::Pendulum};
+use marsden::systems::Pendulum;
+use marsden::{Midpoint, Rule, Trapezoid};
 
 #[test]
 fn r6_midpoint_and_trapezoid_regression_values_at_t10() {

@@ -5,7 +5,8 @@
 
 mod common;
 use common::run_with;
-use marsden::{DiscreteAction, Midpoint, Rule, Trapezoid, systems::Pendulum};
+use marsden::systems::Pendulum;
+use marsden::{DiscreteAction, Midpoint, Rule, Trapezoid};
 
 /// Modified Hamiltonians to O(h⁴) (R8): Störmer–Verlet and midpoint.
 fn modified(trapezoid: bool, h: f64, q: f64, p: f64) -> f64 {

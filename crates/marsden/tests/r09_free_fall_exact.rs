@@ -4,7 +4,8 @@
 
 mod common;
 use common::run;
-use marsden::{Midpoint, Rule, Trapezoid, systems::FreeFall};
+use marsden::systems::FreeFall;
+use marsden::{Midpoint, Rule, Trapezoid};
 
 #[test]
 fn r9_midpoint_and_trapezoid_are_exact_for_free_fall() {

@@ -5,7 +5,8 @@
 
 mod common;
 use common::{assert_close, run, run_with};
-use marsden::{DiscreteAction, Midpoint, Rule, Trapezoid, systems::Kepler};
+use marsden::systems::Kepler;
+use marsden::{DiscreteAction, Midpoint, Rule, Trapezoid};
 use std::f64::consts::PI;
 
 fn start() -> ([f64; 2], [f64; 2]) {

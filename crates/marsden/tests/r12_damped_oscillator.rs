@@ -6,11 +6,11 @@
 
 mod common;
 use common::{assert_close, loglog_slope, tight};
-use marsden::diagnostics::EnergyBalance;
+use marsden::analysis::diagnostics::EnergyBalance;
 use marsden::forces::{TwoPoint, TwoPointForce};
+use marsden::systems::DampedOscillator;
 use marsden::{
-    Initial, Integrator, Midpoint, Problem, Rule, Scalar, SolveOptions, State, TimeGrid,
-    Trajectory, systems::DampedOscillator,
+    Initial, Integrator, Midpoint, Problem, Rule, Scalar, SolveOptions, State, TimeGrid, Trajectory,
 };
 
 const H: f64 = 0.1;

@@ -5,7 +5,8 @@
 
 mod common;
 use common::tight;
-use marsden::{DiscreteAction, Integrator, Midpoint, Rule, State, Trapezoid, systems::Pendulum};
+use marsden::systems::Pendulum;
+use marsden::{DiscreteAction, Integrator, Midpoint, Rule, State, Trapezoid};
 
 fn forward_then_back<A: DiscreteAction>(action: A) -> (f64, f64) {
     let mut integrator = Integrator::new(action).with_options(tight()).unwrap();

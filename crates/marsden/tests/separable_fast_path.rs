@@ -205,7 +205,7 @@ fn separable_nbody_midpoint_agrees_with_the_general_path() {
 #[test]
 fn separable_chain_midpoint_with_jacobian_reuse_agrees_with_the_general_path() {
     let n = 40;
-    assert!(n >= marsden::separable::REUSE_MIN_DOF);
+    assert!(n >= marsden::separable::alpha::REUSE_MIN_DOF);
     let q: Vec<f64> = (0..n)
         .map(|i| (std::f64::consts::PI * (i + 1) as f64 / (n + 1) as f64).sin())
         .collect();

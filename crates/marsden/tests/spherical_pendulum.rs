@@ -7,10 +7,10 @@
 
 mod common;
 use common::tight;
-use marsden::diagnostics::{ConstraintMonitor, EnergyReport, energy_series};
+use marsden::analysis::diagnostics::{ConstraintMonitor, EnergyReport, energy_series};
+use marsden::systems::SphericalPendulum;
 use marsden::{
-    Integrator, Midpoint, Problem, Rule, RunOptions, SolveOptions, State, TimeGrid, Trajectory,
-    simulate, systems::SphericalPendulum,
+    Integrator, Midpoint, Problem, Rule, RunOptions, SolveOptions, State, TimeGrid, Trajectory, simulate,
 };
 
 fn pendulum() -> SphericalPendulum {

@@ -1,7 +1,7 @@
-//! The statically sized constrained step (`marsden::small_constrained`) and the general path
+//! The statically sized constrained step (`marsden::integrator::small::constrained`) and the general path
 //! solve the same SHAKE equations: with and without forces, for both second-order rules and for
 //! one and two constraints, the trajectories (with the RATTLE projection) agree to round-off;
-//! the kernel's x86-64-v3 copy (`marsden::dispatch`) and its baseline code agree bit for bit.
+//! the kernel's x86-64-v3 copy (`marsden::integrator::small::dispatch`) and its baseline code agree bit for bit.
 
 // Tests: helpers unwrap.
 #![allow(clippy::unwrap_used)]
@@ -16,7 +16,7 @@ use marsden::{
     Trapezoid,
 };
 
-/// 1000 steps with the fast paths on or off and the wide instructions (`marsden::dispatch`) on
+/// 1000 steps with the fast paths on or off and the wide instructions (`marsden::integrator::small::dispatch`) on
 /// or off; the trajectory with the multipliers, and the Newton iterations.
 fn run<L, C, F, R>(
     sys: (L, C),

@@ -1,4 +1,4 @@
-//! The statically sized step (`marsden::small`) and the general path solve the same equations:
+//! The statically sized step (`marsden::integrator::small::unconstrained`) and the general path solve the same equations:
 //! both must give the same trajectory to round-off, for every rule and with a force.
 // Tests may unwrap; reference values are quoted with all the digits the reference cases give.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::excessive_precision)]
@@ -20,7 +20,7 @@ fn trajectory<A: DiscreteAction, F: DiscreteForce>(
     trajectory_in(action, force, start, h, (fast, true))
 }
 
-/// 1000 steps with the fast paths on or off and the wide instructions (`marsden::dispatch`) on
+/// 1000 steps with the fast paths on or off and the wide instructions (`marsden::integrator::small::dispatch`) on
 /// or off.
 fn trajectory_in<A: DiscreteAction, F: DiscreteForce>(
     action: A,
@@ -227,7 +227,7 @@ fn static_and_general_paths_agree_for_three_and_four_coupled_angles() {
     }
 }
 
-/// The x86-64-v3 copy of the small kernels (`marsden::dispatch`) and the baseline code give the
+/// The x86-64-v3 copy of the small kernels (`marsden::integrator::small::dispatch`) and the baseline code give the
 /// same bits: no fused multiply–adds, no reassociation. Forced pendulum (n = 1), double pendulum
 /// free and forced (n = 2), three and four coupled angles (a user's Lagrangian, forced). On a
 /// CPU without AVX2 both runs take the baseline code and the test checks nothing new.

@@ -16,7 +16,7 @@ fn pendulum_midpoint_work_is_pinned() {
     assert_eq!(s.steps, 1000);
     assert_eq!(s.failed_steps, 0);
     // One Newton update per step once the predictor has history, two on the first steps (the
-    // separable path: exact Newton on `M/h + (h/4)∇²V`, [`marsden::separable`]).
+    // separable path: exact Newton on `M/h + (h/4)∇²V`, [`marsden::separable::alpha`]).
     assert_eq!(s.newton_iterations, PENDULUM_ITERATIONS, "{s:?}");
     assert_eq!(s.max_newton_iterations, 2);
     assert_eq!(s.system_evaluations, s.newton_iterations + s.steps);

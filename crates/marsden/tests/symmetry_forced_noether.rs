@@ -6,7 +6,7 @@
 
 mod common;
 use common::tight;
-use marsden::diagnostics::{BalanceMonitor, force_balance};
+use marsden::analysis::diagnostics::{BalanceMonitor, force_balance};
 use marsden::symmetry::{AxisRotation, GroupAction, Translations};
 use marsden::{
     Force, GeneralizedMidpoint, Initial, Lagrangian, Midpoint, Problem, Rule, Scalar, SolveOptions,

@@ -6,7 +6,7 @@
 
 mod common;
 use common::tight;
-use marsden::diagnostics::{NoetherMonitor, NoetherReport};
+use marsden::analysis::diagnostics::{NoetherMonitor, NoetherReport};
 use marsden::symmetry::{AxisRotation, DeclaresSymmetries, Side, discrete_momentum_offset};
 use marsden::systems::{HenonHeiles, Kepler};
 use marsden::{

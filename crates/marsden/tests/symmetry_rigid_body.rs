@@ -4,7 +4,7 @@
 //! projection (RATTLE) is needed for this.
 #![allow(clippy::unwrap_used, clippy::expect_used)] // tests may unwrap
 
-use marsden::diagnostics::{NoetherMonitor, NoetherReport};
+use marsden::analysis::diagnostics::{NoetherMonitor, NoetherReport};
 use marsden::symmetry::DeclaresSymmetries;
 use marsden::systems::PointRigidBody;
 use marsden::{

@@ -4,7 +4,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // tests may unwrap
 
 mod common;
-use marsden::diagnostics::NoetherReport;
+use marsden::analysis::diagnostics::NoetherReport;
 use marsden::symmetry::DeclaresSymmetries;
 use marsden::systems::NBody;
 use marsden::{

@@ -7,9 +7,9 @@
 //! times 1, ½, ¼, ⅛) with `N = (T − t₀)/h` steps; `(T − t₀)/h` must be a whole number to a
 //! relative 1e-9. The error `e(h) = |(q_N, p_N) − (q(T), p(T))|` is measured against one
 //! reference solution shared by all methods (the extrapolation integrator converged to
-//! round-off, [`marsden::order::reference_solution`]); the table on stdout gives per method its
+//! round-off, [`marsden::studies::order::reference_solution`]); the table on stdout gives per method its
 //! expected order, `e(h)` per step size, the pairwise slopes, and the least-squares slope of
-//! `log e` against `log h` over the points before round-off ([`marsden::order::empirical_order`];
+//! `log e` against `log h` over the points before round-off ([`marsden::studies::order::empirical_order`];
 //! HLW06 §II.1, reference cases R5 and R6). No files are written unless `--csv PATH` is given.
 //!
 //! ```text

@@ -1,7 +1,6 @@
 //! The inputs slice `[q, q̇, t]` of an expression, built on the stack.
 
 use marsden::Scalar;
-use marsden::scratch::with_buffer;
 
 /// Calls `body` with the slice `[q₀ … qₙ₋₁, v₀ … vₙ₋₁, t]`.
 ///
@@ -27,6 +26,25 @@ pub fn with_inputs<S: Scalar, R>(q: &[S], v: &[S], t: S, body: impl FnOnce(&[S])
         4..=5 => with_buffer::<S, 5, R>(len, t, value, body),
         6..=9 => with_buffer::<S, 9, R>(len, t, value, body),
         _ => with_buffer::<S, 17, R>(len, t, value, body),
+    }
+}
+
+/// Runs `body` on `init(0) … init(len − 1)` in a stack array of `CAP` values (padded with
+/// `fill`), or on the heap when `len > CAP`.
+#[inline(always)]
+fn with_buffer<S: Copy, const CAP: usize, R>(
+    len: usize,
+    fill: S,
+    mut init: impl FnMut(usize) -> S,
+    body: impl FnOnce(&mut [S]) -> R,
+) -> R {
+    if len <= CAP {
+        let mut buffer = [fill; CAP];
+        buffer[..len].iter_mut().enumerate().for_each(|(i, x)| *x = init(i));
+        body(&mut buffer[..len])
+    } else {
+        let mut buffer: Vec<S> = (0..len).map(init).collect();
+        body(&mut buffer)
     }
 }
 

@@ -5,8 +5,8 @@
 //! round-off takes over (HLW06 §II.1; reference cases R5 and R6 of
 //! `reference/REFERENCE-CASES.md`). The study runs the file's problem with each method at each
 //! `h` to `T` with `N = (T − t₀)/h` steps, measures `e(h) = |(q_N, p_N) − (q(T), p(T))|`
-//! against one reference solution shared by all methods ([`marsden::order::reference_solution`])
-//! and fits the log–log slope ([`marsden::order::empirical_order`]).
+//! against one reference solution shared by all methods ([`marsden::studies::order::reference_solution`])
+//! and fits the log–log slope ([`marsden::studies::order::empirical_order`]).
 //!
 //! * [`plan`] — the command-line lists (methods, step sizes, `T`) checked against the file;
 //! * [`runner`] — the runs, generic over the Lagrangian and the rule;
@@ -50,7 +50,7 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// The numbers of steps, increasing (as [`marsden::order::measure_order`] takes them).
+    /// The numbers of steps, increasing (as [`marsden::studies::order::measure_order`] takes them).
     pub fn steps(&self) -> Vec<usize> {
         self.grids.iter().map(|&(_, n)| n).collect()
     }

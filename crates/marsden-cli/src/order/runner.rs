@@ -1,10 +1,10 @@
 //! The runs of an order study: the file's problem (Lagrangian, forces, initial data) built
 //! once as in `marsden run` ([`crate::run::start::constrained_problem`]), one reference
-//! solution `(q(T), p(T))` by the extrapolation integrator of [`marsden::exact`], then
-//! [`marsden::order::measure_order`] for each method, dispatched to its concrete rule.
+//! solution `(q(T), p(T))` by the extrapolation integrator of [`marsden::discrete::exact`], then
+//! [`marsden::studies::order::measure_order`] for each method, dispatched to its concrete rule.
 
-use marsden::order::{OrderOptions, OrderStudy, measure_order, reference_solution};
-use marsden::rules::WithRule;
+use marsden::discrete::rules::WithRule;
+use marsden::studies::order::{OrderOptions, OrderStudy, measure_order, reference_solution};
 use marsden::{Constraint, Force, Lagrangian, NewtonOptions, Problem, Rule};
 
 use super::Plan;

@@ -7,7 +7,7 @@
 
 use std::fmt::Write as _;
 
-use marsden::order::OrderStudy;
+use marsden::studies::order::OrderStudy;
 
 use super::Plan;
 use super::runner::Results;

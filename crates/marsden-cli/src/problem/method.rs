@@ -1,12 +1,12 @@
 //! `[integrator] method`: which rule turns `L` into `L_d`.
 //!
-//! The names are the core's ([`marsden::rules::Method`]): `midpoint`, `trapezoid`,
+//! The names are the core's ([`marsden::discrete::rules::Method`]): `midpoint`, `trapezoid`,
 //! `alpha-<a>`, `symmetrized-<a>`, `gauss-<s>`, `lobatto-<s>`, `galerkin-<s>-<family>-<r>` and
 //! compositions `<scheme>(<base>)`. This module adds the file-level error with a suggestion.
 
 use std::fmt;
 
-use marsden::rules::{METHOD_GRAMMAR, Method as CoreMethod, WithRule};
+use marsden::discrete::rules::{METHOD_GRAMMAR, Method as CoreMethod, WithRule};
 
 use crate::expr::suggest::closest;
 
@@ -34,7 +34,9 @@ const KNOWN: [&str; 10] = [
 impl Method {
     /// The midpoint rule (the default).
     pub fn midpoint() -> Self {
-        Self(CoreMethod::Single(marsden::rules::BaseMethod::Midpoint))
+        Self(CoreMethod::Single(
+            marsden::discrete::rules::BaseMethod::Midpoint,
+        ))
     }
 
     /// Parses a method name; the error says what is wrong and may suggest a name.

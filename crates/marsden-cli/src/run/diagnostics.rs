@@ -1,9 +1,9 @@
 //! What a run preserved, accumulated sample by sample in bounded memory: energy error and
 //! drift, momentum-map drift, constraint residual.
 //!
-//! The energy statistics are the core's (`marsden::diagnostics::EnergyAccumulator`).
+//! The energy statistics are the core's (`marsden::analysis::diagnostics::EnergyAccumulator`).
 
-use marsden::diagnostics::EnergyAccumulator;
+use marsden::analysis::diagnostics::EnergyAccumulator;
 
 /// Drift of one momentum map: `max |J_k − J_0|`.
 #[derive(Debug, Clone, Default, PartialEq)]

@@ -9,7 +9,7 @@
 //! * [`output`] (columns, writers), [`diagnostics`], [`progress`], [`start`] (the initial
 //!   state), [`summary`] (`summary.json`), [`report`] (the text on stdout).
 //! * [`sweep`] — `marsden run` on a file with `[sweep]`: the members in parallel
-//!   ([`marsden::ensemble`]), a [`shard`] of them, one row each ([`sweep_table`]).
+//!   ([`marsden::studies::ensemble`]), a [`shard`] of them, one row each ([`sweep_table`]).
 
 pub mod diagnostics;
 pub mod observer;
@@ -25,7 +25,7 @@ pub mod sweep_table;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use marsden::rules::WithRule;
+use marsden::discrete::rules::WithRule;
 use marsden::{
     Constraint, Force, Lagrangian, Observer, Problem, Rule, RunFailure, SolveOptions, Statistics,
     Trajectory,

@@ -1,5 +1,5 @@
 //! `marsden run` on a file with `[sweep]`: every member (or those of one `--shard`) run in
-//! parallel with [`marsden::ensemble`], one summary row each, on stdout and in `sweep.csv`.
+//! parallel with [`marsden::studies::ensemble`], one summary row each, on stdout and in `sweep.csv`.
 //!
 //! A member is the problem file with the swept value replaced ([`crate::problem::member`]),
 //! checked and run like a single file but without writing its trajectory: the rows of the
@@ -10,7 +10,7 @@
 
 use std::path::PathBuf;
 
-use marsden::ensemble;
+use marsden::studies::ensemble;
 use marsden_io::RowSink;
 
 use super::progress::Progress;

@@ -6,8 +6,9 @@
 //! quadrature as `L`. Here `u` is any Rust closure of time; it is sampled at the rule's
 //! quadrature times and contributes nothing to the Newton Jacobian.
 
-use crate::scratch::{NODE, with_buffer};
-use crate::{Force, Scalar};
+use crate::mechanics::Force;
+use crate::numerics::scratch::{NODE, with_buffer};
+use crate::scalar::Scalar;
 
 /// A force given by a closure of time, `f_L(t, q, v) = u(t)`: `u(t, out)` writes the n
 /// components.

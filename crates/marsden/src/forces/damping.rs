@@ -8,7 +8,9 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
-use crate::{Error, Force, Scalar};
+use crate::error::Error;
+use crate::mechanics::Force;
+use crate::scalar::Scalar;
 
 /// The damping coefficients `C`.
 #[derive(Debug, Clone, PartialEq)]

@@ -6,7 +6,9 @@
 //! `f_d⁻ = (h/2) f(t_k)`, `f_d⁺ = (h/2) f(t_{k+1})`). A constant force is equivalent to adding the
 //! potential `−⟨F, q⟩` to `L`, and every rule then integrates it exactly (reference case R9).
 
-use crate::{Error, Force, Scalar};
+use crate::error::Error;
+use crate::mechanics::Force;
+use crate::scalar::Scalar;
 
 /// A constant generalised force `f_L = F` (e.g. a uniform field, a fixed load).
 ///

@@ -5,14 +5,18 @@
 //! same physical force as the Lagrangian force `f_L = f_H ∘ FL`, i.e.
 //! `f_L(t, q, v) = f_H(t, q, ∂L/∂v(t, q, v))` ([MW01] §3.1). [`FromHamiltonian`] is that
 //! composition: it computes the momenta by automatic differentiation *inside* the force, with
-//! nested duals ([`crate::ad::nested_gradient`]), so the step's Newton Jacobian still gets the
+//! nested duals ([`crate::numerics::ad::nested_gradient`]), so the step's Newton Jacobian still gets the
 //! exact derivatives of `f_H(q, FL(q, v))`. The reverse direction `f_H = f_L ∘ FH` needs the
 //! inverse Legendre transform and is given at `f64` by [`hamiltonian_form`].
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
-use crate::scratch::{NODE, with_buffer};
-use crate::{Error, Force, Lagrangian, Scalar, ad, mechanics};
+use crate::error::Error;
+use crate::mechanics;
+use crate::mechanics::{Force, Lagrangian};
+use crate::numerics::ad;
+use crate::numerics::scratch::{NODE, with_buffer};
+use crate::scalar::Scalar;
 
 /// A Hamiltonian force `f_H(t, q, p)`, written once over the scalar type.
 ///

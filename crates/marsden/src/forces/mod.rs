@@ -1,10 +1,10 @@
 //! Ready-made external forces and the ways to combine and convert them.
 //!
 //! Seed: *forced Lagrangian systems*, *forced Hamiltonian systems*, *discrete variational
-//! mechanics with forces*. A Lagrangian force `f_L(t, q, v)` ([`crate::Force`]) enters the
+//! mechanics with forces*. A Lagrangian force `f_L(t, q, v)` ([`crate::mechanics::Force`]) enters the
 //! Lagrange–d'Alembert principle `δ∫L dt + ∫⟨f_L, δq⟩ dt = 0`, i.e. the forced Euler–Lagrange
 //! equations `∂L/∂q − d/dt ∂L/∂v + f_L = 0` ([MW01] §3.1). A rule discretises it by its own
-//! quadrature into discrete forces `f_d^±` ([`crate::Rule::discretize_force`]), which enter the
+//! quadrature into discrete forces `f_d^±` ([`crate::discrete::rules::Rule::discretize_force`]), which enter the
 //! forced discrete Legendre transforms (DESIGN.md §3, [MW01] §3.2)
 //!
 //! ```text
@@ -22,15 +22,15 @@
 //! | [`FromHamiltonian`] | `f_L = f_H ∘ FL`, from a [`HamiltonianForce`] `f_H(t, q, p)` | `hamiltonian.rs` |
 //! | [`TwoPoint`] | user-written discrete forces `f_d^±(q₀, q₁)` ([`TwoPointForce`]) | `two_point.rs` |
 //!
-//! Continuous inputs (`L`, `f_L`) go to [`crate::Problem`], which discretises both with the same
-//! rule; discrete inputs (a user's `L_d` or `f_d^±`) go straight to an [`crate::Integrator`]
-//! (`Integrator::new(ld).with_force(TwoPoint(my_forces))`), run with [`crate::simulate()`].
+//! Continuous inputs (`L`, `f_L`) go to [`crate::run::Problem`], which discretises both with the same
+//! rule; discrete inputs (a user's `L_d` or `f_d^±`) go straight to an [`crate::integrator::Integrator`]
+//! (`Integrator::new(ld).with_force(TwoPoint(my_forces))`), run with [`crate::run::simulate()`].
 //!
 //! Energy balance: with forces the energy changes by the work done. For the midpoint rule with
 //! midpoint forces and `L = ½ vᵀMv − V(q)` (constant `M`) one step satisfies exactly
 //! `E_{k+1} − E_k = W_k + [V(q_{k+1}) − V(q_k) − ⟨∇V(q̄), q_{k+1} − q_k⟩]`, where
 //! `W_k = ⟨f_d⁻ + f_d⁺, (q_{k+1} − q_k)/h⟩` is the discrete work; the bracket vanishes for
-//! quadratic `V` (reference case R12). See [`crate::diagnostics::EnergyBalance`].
+//! quadratic `V` (reference case R12). See [`crate::analysis::diagnostics::EnergyBalance`].
 //!
 //! [MW01]: Marsden & West, *Discrete mechanics and variational integrators*, Acta Numerica 10
 //! (2001).

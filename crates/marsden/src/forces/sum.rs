@@ -3,8 +3,11 @@
 //! The Lagrange–d'Alembert principle is linear in the force, so forces add, and a rule's
 //! quadrature of a sum is the sum of the quadratures: `(f₁ + f₂)_d^± = f₁_d^± + f₂_d^±`.
 
-use crate::scratch::with_buffer;
-use crate::{DiscreteForce, Error, Force, Scalar};
+use crate::discrete::DiscreteForce;
+use crate::error::Error;
+use crate::mechanics::Force;
+use crate::numerics::scratch::with_buffer;
+use crate::scalar::Scalar;
 
 /// The sum `f₁ + f₂` of two forces (nest it, or use [`ForceExt::plus`], for more).
 ///

@@ -4,14 +4,15 @@
 //! principle only needs the two discrete forces `f_d⁻(q₀, q₁) ∈ T*_{q₀}Q` and
 //! `f_d⁺(q₀, q₁) ∈ T*_{q₁}Q` ([MW01] §3.2); they need not come from a quadrature of a continuous
 //! force. Implement [`TwoPointForce`] and wrap it in [`TwoPoint`] to hand it to an
-//! [`crate::Integrator`] (`Integrator::new(ld).with_force(TwoPoint(my_forces))`). With rules
+//! [`crate::integrator::Integrator`] (`Integrator::new(ld).with_force(TwoPoint(my_forces))`). With rules
 //! that have internal control points (Galerkin), `f_d⁻` acts on `Q₀ = q_k`, `f_d⁺` on
 //! `Q_s = q_{k+1}` and nothing on the internal points.
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
-use crate::scratch::{NODE, with_buffer};
-use crate::{DiscreteForce, Scalar};
+use crate::discrete::DiscreteForce;
+use crate::numerics::scratch::{NODE, with_buffer};
+use crate::scalar::Scalar;
 
 /// Discrete forces `(f_d⁻, f_d⁺)` of one step `(q₀, q₁)` from `t₀` to `t₀ + h`.
 ///
@@ -45,7 +46,7 @@ pub trait TwoPointForce {
     );
 
     /// The same from the displacement `Δ = q₁ − q₀` given exactly (the integrator steps
-    /// displacements; see [`crate::DiscreteLagrangian::discrete_lagrangian_offset`] for why).
+    /// displacements; see [`crate::discrete::DiscreteLagrangian::discrete_lagrangian_offset`] for why).
     /// The default forms `q₁ = q₀ + Δ`; override it when the forces depend on `q₁ − q₀`.
     fn two_point_force_offset<S: Scalar>(
         &self,

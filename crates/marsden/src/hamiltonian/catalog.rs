@@ -16,10 +16,11 @@
 //! `ab − c² = m₂l₁²l₂²(m₁ + m₂ sin²(θ₁−θ₂))`.
 
 use super::{Hamiltonian, Separable};
+use crate::mechanics::Lagrangian;
+use crate::scalar::Scalar;
 use crate::systems::{
     DoublePendulum, FreeFall, HarmonicOscillator, HenonHeiles, Kepler, NBody, Pendulum,
 };
-use crate::{Lagrangian, Scalar};
 
 fn half_square<S: Scalar>(p: &[S]) -> S {
     p.iter().fold(S::from(0.0), |acc, &x| acc + x * x) * 0.5

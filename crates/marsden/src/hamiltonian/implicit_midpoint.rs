@@ -8,7 +8,7 @@
 //! one-stage Gauss method). For `H = ½pᵀM⁻¹p + V(q)` with constant `M` it coincides with the
 //! midpoint variational integrator of `L = ½vᵀMv − V` (reference cases §0).
 //!
-//! Solved by Newton's method ([`crate::newton`]) for the increment `Δ = z₁ − z₀`, with residual
+//! Solved by Newton's method ([`crate::numerics::newton`]) for the increment `Δ = z₁ − z₀`, with residual
 //! `Δ/h − X_H(z₀ + Δ/2)` and Jacobian `I/h − ½DX_H`, `DX_H = J∇²H` by AD. The residual is in the
 //! units of the vector field (velocities and forces) and scaled by `‖X_H(z₀)‖`, like the
 //! momentum residual of the variational step; a residual `r` moves `z₁` by only `h·r`. The step map's
@@ -18,9 +18,13 @@
 //! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
 
 use super::{Hamiltonian, HamiltonianMethod, PhaseJet, vector_field};
-use crate::linalg::{Lu, max_norm};
-use crate::newton::{self, NewtonFailure, NewtonOptions, NewtonWorkspace, NonlinearSystem};
-use crate::{Error, State, StepReport};
+use crate::error::Error;
+use crate::integrator::StepReport;
+use crate::mechanics::State;
+use crate::numerics::dense::{Lu, max_norm};
+use crate::numerics::newton::{
+    self, NewtonFailure, NewtonOptions, NewtonWorkspace, NonlinearSystem,
+};
 
 /// Implicit midpoint rule for a [`Hamiltonian`] (symplectic, order 2).
 #[derive(Debug, Clone, Default)]

@@ -1,6 +1,6 @@
 //! Stepping a Hamiltonian with a one-step method, and running it over a time grid.
 //!
-//! The Hamiltonian counterpart of [`crate::Integrator`] and [`crate::simulate`]: a
+//! The Hamiltonian counterpart of [`crate::integrator::Integrator`] and [`crate::run::simulate`]: a
 //! [`HamiltonianMethod`] advances `(t, q, p)` by one step of `H` (and, on request, returns the
 //! Jacobian of the step map for the symplecticity certificate); a [`HamiltonianIntegrator`] owns
 //! the Hamiltonian and the method and produces the same [`Trajectory`] as the Lagrangian side,
@@ -9,8 +9,11 @@
 use std::ops::ControlFlow;
 
 use super::Hamiltonian;
-use crate::simulate::{Observer, RunOptions, StepView, TimeGrid};
-use crate::{Error, State, StepReport, Termination, Trajectory};
+use crate::error::Error;
+use crate::integrator::StepReport;
+use crate::mechanics::State;
+use crate::run::{Observer, RunOptions, StepView, TimeGrid};
+use crate::run::{Termination, Trajectory};
 
 /// A one-step method for Hamilton's equations of `H`.
 pub trait HamiltonianMethod<H> {
@@ -116,7 +119,7 @@ impl<H: Hamiltonian, M: HamiltonianMethod<H>> HamiltonianIntegrator<H, M> {
     }
 
     /// Runs from `start` over `grid`, storing every `options.stride`-th state and showing each
-    /// step to `observer` (as [`crate::simulate()`] does for the Lagrangian side). A failing step
+    /// step to `observer` (as [`crate::run::simulate()`] does for the Lagrangian side). A failing step
     /// ends the run with [`Termination::Failed`] and the trajectory up to the last good state.
     pub fn solve<O: Observer + ?Sized>(
         &mut self,

@@ -3,11 +3,11 @@
 //! Seed: *Hamiltonian mechanics*. With `z = (q, p)` and `J = [[0, I], [−I, 0]]`, Hamilton's
 //! equations are `ż = X_H(z) = J∇H(z)`, i.e. `q̇ = ∂H/∂p`, `ṗ = −∂H/∂q`, and the Jacobian of the
 //! vector field is `DX_H = J∇²H`. One hyper-dual evaluation of `H` gives value, gradient and
-//! Hessian together ([`crate::ad::partial_hessian`]).
+//! Hessian together ([`crate::numerics::ad::partial_hessian`]).
 
 use super::Hamiltonian;
-use crate::Scalar;
-use crate::ad::{self, HessianParts, MultiFunction};
+use crate::numerics::ad::{self, HessianParts, MultiFunction};
+use crate::scalar::Scalar;
 
 /// `H(t, ·)` as a function of `z = (q, p)` for the AD drivers.
 pub(crate) struct OnPhaseSpace<'a, H> {

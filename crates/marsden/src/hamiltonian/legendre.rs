@@ -13,7 +13,7 @@
 //! Legendre transform), implemented once. The inner solve is Newton's method in `f64`. To make the
 //! result differentiable by the caller's dual numbers, the `f64` root `y₀` is then corrected by
 //! one chord step *in the caller's scalar type*: `y = y₀ − M⁻¹(∂f/∂y(y₀) − w)` with
-//! `M = ∂²f/∂y²(y₀)` and `∂f/∂y` by nested AD ([`crate::ad::nested_gradient`]). The error of `y`
+//! `M = ∂²f/∂y²(y₀)` and `∂f/∂y` by nested AD ([`crate::numerics::ad::nested_gradient`]). The error of `y`
 //! is then `O(ε²)` in the dual parts, and since `∂f*/∂y = 0` at the root, the error of
 //! `f*` is `O(ε⁴)`: value, gradient, Hessian and third derivatives of the adapter are exact.
 //! Consequently `∂H/∂p = v = FH(q, p)` and `∂H/∂q = −∂L/∂q`, as the theory says.
@@ -26,9 +26,11 @@
 //! Mechanics and Symmetry*, 2nd ed. (1999).
 
 use super::Hamiltonian;
-use crate::ad::{self, HessianParts, MultiFunction};
-use crate::linalg::{Lu, max_norm};
-use crate::{Error, Lagrangian, Scalar};
+use crate::error::Error;
+use crate::mechanics::Lagrangian;
+use crate::numerics::ad::{self, HessianParts, MultiFunction};
+use crate::numerics::dense::{Lu, max_norm};
+use crate::scalar::Scalar;
 
 /// A function `f(t, x, y)` whose fibre-wise Legendre transform in `y` is taken.
 trait Fibre {

@@ -33,7 +33,7 @@ pub use legendre::{HamiltonianLagrangian, LegendreHamiltonian};
 pub use rk2::ExplicitMidpoint;
 pub use splitting::Splitting;
 
-use crate::Scalar;
+use crate::scalar::Scalar;
 
 /// A (possibly time-dependent) Hamiltonian `H(t, q, p)` on `T*Q = ℝⁿ × ℝⁿ`.
 ///

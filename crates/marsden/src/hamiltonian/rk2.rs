@@ -7,14 +7,16 @@
 //! of order 2 but **not** symplectic ([HLW06] §VI.4: no explicit RK method is): its energy
 //! drifts (reference case R10: max |ΔH| grows linearly on Kepler) and the symplecticity defect
 //! `‖DFᵀJDF − J‖` of its step map is `O(h³)`, not round-off. It is here as the comparison map
-//! that lets the certificate of [`crate::certificate`] fail. Jacobian by the chain rule:
+//! that lets the certificate of [`crate::analysis::certificate`] fail. Jacobian by the chain rule:
 //! `DF = I + h DX_H(z_½)(I + (h/2) DX_H(z₀))`.
 //!
 //! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
 
 use super::splitting::finish;
 use super::{Hamiltonian, HamiltonianMethod, PhaseJet};
-use crate::{Error, State, StepReport};
+use crate::error::Error;
+use crate::integrator::StepReport;
+use crate::mechanics::State;
 
 /// Explicit midpoint rule (RK2) for a [`Hamiltonian`]: order 2, not symplectic.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]

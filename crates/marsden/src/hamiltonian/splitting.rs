@@ -23,8 +23,11 @@
 //! Lubich, Wanner, Acta Numerica 12 (2003).
 
 use super::{HamiltonianMethod, Separable};
-use crate::ad::{self, HessianParts, MultiFunction};
-use crate::{Error, Scalar, State, StepReport};
+use crate::error::Error;
+use crate::integrator::StepReport;
+use crate::mechanics::State;
+use crate::numerics::ad::{self, HessianParts, MultiFunction};
+use crate::scalar::Scalar;
 
 /// A splitting (partitioned RK) method for a [`Separable`] Hamiltonian.
 #[derive(Debug, Clone, PartialEq)]

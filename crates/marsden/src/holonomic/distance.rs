@@ -11,7 +11,9 @@
 //! SHAKE/RATTLE in molecular dynamics (Ryckaert, Ciccotti & Berendsen 1977; Andersen 1983) and of
 //! pendulums and chains in Cartesian coordinates.
 
-use crate::{Constraint, Error, Scalar};
+use crate::error::Error;
+use crate::mechanics::Constraint;
+use crate::scalar::Scalar;
 
 /// The other end of a rod.
 #[derive(Debug, Clone, PartialEq)]

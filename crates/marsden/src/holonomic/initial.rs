@@ -4,13 +4,15 @@
 //! row rank so that the multipliers are determined ([HLW06] §VII.1: the index-3 DAE needs
 //! `Dφ M⁻¹ Dφᵀ` invertible). [`check_initial`] verifies all three and names the residual;
 //! nothing here moves data unless asked: [`project_position`] and [`project_momentum`] (and
-//! [`crate::Initial::project_onto`]) are explicit, opt-in projections.
+//! [`crate::mechanics::Initial::project_onto`]) are explicit, opt-in projections.
 //!
 //! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
 
-use crate::linalg::{Lu, max_norm};
-use crate::small_constrained::constraint_jacobian;
-use crate::{Constraint, Error, Initial, Lagrangian, mechanics};
+use crate::error::Error;
+use crate::mechanics;
+use crate::mechanics::constraint_jacobian;
+use crate::mechanics::{Constraint, Initial, Lagrangian};
+use crate::numerics::dense::{Lu, max_norm};
 
 use super::{MomentumProjection, Rattle};
 

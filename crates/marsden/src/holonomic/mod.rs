@@ -6,7 +6,7 @@
 //!
 //! ## The constrained scheme
 //!
-//! One step `(q_k, p_k) ↦ (q_{k+1}, p_{k+1})` of [`crate::Integrator`] with constraints and a
+//! One step `(q_k, p_k) ↦ (q_{k+1}, p_{k+1})` of [`crate::integrator::Integrator`] with constraints and a
 //! [`Rattle`] projection is ([MW01] §3.5, [LMO08] §3, [HLW06] §VII.1; conventions DESIGN.md §3):
 //!
 //! ```text
@@ -16,7 +16,7 @@
 //! ```
 //!
 //! The first line is solved by Newton's method for `(q_{k+1}, λ_k)` in one system
-//! ([`crate::step`]); the projection is linear in `μ_k` for a constant mass matrix and solved by
+//! ([`crate::integrator::equations`]); the projection is linear in `μ_k` for a constant mass matrix and solved by
 //! Newton's method on `(v, μ)` in general ([`Rattle`]). Eliminating the momenta gives the
 //! constrained discrete Euler–Lagrange equations
 //! `D₂L_d(q_{k−1}, q_k) + D₁L_d(q_k, q_{k+1}) + f_d⁺ + f_d⁻ = h Dφ(q_k)ᵀ(λ_k + μ_{k−1})`: the
@@ -28,16 +28,16 @@
 //! symplectic ([LR04] §7.3). The constraint force over a step is
 //! `h Dφ(q_k)ᵀλ_k + h Dφ(q_{k+1})ᵀμ_k`, so `λ_k + μ_{k−1} ≈ λ(t_k)` of the continuous equations.
 //!
-//! Both multiplier series are kept in the [`crate::Trajectory`]: `multipliers(i)` holds `λ` and
+//! Both multiplier series are kept in the [`crate::run::Trajectory`]: `multipliers(i)` holds `λ` and
 //! `projection_multipliers(i)` holds `μ` of the step that ended at sample `i`.
 //!
 //! ## Initial data
 //!
-//! [`crate::Problem::with_constraint`] refuses initial data off the manifold or not tangent to it
+//! [`crate::run::Problem::with_constraint`] refuses initial data off the manifold or not tangent to it
 //! ([`check_initial`]), and constraints whose Jacobian is rank-deficient there
 //! ([`constraint_rank`]); it never moves the data silently. Projections are explicit:
 //! [`project_position`] (Newton on the minimum-norm correction), [`project_momentum`] (the RATTLE
-//! projection) and [`crate::Initial::project_onto`] for both.
+//! projection) and [`crate::mechanics::Initial::project_onto`] for both.
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LMO08]: Leyendecker, Marsden, Ortiz,
 //! *Variational integrators for constrained dynamical systems*, ZAMM 88 (2008). [HLW06]: Hairer,

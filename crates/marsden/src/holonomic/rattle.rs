@@ -14,7 +14,7 @@
 //! quadratic in `v` (constant or position-dependent mass matrix) one Newton update solves it
 //! exactly (`ν = (Dφ M⁻¹ Dφᵀ)⁻¹ Dφ M⁻¹ p̃`) and a residual-only evaluation confirms it.
 //!
-//! When the Lagrangian declares itself separable ([`crate::Structure::Separable`], a constant
+//! When the Lagrangian declares itself separable ([`crate::mechanics::Structure::Separable`], a constant
 //! mass matrix `M`), the projection takes that closed form directly, with no derivatives of `L`
 //! at all: `w = M⁻¹p̃`, `uᶜ = M⁻¹Dφᶜᵀ`, `S = Dφ U` (d × d), `S ν = Dφ w`, `v = w − U ν`
 //! ([HLW06] §VII.1.4). [`Rattle::with_closed_form`] switches it off (the Newton form is the
@@ -23,18 +23,19 @@
 //! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006). [LMO08]:
 //! Leyendecker, Marsden, Ortiz, ZAMM 88 (2008).
 
-use crate::ad::{self, HessianParts, MultiFunction};
+use crate::numerics::ad::{self, HessianParts, MultiFunction};
 use num_dual::{HyperDual64, HyperDualSVec64};
 
-use crate::explicit::InverseMass;
-use crate::linalg::{max_norm, solve_in_place};
-use crate::newton::NewtonOptions;
-use crate::scratch::{NODE, with_buffer};
-use crate::small::SmallDual;
-use crate::small_constrained::constraint_jacobian;
-use crate::{Constraint, Lagrangian, Scalar};
+use crate::mechanics::constraint_jacobian;
+use crate::mechanics::structure::InverseMass;
+use crate::mechanics::{Constraint, Lagrangian};
+use crate::numerics::dense::{max_norm, solve_in_place};
+use crate::numerics::dual::SmallDual;
+use crate::numerics::newton::NewtonOptions;
+use crate::numerics::scratch::{NODE, with_buffer};
+use crate::scalar::Scalar;
 
-/// What an [`crate::Integrator`] applies to the momenta after each solved step.
+/// What an [`crate::integrator::Integrator`] applies to the momenta after each solved step.
 ///
 /// The default [`NoProjection`] leaves them alone (plain SHAKE); [`Rattle`] projects them onto
 /// the cotangent bundle of the constraint manifold.
@@ -74,7 +75,7 @@ pub struct ProjectionFailure {
     pub residual: f64,
 }
 
-/// No projection (the default of [`crate::Integrator`]): SHAKE momenta are reported as they are.
+/// No projection (the default of [`crate::integrator::Integrator`]): SHAKE momenta are reported as they are.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct NoProjection;
 
@@ -116,7 +117,7 @@ pub struct ProjectionStatistics {
 /// Newton's method on `(v, ν)`: a full evaluation gives the residual and the KKT matrix; after
 /// each update the residual alone is re-evaluated (gradient only, cheaper), so a Lagrangian
 /// quadratic in `v` costs one full and one residual evaluation per projection. It stops when
-/// `‖R‖∞ ≤ tol_R · max(1, ‖p‖∞)` or when the update is at round-off, like [`crate::newton`].
+/// `‖R‖∞ ≤ tol_R · max(1, ‖p‖∞)` or when the update is at round-off, like [`crate::numerics::newton`].
 ///
 /// ```
 /// use marsden::holonomic::Rattle;
@@ -443,7 +444,7 @@ impl<L: Lagrangian> MultiFunction for InVelocity<'_, L> {
 }
 
 /// `∂L/∂v` into `ws.grad` and `∂²L/∂v²` into `ws.parts.hess` at `v = ws.z[..n]`, by one
-/// hyper-dual evaluation: statically sized for `n ≤ 4` (as [`crate::small`]), by the chunked
+/// hyper-dual evaluation: statically sized for `n ≤ 4` (as [`crate::integrator::small::unconstrained`]), by the chunked
 /// driver otherwise.
 fn velocity_jet<L: Lagrangian>(f: &InVelocity<'_, L>, n: usize, ws: &mut Workspace) {
     match n {

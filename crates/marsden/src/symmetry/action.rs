@@ -23,9 +23,10 @@
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001). [MR99]: Marsden & Ratiu, *Introduction to
 //! Mechanics and Symmetry*, 2nd ed. (1999).
 
-use crate::ad::{self, MultiFunction};
-use crate::linalg::Lu;
-use crate::{Error, Scalar};
+use crate::error::Error;
+use crate::numerics::ad::{self, MultiFunction};
+use crate::numerics::dense::Lu;
+use crate::scalar::Scalar;
 
 /// A Lie group action on `Q = ℝⁿ`, given by its infinitesimal generators `ξ_Q(q)`.
 ///

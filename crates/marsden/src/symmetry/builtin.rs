@@ -14,7 +14,7 @@
 //! [MR99]: Marsden & Ratiu, *Introduction to Mechanics and Symmetry*, 2nd ed. (1999).
 
 use super::{FiniteAction, GroupAction};
-use crate::Scalar;
+use crate::scalar::Scalar;
 
 /// The hat map `ω ↦ ω̂` with `ω̂ x = ω × x` (row-major 3 × 3).
 pub fn hat(w: [f64; 3]) -> [[f64; 3]; 3] {

@@ -10,10 +10,13 @@
 use std::fmt;
 
 use super::{FiniteAction, GroupAction, tangent_lift, validate};
-use crate::ad::{self, MultiFunction};
+use crate::discrete::DiscreteLagrangian;
+use crate::error::Error;
 use crate::hamiltonian::Hamiltonian;
+use crate::mechanics::Lagrangian;
+use crate::numerics::ad::{self, MultiFunction};
+use crate::scalar::Scalar;
 use crate::symmetry::cotangent_lift;
-use crate::{DiscreteLagrangian, Error, Lagrangian, Scalar};
 
 /// Default relative tolerance of the symmetry checks.
 pub const DEFAULT_TOLERANCE: f64 = 1e-10;

@@ -15,7 +15,7 @@
 //!   ([`equivariance_defect`]).
 //!
 //! Conservation along runs (Noether, and the balance law with forces) is monitored by
-//! [`crate::diagnostics::noether`].
+//! [`crate::analysis::diagnostics::noether`].
 //!
 //! ```
 //! use marsden::symmetry::{AxisRotation, momentum_map};
@@ -42,7 +42,8 @@ pub use momentum::{
     Side, discrete_momentum, discrete_momentum_offset, lagrangian_momentum_map, momentum_map,
 };
 
-use crate::{Error, Scalar};
+use crate::error::Error;
+use crate::scalar::Scalar;
 
 /// Any built-in group action (so that a system can declare a list of different symmetries).
 #[derive(Debug, Clone, PartialEq)]
@@ -104,7 +105,7 @@ impl FiniteAction for Symmetry {
 }
 
 /// A system that declares its continuous symmetries (catalog systems do; see
-/// [`crate::systems`]). Their momentum maps are what [`crate::diagnostics::noether`] monitors.
+/// [`crate::systems`]). Their momentum maps are what [`crate::analysis::diagnostics::noether`] monitors.
 pub trait DeclaresSymmetries {
     /// The group actions leaving the system invariant.
     fn symmetries(&self) -> Vec<Symmetry>;

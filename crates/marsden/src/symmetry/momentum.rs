@@ -15,14 +15,17 @@
 //! conserved along discrete trajectories (discrete Noether, [MW01] Thm 1.3.3).
 //!
 //! The discrete maps take the step's displacement `Δ = q₁ − q₀` (as the integrator does,
-//! [`crate::DiscreteLagrangian::discrete_lagrangian_offset`]) so that `D₂L_d` carries no
+//! [`crate::discrete::DiscreteLagrangian::discrete_lagrangian_offset`]) so that `D₂L_d` carries no
 //! `ε|q|/h` round-off; [`discrete_momentum`] takes `(q₀, q₁)` and forms `Δ` itself.
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 use super::GroupAction;
-use crate::ad::{self, MultiFunction};
-use crate::{DiscreteLagrangian, Lagrangian, Scalar, mechanics};
+use crate::discrete::DiscreteLagrangian;
+use crate::mechanics;
+use crate::mechanics::Lagrangian;
+use crate::numerics::ad::{self, MultiFunction};
+use crate::scalar::Scalar;
 
 /// `J_H(q, p)·e_a = ⟨p, (e_a)_Q(q)⟩` for every basis element, written into `out` (length m).
 pub fn momentum_map<G: GroupAction>(action: &G, q: &[f64], p: &[f64], out: &mut [f64]) {

@@ -12,7 +12,9 @@
 //! descriptions give the same motion; their discretisations differ at `O(h²)`.
 
 use super::DoublePendulum;
-use crate::{Constraint, Error, Initial, Lagrangian, MassMatrix, Scalar, Structure};
+use crate::error::Error;
+use crate::mechanics::{Constraint, Initial, Lagrangian, MassMatrix, Structure};
+use crate::scalar::Scalar;
 
 /// Cartesian double pendulum; it is both the [`Lagrangian`] and the [`Constraint`] (two rods) of
 /// the system.

@@ -9,7 +9,9 @@
 //! `q = l (sin θ, −cos θ)`), written with a distance constraint; it is the benchmark problem
 //! "pendulum with distance constraint" of `bench/README.md` (trep's constrained MidpointVI).
 
-use crate::{Constraint, Error, Initial, Lagrangian, MassMatrix, Scalar, Structure};
+use crate::error::Error;
+use crate::mechanics::{Constraint, Initial, Lagrangian, MassMatrix, Structure};
+use crate::scalar::Scalar;
 
 /// Planar pendulum in Cartesian coordinates; it is both the [`Lagrangian`] and the
 /// [`Constraint`] of the system.

@@ -11,11 +11,12 @@
 //! terms, so `∇²V` is tridiagonal: the chain declares [`Lagrangian::potential_bandwidth`]
 //! `= 1` and writes `∇V` and `∇²V` by hand (each bond's `φ′`, `φ″` once), and the midpoint
 //! step's Newton system `M/h + (h/4)∇²V` is assembled and solved in `O(n)`
-//! ([`crate::separable`], [`crate::banded`]). The AD form of `L` below remains the reference
+//! ([`crate::separable::alpha`], [`crate::numerics::banded`]). The AD form of `L` below remains the reference
 //! (tests compare the hand-written derivatives with it).
 
-use crate::banded::Banded;
-use crate::{Lagrangian, MassMatrix, Scalar, Structure};
+use crate::mechanics::{Lagrangian, MassMatrix, Structure};
+use crate::numerics::banded::Banded;
+use crate::scalar::Scalar;
 
 /// An FPU-type chain of `n` equal masses with fixed ends.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -5,7 +5,8 @@
 //! pendulum of Baker & Gollub, *Chaotic Dynamics: an introduction*, 2nd ed. (1996), ch. 3:
 //! `θ̈ + θ̇/Q + sin θ = g_D cos(ω_D t)` with `Q = 2`, `g_D = 1.5`, `ω_D = 2/3`.
 
-use crate::{Force, Lagrangian, Scalar};
+use crate::mechanics::{Force, Lagrangian};
+use crate::scalar::Scalar;
 
 /// Pendulum with viscous damping `c` and a periodic driving torque `A cos(ω t + φ)`; it is both
 /// the [`Lagrangian`] and the [`Force`] of the system.
@@ -69,7 +70,7 @@ impl Force for DampedDrivenPendulum {
     fn force<S: Scalar>(&self, t: S, _q: &[S], v: &[S], out: &mut [S]) {
         out[0] = v[0] * (-self.c) + (t * self.omega + self.phase).cos() * self.amplitude;
     }
-    fn validate(&self, dof: usize) -> Result<(), crate::Error> {
-        crate::Error::check_len("damped driven pendulum force (dof)", &[0.0], dof)
+    fn validate(&self, dof: usize) -> Result<(), crate::error::Error> {
+        crate::error::Error::check_len("damped driven pendulum force (dof)", &[0.0], dof)
     }
 }

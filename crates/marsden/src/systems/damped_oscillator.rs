@@ -4,9 +4,10 @@
 //! With the midpoint rule and midpoint forces the discrete energy balance is exact:
 //! `E_{k+1} − E_k = −c (q_{k+1} − q_k)²/h` (see [`crate::forces`] and R12).
 
+use crate::mechanics::{Force, Lagrangian};
+use crate::scalar::Scalar;
 use crate::special::SpecialError;
 use crate::special::oscillator::DampedOscillator as Exact;
-use crate::{Force, Lagrangian, Scalar};
 
 /// Damped oscillator with mass `m`, stiffness `k` and damping `c`; it is both the
 /// [`Lagrangian`] and the [`Force`] of the system.
@@ -69,7 +70,7 @@ impl Force for DampedOscillator {
     fn force<S: Scalar>(&self, _t: S, _q: &[S], v: &[S], out: &mut [S]) {
         out[0] = v[0] * (-self.c);
     }
-    fn validate(&self, dof: usize) -> Result<(), crate::Error> {
-        crate::Error::check_len("damped oscillator force (dof)", &[0.0], dof)
+    fn validate(&self, dof: usize) -> Result<(), crate::error::Error> {
+        crate::error::Error::check_len("damped oscillator force (dof)", &[0.0], dof)
     }
 }

@@ -5,7 +5,8 @@
 //!     + (m₁+m₂) g l₁ cos θ₁ + m₂ g l₂ cos θ₂.
 //! ```
 
-use crate::{Lagrangian, Scalar};
+use crate::mechanics::Lagrangian;
+use crate::scalar::Scalar;
 
 /// Double pendulum with point masses `m₁, m₂` on massless rods `l₁, l₂`.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,6 +1,7 @@
 //! Free fall in a uniform field, `L = ½ m v² − m g q` (reference case R9).
 
-use crate::{Lagrangian, MassMatrix, Scalar, Structure};
+use crate::mechanics::{Lagrangian, MassMatrix, Structure};
+use crate::scalar::Scalar;
 
 /// A particle in a linear potential; every variational integrator is exact here.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,6 +1,7 @@
 //! The Hénon–Heiles system `L = ½(ẋ² + ẏ²) − ½(x² + y²) − λ(x²y − y³/3)` (HLW06 §I.3).
 
-use crate::{Lagrangian, MassMatrix, Scalar, Structure};
+use crate::mechanics::{Lagrangian, MassMatrix, Structure};
+use crate::scalar::Scalar;
 
 /// Hénon–Heiles with coupling `λ`.
 #[derive(Debug, Clone, Copy, PartialEq)]

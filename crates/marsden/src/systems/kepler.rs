@@ -1,9 +1,10 @@
 //! The Kepler problem in the plane, `L = ½|v|² + μ/|q|` (HLW06 §I.2).
 
-use crate::banded::Banded;
+use crate::mechanics::{Lagrangian, MassMatrix, Structure};
+use crate::numerics::banded::Banded;
+use crate::scalar::Scalar;
 use crate::special::SpecialError;
 use crate::special::kepler::KeplerOrbit;
-use crate::{Lagrangian, MassMatrix, Scalar, Structure};
 
 /// Planar Kepler problem with gravitational parameter `μ` (unit mass).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,7 +1,7 @@
 //! A catalog of canonical mechanical systems, each with documented defaults.
 //!
 //! Reused by tests, benchmarks, examples and the command-line tool (as GeometricProblems.jl and
-//! diffsol's `test_models/` do). Every system implements [`crate::Lagrangian`]; closed-form
+//! diffsol's `test_models/` do). Every system implements [`crate::mechanics::Lagrangian`]; closed-form
 //! invariants and exact solutions sit next to it where they exist.
 //!
 //! | system | coordinates | defaults | known answers |
@@ -22,7 +22,7 @@
 //! | [`PendulumOnCart`] | `x, θ` | M = 1, m = 0.1, l = 0.5, g = 9.8, A = 1, ω = 3 (+ force) | horizontal momentum balance |
 //! | [`PointRigidBody`] | `x₁ y₁ z₁ …` + distance constraints | tetrahedron, masses 1–4 | momentum, angular momentum |
 //!
-//! Systems with forces or constraints implement [`crate::Force`] or [`crate::Constraint`]
+//! Systems with forces or constraints implement [`crate::mechanics::Force`] or [`crate::mechanics::Constraint`]
 //! themselves, so `Problem::new(sys, …)?.with_force(sys)` / `.with_constraint(sys)?` sets them up.
 
 mod cartesian_double_pendulum;

@@ -1,6 +1,7 @@
 //! The harmonic oscillator `L = ½ m v² − ½ k q²`.
 
-use crate::{Lagrangian, MassMatrix, Scalar, Structure};
+use crate::mechanics::{Lagrangian, MassMatrix, Structure};
+use crate::scalar::Scalar;
 
 /// Harmonic oscillator with mass `m` and stiffness `k` (ω = √(k/m)).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,8 +1,9 @@
 //! The planar pendulum `L = ½ m l² θ̇² + m g l cos θ` (θ from the downward vertical).
 
-use crate::banded::Banded;
+use crate::mechanics::{Lagrangian, MassMatrix, Structure};
+use crate::numerics::banded::Banded;
+use crate::scalar::Scalar;
 use crate::special::{self, SpecialError};
-use crate::{Lagrangian, MassMatrix, Scalar, Structure};
 
 /// Planar pendulum of mass `m`, length `l` in gravity `g`.
 #[derive(Debug, Clone, Copy, PartialEq)]

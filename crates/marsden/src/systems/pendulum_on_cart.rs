@@ -15,7 +15,8 @@
 //! (seed: *Noether's theorem with forces*). Defaults: the cart-pole of Barto, Sutton & Anderson,
 //! IEEE SMC 13 (1983): `M = 1`, `m = 0.1`, `l = 0.5`, `g = 9.8`; drive `A = 1`, `ω = 3`, `φ = 0`.
 
-use crate::{Force, Lagrangian, Scalar};
+use crate::mechanics::{Force, Lagrangian};
+use crate::scalar::Scalar;
 
 /// Cart-pole with a periodic horizontal force on the cart; it is both the [`Lagrangian`] and the
 /// [`Force`] of the system.
@@ -85,7 +86,7 @@ impl Force for PendulumOnCart {
         out[0] = (t * self.omega + self.phase).cos() * self.amplitude;
         out[1] = S::from(0.0);
     }
-    fn validate(&self, dof: usize) -> Result<(), crate::Error> {
-        crate::Error::check_len("pendulum on cart force (dof)", &[0.0; 2], dof)
+    fn validate(&self, dof: usize) -> Result<(), crate::error::Error> {
+        crate::error::Error::check_len("pendulum on cart force (dof)", &[0.0; 2], dof)
     }
 }

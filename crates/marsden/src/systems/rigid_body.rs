@@ -10,7 +10,8 @@
 //! no component along `ξ_Q(q_k)` (see `diagnostics::noether`). Coordinates `x₁ y₁ z₁ x₂ …`.
 //! Four non-coplanar points with all six links form a rigid (and not over-constrained) body.
 
-use crate::{Constraint, Lagrangian, Scalar};
+use crate::mechanics::{Constraint, Lagrangian};
+use crate::scalar::Scalar;
 
 /// Point masses with distance constraints (a free rigid body when the links make it rigid).
 #[derive(Debug, Clone, PartialEq)]

@@ -13,7 +13,9 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001). [HLW06]: Hairer, Lubich, Wanner (2006).
 
-use crate::{Constraint, Error, Initial, Lagrangian, MassMatrix, Scalar, Structure};
+use crate::error::Error;
+use crate::mechanics::{Constraint, Initial, Lagrangian, MassMatrix, Structure};
+use crate::scalar::Scalar;
 
 /// Spherical pendulum of mass `m` and length `l` in gravity `g`; it is both the [`Lagrangian`]
 /// and the [`Constraint`] of the system.

@@ -68,7 +68,7 @@ pub fn one_step_matrix<A: DiscreteAction + Clone>(action: &A, h: f64) -> [[f64; 
 pub fn loglog_slope(h: &[f64], err: &[f64]) -> f64 {
     let x: Vec<f64> = h.iter().map(|v| v.ln()).collect();
     let y: Vec<f64> = err.iter().map(|v| v.ln()).collect();
-    marsden::diagnostics::least_squares_slope(&x, &y)
+    marsden::analysis::diagnostics::least_squares_slope(&x, &y)
 }
 
 /// Asserts `|a − b| ≤ tol` with a readable message.

@@ -52,7 +52,7 @@ impl NBodyData {
     ) -> Result<(NBody, Vec<f64>, Vec<f64>), NBodyFileError> {
         let p = self.momenta();
         let system = NBody::with_parameters(self.masses, g, softening).map_err(|e| match e {
-            crate::Error::InvalidOption {
+            crate::error::Error::InvalidOption {
                 name,
                 value,
                 reason,

@@ -14,7 +14,9 @@ pub mod gravity;
 
 pub use file::{NBodyData, NBodyFileError, load, parse as parse_file};
 
-use crate::{Error, Lagrangian, MassMatrix, Scalar, Structure};
+use crate::error::Error;
+use crate::mechanics::{Lagrangian, MassMatrix, Structure};
+use crate::scalar::Scalar;
 
 /// N point masses under mutual gravitation.
 #[derive(Debug, Clone, PartialEq)]

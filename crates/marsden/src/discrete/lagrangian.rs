@@ -1,0 +1,142 @@
+//! Discrete mechanics: discrete Lagrangians, their derivatives and discrete Legendre transforms.
+//!
+//! Seed: *discrete variational mechanics*. A discrete Lagrangian `L_d(q₀, q₁, h) ≈ ∫₀ʰ L dt`
+//! replaces the action of one step; the discrete action `Σ L_d(q_k, q_{k+1})` is made
+//! stationary, which gives the discrete Euler–Lagrange (DEL) equations
+//!
+//! ```text
+//!     D₂L_d(q_{k−1}, q_k) + D₁L_d(q_k, q_{k+1}) = 0,
+//! ```
+//!
+//! and the discrete Legendre transforms ([MW01] §1.3, conventions in DESIGN.md §3)
+//!
+//! ```text
+//!     F⁻L_d(q₀, q₁) = (q₀, −D₁L_d(q₀, q₁)),     F⁺L_d(q₀, q₁) = (q₁, D₂L_d(q₀, q₁)).
+//! ```
+//!
+//! Two traits: [`DiscreteLagrangian`] is the two-point `L_d(q₀, q₁)` a user may supply directly;
+//! [`DiscreteAction`] is what the integrator steps: `L_d` written over the control points
+//! `Q₀ = q_k, Q₁, …, Q_s = q_{k+1}` of one step, so that Galerkin rules can expose internal stages
+//! as unknowns of the same Newton solve. Every `DiscreteLagrangian` is a `DiscreteAction` with no
+//! internal stages.
+//!
+//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+
+use crate::scalar::Scalar;
+
+use crate::numerics::scratch::{NODE, with_buffer};
+use crate::separable::ExplicitStep;
+use crate::separable::SeparableStep;
+
+/// A two-point discrete Lagrangian `L_d(t₀, h, q₀, q₁)`.
+///
+/// ```
+/// use marsden::{DiscreteLagrangian, Scalar};
+///
+/// /// Midpoint discrete Lagrangian of the unit harmonic oscillator, written by hand.
+/// struct OscillatorLd;
+/// impl DiscreteLagrangian for OscillatorLd {
+///     fn dof(&self) -> usize { 1 }
+///     fn discrete_lagrangian<S: Scalar>(&self, _t0: f64, h: f64, q0: &[S], q1: &[S]) -> S {
+///         let v = (q1[0] - q0[0]) / h;
+///         let q = (q0[0] + q1[0]) * 0.5;
+///         (v * v - q * q) * (0.5 * h)
+///     }
+/// }
+/// ```
+pub trait DiscreteLagrangian {
+    /// Degrees of freedom `n`.
+    fn dof(&self) -> usize;
+
+    /// `L_d(q₀, q₁)` for the step from `t₀` to `t₀ + h`.
+    fn discrete_lagrangian<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], q1: &[S]) -> S;
+
+    /// `L_d(q₀, q₀ + Δ)`, given the displacement `Δ = q₁ − q₀` exactly.
+    ///
+    /// The integrator steps displacements: `q₁ − q₀` recomputed from rounded positions carries an
+    /// error `ε|q|`, which a difference quotient `(q₁ − q₀)/h` turns into a momentum error
+    /// `ε|q|/h` per step, visible as a random walk of conserved momenta. The default forms
+    /// `q₁ = q₀ + Δ`; override it (as the built-in rules do) to use `Δ` directly.
+    fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
+        let q1 = |i: usize| q0[i] + delta[i];
+        with_buffer::<S, NODE, S>(q0.len(), S::from(0.0), q1, |q1| {
+            self.discrete_lagrangian(t0, h, q0, q1)
+        })
+    }
+
+    /// An explicit form of the step, if this discrete Lagrangian has one (the trapezoid rule on a
+    /// separable Lagrangian: velocity Störmer–Verlet, [`crate::separable::explicit`]). Default: none.
+    fn explicit(&self) -> Option<&dyn ExplicitStep> {
+        None
+    }
+
+    /// A structured Newton step, if this discrete Lagrangian may have one (the α rules on a
+    /// separable Lagrangian: Jacobian `M/h + hα(1−α)∇²V`, [`crate::separable::alpha`]; whether the
+    /// Lagrangian really is separable is asked once, [`SeparableStep::mass`]). Default: none.
+    fn separable(&self) -> Option<&dyn SeparableStep> {
+        None
+    }
+}
+
+/// A discrete Lagrangian over the control points of one step (what the integrator steps).
+///
+/// The control points `Q₀ = q_k, Q₁, …, Q_s = q_{k+1}` (`s = internal_stages() + 1`) are given as
+/// `q0 = Q₀` and the offsets `Δ_j = Q_j − Q₀` back to back (length `s·n`). The step solves
+/// `∂L_d/∂Q_j = 0` for the internal points together with the discrete Legendre transform for
+/// `q_{k+1}`; derivatives are always taken with respect to the control points `Q_j`.
+pub trait DiscreteAction {
+    /// Degrees of freedom `n`.
+    fn dof(&self) -> usize;
+    /// Number of internal control points per step (0 for two-point discrete Lagrangians).
+    fn internal_stages(&self) -> usize {
+        0
+    }
+    /// The discrete action of one step as a function of `Q₀` and the offsets `Q_j − Q₀`.
+    fn action<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], offsets: &[S]) -> S;
+
+    /// An explicit form of the step, if any (see [`DiscreteLagrangian::explicit`]).
+    fn explicit(&self) -> Option<&dyn ExplicitStep> {
+        None
+    }
+
+    /// A structured Newton step, if any (see [`DiscreteLagrangian::separable`]).
+    fn separable(&self) -> Option<&dyn SeparableStep> {
+        None
+    }
+}
+
+impl<D: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &D {
+    fn dof(&self) -> usize {
+        (**self).dof()
+    }
+    #[inline(always)]
+    fn discrete_lagrangian<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], q1: &[S]) -> S {
+        (**self).discrete_lagrangian(t0, h, q0, q1)
+    }
+    #[inline(always)]
+    fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
+        (**self).discrete_lagrangian_offset(t0, h, q0, delta)
+    }
+    fn explicit(&self) -> Option<&dyn ExplicitStep> {
+        (**self).explicit()
+    }
+    fn separable(&self) -> Option<&dyn SeparableStep> {
+        (**self).separable()
+    }
+}
+
+impl<T: DiscreteLagrangian> DiscreteAction for T {
+    fn dof(&self) -> usize {
+        DiscreteLagrangian::dof(self)
+    }
+    #[inline(always)]
+    fn action<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], offsets: &[S]) -> S {
+        self.discrete_lagrangian_offset(t0, h, q0, offsets)
+    }
+    fn explicit(&self) -> Option<&dyn ExplicitStep> {
+        DiscreteLagrangian::explicit(self)
+    }
+    fn separable(&self) -> Option<&dyn SeparableStep> {
+        DiscreteLagrangian::separable(self)
+    }
+}

@@ -1,0 +1,210 @@
+//! The continuous system: a Lagrangian `L(t, q, v)` written once, generic over the scalar.
+//!
+//! Seed: *Lagrangian mechanics* — `L: TQ → ℝ`, the action `∫ L(q, q̇) dt`, Hamilton's principle
+//! and its Euler–Lagrange equations `∂L/∂q − d/dt ∂L/∂q̇ = 0` ([MW01] §1.2). Everything the crate
+//! needs (momenta, energy, accelerations, discrete Lagrangians and their derivatives) is obtained
+//! from this one function by automatic differentiation; see [`crate::mechanics::jet`].
+//!
+//! [MW01]: J. E. Marsden, M. West, *Discrete mechanics and variational integrators*, Acta Numerica 10 (2001).
+
+use crate::numerics::ad::{self, HessianParts, MultiFunction};
+use crate::numerics::banded::Banded;
+use crate::numerics::scratch::{NODE, with_buffer};
+use crate::scalar::Scalar;
+
+/// A (possibly time-dependent) Lagrangian `L(t, q, v)` on `TQ = ℝⁿ × ℝⁿ`.
+///
+/// Write it once over [`Scalar`]; f64 evaluation gives values, dual numbers give derivatives.
+///
+/// ```
+/// use marsden::{Lagrangian, Scalar};
+///
+/// /// Planar pendulum, L = ½ m l² θ̇² + m g l cos θ.
+/// struct Pendulum { m: f64, l: f64, g: f64 }
+///
+/// impl Lagrangian for Pendulum {
+///     fn dof(&self) -> usize { 1 }
+///     fn lagrangian<S: Scalar>(&self, _t: S, q: &[S], v: &[S]) -> S {
+///         v[0] * v[0] * (0.5 * self.m * self.l * self.l) + q[0].cos() * (self.m * self.g * self.l)
+///     }
+/// }
+///
+/// let p = Pendulum { m: 1.0, l: 1.0, g: 1.0 };
+/// assert_eq!(p.lagrangian(0.0, &[0.0], &[2.0]), 3.0);
+/// ```
+///
+/// Speed: for up to four degrees of freedom the step runs in code compiled for x86-64-v3 when
+/// the CPU has it ([`crate::integrator::small::dispatch`]), but only what is inlined into it; marking `lagrangian`
+/// `#[inline(always)]`, as the built-in systems do, makes sure yours is (same results either way).
+pub trait Lagrangian {
+    /// Number of degrees of freedom `n` (length of `q` and `v`).
+    fn dof(&self) -> usize;
+
+    /// `L(t, q, v)`; `q` and `v` have length [`Lagrangian::dof`].
+    fn lagrangian<S: Scalar>(&self, t: S, q: &[S], v: &[S]) -> S;
+
+    /// Structure the integrators may exploit (default: none). Declaring
+    /// [`Structure::Separable`] asserts `L = ½ vᵀ M v − V(t, q)` with a constant `M`; it is
+    /// checked by AD at the initial state of a [`crate::run::Problem`]
+    /// ([`crate::mechanics::check_structure`]).
+    fn structure(&self) -> Structure {
+        Structure::General
+    }
+
+    /// `∇V(t, q)` of a separable `L = ½ vᵀ M v − V(t, q)`, written into `grad` (length n);
+    /// `scratch` is storage the implementation may use, kept by the caller between calls so
+    /// that the step does not allocate. Used only when [`Lagrangian::structure`] is
+    /// [`Structure::Separable`].
+    ///
+    /// Default: AD of `−L(t, q, 0)` ([`gradient_by_ad`]). Override it where AD
+    /// is too slow (the N-body problem, [`crate::systems::NBody`]); tests compare the two with
+    /// [`crate::mechanics::potential::gradient_defect`].
+    #[inline]
+    fn potential_gradient(&self, t: f64, q: &[f64], grad: &mut [f64], scratch: &mut Vec<f64>) {
+        let _ = scratch;
+        gradient_by_ad(self, t, q, grad);
+    }
+
+    /// Half-bandwidth `b` of `∇²V` (`∂²V/∂qᵢ∂qⱼ = 0` for `|i − j| > b`), if the potential is a
+    /// sum of local terms; `None` (the default): dense.
+    fn potential_bandwidth(&self) -> Option<usize> {
+        None
+    }
+
+    /// `∇²V(t, q)` of a separable Lagrangian, written into `hess` (shaped n × n with the
+    /// half-bandwidth of [`Lagrangian::potential_bandwidth`]; entries start at zero).
+    ///
+    /// Default: the dense AD Hessian of `−L(t, q, 0)` ([`hessian_by_ad`]).
+    /// Override it together with `potential_bandwidth` for large systems (a chain:
+    /// [`crate::systems::Chain`]), so the Newton Jacobian `M/h + (h/4)∇²V` of the midpoint
+    /// rule is assembled and factored in `O(n)`.
+    fn potential_hessian(&self, t: f64, q: &[f64], hess: &mut Banded) {
+        hessian_by_ad(self, t, q, hess);
+    }
+}
+
+/// What is known about the form of a Lagrangian.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Structure {
+    /// No assumption.
+    General,
+    /// `L = ½ vᵀ M v − V(t, q)` with a constant, symmetric positive definite mass matrix `M`:
+    /// the trapezoid rule is then explicit (velocity Störmer–Verlet, [`crate::separable::explicit`]) and
+    /// the midpoint rule a Newton solve with Jacobian `M/h + (h/4)∇²V` ([`crate::separable::alpha`]);
+    /// both use the potential's derivatives ([`crate::mechanics::potential`]).
+    Separable {
+        /// The constant mass matrix.
+        mass: MassMatrix,
+    },
+}
+
+/// A constant mass matrix.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MassMatrix {
+    /// `diag(m₁, …, m_n)`.
+    Diagonal(Vec<f64>),
+    /// A dense symmetric matrix, row-major n × n.
+    Dense(Vec<f64>),
+}
+
+impl MassMatrix {
+    /// The matrix as a dense row-major array.
+    pub fn to_dense(&self) -> Vec<f64> {
+        match self {
+            Self::Dense(m) => m.clone(),
+            Self::Diagonal(d) => {
+                let n = d.len();
+                let mut m = vec![0.0; n * n];
+                d.iter().enumerate().for_each(|(i, di)| m[i * n + i] = *di);
+                m
+            }
+        }
+    }
+}
+
+impl<L: Lagrangian + ?Sized> Lagrangian for &L {
+    fn dof(&self) -> usize {
+        (**self).dof()
+    }
+    #[inline(always)]
+    fn lagrangian<S: Scalar>(&self, t: S, q: &[S], v: &[S]) -> S {
+        (**self).lagrangian(t, q, v)
+    }
+    fn structure(&self) -> Structure {
+        (**self).structure()
+    }
+    #[inline(always)]
+    fn potential_gradient(&self, t: f64, q: &[f64], grad: &mut [f64], scratch: &mut Vec<f64>) {
+        (**self).potential_gradient(t, q, grad, scratch)
+    }
+    fn potential_bandwidth(&self) -> Option<usize> {
+        (**self).potential_bandwidth()
+    }
+    fn potential_hessian(&self, t: f64, q: &[f64], hess: &mut Banded) {
+        (**self).potential_hessian(t, q, hess)
+    }
+}
+
+// ---- The potential of a separable Lagrangian by AD: the defaults of the trait above ----
+
+/// `q ↦ −L(t, q, 0)`: the potential `V(t, q)` of a separable Lagrangian.
+pub(crate) struct PotentialOf<'a, L: ?Sized> {
+    /// The Lagrangian.
+    pub lagrangian: &'a L,
+    /// Time.
+    pub t: f64,
+}
+
+impl<L: Lagrangian + ?Sized> MultiFunction for PotentialOf<'_, L> {
+    fn inputs(&self) -> usize {
+        self.lagrangian.dof()
+    }
+    fn outputs(&self) -> usize {
+        1
+    }
+    #[inline]
+    fn eval<S: Scalar>(&self, q: &[S], out: &mut [S]) {
+        let zero = S::from(0.0);
+        with_buffer::<S, NODE, ()>(
+            q.len(),
+            zero,
+            |_| zero,
+            |v| out[0] = -self.lagrangian.lagrangian(S::from(self.t), q, v),
+        );
+    }
+}
+
+/// `∇V(t, q)` by AD of `−L(t, q, 0)` (the default of
+/// [`crate::mechanics::Lagrangian::potential_gradient`]); `grad` has length n.
+pub fn gradient_by_ad<L: Lagrangian + ?Sized>(l: &L, t: f64, q: &[f64], grad: &mut [f64]) {
+    let mut value = [0.0];
+    ad::jacobian(
+        &PotentialOf { lagrangian: l, t },
+        q,
+        0..q.len(),
+        &mut value,
+        grad,
+    );
+}
+
+/// `V(t, q) = −L(t, q, 0)` at `f64` (a constant offset of `V` is irrelevant to the dynamics).
+pub fn potential<L: Lagrangian + ?Sized>(l: &L, t: f64, q: &[f64]) -> f64 {
+    let mut value = [0.0];
+    ad::eval_f64(&PotentialOf { lagrangian: l, t }, q, &mut value);
+    value[0]
+}
+
+/// `∇²V(t, q)` by AD of `−L(t, q, 0)`, dense, written into the band of `hess` (the default of
+/// [`crate::mechanics::Lagrangian::potential_hessian`]; entries outside the band are dropped, so give
+/// `hess` the full bandwidth `n − 1` unless the potential is known to be banded).
+pub fn hessian_by_ad<L: Lagrangian + ?Sized>(l: &L, t: f64, q: &[f64], hess: &mut Banded) {
+    let n = q.len();
+    let mut parts = HessianParts::default();
+    ad::partial_hessian(&PotentialOf { lagrangian: l, t }, q, 0..n, 0..n, &mut parts);
+    hess.fill_zero();
+    for i in 0..n {
+        for j in hess.columns(i) {
+            hess.set(i, j, parts.hess[i * n + j]);
+        }
+    }
+}

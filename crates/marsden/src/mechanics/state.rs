@@ -1,0 +1,56 @@
+//! Points of phase space and initial data.
+//!
+//! A [`State`] `(t, q, p)` is what the discrete Hamiltonian map `F̃_{L_d}: (q_k, p_k) ↦ (q_{k+1},
+//! p_{k+1})` advances ([MW01] §1.5); [`Initial`] is how a user gives the start of a run, as
+//! positions with velocities `(q₀, v₀)` or with momenta `(q₀, p₀)` — the two are related by the
+//! Legendre transform `p = ∂L/∂v` ([`crate::mechanics::momentum`], [`crate::mechanics::velocity`]).
+//!
+//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+
+/// A point of phase space `(t, q, p)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct State {
+    /// Time.
+    pub t: f64,
+    /// Positions (length n).
+    pub q: Vec<f64>,
+    /// Momenta (length n).
+    pub p: Vec<f64>,
+}
+
+/// Initial data, given as velocities or as momenta.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Initial {
+    /// `(q₀, v₀)`; the momenta are `p₀ = ∂L/∂v(t₀, q₀, v₀)`.
+    Velocity {
+        /// Positions.
+        q: Vec<f64>,
+        /// Velocities.
+        v: Vec<f64>,
+    },
+    /// `(q₀, p₀)`; the velocities are found by inverting the Legendre transform.
+    Momentum {
+        /// Positions.
+        q: Vec<f64>,
+        /// Momenta.
+        p: Vec<f64>,
+    },
+}
+
+impl Initial {
+    /// Initial positions and velocities.
+    pub fn velocity(q: &[f64], v: &[f64]) -> Self {
+        Self::Velocity {
+            q: q.to_vec(),
+            v: v.to_vec(),
+        }
+    }
+
+    /// Initial positions and momenta.
+    pub fn momentum(q: &[f64], p: &[f64]) -> Self {
+        Self::Momentum {
+            q: q.to_vec(),
+            p: p.to_vec(),
+        }
+    }
+}

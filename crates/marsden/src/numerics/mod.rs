@@ -1,0 +1,18 @@
+//! Numerical machinery with no mechanics in it: automatic differentiation, dual numbers,
+//! Newton's method with its one stopping rule, dense and banded linear algebra, scratch buffers.
+//!
+//! | module | what |
+//! |---|---|
+//! | [`ad`] | the only module that seeds dual numbers: gradients, Jacobians, mixed Hessian blocks |
+//! | `dual` | fixed-size dual numbers for the small step kernels |
+//! | [`newton`] | Newton's method, its options, and the [`newton::Convergence`] rule every Newton loop uses |
+//! | [`dense`] | LU with partial pivoting in caller-owned buffers |
+//! | [`banded`] | band matrices and their LU (large chains in `O(n)`) |
+//! | `scratch` | stack buffers for the hot path |
+
+pub mod ad;
+pub mod banded;
+pub mod dense;
+pub(crate) mod dual;
+pub mod newton;
+pub(crate) mod scratch;

@@ -1,0 +1,22 @@
+//! From a problem to a trajectory: the validated problem, the time grid, one run loop over any
+//! [`Stepper`] with its observers, and the stored solution.
+//!
+//! | module | what |
+//! |---|---|
+//! | [`problem`] | system + initial data + grid, validated once; `solve` |
+//! | [`grid`] | `t_k = t₀ + k h`, storage stride |
+//! | [`observer`] | watching each step: monitors, writers, progress, stopping |
+//! | [`simulate`] | the one run loop |
+//! | [`trajectory`] | stored samples, per-step reports, why the run ended |
+
+pub mod grid;
+pub mod observer;
+pub mod problem;
+pub mod simulate;
+pub mod trajectory;
+
+pub use grid::{RunOptions, TimeGrid};
+pub use observer::{Observer, StepView};
+pub use problem::{Problem, SolveOptions};
+pub use simulate::simulate;
+pub use trajectory::{RunFailure, Termination, Trajectory};

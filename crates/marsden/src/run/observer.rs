@@ -1,0 +1,52 @@
+//! Watching a run step by step: monitors, streaming writers, progress bars, stopping rules.
+
+use std::ops::ControlFlow;
+
+use crate::integrator::StepReport;
+
+/// What an observer sees after each completed step.
+#[derive(Debug, Clone, Copy)]
+pub struct StepView<'a> {
+    /// Number of steps completed (1 after the first step).
+    pub step: usize,
+    /// Time of the new state.
+    pub t: f64,
+    /// Positions of the new state.
+    pub q: &'a [f64],
+    /// Momenta of the new state.
+    pub p: &'a [f64],
+    /// Multipliers of the step just taken (length d).
+    pub multipliers: &'a [f64],
+    /// Newton report of the step.
+    pub report: &'a StepReport,
+}
+
+/// Watches a run step by step (monitors, streaming writers, progress bars, stopping rules).
+pub trait Observer {
+    /// Called once with the initial state (`step = 0`) before stepping.
+    fn start(&mut self, _initial: &StepView<'_>) {}
+    /// Called after every completed step; return `ControlFlow::Break(())` to stop the run.
+    fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()>;
+    /// Whether [`Observer::observe`] must see every step (default: true). When false, it may
+    /// see only the stored samples, and [`simulate`] takes explicit steps between samples in
+    /// one loop ([`Integrator::advance`]).
+    fn every_step(&self) -> bool {
+        true
+    }
+}
+
+/// Observes nothing.
+impl Observer for () {
+    fn observe(&mut self, _view: &StepView<'_>) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
+    fn every_step(&self) -> bool {
+        false
+    }
+}
+
+impl<F: FnMut(&StepView<'_>) -> ControlFlow<()>> Observer for F {
+    fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()> {
+        self(view)
+    }
+}

@@ -1,0 +1,132 @@
+//! Running an integrator over a time grid: storage stride and observers.
+//!
+//! [`simulate`] steps an [`Integrator`] from a starting [`State`] over a [`TimeGrid`], stores every
+//! `stride`-th state in a [`Trajectory`] (always the first and the last), and shows every step to
+//! an [`Observer`], which can monitor, stream to disk, report progress or stop the run. Times are
+//! computed as `t₀ + k h`, never accumulated.
+
+use super::grid::{RunOptions, TimeGrid};
+use super::observer::{Observer, StepView};
+use super::trajectory::{Termination, Trajectory};
+use crate::discrete::{DiscreteAction, DiscreteForce};
+use crate::holonomic::MomentumProjection;
+use crate::integrator::{Integrator, StepReport};
+use crate::mechanics::{Constraint, State};
+
+/// Steps `integrator` from `start` over `grid`, storing every `options.stride`-th state and showing
+/// each step to `observer`. Never fails as a call: a failing step ends the run with
+/// [`Termination::Failed`] and the trajectory up to the last good state.
+pub fn simulate<A, F, C, P, O>(
+    integrator: &mut Integrator<A, F, C, P>,
+    start: State,
+    grid: &TimeGrid,
+    options: &RunOptions,
+    observer: &mut O,
+) -> Trajectory
+where
+    A: DiscreteAction,
+    F: DiscreteForce,
+    C: Constraint,
+    P: MomentumProjection,
+    O: Observer + ?Sized,
+{
+    let shape = integrator.shape();
+    let mut traj = Trajectory::new(shape.n, shape.d, grid.h);
+    let stride = options.stride.max(1);
+    let mut state = start;
+    let initial = StepReport::default();
+    traj.push(0, state.t, &state.q, &state.p, &[], initial);
+    observer.start(&StepView {
+        step: 0,
+        t: state.t,
+        q: &state.q,
+        p: &state.p,
+        multipliers: &[],
+        report: &initial,
+    });
+    let before = *integrator.statistics();
+    let mut last_report = initial;
+    // Explicit steps between stored samples run in one loop when nobody watches each step.
+    let chunked = integrator.is_explicit() && !observer.every_step();
+    let mut k = 0;
+    while k < grid.steps {
+        let chunk = if chunked {
+            (stride - k % stride).min(grid.steps - k)
+        } else {
+            1
+        };
+        let done_before = integrator.statistics().steps;
+        let outcome = integrator.advance(&mut state, grid.h, chunk);
+        k += integrator.statistics().steps - done_before;
+        state.t = grid.time(k);
+        traj.steps = k;
+        match outcome {
+            Ok(report) => last_report = report,
+            Err(e) => {
+                traj.termination = Termination::Failed(e);
+                break;
+            }
+        }
+        let view = StepView {
+            step: k,
+            t: state.t,
+            q: &state.q,
+            p: &state.p,
+            multipliers: integrator.multipliers(),
+            report: &last_report,
+        };
+        let stop = observer.observe(&view).is_break();
+        if k % stride == 0 || k == grid.steps || stop {
+            traj.push_sample(
+                k,
+                (state.t, &state.q, &state.p),
+                (
+                    integrator.multipliers(),
+                    integrator.projection_multipliers(),
+                ),
+                last_report,
+            );
+        }
+        if stop {
+            traj.termination = Termination::Stopped { steps: k };
+            break;
+        }
+    }
+    let multipliers = (
+        integrator.multipliers(),
+        integrator.projection_multipliers(),
+    );
+    store_last_good(&mut traj, &state, multipliers, last_report);
+    traj.statistics = difference(integrator.statistics(), &before);
+    traj
+}
+
+/// After a failure, makes sure the last good state is the last sample.
+fn store_last_good(
+    traj: &mut Trajectory,
+    state: &State,
+    multipliers: (&[f64], &[f64]),
+    report: StepReport,
+) {
+    if traj.step_indices.last() != Some(&traj.steps) {
+        let sample = (state.t, state.q.as_slice(), state.p.as_slice());
+        traj.push_sample(traj.steps, sample, multipliers, report);
+    }
+}
+
+fn difference(
+    after: &crate::integrator::Statistics,
+    before: &crate::integrator::Statistics,
+) -> crate::integrator::Statistics {
+    crate::integrator::Statistics {
+        steps: after.steps - before.steps,
+        newton_iterations: after.newton_iterations - before.newton_iterations,
+        max_newton_iterations: after.max_newton_iterations,
+        system_evaluations: after.system_evaluations - before.system_evaluations,
+        action_evaluations: after.action_evaluations - before.action_evaluations,
+        failed_steps: after.failed_steps - before.failed_steps,
+        explicit_steps: after.explicit_steps - before.explicit_steps,
+        jacobian_factorizations: after.jacobian_factorizations - before.jacobian_factorizations,
+        potential_gradients: after.potential_gradients - before.potential_gradients,
+    }
+}
