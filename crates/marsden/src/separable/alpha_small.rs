@@ -15,7 +15,7 @@
 //! arithmetic in the same order makes both paths agree to round-off (test
 //! `separable_fast_path.rs`).
 
-use super::alpha::{Frame, Mass, SeparableWorkspace, node};
+use super::step::{Frame, Mass, SeparableWorkspace, node};
 use crate::mechanics::Lagrangian;
 use crate::numerics::dense::{max_norm, solve_fixed};
 use crate::numerics::newton::{NewtonFailure, NewtonOptions, NewtonReport};

@@ -7,6 +7,7 @@
 //! | [`explicit`] | the trapezoid rule is velocity Störmer–Verlet: one `∇V` per step, explicit |
 //! | [`alpha`] | the α rules: Newton for the offset alone, Jacobian `M/h + hα(1−α)∇²V`, reused while it contracts; band storage for chains |
 //! | `alpha_small` | the same on stack arrays for `n ≤ 4` and a diagonal mass |
+//! | `step` | what a rule offers ([`SeparableStep`]), one step's data ([`Frame`]), the buffers ([`SeparableWorkspace`]) |
 //!
 //! The integrator takes these paths only for unforced, unconstrained two-point steps, and
 //! `Integrator::with_fast_paths(false)` switches them off; tests compare them with the general
@@ -15,6 +16,7 @@
 pub mod alpha;
 mod alpha_small;
 pub mod explicit;
+mod step;
 
-pub use alpha::{Frame, SeparableStep, SeparableWorkspace};
 pub use explicit::{ExplicitRun, ExplicitStep, ExplicitWorkspace};
+pub use step::{Frame, SeparableStep, SeparableWorkspace};
