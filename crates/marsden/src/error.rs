@@ -1,8 +1,15 @@
-//! Typed errors carrying the numbers a user needs to act on them.
+//! Typed errors carrying the numbers a user needs to act on them, in three layers:
 //!
-//! Every fallible function of the crate returns [`Error`]. Run-time failures name the step and
-//! time at which they happened, and a failed run still hands back the trajectory computed up to
-//! the failure (see [`crate::run::RunFailure`]).
+//! * [`InputError`]: the caller's data is malformed (lengths, non-finite numbers, an invalid
+//!   step, option or method name) — nothing was computed;
+//! * [`SetupError`]: the data is well formed but the mechanics refuses it (a singular
+//!   Lagrangian, initial data off the constraint manifold, a declared structure or symmetry
+//!   that does not hold, a boundary value problem without solution);
+//! * [`StepFailure`]: a step of a run failed; it names the step and the time once, and its
+//!   [`StepError`] says why. A failed run still hands back the trajectory computed up to the
+//!   failure (see [`crate::run::RunFailure`]).
+//!
+//! Every fallible function of the crate returns [`Error`], one of the three.
 
 use thiserror::Error;
 
@@ -10,53 +17,24 @@ use thiserror::Error;
 #[derive(Debug, Clone, PartialEq, Error)]
 #[non_exhaustive]
 pub enum Error {
-    /// The Newton iteration of a step did not reach its tolerance.
-    #[error(
-        "Newton's method did not converge in step {step} (t = {t}): residual {residual:.3e} \
-         after {iterations} iterations (tolerance {tolerance:.1e}); try a smaller step h or a \
-         larger max_iterations"
-    )]
-    NewtonDidNotConverge {
-        /// Index of the step being taken (from `t_step` to `t_step + h`).
-        step: usize,
-        /// Time at the start of the step.
-        t: f64,
-        /// Iterations performed.
-        iterations: usize,
-        /// Residual (max-norm) at the last iterate.
-        residual: f64,
-        /// The residual tolerance that was asked for.
-        tolerance: f64,
-    },
-    /// The Newton Jacobian of a step is singular (the discrete Lagrangian is degenerate there).
-    #[error(
-        "singular Newton Jacobian in step {step} (t = {t}) at iteration {iteration}: pivot \
-         {pivot:.3e}; the discrete Lagrangian is not regular here (is h too large, or are \
-         constraints redundant?)"
-    )]
-    SingularJacobian {
-        /// Index of the step being taken.
-        step: usize,
-        /// Time at the start of the step.
-        t: f64,
-        /// Newton iteration at which the factorisation failed.
-        iteration: usize,
-        /// The offending pivot.
-        pivot: f64,
-    },
-    /// A non-finite number (NaN or infinity) appeared during a step.
-    #[error("non-finite value in {what} during step {step} (t = {t})")]
-    NonFinite {
-        /// Index of the step being taken.
-        step: usize,
-        /// Time at the start of the step.
-        t: f64,
-        /// Which quantity went non-finite.
-        what: &'static str,
-    },
+    /// Malformed input data.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// Well-formed data the mechanics refuses.
+    #[error(transparent)]
+    Setup(#[from] SetupError),
+    /// A step of a run failed.
+    #[error(transparent)]
+    Step(#[from] StepFailure),
+}
+
+/// Malformed input: nothing was computed.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum InputError {
     /// Input data contains NaN or infinity.
     #[error("{what}[{index}] is not finite ({value})")]
-    NonFiniteInput {
+    NonFinite {
         /// Which input.
         what: &'static str,
         /// Position in the input vector.
@@ -96,6 +74,82 @@ pub enum Error {
         /// Valid range.
         reason: &'static str,
     },
+    /// A quadrature rule was asked for with an impossible number of points.
+    #[error("no {family} quadrature with {points} points: valid choices are {valid}")]
+    InvalidQuadrature {
+        /// `"gauss"` or `"lobatto"`.
+        family: &'static str,
+        /// Points asked for.
+        points: usize,
+        /// The valid range.
+        valid: String,
+    },
+    /// A Galerkin rule is inconsistent: degree out of range, or too few quadrature points for
+    /// the degree (the quadrature of the kinetic energy would be degenerate).
+    #[error(
+        "Galerkin rule P{degree} with {points} {family} points is not valid: {reason}; valid \
+         choices are 1 ≤ degree ≤ {max_degree} and points ≥ degree (gauss-s = P_s with s Gauss \
+         points, lobatto-s = P_(s−1) with s Lobatto points)"
+    )]
+    InvalidGalerkin {
+        /// Polynomial degree asked for.
+        degree: usize,
+        /// `"gauss"` or `"lobatto"`.
+        family: &'static str,
+        /// Quadrature points asked for.
+        points: usize,
+        /// What is wrong.
+        reason: String,
+        /// Largest degree accepted.
+        max_degree: usize,
+    },
+    /// A method name could not be parsed.
+    #[error("unknown method `{name}`: {reason}; valid methods are {valid}")]
+    UnknownMethod {
+        /// The name given.
+        name: String,
+        /// What is wrong with it.
+        reason: String,
+        /// The grammar of valid names.
+        valid: String,
+    },
+    /// A group action acts on a configuration space of the wrong dimension: its generators
+    /// `ξ_Q(q)` have the wrong number of components for this system.
+    #[error(
+        "the symmetry \"{symmetry}\" has generators with {found} components, but the system has \
+         {expected} degrees of freedom"
+    )]
+    SymmetryDimension {
+        /// Name of the group action.
+        symmetry: String,
+        /// Degrees of freedom of the system.
+        expected: usize,
+        /// Components of the generators (the action's `dof()`).
+        found: usize,
+    },
+    /// A generator `ξ_Q(q)` returned a non-finite component (or left one unwritten).
+    #[error(
+        "the symmetry \"{symmetry}\": generator {generator} has component {component} = {value} \
+         at q = {q:?} (not finite, or not written)"
+    )]
+    InvalidGenerator {
+        /// Name of the group action.
+        symmetry: String,
+        /// Index of the Lie algebra basis element.
+        generator: usize,
+        /// Offending component of `ξ_Q(q)`.
+        component: usize,
+        /// The value found (NaN if the component was not written).
+        value: f64,
+        /// Where it was evaluated.
+        q: Vec<f64>,
+    },
+}
+
+/// Well-formed data that the mechanics refuses.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum SetupError {
     /// The Lagrangian is singular: `∂²L/∂v²` cannot be inverted at this state.
     #[error(
         "the Lagrangian is singular at t = {t}, q = {q:?}, v = {v:?}: the velocity Hessian \
@@ -143,7 +197,6 @@ pub enum Error {
         /// Final residual `|∂L/∂v(q, v) − p|`.
         residual: f64,
     },
-    // ---- Holonomic constraints and initial data (issue 3) ----
     /// The initial positions violate the holonomic constraints beyond the tolerance.
     #[error(
         "the initial positions q0 violate constraint {index}: |φ_{index}(q0)| = {residual:.3e} \
@@ -193,24 +246,6 @@ pub enum Error {
         /// The positions at which `Dφ` was factored.
         q: Vec<f64>,
     },
-    /// A constrained step could not satisfy `φ(q_{k+1}) = 0`.
-    #[error(
-        "constraint {index} could not be satisfied in step {step} (t = {t}): |φ_{index}(q)| = \
-         {residual:.3e} after {iterations} Newton iterations; the constraint may have no \
-         solution near q_k (is it satisfiable?), or the step h is too large"
-    )]
-    ConstraintNotSatisfied {
-        /// Index of the step being taken.
-        step: usize,
-        /// Time at the start of the step.
-        t: f64,
-        /// Index of the most violated constraint at the last iterate.
-        index: usize,
-        /// Its value at the last iterate.
-        residual: f64,
-        /// Newton iterations performed.
-        iterations: usize,
-    },
     /// Projecting positions onto the constraint manifold `φ(q) = 0` failed.
     #[error(
         "could not project q onto the constraint manifold: |φ_{index}(q)| = {residual:.3e} after \
@@ -224,56 +259,6 @@ pub enum Error {
         index: usize,
         /// Its value at the last iterate.
         residual: f64,
-    },
-    /// The RATTLE projection of the momenta onto the cotangent space of the constraint manifold
-    /// failed.
-    #[error(
-        "the momentum projection (RATTLE) failed after step {step} (t = {t}): residual \
-         {residual:.3e} after {iterations} Newton iterations (the KKT matrix [[∂²L/∂v², Dφᵀ], \
-         [Dφ, 0]] may be singular: redundant constraints or a singular Lagrangian)"
-    )]
-    MomentumProjectionFailed {
-        /// Number of the step after which the projection ran (0: initial data).
-        step: usize,
-        /// Time of the state being projected.
-        t: f64,
-        /// Newton iterations performed.
-        iterations: usize,
-        /// Residual (max-norm) at the last iterate.
-        residual: f64,
-    },
-
-    // ---- Symmetries, momentum maps and the Hamiltonian side (issue 4) ----
-    /// A group action acts on a configuration space of the wrong dimension: its generators
-    /// `ξ_Q(q)` have the wrong number of components for this system.
-    #[error(
-        "the symmetry \"{symmetry}\" has generators with {found} components, but the system has \
-         {expected} degrees of freedom"
-    )]
-    SymmetryDimension {
-        /// Name of the group action.
-        symmetry: String,
-        /// Degrees of freedom of the system.
-        expected: usize,
-        /// Components of the generators (the action's `dof()`).
-        found: usize,
-    },
-    /// A generator `ξ_Q(q)` returned a non-finite component (or left one unwritten).
-    #[error(
-        "the symmetry \"{symmetry}\": generator {generator} has component {component} = {value} \
-         at q = {q:?} (not finite, or not written)"
-    )]
-    InvalidGenerator {
-        /// Name of the group action.
-        symmetry: String,
-        /// Index of the Lie algebra basis element.
-        generator: usize,
-        /// Offending component of `ξ_Q(q)`.
-        component: usize,
-        /// The value found (NaN if the component was not written).
-        value: f64,
-        /// Where it was evaluated.
-        q: Vec<f64>,
     },
     /// A declared group action is not a symmetry: `⟨dL, ξ_TQ⟩ ≠ 0` (or `L_d`, `H` not invariant).
     #[error(
@@ -293,47 +278,6 @@ pub enum Error {
         relative: f64,
         /// Relative tolerance used.
         tolerance: f64,
-    },
-
-    // ---- High-order rules, the exact discrete Lagrangian, order studies (issue 6) ----
-    /// A quadrature rule was asked for with an impossible number of points.
-    #[error("no {family} quadrature with {points} points: valid choices are {valid}")]
-    InvalidQuadrature {
-        /// `"gauss"` or `"lobatto"`.
-        family: &'static str,
-        /// Points asked for.
-        points: usize,
-        /// The valid range.
-        valid: String,
-    },
-    /// A Galerkin rule is inconsistent: degree out of range, or too few quadrature points for
-    /// the degree (the quadrature of the kinetic energy would be degenerate).
-    #[error(
-        "Galerkin rule P{degree} with {points} {family} points is not valid: {reason}; valid \
-         choices are 1 ≤ degree ≤ {max_degree} and points ≥ degree (gauss-s = P_s with s Gauss \
-         points, lobatto-s = P_(s−1) with s Lobatto points)"
-    )]
-    InvalidGalerkin {
-        /// Polynomial degree asked for.
-        degree: usize,
-        /// `"gauss"` or `"lobatto"`.
-        family: &'static str,
-        /// Quadrature points asked for.
-        points: usize,
-        /// What is wrong.
-        reason: String,
-        /// Largest degree accepted.
-        max_degree: usize,
-    },
-    /// A method name could not be parsed.
-    #[error("unknown method `{name}`: {reason}; valid methods are {valid}")]
-    UnknownMethod {
-        /// The name given.
-        name: String,
-        /// What is wrong with it.
-        reason: String,
-        /// The grammar of valid names.
-        valid: String,
     },
     /// The shooting method for the exact discrete Lagrangian did not converge.
     #[error(
@@ -367,15 +311,136 @@ pub enum Error {
     },
 }
 
+/// A failed step: which one, when, and why.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepFailure {
+    /// Index of the step being taken (from `t` to `t + h`; for the momentum projection, the
+    /// number of the step after which it ran, 0 for initial data).
+    pub step: usize,
+    /// Time at the start of the step (for the momentum projection: of the state projected).
+    pub t: f64,
+    /// What went wrong.
+    pub cause: StepError,
+}
+
+/// Why a step failed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum StepError {
+    /// The Newton iteration of a step did not reach its tolerance.
+    NewtonDidNotConverge {
+        /// Iterations performed.
+        iterations: usize,
+        /// Residual (max-norm) at the last iterate.
+        residual: f64,
+        /// The residual tolerance that was asked for.
+        tolerance: f64,
+    },
+    /// The Newton Jacobian of a step is singular (the discrete Lagrangian is degenerate there).
+    SingularJacobian {
+        /// Newton iteration at which the factorisation failed.
+        iteration: usize,
+        /// The offending pivot.
+        pivot: f64,
+    },
+    /// A non-finite number (NaN or infinity) appeared during a step.
+    NonFinite {
+        /// Which quantity went non-finite.
+        what: &'static str,
+    },
+    /// A constrained step could not satisfy `φ(q_{k+1}) = 0`.
+    ConstraintNotSatisfied {
+        /// Index of the most violated constraint at the last iterate.
+        index: usize,
+        /// Its value at the last iterate.
+        residual: f64,
+        /// Newton iterations performed.
+        iterations: usize,
+    },
+    /// The RATTLE projection of the momenta onto the cotangent space of the constraint manifold
+    /// failed.
+    MomentumProjectionFailed {
+        /// Newton iterations performed.
+        iterations: usize,
+        /// Residual (max-norm) at the last iterate.
+        residual: f64,
+    },
+}
+
+impl std::fmt::Display for StepFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (step, t) = (self.step, self.t);
+        match self.cause {
+            StepError::NewtonDidNotConverge {
+                iterations,
+                residual,
+                tolerance,
+            } => write!(
+                f,
+                "Newton's method did not converge in step {step} (t = {t}): residual \
+                 {residual:.3e} after {iterations} iterations (tolerance {tolerance:.1e}); try a \
+                 smaller step h or a larger max_iterations"
+            ),
+            StepError::SingularJacobian { iteration, pivot } => write!(
+                f,
+                "singular Newton Jacobian in step {step} (t = {t}) at iteration {iteration}: \
+                 pivot {pivot:.3e}; the discrete Lagrangian is not regular here (is h too large, \
+                 or are constraints redundant?)"
+            ),
+            StepError::NonFinite { what } => {
+                write!(f, "non-finite value in {what} during step {step} (t = {t})")
+            }
+            StepError::ConstraintNotSatisfied {
+                index,
+                residual,
+                iterations,
+            } => write!(
+                f,
+                "constraint {index} could not be satisfied in step {step} (t = {t}): \
+                 |φ_{index}(q)| = {residual:.3e} after {iterations} Newton iterations; the \
+                 constraint may have no solution near q_k (is it satisfiable?), or the step h \
+                 is too large"
+            ),
+            StepError::MomentumProjectionFailed {
+                iterations,
+                residual,
+            } => write!(
+                f,
+                "the momentum projection (RATTLE) failed after step {step} (t = {t}): residual \
+                 {residual:.3e} after {iterations} Newton iterations (the KKT matrix \
+                 [[∂²L/∂v², Dφᵀ], [Dφ, 0]] may be singular: redundant constraints or a singular \
+                 Lagrangian)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for StepFailure {}
+
+impl Error {
+    /// A failure of step `step` starting at `t`.
+    pub fn step(step: usize, t: f64, cause: StepError) -> Self {
+        Error::Step(StepFailure { step, t, cause })
+    }
+
+    /// The failed step, if this is a step failure.
+    pub fn step_failure(&self) -> Option<&StepFailure> {
+        match self {
+            Error::Step(failure) => Some(failure),
+            _ => None,
+        }
+    }
+}
+
 impl Error {
     /// Checks that every entry of `x` is finite.
     pub fn check_finite(what: &'static str, x: &[f64]) -> Result<(), Error> {
         match x.iter().position(|v| !v.is_finite()) {
-            Some(index) => Err(Error::NonFiniteInput {
+            Some(index) => Err(Error::Input(InputError::NonFinite {
                 what,
                 index,
                 value: x[index],
-            }),
+            })),
             None => Ok(()),
         }
     }
@@ -385,11 +450,11 @@ impl Error {
         if x.len() == expected {
             Ok(())
         } else {
-            Err(Error::DimensionMismatch {
+            Err(Error::Input(InputError::DimensionMismatch {
                 what,
                 expected,
                 found: x.len(),
-            })
+            }))
         }
     }
 }

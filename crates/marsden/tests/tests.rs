@@ -8,19 +8,19 @@
 /// Shared helpers: runs, fitted slopes, one-step matrices, tolerances.
 mod common;
 
-/// The reference cases R1–R17 (closed forms, unit values, exact solutions, orders), one file per case, named after it.
-mod reference;
-/// Continuous mechanics and the catalog: AD against finite differences, Legendre transform, accelerations, hand-written potential derivatives, forces.
-mod mechanics;
-/// Rules of high order: compositions and Galerkin methods on long runs, with forces and constraints.
-mod rules;
 /// Holonomic constraints: SHAKE + RATTLE, the closed form, Cartesian pendulums, typed errors of bad constrained input.
 mod constraints;
-/// Group actions, momentum maps and Noether (continuous, discrete, with forces).
-mod symmetry;
-/// The Hamiltonian side: the same system as L and as H, the Legendre adapters.
-mod hamiltonian;
 /// Every fast path against the general path (bit for bit or to round-off), and the work statistics.
 mod fast_paths;
+/// The Hamiltonian side: the same system as L and as H, the Legendre adapters.
+mod hamiltonian;
+/// Continuous mechanics and the catalog: AD against finite differences, Legendre transform, accelerations, hand-written potential derivatives, forces.
+mod mechanics;
+/// The reference cases R1–R17 (closed forms, unit values, exact solutions, orders), one file per case, named after it.
+mod reference;
+/// Rules of high order: compositions and Galerkin methods on long runs, with forces and constraints.
+mod rules;
 /// Problems, runs, observers, ensembles, input files and bad input.
 mod run;
+/// Group actions, momentum maps and Noether (continuous, discrete, with forces).
+mod symmetry;

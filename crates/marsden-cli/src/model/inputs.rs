@@ -40,7 +40,10 @@ fn with_buffer<S: Copy, const CAP: usize, R>(
 ) -> R {
     if len <= CAP {
         let mut buffer = [fill; CAP];
-        buffer[..len].iter_mut().enumerate().for_each(|(i, x)| *x = init(i));
+        buffer[..len]
+            .iter_mut()
+            .enumerate()
+            .for_each(|(i, x)| *x = init(i));
         body(&mut buffer[..len])
     } else {
         let mut buffer: Vec<S> = (0..len).map(init).collect();

@@ -4,6 +4,7 @@
 //! `alpha-<a>`, `symmetrized-<a>`, `gauss-<s>`, `lobatto-<s>`, `galerkin-<s>-<family>-<r>` and
 //! compositions `<scheme>(<base>)`. This module adds the file-level error with a suggestion.
 
+use marsden::error::InputError;
 use std::fmt;
 
 use marsden::discrete::rules::{METHOD_GRAMMAR, Method as CoreMethod, WithRule};
@@ -43,7 +44,7 @@ impl Method {
     pub fn parse(name: &str) -> Result<Method, MethodError> {
         CoreMethod::parse(name).map(Method).map_err(|e| {
             let message = match e {
-                marsden::Error::UnknownMethod { reason, .. } => {
+                marsden::Error::Input(InputError::UnknownMethod { reason, .. }) => {
                     format!("unknown method `{name}`: {reason}")
                 }
                 other => format!("method `{name}`: {other}"),

@@ -1,6 +1,7 @@
 //! The initial state completed by the core (`p` from `v` by the Legendre transform, or `v`
 //! from `p` by its inverse) and checked for regularity — before any file is written.
 
+use marsden::error::SetupError;
 use marsden::{Constraint, Initial, Lagrangian, Problem, mechanics};
 
 use crate::catalog::WithLagrangian;
@@ -105,14 +106,14 @@ pub fn constrained_problem<L: Lagrangian, C: Constraint>(
 pub fn start_error(spec: &RunSpec, e: &marsden::Error) -> Diagnostic {
     let source: &SourceFile = &spec.source;
     match e {
-        marsden::Error::SingularLagrangian { .. } => Diagnostic::new(e.to_string())
+        marsden::Error::Setup(SetupError::SingularLagrangian { .. }) => Diagnostic::new(e.to_string())
             .at(source.locate_opt(spec.spans.lagrangian.clone()))
             .help("∂²L/∂q̇² must be invertible: every velocity must appear in L, quadratically for a mechanical system"),
-        marsden::Error::InverseLegendre { .. } => Diagnostic::new(e.to_string())
+        marsden::Error::Setup(SetupError::InverseLegendre { .. }) => Diagnostic::new(e.to_string())
             .at(source.locate_opt(spec.spans.initial_data.clone()))
             .help("give the initial velocities `v` instead of the momenta `p`"),
-        marsden::Error::InitialPositionOffConstraint { .. }
-        | marsden::Error::InitialVelocityNotTangent { .. } => Diagnostic::new(e.to_string())
+        marsden::Error::Setup(SetupError::InitialPositionOffConstraint { .. })
+        | marsden::Error::Setup(SetupError::InitialVelocityNotTangent { .. }) => Diagnostic::new(e.to_string())
             .at(source.locate_opt(spec.spans.initial_data.clone()))
             .help(
                 "set `project = true` in [initial] to project the data onto the constraint \

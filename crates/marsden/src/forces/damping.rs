@@ -115,6 +115,7 @@ impl Force for LinearDamping {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::InputError;
 
     #[test]
     fn matrix_damping_is_minus_c_v_and_dissipation_is_half_vcv() {
@@ -127,7 +128,10 @@ mod tests {
         assert!(d.validate(2).is_ok());
         assert!(matches!(
             d.validate(3),
-            Err(Error::DimensionMismatch { expected: 9, .. })
+            Err(Error::Input(InputError::DimensionMismatch {
+                expected: 9,
+                ..
+            }))
         ));
     }
 

@@ -7,6 +7,7 @@
 //! potential `−⟨F, q⟩` to `L`, and every rule then integrates it exactly (reference case R9).
 
 use crate::error::Error;
+use crate::error::InputError;
 use crate::mechanics::Force;
 use crate::scalar::Scalar;
 
@@ -102,11 +103,11 @@ impl PeriodicForce {
         phase: f64,
     ) -> Result<Self, Error> {
         if index >= n {
-            return Err(Error::DimensionMismatch {
+            return Err(Error::Input(InputError::DimensionMismatch {
                 what: "driven coordinate index (as a length)",
                 expected: n,
                 found: index + 1,
-            });
+            }));
         }
         let mut a = vec![0.0; n];
         a[index] = amplitude;

@@ -12,6 +12,7 @@
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 use crate::error::Error;
+use crate::error::InputError;
 use crate::mechanics;
 use crate::mechanics::{Force, Lagrangian};
 use crate::numerics::ad;
@@ -124,11 +125,11 @@ impl<L: Lagrangian, H: HamiltonianForce> Force for FromHamiltonian<L, H> {
 
     fn validate(&self, dof: usize) -> Result<(), Error> {
         if self.lagrangian.dof() != dof {
-            return Err(Error::DimensionMismatch {
+            return Err(Error::Input(InputError::DimensionMismatch {
                 what: "the Lagrangian of a Hamiltonian force",
                 expected: dof,
                 found: self.lagrangian.dof(),
-            });
+            }));
         }
         self.force.validate(dof)
     }

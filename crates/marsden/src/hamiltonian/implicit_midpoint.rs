@@ -19,6 +19,7 @@
 
 use super::{Hamiltonian, HamiltonianMethod, PhaseJet, vector_field};
 use crate::error::Error;
+use crate::error::{StepError, StepFailure};
 use crate::integrator::StepReport;
 use crate::mechanics::State;
 use crate::numerics::dense::{Lu, max_norm};
@@ -62,11 +63,13 @@ impl ImplicitMidpoint {
         vector_field(ham, state.t, &state.q, &state.p, dq, dp);
         let scale = max_norm(&self.delta);
         if !scale.is_finite() {
-            return Err(Error::NonFinite {
+            return Err(Error::Step(StepFailure {
                 step: 0,
                 t: state.t,
-                what: "Hamilton's vector field",
-            });
+                cause: StepError::NonFinite {
+                    what: "Hamilton's vector field",
+                },
+            }));
         }
         self.delta.iter_mut().for_each(|d| *d *= h);
         let mut system = MidpointSystem {
@@ -86,11 +89,13 @@ impl ImplicitMidpoint {
         );
         let report = result.map_err(|failure| newton_error(failure, state.t, &self.options))?;
         if !self.delta.iter().all(|d| d.is_finite()) {
-            return Err(Error::NonFinite {
+            return Err(Error::Step(StepFailure {
                 step: 0,
                 t: state.t,
-                what: "the new state",
-            });
+                cause: StepError::NonFinite {
+                    what: "the new state",
+                },
+            }));
         }
         Ok(StepReport {
             iterations: report.iterations,
@@ -152,11 +157,15 @@ impl<H: Hamiltonian> HamiltonianMethod<H> for ImplicitMidpoint {
             .map(|k| f64::from(u8::from(k / m == k % m)) - 0.5 * h * dx[k])
             .collect();
         let mut lu = Lu::new();
-        lu.factor(&a, m).map_err(|e| Error::SingularJacobian {
-            step: 0,
-            t: state.t,
-            iteration: report.iterations,
-            pivot: e.pivot,
+        lu.factor(&a, m).map_err(|e| {
+            Error::Step(StepFailure {
+                step: 0,
+                t: state.t,
+                cause: StepError::SingularJacobian {
+                    iteration: report.iterations,
+                    pivot: e.pivot,
+                },
+            })
         })?;
         let (mut col, mut scratch) = (vec![0.0; m], Vec::with_capacity(m));
         for j in 0..m {
@@ -210,23 +219,26 @@ impl<H: Hamiltonian> NonlinearSystem for MidpointSystem<'_, H> {
 /// The typed error of a failed Newton solve (the step index is filled in by the integrator).
 pub(super) fn newton_error(failure: NewtonFailure, t: f64, options: &NewtonOptions) -> Error {
     match failure {
-        NewtonFailure::NotConverged(r) => Error::NewtonDidNotConverge {
+        NewtonFailure::NotConverged(r) => Error::Step(StepFailure {
             step: 0,
             t,
-            iterations: r.iterations,
-            residual: r.residual,
-            tolerance: options.residual_tolerance,
-        },
-        NewtonFailure::Singular { iteration, pivot } => Error::SingularJacobian {
+            cause: StepError::NewtonDidNotConverge {
+                iterations: r.iterations,
+                residual: r.residual,
+                tolerance: options.residual_tolerance,
+            },
+        }),
+        NewtonFailure::Singular { iteration, pivot } => Error::Step(StepFailure {
             step: 0,
             t,
-            iteration,
-            pivot,
-        },
-        NewtonFailure::NonFinite(_) => Error::NonFinite {
+            cause: StepError::SingularJacobian { iteration, pivot },
+        }),
+        NewtonFailure::NonFinite(_) => Error::Step(StepFailure {
             step: 0,
             t,
-            what: "the Newton residual",
-        },
+            cause: StepError::NonFinite {
+                what: "the Newton residual",
+            },
+        }),
     }
 }

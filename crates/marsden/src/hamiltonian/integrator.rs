@@ -1,19 +1,17 @@
 //! Stepping a Hamiltonian with a one-step method, and running it over a time grid.
 //!
-//! The Hamiltonian counterpart of [`crate::integrator::Integrator`] and [`crate::run::simulate`]: a
+//! The Hamiltonian counterpart of [`crate::integrator::Integrator`], run by the same loop ([`crate::run::simulate()`]): a
 //! [`HamiltonianMethod`] advances `(t, q, p)` by one step of `H` (and, on request, returns the
 //! Jacobian of the step map for the symplecticity certificate); a [`HamiltonianIntegrator`] owns
 //! the Hamiltonian and the method and produces the same [`Trajectory`] as the Lagrangian side,
 //! so all diagnostics apply to both.
 
-use std::ops::ControlFlow;
-
 use super::Hamiltonian;
 use crate::error::Error;
+use crate::error::InputError;
 use crate::integrator::StepReport;
 use crate::mechanics::State;
-use crate::run::{Observer, RunOptions, StepView, TimeGrid};
-use crate::run::{Termination, Trajectory};
+use crate::run::{Observer, RunOptions, Stepper, TimeGrid, Trajectory, simulate};
 
 /// A one-step method for Hamilton's equations of `H`.
 pub trait HamiltonianMethod<H> {
@@ -82,7 +80,7 @@ impl<H: Hamiltonian, M: HamiltonianMethod<H>> HamiltonianIntegrator<H, M> {
         Error::check_len("q", &state.q, n)?;
         Error::check_len("p", &state.p, n)?;
         if h == 0.0 || !h.is_finite() {
-            return Err(Error::InvalidStep { h });
+            return Err(Error::Input(InputError::InvalidStep { h }));
         }
         Ok(())
     }
@@ -119,8 +117,9 @@ impl<H: Hamiltonian, M: HamiltonianMethod<H>> HamiltonianIntegrator<H, M> {
     }
 
     /// Runs from `start` over `grid`, storing every `options.stride`-th state and showing each
-    /// step to `observer` (as [`crate::run::simulate()`] does for the Lagrangian side). A failing step
-    /// ends the run with [`Termination::Failed`] and the trajectory up to the last good state.
+    /// step to `observer`, by the run loop of the Lagrangian side ([`crate::run::simulate()`]). A
+    /// failing step ends the run with [`crate::run::Termination::Failed`] and the trajectory up to the last
+    /// good state.
     pub fn solve<O: Observer + ?Sized>(
         &mut self,
         start: State,
@@ -128,57 +127,32 @@ impl<H: Hamiltonian, M: HamiltonianMethod<H>> HamiltonianIntegrator<H, M> {
         options: &RunOptions,
         observer: &mut O,
     ) -> Trajectory {
-        let n = self.ham.dof();
-        let mut traj = Trajectory::new(n, 0, grid.h);
-        let stride = options.stride.max(1);
-        let mut state = start;
-        let mut report = StepReport::default();
-        traj.push(0, state.t, &state.q, &state.p, &[], report);
-        observer.start(&view(0, &state, &report));
-        for k in 0..grid.steps {
-            match self.step(&mut state, grid.h) {
-                Ok(r) => report = r,
-                Err(e) => {
-                    traj.termination = Termination::Failed(e);
-                    break;
-                }
-            }
-            state.t = grid.time(k + 1);
-            traj.steps = k + 1;
-            let stop = observer.observe(&view(k + 1, &state, &report)) == ControlFlow::Break(());
-            if (k + 1) % stride == 0 || k + 1 == grid.steps || stop {
-                traj.push(k + 1, state.t, &state.q, &state.p, &[], report);
-            }
-            if stop {
-                traj.termination = Termination::Stopped { steps: k + 1 };
-                break;
-            }
-        }
-        if traj.step_indices.last() != Some(&traj.steps) {
-            traj.push(traj.steps, state.t, &state.q, &state.p, &[], report);
-        }
-        traj
+        simulate(self, start, grid, options, observer)
     }
 }
 
-fn view<'a>(step: usize, state: &'a State, report: &'a StepReport) -> StepView<'a> {
-    StepView {
-        step,
-        t: state.t,
-        q: &state.q,
-        p: &state.p,
-        multipliers: &[],
-        report,
+impl<H: Hamiltonian, M: HamiltonianMethod<H>> Stepper for HamiltonianIntegrator<H, M> {
+    fn dims(&self) -> (usize, usize) {
+        (self.ham.dof(), 0)
+    }
+    fn advance(&mut self, state: &mut State, h: f64, steps: usize) -> Result<StepReport, Error> {
+        let t0 = state.t;
+        let mut report = StepReport::default();
+        for k in 1..=steps {
+            report = self.step(state, h)?;
+            state.t = t0 + k as f64 * h;
+        }
+        Ok(report)
+    }
+    fn steps_done(&self) -> usize {
+        self.steps
     }
 }
 
 /// Sets the step index of a run-time error raised by a method (which does not know it).
 fn at_step(mut e: Error, k: usize) -> Error {
-    match &mut e {
-        Error::NewtonDidNotConverge { step, .. }
-        | Error::SingularJacobian { step, .. }
-        | Error::NonFinite { step, .. } => *step = k,
-        _ => {}
+    if let Error::Step(failure) = &mut e {
+        failure.step = k;
     }
     e
 }

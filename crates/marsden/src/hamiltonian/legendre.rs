@@ -27,6 +27,7 @@
 
 use super::Hamiltonian;
 use crate::error::Error;
+use crate::error::SetupError;
 use crate::mechanics::Lagrangian;
 use crate::numerics::ad::{self, HessianParts, MultiFunction};
 use crate::numerics::dense::{Lu, max_norm};
@@ -128,10 +129,12 @@ fn solve_fibre<F: Fibre>(
     };
     let (mut lu, mut scratch) = (Lu::new(), Vec::with_capacity(n));
     let mut residual = newton.evaluate();
-    let failure = |residual| Error::InverseLegendre {
-        t,
-        iterations: MAX_ITERATIONS,
-        residual,
+    let failure = |residual| {
+        Error::Setup(SetupError::InverseLegendre {
+            t,
+            iterations: MAX_ITERATIONS,
+            residual,
+        })
     };
     for _ in 0..MAX_ITERATIONS {
         let factored = lu.factor(&newton.parts.hess, n);

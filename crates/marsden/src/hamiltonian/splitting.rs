@@ -24,6 +24,7 @@
 
 use super::{HamiltonianMethod, Separable};
 use crate::error::Error;
+use crate::error::{InputError, StepError, StepFailure};
 use crate::integrator::StepReport;
 use crate::mechanics::State;
 use crate::numerics::ad::{self, HessianParts, MultiFunction};
@@ -63,11 +64,11 @@ impl Splitting {
             (sa, "sum of drift coefficients"),
         ] {
             if (sum - 1.0).abs() > 1e-14 {
-                return Err(Error::InvalidOption {
+                return Err(Error::Input(InputError::InvalidOption {
                     name: what,
                     value: sum,
                     reason: "must be 1 for a consistent splitting",
-                });
+                }));
             }
         }
         Ok(Self {
@@ -216,10 +217,12 @@ pub(super) fn finish(state: &mut State, next: State) -> Result<StepReport, Error
         *state = next;
         Ok(StepReport::default())
     } else {
-        Err(Error::NonFinite {
+        Err(Error::Step(StepFailure {
             step: 0,
             t: state.t,
-            what: "the new state",
-        })
+            cause: StepError::NonFinite {
+                what: "the new state",
+            },
+        }))
     }
 }

@@ -12,6 +12,7 @@
 //! pendulums and chains in Cartesian coordinates.
 
 use crate::error::Error;
+use crate::error::InputError;
 use crate::mechanics::Constraint;
 use crate::scalar::Scalar;
 
@@ -85,11 +86,11 @@ impl DistanceConstraints {
         if length.is_finite() && length > 0.0 {
             Ok(())
         } else {
-            Err(Error::InvalidOption {
+            Err(Error::Input(InputError::InvalidOption {
                 name: "rod length",
                 value: length,
                 reason: "must be positive and finite",
-            })
+            }))
         }
     }
 
@@ -137,11 +138,11 @@ impl Constraint for DistanceConstraints {
     fn validate(&self, dof: usize) -> Result<(), Error> {
         let needed = self.particles_used() * self.dim;
         if self.dim == 0 || !dof.is_multiple_of(self.dim) || needed > dof {
-            return Err(Error::DimensionMismatch {
+            return Err(Error::Input(InputError::DimensionMismatch {
                 what: "q for the distance constraints (particles × dimension)",
                 expected: needed.max(self.dim),
                 found: dof,
-            });
+            }));
         }
         Ok(())
     }

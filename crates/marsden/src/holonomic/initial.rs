@@ -9,6 +9,7 @@
 //! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
 
 use crate::error::Error;
+use crate::error::{SetupError, StepError, StepFailure};
 use crate::mechanics;
 use crate::mechanics::constraint_jacobian;
 use crate::mechanics::{Constraint, Initial, Lagrangian};
@@ -42,13 +43,13 @@ impl ConstraintRank {
         if self.rank == self.count {
             Ok(())
         } else {
-            Err(Error::RedundantConstraints {
+            Err(Error::Setup(SetupError::RedundantConstraints {
                 count: self.count,
                 rank: self.rank,
                 singular_values: self.singular_values,
                 threshold: self.threshold,
                 q: q.to_vec(),
-            })
+            }))
         }
     }
 }
@@ -127,11 +128,11 @@ pub fn check_initial<C: Constraint>(
     let (index, residual) = worst(&phi);
     let tol = tolerance * (max_norm(q) * g_size).max(1.0);
     if residual.is_nan() || residual.abs() > tol {
-        return Err(Error::InitialPositionOffConstraint {
+        return Err(Error::Setup(SetupError::InitialPositionOffConstraint {
             index,
             residual,
             tolerance: tol,
-        });
+        }));
     }
     constraint_rank(c, q).full_rank(q)?;
     let gv: Vec<f64> = g
@@ -141,12 +142,12 @@ pub fn check_initial<C: Constraint>(
     let (index, residual) = worst(&gv);
     let tol = tolerance * (g_size * max_norm(v)).max(1.0);
     if residual.is_nan() || residual.abs() > tol {
-        return Err(Error::InitialVelocityNotTangent {
+        return Err(Error::Setup(SetupError::InitialVelocityNotTangent {
             what,
             index,
             residual,
             tolerance: tol,
-        });
+        }));
     }
     Ok(())
 }
@@ -192,11 +193,11 @@ pub fn project_position<C: Constraint>(c: &C, q: &[f64]) -> Result<PositionProje
                 residual: residual.abs(),
             });
         }
-        let failure = Error::PositionProjectionFailed {
+        let failure = Error::Setup(SetupError::PositionProjectionFailed {
             iterations,
             index,
             residual,
-        };
+        });
         if iterations == MAX_ITERATIONS || !residual.is_finite() {
             return Err(failure);
         }
@@ -214,11 +215,11 @@ pub fn project_position<C: Constraint>(c: &C, q: &[f64]) -> Result<PositionProje
         q.iter_mut().zip(&delta).for_each(|(qi, di)| *qi -= di);
         last_update = max_norm(&delta);
     }
-    Err(Error::PositionProjectionFailed {
+    Err(Error::Setup(SetupError::PositionProjectionFailed {
         iterations: MAX_ITERATIONS,
         index: 0,
         residual: f64::NAN,
-    })
+    }))
 }
 
 /// Projects momenta `p` at `(t, q)` onto the cotangent space of the constraint manifold:
@@ -242,15 +243,16 @@ fn project_with<L: Lagrangian, C: Constraint>(
     q: &[f64],
     p: &mut [f64],
 ) -> Result<(), Error> {
-    rattle
-        .project_at(t, q, p)
-        .map(|_| ())
-        .map_err(|f| Error::MomentumProjectionFailed {
+    rattle.project_at(t, q, p).map(|_| ()).map_err(|f| {
+        Error::Step(StepFailure {
             step: 0,
             t,
-            iterations: f.iterations,
-            residual: f.residual,
+            cause: StepError::MomentumProjectionFailed {
+                iterations: f.iterations,
+                residual: f.residual,
+            },
         })
+    })
 }
 
 impl Initial {

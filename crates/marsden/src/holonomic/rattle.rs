@@ -31,7 +31,7 @@ use crate::mechanics::structure::InverseMass;
 use crate::mechanics::{Constraint, Lagrangian};
 use crate::numerics::dense::{max_norm, solve_in_place};
 use crate::numerics::dual::SmallDual;
-use crate::numerics::newton::NewtonOptions;
+use crate::numerics::newton::{Convergence, NewtonOptions, NewtonReport};
 use crate::numerics::scratch::{NODE, with_buffer};
 use crate::scalar::Scalar;
 
@@ -252,7 +252,8 @@ impl<L: Lagrangian, C: Constraint> Rattle<L, C> {
         p: &[f64],
     ) -> Result<ProjectionReport, ProjectionFailure> {
         let (n, m) = (q.len(), self.ws.z.len());
-        let tol = self.options.residual_tolerance * max_norm(p).max(1.0);
+        let scale = max_norm(p).max(1.0);
+        let mut convergence = Convergence::new(&self.options);
         let velocity_lagrangian = InVelocity {
             lagrangian: &self.lagrangian,
             t,
@@ -269,17 +270,16 @@ impl<L: Lagrangian, C: Constraint> Rattle<L, C> {
                 iterations,
                 residual,
             };
-            if !residual.is_finite() {
-                return Err(failure);
-            }
-            if residual <= tol {
+            let report = NewtonReport {
+                iterations,
+                residual,
+                ..NewtonReport::default()
+            };
+            if convergence.check(&report, scale).map_err(|_| failure)? {
                 return Ok(ProjectionReport {
                     iterations,
                     residual,
                 });
-            }
-            if iterations >= self.options.max_iterations {
-                return Err(failure);
             }
 
             ws.dz.iter_mut().zip(&ws.r).for_each(|(d, r)| *d = -r);
@@ -288,11 +288,11 @@ impl<L: Lagrangian, C: Constraint> Rattle<L, C> {
             ws.z.iter_mut().zip(&ws.dz).for_each(|(z, d)| *z += d);
             iterations += 1;
             stats.newton_iterations += 1;
-            let small = max_norm(&ws.dz) <= self.options.step_tolerance * max_norm(&ws.z).max(1.0);
+            convergence.record_update(max_norm(&ws.dz), max_norm(&ws.z).max(1.0));
             residual_evaluation(&velocity_lagrangian, g, p, n, ws);
             stats.residual_evaluations += 1;
             let residual = max_norm(&ws.r);
-            if residual.is_finite() && (residual <= tol || small) {
+            if residual.is_finite() && convergence.converged(residual, scale) {
                 return Ok(ProjectionReport {
                     iterations,
                     residual,

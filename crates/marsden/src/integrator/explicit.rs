@@ -7,6 +7,7 @@ use super::path::Path;
 use super::report::StepReport;
 use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::error::Error;
+use crate::error::{StepError, StepFailure};
 use crate::holonomic::MomentumProjection;
 use crate::mechanics::{Constraint, State};
 
@@ -41,11 +42,13 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             state.t = t0 + run.steps as f64 * h;
             if run.steps < last {
                 st.failed_steps += 1;
-                return Err(Error::NonFinite {
+                return Err(Error::Step(StepFailure {
                     step: st.steps,
                     t: state.t,
-                    what: "the new state",
-                });
+                    cause: StepError::NonFinite {
+                        what: "the new state",
+                    },
+                }));
             }
         }
         let report = self.step(state, h)?;
@@ -83,11 +86,13 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         self.statistics.potential_gradients += gradients;
         if !b.z.iter().chain(&b.p_next).all(|x| x.is_finite()) {
             self.statistics.failed_steps += 1;
-            return Err(Error::NonFinite {
+            return Err(Error::Step(StepFailure {
                 step,
                 t: state.t,
-                what: "the new state",
-            });
+                cause: StepError::NonFinite {
+                    what: "the new state",
+                },
+            }));
         }
         state.q.iter_mut().zip(&b.z).for_each(|(q, d)| *q += d);
         state.p.copy_from_slice(&b.p_next);

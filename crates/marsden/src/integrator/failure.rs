@@ -4,6 +4,7 @@
 use super::Integrator;
 use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::error::Error;
+use crate::error::{StepError, StepFailure};
 use crate::holonomic::MomentumProjection;
 use crate::mechanics::{Constraint, State};
 use crate::numerics::dense::max_norm;
@@ -23,38 +24,49 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         {
             Ok(())
         } else {
-            Err(Error::NonFinite {
+            Err(Error::Step(StepFailure {
                 step,
                 t,
-                what: "the new state",
-            })
+                cause: StepError::NonFinite {
+                    what: "the new state",
+                },
+            }))
         }
     }
 
-    pub(super) fn newton_error(&self, failure: NewtonFailure, step: usize, state: &State, z: &[f64]) -> Error {
+    pub(super) fn newton_error(
+        &self,
+        failure: NewtonFailure,
+        step: usize,
+        state: &State,
+        z: &[f64],
+    ) -> Error {
         let t = state.t;
         if let Some(error) = self.constraint_error(&failure, step, state, z) {
             return error;
         }
         match failure {
-            NewtonFailure::NotConverged(r) => Error::NewtonDidNotConverge {
+            NewtonFailure::NotConverged(r) => Error::Step(StepFailure {
                 step,
                 t,
-                iterations: r.iterations,
-                residual: r.residual,
-                tolerance: self.options.residual_tolerance,
-            },
-            NewtonFailure::Singular { iteration, pivot } => Error::SingularJacobian {
+                cause: StepError::NewtonDidNotConverge {
+                    iterations: r.iterations,
+                    residual: r.residual,
+                    tolerance: self.options.residual_tolerance,
+                },
+            }),
+            NewtonFailure::Singular { iteration, pivot } => Error::Step(StepFailure {
                 step,
                 t,
-                iteration,
-                pivot,
-            },
-            NewtonFailure::NonFinite(_) => Error::NonFinite {
+                cause: StepError::SingularJacobian { iteration, pivot },
+            }),
+            NewtonFailure::NonFinite(_) => Error::Step(StepFailure {
                 step,
                 t,
-                what: "the Newton residual",
-            },
+                cause: StepError::NonFinite {
+                    what: "the Newton residual",
+                },
+            }),
         }
     }
 
@@ -79,19 +91,20 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         let (index, value) = phi.iter().enumerate().fold((0, 0.0_f64), |best, (i, &v)| {
             if v.abs() > best.1.abs() { (i, v) } else { best }
         });
-        let tol =
-            self.options.residual_tolerance * max_norm(&state.p).max(1.0);
+        let tol = self.options.residual_tolerance * max_norm(&state.p).max(1.0);
         let iterations = match *failure {
             NewtonFailure::NotConverged(r) | NewtonFailure::NonFinite(r) => r.iterations,
             NewtonFailure::Singular { iteration, .. } => iteration,
         };
-        (value.is_finite() && value.abs() > tol).then_some(Error::ConstraintNotSatisfied {
+        (value.is_finite() && value.abs() > tol).then_some(Error::Step(StepFailure {
             step,
             t: state.t,
-            index,
-            residual: value,
-            iterations,
-        })
+            cause: StepError::ConstraintNotSatisfied {
+                index,
+                residual: value,
+                iterations,
+            },
+        }))
     }
 }
 

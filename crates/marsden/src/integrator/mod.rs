@@ -27,6 +27,7 @@ use self::predictor::Predictor;
 use self::small::dispatch::Dispatch;
 use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::error::Error;
+use crate::error::InputError;
 use crate::holonomic::{MomentumProjection, NoProjection};
 use crate::mechanics::{Constraint, NoForce, State, Unconstrained};
 use crate::numerics::ad::HessianParts;
@@ -360,7 +361,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         Error::check_len("q", &state.q, self.shape.n)?;
         Error::check_len("p", &state.p, self.shape.n)?;
         if h == 0.0 || !h.is_finite() {
-            return Err(Error::InvalidStep { h });
+            return Err(Error::Input(InputError::InvalidStep { h }));
         }
         if let Some(report) = self.step_explicit(state, h, step)? {
             return Ok(report);
@@ -418,7 +419,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         Error::check_len("q", &state.q, self.shape.n)?;
         Error::check_len("p", &state.p, self.shape.n)?;
         if h == 0.0 || !h.is_finite() {
-            return Err(Error::InvalidStep { h });
+            return Err(Error::Input(InputError::InvalidStep { h }));
         }
         if self.is_explicit() {
             return self.advance_explicit(state, h, steps);

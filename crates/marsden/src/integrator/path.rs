@@ -68,7 +68,9 @@ pub(super) fn separable_applies<A: DiscreteAction>(
     action: &A,
     workspace: &mut SeparableWorkspace,
 ) -> bool {
-    action.separable().is_some_and(|step| workspace.applies(step))
+    action
+        .separable()
+        .is_some_and(|step| workspace.applies(step))
 }
 
 impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>

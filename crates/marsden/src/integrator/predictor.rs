@@ -82,4 +82,3 @@ impl Predictor {
         self.velocity = None;
     }
 }
-

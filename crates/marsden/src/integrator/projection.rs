@@ -8,6 +8,7 @@
 use super::Integrator;
 use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::error::Error;
+use crate::error::{StepError, StepFailure};
 use crate::holonomic::MomentumProjection;
 use crate::mechanics::{Constraint, State, constraint_jacobian};
 
@@ -16,7 +17,13 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
 {
     /// Applies the momentum projection to `p_{k+1}` (in the buffers, so that a failure leaves
     /// `state` untouched) and keeps its multipliers as `μ_k = ν/h`.
-    pub(super) fn project(&mut self, z: &[f64], state: &State, h: f64, step: usize) -> Result<(), Error> {
+    pub(super) fn project(
+        &mut self,
+        z: &[f64],
+        state: &State,
+        h: f64,
+        step: usize,
+    ) -> Result<(), Error> {
         if !self.projection.is_active() {
             return Ok(());
         }
@@ -48,12 +55,14 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
                 b.dphi0_current = d > 0;
                 Ok(())
             }
-            Err(failure) => Err(Error::MomentumProjectionFailed {
+            Err(failure) => Err(Error::Step(StepFailure {
                 step,
                 t,
-                iterations: failure.iterations,
-                residual: failure.residual,
-            }),
+                cause: StepError::MomentumProjectionFailed {
+                    iterations: failure.iterations,
+                    residual: failure.residual,
+                },
+            })),
         }
     }
 }

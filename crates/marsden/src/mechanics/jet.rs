@@ -20,6 +20,7 @@
 //! Numerical Integration* (2006).
 
 use crate::error::Error;
+use crate::error::SetupError;
 use crate::mechanics::{Lagrangian, structure};
 use crate::numerics::ad::{self, HessianParts, MultiFunction};
 use crate::numerics::dense::{Lu, max_norm};
@@ -156,14 +157,15 @@ pub fn euler_lagrange_residual<L: Lagrangian>(
 fn factor_mass(jet: &LagrangianJet, t: f64, q: &[f64], v: &[f64]) -> Result<Lu, Error> {
     let mut lu = Lu::new();
     let scale = max_norm(&jet.d2l_dv2);
-    lu.factor(&jet.d2l_dv2, jet.n)
-        .map_err(|e| Error::SingularLagrangian {
+    lu.factor(&jet.d2l_dv2, jet.n).map_err(|e| {
+        Error::Setup(SetupError::SingularLagrangian {
             t,
             q: q.to_vec(),
             v: v.to_vec(),
             pivot: e.pivot,
             scale,
-        })?;
+        })
+    })?;
     Ok(lu)
 }
 
@@ -232,11 +234,11 @@ pub fn velocity<L: Lagrangian>(
             *vi += d;
         }
     }
-    Err(Error::InverseLegendre {
+    Err(Error::Setup(SetupError::InverseLegendre {
         t,
         iterations: MAX_ITERATIONS,
         residual,
-    })
+    }))
 }
 
 /// Checks a declared [`crate::mechanics::Structure`] at `(t, q, v)` by AD: for `Separable`, `∂²L/∂v²`
@@ -251,11 +253,13 @@ pub fn check_structure<L: Lagrangian>(l: &L, t: f64, q: &[f64], v: &[f64]) -> Re
     let jet = LagrangianJet::at(l, t, q, v);
     let dense = mass.to_dense();
     let scale = max_norm(&dense).max(1.0);
-    let mismatch = |what, defect: f64| Error::StructureMismatch {
-        q: q.to_vec(),
-        v: v.to_vec(),
-        what,
-        defect,
+    let mismatch = |what, defect: f64| {
+        Error::Setup(SetupError::StructureMismatch {
+            q: q.to_vec(),
+            v: v.to_vec(),
+            what,
+            defect,
+        })
     };
     let defect = |a: &[f64], b: &[f64]| {
         a.iter()

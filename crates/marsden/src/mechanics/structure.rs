@@ -12,6 +12,7 @@
 //! pseudo-random vectors, so the check is deterministic.
 
 use crate::error::Error;
+use crate::error::SetupError;
 use crate::mechanics::{Lagrangian, MassMatrix, Structure};
 use crate::numerics::ad::{self, MultiFunction};
 use crate::numerics::dense::{Lu, PIVOT_TOLERANCE, max_norm};
@@ -68,12 +69,14 @@ pub fn velocity(
     p: &[f64],
     v: &mut [f64],
 ) -> Result<(), Error> {
-    let singular = |pivot: f64, scale: f64| Error::SingularLagrangian {
-        t,
-        q: q.to_vec(),
-        v: v.to_vec(),
-        pivot,
-        scale,
+    let singular = |pivot: f64, scale: f64| {
+        Error::Setup(SetupError::SingularLagrangian {
+            t,
+            q: q.to_vec(),
+            v: v.to_vec(),
+            pivot,
+            scale,
+        })
     };
     match mass {
         MassMatrix::Diagonal(d) => {
@@ -175,12 +178,12 @@ pub fn check_by_probes<L: Lagrangian + ?Sized>(
             .iter()
             .find(|(_, d)| d.is_nan() || d.abs() > 1e-10 * scale * n as f64)
         {
-            return Err(Error::StructureMismatch {
+            return Err(Error::Setup(SetupError::StructureMismatch {
                 q: q.to_vec(),
                 v: v.to_vec(),
                 what,
                 defect: *defect,
-            });
+            }));
         }
     }
     Ok(())
@@ -279,7 +282,7 @@ mod tests {
         let mut v = [0.0; 3];
         let err = velocity(&mass, 0.5, &[0.0; 3], &[1.0; 3], &mut v).unwrap_err();
         assert!(
-            matches!(err, Error::SingularLagrangian { pivot, scale, .. } if pivot == 0.0 && scale == 2.0),
+            matches!(err, Error::Setup(SetupError::SingularLagrangian { pivot, scale, .. }) if pivot == 0.0 && scale == 2.0),
             "{err:?}"
         );
         // The double pendulum is not separable: no shortcut.

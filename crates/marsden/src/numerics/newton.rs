@@ -15,6 +15,7 @@
 //! the max-norm, Dennis & Schnabel §6.3). Reference: Deuflhard, *Newton Methods for Nonlinear
 //! Problems* (2011), ch. 2.
 
+use crate::error::InputError;
 use crate::numerics::dense::{SingularMatrix, max_norm, solve_in_place};
 
 /// Options of the Newton solver (one options struct per layer).
@@ -59,21 +60,21 @@ impl NewtonOptions {
             if value.is_finite() && value > 0.0 {
                 Ok(())
             } else {
-                Err(crate::error::Error::InvalidOption {
+                Err(crate::error::Error::Input(InputError::InvalidOption {
                     name,
                     value,
                     reason: "must be positive and finite",
-                })
+                }))
             }
         };
         positive("residual_tolerance", self.residual_tolerance)?;
         positive("step_tolerance", self.step_tolerance)?;
         if self.max_iterations == 0 {
-            return Err(crate::error::Error::InvalidOption {
+            return Err(crate::error::Error::Input(InputError::InvalidOption {
                 name: "max_iterations",
                 value: 0.0,
                 reason: "must be at least 1",
-            });
+            }));
         }
         Ok(())
     }
@@ -127,6 +128,91 @@ pub enum NewtonFailure {
     NonFinite(NewtonReport),
 }
 
+/// Newton's stopping rule, the one every Newton iteration of the crate uses (the general solve
+/// below, the statically sized kernels, the separable steps, the RATTLE projection): after each
+/// evaluation [`Convergence::check`] stops the iteration when
+///
+/// * the residual is non-finite (a failure: [`NewtonFailure::NonFinite`]),
+/// * the residual is small relative to the size of its terms, `‖R‖∞ ≤ tol_R · scale_R`, or the
+///   last update was at round-off, `‖Δz‖∞ ≤ tol_z · scale_z` (converged), or
+/// * the iteration budget is spent ([`NewtonFailure::NotConverged`]).
+///
+/// The loops inline it: it is a few comparisons on copied numbers.
+#[derive(Debug, Clone, Copy)]
+pub struct Convergence {
+    residual_tolerance: f64,
+    step_tolerance: f64,
+    max_iterations: usize,
+    update_converged: bool,
+}
+
+impl Convergence {
+    /// The rule of `options`, before any update.
+    #[inline(always)]
+    pub fn new(options: &NewtonOptions) -> Self {
+        Self {
+            residual_tolerance: options.residual_tolerance,
+            step_tolerance: options.step_tolerance,
+            max_iterations: options.max_iterations,
+            update_converged: false,
+        }
+    }
+
+    /// After an evaluation whose residual (in `report`) is made of terms of size `scale`:
+    /// `Ok(true)` converged, `Ok(false)` iterate on, `Err` failed.
+    #[inline(always)]
+    pub fn check(&self, report: &NewtonReport, scale: f64) -> Result<bool, NewtonFailure> {
+        self.check_gated(report, scale, true)
+    }
+
+    /// [`Convergence::check`] where a small residual counts only if `gate` holds (a reused
+    /// Jacobian converges linearly: its residual test waits for a small estimated error).
+    #[inline(always)]
+    pub fn check_gated(
+        &self,
+        report: &NewtonReport,
+        scale: f64,
+        gate: bool,
+    ) -> Result<bool, NewtonFailure> {
+        if !report.residual.is_finite() {
+            return Err(NewtonFailure::NonFinite(*report));
+        }
+        if (self.residual_small(report.residual, scale) && gate) || self.update_converged {
+            return Ok(true);
+        }
+        if report.iterations >= self.max_iterations {
+            return Err(NewtonFailure::NotConverged(*report));
+        }
+        Ok(false)
+    }
+
+    /// Whether `residual ≤ tol_R · scale`.
+    #[inline(always)]
+    pub fn residual_small(&self, residual: f64, scale: f64) -> bool {
+        residual <= self.residual_tolerance * scale
+    }
+
+    /// Whether `residual` (finite or not) meets the rule after an update: small, or the update
+    /// at round-off.
+    #[inline(always)]
+    pub fn converged(&self, residual: f64, scale: f64) -> bool {
+        self.residual_small(residual, scale) || self.update_converged
+    }
+
+    /// Records an update of max-norm `size` to unknowns of size `scale`: at round-off when
+    /// `size ≤ tol_z · scale`.
+    #[inline(always)]
+    pub fn record_update(&mut self, size: f64, scale: f64) {
+        self.update_converged = size <= self.step_tolerance * scale;
+    }
+
+    /// The relative update tolerance `tol_z`.
+    #[inline(always)]
+    pub fn step_tolerance(&self) -> f64 {
+        self.step_tolerance
+    }
+}
+
 /// Reusable buffers of the Newton solver (no allocation per solve once sized).
 #[derive(Debug, Clone, Default)]
 pub struct NewtonWorkspace {
@@ -160,20 +246,13 @@ pub fn solve<Sys: NonlinearSystem>(
     let m = system.dim();
     ws.resize(m);
     let mut report = NewtonReport::default();
-    let mut update_converged = false;
+    let mut convergence = Convergence::new(options);
     system.evaluate(z, &mut ws.residual, &mut ws.jacobian);
     report.evaluations += 1;
     loop {
         report.residual = max_norm(&ws.residual);
-        if !report.residual.is_finite() {
-            return Err(NewtonFailure::NonFinite(report));
-        }
-        let tol = options.residual_tolerance * system.residual_scale();
-        if report.residual <= tol || update_converged {
+        if convergence.check(&report, system.residual_scale())? {
             return Ok(report);
-        }
-        if report.iterations >= options.max_iterations {
-            return Err(NewtonFailure::NotConverged(report));
         }
         newton_update(ws, m, report.iterations)?;
         report.iterations += 1;
@@ -188,7 +267,7 @@ pub fn solve<Sys: NonlinearSystem>(
             system.evaluate(z, &mut ws.residual, &mut ws.jacobian);
             report.evaluations += 1;
         }
-        update_converged = size <= options.step_tolerance * system.unknown_scale(z);
+        convergence.record_update(size, system.unknown_scale(z));
     }
 }
 

@@ -3,6 +3,7 @@
 //! Times are computed as `t_k = t₀ + k h`, never accumulated.
 
 use crate::error::Error;
+use crate::error::InputError;
 
 /// A uniform time grid `t_k = t₀ + k h`, `k = 0 … steps`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -20,7 +21,7 @@ impl TimeGrid {
     /// `steps` steps of size `h` from `t0`.
     pub fn new(t0: f64, h: f64, steps: usize) -> Result<Self, Error> {
         if !(h > 0.0 && h.is_finite()) {
-            return Err(Error::InvalidStep { h });
+            return Err(Error::Input(InputError::InvalidStep { h }));
         }
         Error::check_finite("t0", &[t0])?;
         Ok(Self { t0, h, steps })
@@ -32,9 +33,9 @@ impl TimeGrid {
         let grid = Self::new(t0, h, 0)?;
         Error::check_finite("t_end", &[t_end])?;
         if t_end <= t0 {
-            return Err(Error::InvalidTimeSpan {
+            return Err(Error::Input(InputError::InvalidTimeSpan {
                 reason: format!("t_end = {t_end} must be after t0 = {t0}"),
-            });
+            }));
         }
         let n = (t_end - t0) / h;
         let steps = if (n - n.round()).abs() <= 1e-9 * n.max(1.0) {

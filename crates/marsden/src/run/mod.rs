@@ -6,6 +6,7 @@
 //! | [`problem`] | system + initial data + grid, validated once; `solve` |
 //! | [`grid`] | `t_k = t₀ + k h`, storage stride |
 //! | [`observer`] | watching each step: monitors, writers, progress, stopping |
+//! | [`stepper`] | what the loop steps: the Lagrangian and the Hamiltonian integrators |
 //! | [`simulate`] | the one run loop |
 //! | [`trajectory`] | stored samples, per-step reports, why the run ended |
 
@@ -13,10 +14,12 @@ pub mod grid;
 pub mod observer;
 pub mod problem;
 pub mod simulate;
+pub mod stepper;
 pub mod trajectory;
 
 pub use grid::{RunOptions, TimeGrid};
 pub use observer::{Observer, StepView};
 pub use problem::{Problem, SolveOptions};
 pub use simulate::simulate;
+pub use stepper::Stepper;
 pub use trajectory::{RunFailure, Termination, Trajectory};

@@ -11,6 +11,7 @@ use super::simulate::simulate;
 use super::trajectory::{RunFailure, Trajectory};
 use crate::discrete::rules::Rule;
 use crate::error::Error;
+use crate::error::InputError;
 use crate::holonomic::{self, Rattle};
 use crate::integrator::Integrator;
 use crate::mechanics;
@@ -235,12 +236,12 @@ impl<L: Lagrangian, F: Force, C: Constraint> Problem<L, F, C> {
             Box::new(RunFailure { error, trajectory })
         };
         if options.compensated && self.constraint.count() > 0 {
-            return Err(failure(Error::InvalidOption {
+            return Err(failure(Error::Input(InputError::InvalidOption {
                 name: "compensated",
                 value: 1.0,
                 reason: "compensated summation applies to unconstrained problems only (the \
                          momenta of a constrained step come from its projection)",
-            }));
+            })));
         }
         let mut integrator = self
             .integrator(rule, options.newton)

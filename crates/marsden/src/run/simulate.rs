@@ -1,37 +1,33 @@
 //! Running an integrator over a time grid: storage stride and observers.
 //!
-//! [`simulate`] steps an [`Integrator`] from a starting [`State`] over a [`TimeGrid`], stores every
+//! [`simulate`] steps a [`Stepper`] (the Lagrangian or the Hamiltonian integrator) from a starting [`State`] over a [`TimeGrid`], stores every
 //! `stride`-th state in a [`Trajectory`] (always the first and the last), and shows every step to
 //! an [`Observer`], which can monitor, stream to disk, report progress or stop the run. Times are
 //! computed as `t₀ + k h`, never accumulated.
 
 use super::grid::{RunOptions, TimeGrid};
 use super::observer::{Observer, StepView};
+use super::stepper::Stepper;
 use super::trajectory::{Termination, Trajectory};
-use crate::discrete::{DiscreteAction, DiscreteForce};
-use crate::holonomic::MomentumProjection;
-use crate::integrator::{Integrator, StepReport};
-use crate::mechanics::{Constraint, State};
+use crate::integrator::{Statistics, StepReport};
+use crate::mechanics::State;
 
-/// Steps `integrator` from `start` over `grid`, storing every `options.stride`-th state and showing
+/// Steps `stepper` from `start` over `grid`, storing every `options.stride`-th state and showing
 /// each step to `observer`. Never fails as a call: a failing step ends the run with
 /// [`Termination::Failed`] and the trajectory up to the last good state.
-pub fn simulate<A, F, C, P, O>(
-    integrator: &mut Integrator<A, F, C, P>,
+pub fn simulate<S, O>(
+    stepper: &mut S,
     start: State,
     grid: &TimeGrid,
     options: &RunOptions,
     observer: &mut O,
 ) -> Trajectory
 where
-    A: DiscreteAction,
-    F: DiscreteForce,
-    C: Constraint,
-    P: MomentumProjection,
+    S: Stepper + ?Sized,
     O: Observer + ?Sized,
 {
-    let shape = integrator.shape();
-    let mut traj = Trajectory::new(shape.n, shape.d, grid.h);
+    let (n, d) = stepper.dims();
+    let mut traj = Trajectory::new(n, d, grid.h);
     let stride = options.stride.max(1);
     let mut state = start;
     let initial = StepReport::default();
@@ -44,10 +40,10 @@ where
         multipliers: &[],
         report: &initial,
     });
-    let before = *integrator.statistics();
+    let before = stepper.statistics();
     let mut last_report = initial;
-    // Explicit steps between stored samples run in one loop when nobody watches each step.
-    let chunked = integrator.is_explicit() && !observer.every_step();
+    // Steps between stored samples run in one loop when nobody watches each step.
+    let chunked = stepper.runs_in_chunks() && !observer.every_step();
     let mut k = 0;
     while k < grid.steps {
         let chunk = if chunked {
@@ -55,9 +51,9 @@ where
         } else {
             1
         };
-        let done_before = integrator.statistics().steps;
-        let outcome = integrator.advance(&mut state, grid.h, chunk);
-        k += integrator.statistics().steps - done_before;
+        let done_before = stepper.steps_done();
+        let outcome = stepper.advance(&mut state, grid.h, chunk);
+        k += stepper.steps_done() - done_before;
         state.t = grid.time(k);
         traj.steps = k;
         match outcome {
@@ -72,32 +68,22 @@ where
             t: state.t,
             q: &state.q,
             p: &state.p,
-            multipliers: integrator.multipliers(),
+            multipliers: stepper.multipliers(),
             report: &last_report,
         };
         let stop = observer.observe(&view).is_break();
         if k % stride == 0 || k == grid.steps || stop {
-            traj.push_sample(
-                k,
-                (state.t, &state.q, &state.p),
-                (
-                    integrator.multipliers(),
-                    integrator.projection_multipliers(),
-                ),
-                last_report,
-            );
+            let multipliers = (stepper.multipliers(), stepper.projection_multipliers());
+            traj.push_sample(k, (state.t, &state.q, &state.p), multipliers, last_report);
         }
         if stop {
             traj.termination = Termination::Stopped { steps: k };
             break;
         }
     }
-    let multipliers = (
-        integrator.multipliers(),
-        integrator.projection_multipliers(),
-    );
+    let multipliers = (stepper.multipliers(), stepper.projection_multipliers());
     store_last_good(&mut traj, &state, multipliers, last_report);
-    traj.statistics = difference(integrator.statistics(), &before);
+    traj.statistics = difference(&stepper.statistics(), &before);
     traj
 }
 
@@ -118,7 +104,7 @@ fn difference(
     after: &crate::integrator::Statistics,
     before: &crate::integrator::Statistics,
 ) -> crate::integrator::Statistics {
-    crate::integrator::Statistics {
+    Statistics {
         steps: after.steps - before.steps,
         newton_iterations: after.newton_iterations - before.newton_iterations,
         max_newton_iterations: after.max_newton_iterations,

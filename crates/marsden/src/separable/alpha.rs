@@ -31,7 +31,7 @@ use super::alpha_small::solve_alpha_small;
 use super::step::{Frame, Mass, SeparableWorkspace, node};
 use crate::mechanics::Lagrangian;
 use crate::numerics::dense::max_norm;
-use crate::numerics::newton::{NewtonFailure, NewtonOptions, NewtonReport};
+use crate::numerics::newton::{Convergence, NewtonFailure, NewtonOptions, NewtonReport};
 
 /// Contraction rate above which a reused Jacobian is replaced by a fresh one.
 const THETA_REFRESH: f64 = 0.1;
@@ -69,9 +69,7 @@ pub(crate) fn solve_alpha<L: Lagrangian>(
     options: &NewtonOptions,
     ws: &mut SeparableWorkspace,
 ) -> Result<NewtonReport, NewtonFailure> {
-    if let Some(result) =
-        solve_alpha_small(l, alpha, frame, (&mut *z, &mut *p_next), options, ws)
-    {
+    if let Some(result) = solve_alpha_small(l, alpha, frame, (&mut *z, &mut *p_next), options, ws) {
         return result;
     }
     let n = frame.q0.len();
@@ -87,31 +85,25 @@ pub(crate) fn solve_alpha<L: Lagrangian>(
         fresh: false,
         refresh: !reuse || ws.lu_h != Some(frame.h),
     };
-    let (mut update_converged, mut error_small) = (false, true);
+    let mut convergence = Convergence::new(options);
+    let mut error_small = true;
     loop {
         let it = evaluate(l, alpha, frame, z, p_next, ws);
         report.evaluations += 1;
         report.residual = it.residual;
-        if !it.residual.is_finite() {
-            return Err(NewtonFailure::NonFinite(report));
-        }
-        let residual_small = it.residual <= options.residual_tolerance * it.scale;
-        if (residual_small && error_small) || update_converged {
+        if convergence.check_gated(&report, it.scale, error_small)? {
             return Ok(report);
-        }
-        if report.iterations >= options.max_iterations {
-            return Err(NewtonFailure::NotConverged(report));
         }
         let (size, theta) = state.update(l, alpha, frame, z, ws, &mut report)?;
         report.iterations += 1;
         z.iter_mut().zip(&ws.update).for_each(|(d, u)| *d += u);
         let znorm = z.iter().fold(q_scale, |m, d| m.max(d.abs()));
-        update_converged = size <= options.step_tolerance * znorm;
+        convergence.record_update(size, znorm);
         if theta.is_finite() {
             ws.theta = theta;
         }
         let rate = if theta.is_finite() { theta } else { ws.theta };
-        let target = ERROR_MARGIN * options.step_tolerance * znorm;
+        let target = ERROR_MARGIN * convergence.step_tolerance() * znorm;
         error_small = !reuse || (rate < 1.0 && rate / (1.0 - rate) * size <= target);
         state.refresh |= !reuse;
     }

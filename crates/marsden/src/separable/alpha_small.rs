@@ -18,7 +18,7 @@
 use super::step::{Frame, Mass, SeparableWorkspace, node};
 use crate::mechanics::Lagrangian;
 use crate::numerics::dense::{max_norm, solve_fixed};
-use crate::numerics::newton::{NewtonFailure, NewtonOptions, NewtonReport};
+use crate::numerics::newton::{Convergence, NewtonFailure, NewtonOptions, NewtonReport};
 
 /// The step for `n ≤ 4` with a diagonal mass; `None` for other systems.
 pub(super) fn solve_alpha_small<L: Lagrangian>(
@@ -128,21 +128,19 @@ fn solve<L: Lagrangian, const N: usize>(
     let mut delta: [f64; N] = z.get(..N)?.try_into().ok()?;
     let q_scale = max_norm(frame.q0).max(f64::MIN_POSITIVE);
     let mut report = NewtonReport::default();
-    let mut update_converged = false;
+    let mut convergence = Convergence::new(options);
     loop {
         let it = step.evaluate(&delta, &mut ws.scratch);
         report.evaluations += 1;
         report.residual = it.norm;
-        if !it.norm.is_finite() {
-            return Some(Err(NewtonFailure::NonFinite(report)));
-        }
-        if it.norm <= options.residual_tolerance * it.scale || update_converged {
-            z[..N].copy_from_slice(&delta);
-            p_next.copy_from_slice(&it.p_next);
-            return Some(Ok(report));
-        }
-        if report.iterations >= options.max_iterations {
-            return Some(Err(NewtonFailure::NotConverged(report)));
+        match convergence.check(&report, it.scale) {
+            Ok(false) => {}
+            Ok(true) => {
+                z[..N].copy_from_slice(&delta);
+                p_next.copy_from_slice(&it.p_next);
+                return Some(Ok(report));
+            }
+            Err(failure) => return Some(Err(failure)),
         }
         let mut a = step.jacobian(&delta, ws);
         report.factorizations += 1;
@@ -157,6 +155,6 @@ fn solve<L: Lagrangian, const N: usize>(
         let size = update.iter().fold(0.0_f64, |m, u| m.max(u.abs()));
         delta.iter_mut().zip(&update).for_each(|(d, u)| *d += u);
         let znorm = delta.iter().fold(q_scale, |m, d| m.max(d.abs()));
-        update_converged = size <= options.step_tolerance * znorm;
+        convergence.record_update(size, znorm);
     }
 }

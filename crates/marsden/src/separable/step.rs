@@ -138,4 +138,3 @@ pub(super) fn node(alpha: f64, q0: &[f64], delta: &[f64], out: &mut [f64]) {
         };
     }
 }
-

@@ -24,6 +24,7 @@
 //! Mechanics and Symmetry*, 2nd ed. (1999).
 
 use crate::error::Error;
+use crate::error::{InputError, StepError, StepFailure};
 use crate::numerics::ad::{self, MultiFunction};
 use crate::numerics::dense::Lu;
 use crate::scalar::Scalar;
@@ -86,24 +87,24 @@ pub trait FiniteAction: GroupAction {
 /// (each output is pre-filled with NaN, so a component the generator forgets stays NaN).
 pub fn validate<G: GroupAction>(action: &G, dof: usize, q: &[f64]) -> Result<(), Error> {
     if action.dof() != dof || q.len() != dof {
-        return Err(Error::SymmetryDimension {
+        return Err(Error::Input(InputError::SymmetryDimension {
             symmetry: action.name(),
             expected: dof,
             found: action.dof(),
-        });
+        }));
     }
     let mut xi = vec![f64::NAN; dof];
     for a in 0..action.algebra_dim() {
         xi.fill(f64::NAN);
         action.generator(a, q, &mut xi);
         if let Some(component) = xi.iter().position(|x| !x.is_finite()) {
-            return Err(Error::InvalidGenerator {
+            return Err(Error::Input(InputError::InvalidGenerator {
                 symmetry: action.name(),
                 generator: a,
                 component,
                 value: xi[component],
                 q: q.to_vec(),
-            });
+            }));
         }
     }
     Ok(())
@@ -220,13 +221,16 @@ pub fn act_cotangent<G: FiniteAction>(
     // Solve DΦᵀ p' = p.
     let transposed: Vec<f64> = (0..n * n).map(|k| jac[(k % n) * n + k / n]).collect();
     let mut lu = Lu::new();
-    lu.factor(&transposed, n)
-        .map_err(|e| Error::SingularJacobian {
+    lu.factor(&transposed, n).map_err(|e| {
+        Error::Step(StepFailure {
             step: 0,
             t: 0.0,
-            iteration: 0,
-            pivot: e.pivot,
-        })?;
+            cause: StepError::SingularJacobian {
+                iteration: 0,
+                pivot: e.pivot,
+            },
+        })
+    })?;
     gp.copy_from_slice(p);
     lu.solve(gp, &mut Vec::with_capacity(n));
     Ok(())

@@ -7,6 +7,7 @@
 //! size is compared with the size of the terms that should cancel, `Σᵢ |∂F/∂xᵢ ξᵢ|`, so the
 //! relative defect of a true symmetry is at round-off (≈ 1e-16) whatever the units.
 
+use crate::error::SetupError;
 use std::fmt;
 
 use super::{FiniteAction, GroupAction, tangent_lift, validate};
@@ -111,14 +112,14 @@ impl SymmetryReport {
     /// `Ok(self)` for a symmetry, otherwise [`Error::NotASymmetry`] with the worst defect.
     pub fn into_result(self) -> Result<Self, Error> {
         match self.worst() {
-            Some(w) if !self.is_symmetry() => Err(Error::NotASymmetry {
+            Some(w) if !self.is_symmetry() => Err(Error::Setup(SetupError::NotASymmetry {
                 symmetry: self.symmetry.clone(),
                 of: self.of,
                 generator: w.generator,
                 defect: w.max_defect,
                 relative: w.max_relative,
                 tolerance: self.tolerance,
-            }),
+            })),
             _ => Ok(self),
         }
     }

@@ -6,6 +6,7 @@
 #![allow(clippy::unwrap_used, clippy::excessive_precision)]
 
 use crate::common::tight;
+use marsden::error::{SetupError, StepError, StepFailure};
 use marsden::holonomic::{self, project_position};
 use marsden::systems::{CartesianPendulum, SphericalPendulum};
 use marsden::{
@@ -55,7 +56,7 @@ fn unsatisfiable_constraint_is_refused_at_the_start_by_projection_and_by_the_ste
         .with_constraint(Unsatisfiable)
         .unwrap_err();
     assert!(
-        matches!(err, Error::InitialPositionOffConstraint { index: 0, residual, .. } if residual == 1.0),
+        matches!(err, Error::Setup(SetupError::InitialPositionOffConstraint { index: 0, residual, .. }) if residual == 1.0),
         "{err:?}"
     );
     let message = err.to_string();
@@ -67,7 +68,7 @@ fn unsatisfiable_constraint_is_refused_at_the_start_by_projection_and_by_the_ste
     // The explicit projection cannot find a point with φ = 0 either.
     let err = project_position(&Unsatisfiable, &[0.0, -1.0]).unwrap_err();
     assert!(
-        matches!(err, Error::PositionProjectionFailed { residual, .. } if residual > 0.4),
+        matches!(err, Error::Setup(SetupError::PositionProjectionFailed { residual, .. }) if residual > 0.4),
         "{err:?}"
     );
     let message = err.to_string();
@@ -92,11 +93,11 @@ fn unsatisfiable_constraint_is_refused_at_the_start_by_projection_and_by_the_ste
     assert!(
         matches!(
             err,
-            Error::ConstraintNotSatisfied {
+            Error::Step(StepFailure {
                 step: 0,
-                index: 0,
+                cause: StepError::ConstraintNotSatisfied { index: 0, .. },
                 ..
-            }
+            })
         ),
         "{err:?}"
     );
@@ -120,12 +121,12 @@ fn redundant_constraints_are_refused_with_their_rank() {
         .with_constraint(Doubled)
         .unwrap_err();
     match &err {
-        Error::RedundantConstraints {
+        Error::Setup(SetupError::RedundantConstraints {
             count,
             rank,
             singular_values,
             ..
-        } => {
+        }) => {
             assert_eq!((*count, *rank), (2, 1));
             // Dφ = [[0, −1], [0, −2]]: singular values √5 and 0.
             assert!((singular_values[0] - 5f64.sqrt()).abs() < 1e-14);
@@ -152,9 +153,9 @@ fn initial_positions_off_the_manifold_are_refused_with_the_residual() {
         .with_constraint(CartesianPendulum::default())
         .unwrap_err();
     match err {
-        Error::InitialPositionOffConstraint {
+        Error::Setup(SetupError::InitialPositionOffConstraint {
             index, residual, ..
-        } => {
+        }) => {
             assert_eq!(index, 0);
             assert!((residual - 0.005).abs() < 1e-15, "{residual}");
         }
@@ -174,7 +175,7 @@ fn initial_velocities_and_momenta_not_tangent_are_refused_separately() {
         .with_constraint(pendulum)
         .unwrap_err();
     assert!(
-        matches!(err, Error::InitialVelocityNotTangent { what: "velocity v0", index: 0, residual, .. } if (residual + 0.2).abs() < 1e-15),
+        matches!(err, Error::Setup(SetupError::InitialVelocityNotTangent { what: "velocity v0", index: 0, residual, .. }) if (residual + 0.2).abs() < 1e-15),
         "{err:?}"
     );
     let message = err.to_string();
@@ -189,7 +190,7 @@ fn initial_velocities_and_momenta_not_tangent_are_refused_separately() {
         .with_constraint(pendulum)
         .unwrap_err();
     assert!(
-        matches!(err, Error::InitialVelocityNotTangent { what: "momentum p0", residual, .. } if (residual + 0.3).abs() < 1e-15),
+        matches!(err, Error::Setup(SetupError::InitialVelocityNotTangent { what: "momentum p0", residual, .. }) if (residual + 0.3).abs() < 1e-15),
         "{err:?}"
     );
     eprintln!("{err}");
@@ -250,7 +251,14 @@ fn momentum_projection_failure_is_a_typed_error() {
     )
     .unwrap_err();
     assert!(
-        matches!(err, Error::MomentumProjectionFailed { step: 0, .. }),
+        matches!(
+            err,
+            Error::Step(StepFailure {
+                step: 0,
+                cause: StepError::MomentumProjectionFailed { .. },
+                ..
+            })
+        ),
         "{err:?}"
     );
     eprintln!("{err}");

@@ -9,7 +9,8 @@ use crate::common::tight;
 use marsden::analysis::diagnostics::{ConstraintMonitor, EnergyReport, energy_series};
 use marsden::systems::SphericalPendulum;
 use marsden::{
-    Integrator, Midpoint, Problem, Rule, RunOptions, SolveOptions, State, TimeGrid, Trajectory, simulate,
+    Integrator, Midpoint, Problem, Rule, RunOptions, SolveOptions, State, TimeGrid, Trajectory,
+    simulate,
 };
 
 fn pendulum() -> SphericalPendulum {

@@ -7,6 +7,7 @@
 
 use crate::common::tight;
 use marsden::discrete::rules::Galerkin;
+use marsden::error::InputError;
 use marsden::systems::{CartesianPendulum, DampedOscillator, Kepler};
 use marsden::{
     Error, Initial, Integrator, Midpoint, Problem, Rule, SolveOptions, State, TimeGrid, Trapezoid,
@@ -160,10 +161,10 @@ fn constrained_problems_refuse_it() {
     assert!(
         matches!(
             failure.error,
-            Error::InvalidOption {
+            Error::Input(InputError::InvalidOption {
                 name: "compensated",
                 ..
-            }
+            })
         ),
         "{:?}",
         failure.error

@@ -5,6 +5,7 @@
 // Tests may unwrap.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+use marsden::error::SetupError;
 use marsden::systems::{HenonHeiles, Kepler, NBody, Pendulum};
 use marsden::{
     DiscreteAction, Error, Initial, Integrator, Lagrangian, MassMatrix, NewtonOptions, Problem,
@@ -157,6 +158,9 @@ impl Lagrangian for FalselySeparable {
 fn a_false_separability_declaration_is_an_error() {
     let grid = TimeGrid::new(0.0, 0.1, 10).unwrap();
     let err = Problem::new(FalselySeparable, Initial::velocity(&[0.5], &[1.0]), grid).unwrap_err();
-    assert!(matches!(err, Error::StructureMismatch { .. }), "{err:?}");
+    assert!(
+        matches!(err, Error::Setup(SetupError::StructureMismatch { .. })),
+        "{err:?}"
+    );
     assert!(err.to_string().contains("declared separable"), "{err}");
 }

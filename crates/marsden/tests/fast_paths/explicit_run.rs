@@ -6,6 +6,7 @@
 // Tests may unwrap.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+use marsden::error::{StepError, StepFailure};
 use std::ops::ControlFlow;
 
 use marsden::discrete::rules::{Composition, CompositionScheme};
@@ -159,7 +160,11 @@ fn a_blow_up_keeps_the_last_finite_state_and_names_the_step() {
     let mut s2 = start.clone();
     let err = run.advance(&mut s2, h, 1000).unwrap_err();
     match err {
-        Error::NonFinite { step, t, .. } => {
+        Error::Step(StepFailure {
+            step,
+            t,
+            cause: StepError::NonFinite { .. },
+        }) => {
             assert_eq!(step, failed_at);
             assert!((t - failed_at as f64 * h).abs() < 1e-12, "t = {t}");
         }
@@ -242,7 +247,10 @@ fn simulate_in_chunks_stores_the_same_samples() {
     assert!(
         matches!(
             failed.termination,
-            Termination::Failed(Error::NonFinite { .. })
+            Termination::Failed(Error::Step(StepFailure {
+                cause: StepError::NonFinite { .. },
+                ..
+            }))
         ),
         "{:?}",
         failed.termination

@@ -4,6 +4,7 @@
 //! Newton solve exactly — and a degenerate Lagrangian is reported, not silently integrated.
 #![allow(clippy::unwrap_used, clippy::expect_used)] // tests may unwrap
 
+use marsden::error::{SetupError, StepError, StepFailure};
 use marsden::hamiltonian::{
     Hamiltonian, HamiltonianIntegrator, HamiltonianLagrangian, ImplicitMidpoint,
     LegendreHamiltonian, PhaseJet,
@@ -122,7 +123,7 @@ fn degenerate_lagrangian_is_reported() {
     let h = LegendreHamiltonian::new(Degenerate);
     assert!(matches!(
         h.try_value(0.0, &[1.0], &[2.0]),
-        Err(Error::InverseLegendre { .. })
+        Err(Error::Setup(SetupError::InverseLegendre { .. }))
     ));
     let value: f64 = h.hamiltonian(0.0, &[1.0], &[2.0]);
     assert!(value.is_nan());
@@ -133,6 +134,16 @@ fn degenerate_lagrangian_is_reported() {
         p: vec![2.0],
     };
     let err = integrator.step(&mut state, 0.1).unwrap_err();
-    assert!(matches!(err, Error::NonFinite { step: 0, .. }), "{err:?}");
+    assert!(
+        matches!(
+            err,
+            Error::Step(StepFailure {
+                step: 0,
+                cause: StepError::NonFinite { .. },
+                ..
+            })
+        ),
+        "{err:?}"
+    );
     assert_eq!(state.q, vec![1.0]);
 }

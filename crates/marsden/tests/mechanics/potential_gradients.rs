@@ -2,6 +2,7 @@
 //! (`marsden::mechanics::potential`), and large separable systems skip the dense AD jet.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::excessive_precision)]
 
+use marsden::error::SetupError;
 use marsden::mechanics::potential::{gradient_defect, hessian_defect};
 use marsden::systems::{Chain, Kepler, NBody, Pendulum};
 use marsden::{Error, Initial, Lagrangian, MassMatrix, Problem, Scalar, Structure, TimeGrid};
@@ -112,5 +113,8 @@ fn a_false_declaration_is_caught_by_the_probes() {
         grid,
     )
     .unwrap_err();
-    assert!(matches!(err, Error::StructureMismatch { .. }), "{err:?}");
+    assert!(
+        matches!(err, Error::Setup(SetupError::StructureMismatch { .. })),
+        "{err:?}"
+    );
 }

@@ -3,6 +3,7 @@
 // Tests may unwrap; reference values are quoted with all the digits the reference cases give.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::excessive_precision)]
 
+use marsden::error::{InputError, SetupError, StepError, StepFailure};
 use marsden::systems::Pendulum;
 use marsden::{
     Error, Initial, Integrator, Lagrangian, Midpoint, NewtonOptions, Problem, Rule, Scalar,
@@ -33,7 +34,10 @@ fn singular_lagrangian_is_reported_with_the_state() {
         grid(),
     )
     .unwrap_err();
-    assert!(matches!(err, Error::SingularLagrangian { .. }), "{err:?}");
+    assert!(
+        matches!(err, Error::Setup(SetupError::SingularLagrangian { .. })),
+        "{err:?}"
+    );
     let msg = err.to_string();
     assert!(
         msg.contains("singular") && msg.contains("q = [0.5, 0.0]") && msg.contains("∂²L/∂v²"),
@@ -46,7 +50,10 @@ fn singular_lagrangian_is_reported_with_the_state() {
         grid(),
     )
     .unwrap_err();
-    assert!(matches!(err, Error::SingularLagrangian { .. }), "{err:?}");
+    assert!(
+        matches!(err, Error::Setup(SetupError::SingularLagrangian { .. })),
+        "{err:?}"
+    );
 }
 
 #[test]
@@ -57,7 +64,9 @@ fn nan_and_wrong_length_initial_data_are_named() {
         grid(),
     )
     .unwrap_err();
-    assert!(matches!(err, Error::NonFiniteInput { what: "q0", index: 0, value } if value.is_nan()));
+    assert!(
+        matches!(err, Error::Input(InputError::NonFinite { what: "q0", index: 0, value }) if value.is_nan())
+    );
     assert_eq!(err.to_string(), "q0[0] is not finite (NaN)");
     let err = Problem::new(
         Pendulum::default(),
@@ -100,7 +109,7 @@ fn zero_negative_and_nan_steps_are_rejected() {
     };
     assert_eq!(
         integrator.step(&mut s, 0.0).unwrap_err(),
-        Error::InvalidStep { h: 0.0 }
+        Error::Input(InputError::InvalidStep { h: 0.0 })
     );
     assert!(integrator.step(&mut s, -0.1).is_ok());
 }
@@ -177,13 +186,16 @@ fn exhausted_newton_budget_is_a_typed_error_with_the_numbers() {
     };
     let err = integrator.step(&mut s, 0.5).unwrap_err();
     match &err {
-        Error::NewtonDidNotConverge {
+        Error::Step(StepFailure {
             step,
             t,
-            iterations,
-            residual,
-            tolerance,
-        } => {
+            cause:
+                StepError::NewtonDidNotConverge {
+                    iterations,
+                    residual,
+                    tolerance,
+                },
+        }) => {
             assert_eq!((*step, *t, *iterations, *tolerance), (0, 0.0, 1, 1e-15));
             assert!(*residual > 1e-15);
         }

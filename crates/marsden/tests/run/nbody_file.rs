@@ -2,6 +2,7 @@
 //! into `(system, q₀, p₀)`, and malformed files give typed errors that name the line.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+use marsden::error::InputError;
 use std::path::PathBuf;
 
 use marsden::systems::NBody;
@@ -9,9 +10,8 @@ use marsden::systems::nbody::{NBodyFileError, file};
 use marsden::{Error, Integrator, Rule, State, Trapezoid};
 
 fn plummer(n: usize) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!(
-        "tests/data/plummer_N{n}_seed20241121.txt"
-    ))
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join(format!("tests/data/plummer_N{n}_seed20241121.txt"))
 }
 
 #[test]
@@ -144,7 +144,10 @@ fn a_missing_file_and_bad_parameters_are_typed_errors() {
     ));
     assert!(matches!(
         NBody::with_parameters(vec![], 1.0, 0.0),
-        Err(Error::InvalidOption { name: "masses", .. })
+        Err(Error::Input(InputError::InvalidOption {
+            name: "masses",
+            ..
+        }))
     ));
     let ok = NBody::with_parameters(vec![2.0, 3.0], 0.5, 0.1).unwrap();
     assert_eq!(

@@ -3,6 +3,7 @@
 //! are typed errors naming the symmetry, SO(3) momentum maps are equivariant, and J_L = FL*J_H.
 #![allow(clippy::unwrap_used, clippy::expect_used)] // tests may unwrap
 
+use marsden::error::{InputError, SetupError};
 use marsden::hamiltonian::{Hamiltonian, HamiltonianLagrangian};
 use marsden::symmetry::check::{
     DEFAULT_TOLERANCE, check_discrete, check_hamiltonian, check_lagrangian,
@@ -63,12 +64,12 @@ fn henon_heiles_rotation_is_reported_as_no_symmetry_with_its_defect() {
     let message = report.to_string();
     assert!(message.contains("is NOT a symmetry of L"), "{message}");
     match report.into_result() {
-        Err(Error::NotASymmetry {
+        Err(Error::Setup(SetupError::NotASymmetry {
             symmetry,
             of,
             defect,
             ..
-        }) => {
+        })) => {
             assert_eq!(symmetry, "planar rotations SO(2) of 1 particles");
             assert_eq!(of, "L");
             assert!((defect - 0.065).abs() < 1e-15);
@@ -135,7 +136,7 @@ fn bad_generators_are_typed_errors_naming_the_symmetry() {
     let samples = Sample::random(2, 3, 1, 1.0);
     // Wrong number of components: SO(3) of two particles (6 components) on a 2-dof system.
     match check_lagrangian(&kepler, &Rotations::new(2), &samples, DEFAULT_TOLERANCE) {
-        Err(e @ Error::SymmetryDimension { .. }) => {
+        Err(e @ Error::Input(InputError::SymmetryDimension { .. })) => {
             let message = e.to_string();
             assert!(
                 message.contains("rotations SO(3) of 2 particles"),
@@ -150,13 +151,13 @@ fn bad_generators_are_typed_errors_naming_the_symmetry() {
     }
     // Not finite: the radial field at the origin, and a zero rotation axis.
     match validate(&Radial, 2, &[0.0, 0.0]) {
-        Err(Error::InvalidGenerator {
+        Err(Error::Input(InputError::InvalidGenerator {
             symmetry,
             generator,
             component,
             value,
             ..
-        }) => {
+        })) => {
             assert_eq!(symmetry, "radial unit field");
             assert_eq!((generator, component), (0, 0));
             assert!(value.is_nan());
@@ -167,11 +168,11 @@ fn bad_generators_are_typed_errors_naming_the_symmetry() {
     let zero_axis = AxisRotation::about(1, [0.0, 0.0, 0.0]);
     assert!(matches!(
         validate(&zero_axis, 3, &[1.0, 2.0, 3.0]),
-        Err(Error::InvalidGenerator { .. })
+        Err(Error::Input(InputError::InvalidGenerator { .. }))
     ));
     // A component left unwritten is caught too.
     match validate(&Forgetful, 2, &[1.0, 1.0]) {
-        Err(e @ Error::InvalidGenerator { component: 1, .. }) => {
+        Err(e @ Error::Input(InputError::InvalidGenerator { component: 1, .. })) => {
             assert!(e.to_string().contains("forgetful shift"));
         }
         other => panic!("expected InvalidGenerator for component 1, got {other:?}"),

@@ -28,6 +28,7 @@ use super::DifferentiableStep;
 use crate::discrete::legendre::ActionAndForces;
 use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::error::Error;
+use crate::error::{StepError, StepFailure};
 use crate::integrator::{Integrator, StepReport};
 use crate::mechanics::{State, Unconstrained};
 use crate::numerics::ad::{self, HessianParts};
@@ -96,11 +97,15 @@ pub fn step_jacobian<A: DiscreteAction, F: DiscreteForce>(
         .map(|k| b.d_equation(k / sn / n, (k / sn) % n, n + k % sn))
         .collect();
     let mut lu = Lu::new();
-    lu.factor(&a_mat, sn).map_err(|e| Error::SingularJacobian {
-        step: 0,
-        t: t0,
-        iteration: 0,
-        pivot: e.pivot,
+    lu.factor(&a_mat, sn).map_err(|e| {
+        Error::Step(StepFailure {
+            step: 0,
+            t: t0,
+            cause: StepError::SingularJacobian {
+                iteration: 0,
+                pivot: e.pivot,
+            },
+        })
     })?;
     // dz = −A⁻¹ [∂R/∂q | ∂R/∂p], column by column (sn × 2n, stored column-major in `dz`).
     let (mut dz, mut col, mut scratch) = (vec![0.0; sn * m], vec![0.0; sn], Vec::with_capacity(sn));
@@ -159,12 +164,18 @@ impl<A: DiscreteAction, F: DiscreteForce> DifferentiableStep for Integrator<A, F
             jac,
         )
         .map_err(|e| match e {
-            Error::SingularJacobian { t, pivot, .. } => Error::SingularJacobian {
+            Error::Step(StepFailure {
+                t,
+                cause: StepError::SingularJacobian { pivot, .. },
+                ..
+            }) => Error::Step(StepFailure {
                 step,
                 t,
-                iteration: report.iterations,
-                pivot,
-            },
+                cause: StepError::SingularJacobian {
+                    iteration: report.iterations,
+                    pivot,
+                },
+            }),
             other => other,
         })?;
         Ok(report)

@@ -35,6 +35,7 @@
 use crate::discrete::DiscreteForce;
 use crate::discrete::rules::Rule;
 use crate::error::Error;
+use crate::error::InputError;
 use crate::mechanics;
 use crate::mechanics::{Force, Lagrangian};
 use crate::run::Trajectory;
@@ -90,11 +91,11 @@ impl EnergyBalance {
         for i in 1..trajectory.len() {
             let (k0, k1) = (trajectory.step_indices[i - 1], trajectory.step_indices[i]);
             if k1 != k0 + 1 {
-                return Err(Error::InvalidOption {
+                return Err(Error::Input(InputError::InvalidOption {
                     name: "stride",
                     value: (k1 - k0) as f64,
                     reason: "the energy balance needs every step stored (stride 1)",
-                });
+                }));
             }
             let (q0, q1, h) = (trajectory.q(i - 1), trajectory.q(i), trajectory.h);
             delta

@@ -12,6 +12,7 @@
 //! reference integrator (for the exact discrete Lagrangian, and as the reference of order
 //! studies), not a structure-preserving one.
 
+use crate::error::{InputError, SetupError};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::error::Error;
@@ -50,10 +51,12 @@ impl Default for FlowOptions {
 impl FlowOptions {
     /// Checks the options' ranges.
     pub fn validate(&self) -> Result<(), Error> {
-        let invalid = |name, value: f64, reason| Error::InvalidOption {
-            name,
-            value,
-            reason,
+        let invalid = |name, value: f64, reason| {
+            Error::Input(InputError::InvalidOption {
+                name,
+                value,
+                reason,
+            })
         };
         if !(self.tolerance >= 1e-15 && self.tolerance < 1.0) {
             return Err(invalid(
@@ -209,12 +212,12 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
                 // A rejected substep too small to advance the time: the solution runs into a
                 // singularity, and the accepted substeps would shrink towards it forever.
                 if rejections > self.options.max_halvings || negligible(step, t0 + done, h) {
-                    return Err(Error::FlowDidNotConverge {
+                    return Err(Error::Setup(SetupError::FlowDidNotConverge {
                         t: t0 + done,
                         substep: step,
                         estimate,
                         tolerance: self.options.tolerance,
-                    });
+                    }));
                 }
                 piece = 0.5 * step;
             }
@@ -297,14 +300,15 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
             self.force.force(t, q, v, &mut force);
         }
         let mut lu = Lu::new();
-        lu.factor(&jet.d2l_dv2, n)
-            .map_err(|e| Error::SingularLagrangian {
+        lu.factor(&jet.d2l_dv2, n).map_err(|e| {
+            Error::Setup(SetupError::SingularLagrangian {
                 t,
                 q: q.to_vec(),
                 v: v.to_vec(),
                 pivot: e.pivot,
                 scale: max_norm(&jet.d2l_dv2),
-            })?;
+            })
+        })?;
         let a = &mut out[n..2 * n];
         for i in 0..n {
             let coupling: f64 = (0..n).map(|j| jet.d2l_dvdq[i * n + j] * v[j]).sum();

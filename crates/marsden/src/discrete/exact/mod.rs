@@ -36,6 +36,7 @@
 pub mod flow;
 pub mod shooting;
 
+use crate::error::SetupError;
 use std::sync::Mutex;
 
 pub use flow::{EulerLagrangeFlow, FlowEnd, FlowOptions};
@@ -219,12 +220,13 @@ impl<L: Lagrangian> ExactDiscreteLagrangian<L> {
         let (a, c) = shooting::flow_derivatives(&self.flow, (t0, h), (q0, &bv.v0), (false, scale))?;
         let _ = c;
         let mut lu = Lu::new();
-        lu.factor(&bv.b, n)
-            .map_err(|_| Error::ShootingDidNotConverge {
+        lu.factor(&bv.b, n).map_err(|_| {
+            Error::Setup(SetupError::ShootingDidNotConverge {
                 h,
                 iterations: bv.iterations,
                 residual: f64::NAN,
-            })?;
+            })
+        })?;
         // X = B⁻¹ A and Y = B⁻¹ (column by column).
         let solve_columns = |m: Option<&[f64]>| -> Vec<f64> {
             let mut out = vec![0.0; n * n];

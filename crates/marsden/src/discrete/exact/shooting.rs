@@ -10,6 +10,7 @@
 
 use super::flow::{EulerLagrangeFlow, FlowEnd};
 use crate::error::Error;
+use crate::error::SetupError;
 use crate::mechanics::{Force, Lagrangian};
 use crate::numerics::dense::{Lu, max_norm};
 
@@ -103,10 +104,12 @@ pub fn solve<L: Lagrangian, F: Force>(
     let mut scratch = Vec::with_capacity(n);
     let mut jacobian: Option<(Vec<f64>, Vec<f64>)> = None;
     let mut last_update = f64::INFINITY;
-    let failure = |iterations, residual| Error::ShootingDidNotConverge {
-        h,
-        iterations,
-        residual,
+    let failure = |iterations, residual| {
+        Error::Setup(SetupError::ShootingDidNotConverge {
+            h,
+            iterations,
+            residual,
+        })
     };
     let floor =
         |v: &[f64]| 4.0 * f64::EPSILON * (max_norm(v) + max_norm(q0).max(max_norm(q1)) / h.abs());

@@ -36,6 +36,7 @@
 // The published coefficients are quoted with all their digits.
 #![allow(clippy::excessive_precision)]
 
+use crate::error::InputError;
 use std::cell::Cell;
 use std::sync::Arc;
 
@@ -179,10 +180,12 @@ impl CompositionScheme {
             .iter()
             .copied()
             .find(|s| s.name() == name)
-            .ok_or_else(|| Error::UnknownMethod {
-                name: name.to_owned(),
-                reason: "no such composition scheme".into(),
-                valid: Self::valid_names(),
+            .ok_or_else(|| {
+                Error::Input(InputError::UnknownMethod {
+                    name: name.to_owned(),
+                    reason: "no such composition scheme".into(),
+                    valid: Self::valid_names(),
+                })
             })
     }
 

@@ -34,6 +34,7 @@
 //! Math. 41 (2015). [OB17]: Ober-Blöbaum, IMA J. Numer. Anal. 37 (2017). [HLW06]: Hairer,
 //! Lubich, Wanner, *Geometric Numerical Integration* (2006).
 
+use crate::error::InputError;
 use std::sync::Arc;
 
 use super::Rule;
@@ -86,12 +87,14 @@ impl Galerkin {
     /// [`Error::InvalidGalerkin`] if `degree ∉ 1..=MAX_DEGREE` or `points < degree`;
     /// [`Error::InvalidQuadrature`] if the family has no rule with `points` nodes.
     pub fn new(degree: usize, family: QuadratureFamily, points: usize) -> Result<Self, Error> {
-        let invalid = |reason: String| Error::InvalidGalerkin {
-            degree,
-            family: family.name(),
-            points,
-            reason,
-            max_degree: MAX_DEGREE,
+        let invalid = |reason: String| {
+            Error::Input(InputError::InvalidGalerkin {
+                degree,
+                family: family.name(),
+                points,
+                reason,
+                max_degree: MAX_DEGREE,
+            })
         };
         if !(1..=MAX_DEGREE).contains(&degree) {
             return Err(invalid(format!("the degree must be in 1..={MAX_DEGREE}")));
@@ -116,11 +119,11 @@ impl Galerkin {
     /// `lobatto-s`: `P_{s−1}` with `s` Lobatto points, Lobatto IIIA–IIIB (order `2s − 2`).
     pub fn lobatto(s: usize) -> Result<Self, Error> {
         if s < 2 {
-            return Err(Error::InvalidQuadrature {
+            return Err(Error::Input(InputError::InvalidQuadrature {
                 family: "lobatto",
                 points: s,
                 valid: format!("2 ≤ s ≤ {}", MAX_DEGREE + 1),
-            });
+            }));
         }
         Self::new(s - 1, QuadratureFamily::Lobatto, s)
     }
@@ -338,7 +341,7 @@ mod tests {
         assert_eq!((g.name().as_str(), g.order()), ("galerkin-2-gauss-3", 4));
         assert!(matches!(
             Galerkin::new(4, QuadratureFamily::Gauss, 3),
-            Err(Error::InvalidGalerkin { .. })
+            Err(Error::Input(InputError::InvalidGalerkin { .. }))
         ));
         assert!(Galerkin::new(0, QuadratureFamily::Gauss, 3).is_err());
         assert!(Galerkin::lobatto(1).is_err());

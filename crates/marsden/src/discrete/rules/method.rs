@@ -20,6 +20,7 @@ use super::galerkin::{Galerkin, MAX_DEGREE};
 use super::quadrature::QuadratureFamily;
 use super::{GeneralizedMidpoint, Midpoint, Rule, SymmetrizedMidpoint, Trapezoid};
 use crate::error::Error;
+use crate::error::InputError;
 
 /// The grammar of method names, for messages and `--help`.
 pub const METHOD_GRAMMAR: &str = "midpoint, trapezoid, alpha-<a>, symmetrized-<a> (0 <= a <= 1), \
@@ -61,11 +62,11 @@ pub trait WithRule {
 }
 
 fn unknown(name: &str, reason: impl Into<String>) -> Error {
-    Error::UnknownMethod {
+    Error::Input(InputError::UnknownMethod {
         name: name.to_owned(),
         reason: reason.into(),
         valid: METHOD_GRAMMAR.to_owned(),
-    }
+    })
 }
 
 fn parse_count(text: &str, name: &str) -> Result<usize, Error> {
@@ -320,7 +321,7 @@ mod tests {
         }
         assert!(matches!(
             Method::parse("galerkin-4-gauss-3"),
-            Err(Error::InvalidGalerkin { .. })
+            Err(Error::Input(InputError::InvalidGalerkin { .. }))
         ));
     }
 }

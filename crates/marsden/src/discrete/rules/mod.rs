@@ -33,6 +33,7 @@ pub use quadrature::{Quadrature, QuadratureFamily};
 pub use symmetrized::{SymmetrizedForce, SymmetrizedLd, SymmetrizedMidpoint, Trapezoid};
 
 use crate::discrete::{DiscreteAction, DiscreteForce};
+use crate::error::InputError;
 use crate::mechanics::{Force, Lagrangian};
 
 /// A quadrature rule turning continuous objects into discrete ones.
@@ -56,11 +57,11 @@ pub(crate) fn check_alpha(alpha: f64) -> Result<f64, crate::error::Error> {
     if (0.0..=1.0).contains(&alpha) {
         Ok(alpha)
     } else {
-        Err(crate::error::Error::InvalidOption {
+        Err(crate::error::Error::Input(InputError::InvalidOption {
             name: "alpha",
             value: alpha,
             reason: "must lie in [0, 1]",
-        })
+        }))
     }
 }
 

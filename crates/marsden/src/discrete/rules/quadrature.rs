@@ -18,6 +18,7 @@
 //! is twenty lines with no dependency.
 
 use crate::error::Error;
+use crate::error::InputError;
 
 /// Which family of quadrature nodes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -77,11 +78,11 @@ impl Quadrature {
     /// for Lobatto) or above [`MAX_POINTS`].
     pub fn new(family: QuadratureFamily, points: usize) -> Result<Self, Error> {
         if points < family.min_points() || points > MAX_POINTS {
-            return Err(Error::InvalidQuadrature {
+            return Err(Error::Input(InputError::InvalidQuadrature {
                 family: family.name(),
                 points,
                 valid: format!("{} ≤ points ≤ {MAX_POINTS}", family.min_points()),
-            });
+            }));
         }
         let (x, w) = match family {
             QuadratureFamily::Gauss => gauss_legendre(points),

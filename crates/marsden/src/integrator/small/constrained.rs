@@ -21,7 +21,7 @@ use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::mechanics::Constraint;
 use crate::numerics::dense::solve_in_place;
 use crate::numerics::dual::{SmallDual, SmallGradient};
-use crate::numerics::newton::{NewtonFailure, NewtonOptions, NewtonReport};
+use crate::numerics::newton::{Convergence, NewtonFailure, NewtonOptions, NewtonReport};
 
 /// Largest number of constraints handled here (as by the static constraint Jacobian).
 pub(crate) use crate::mechanics::constraint_jacobian::MAX_CONSTRAINTS;
@@ -183,7 +183,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallKernel
             .iter()
             .fold(f64::MIN_POSITIVE, |s, q| s.max(q.abs()));
         let mut report = NewtonReport::default();
-        let mut update_converged = false;
+        let mut convergence = Convergence::new(options);
         let mut expect_convergence = false;
         loop {
             let mut e = if expect_convergence {
@@ -193,18 +193,13 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallKernel
             };
             report.evaluations += 1;
             report.residual = e.residual[..m].iter().fold(0.0_f64, |s, r| s.max(r.abs()));
-            let tol = options.residual_tolerance * p_scale.max(e.term_scale);
-            if !report.residual.is_finite() {
-                z[..m].copy_from_slice(&x[..m]);
-                return Err(NewtonFailure::NonFinite(report));
-            }
-            if report.residual <= tol || update_converged {
-                z[..m].copy_from_slice(&x[..m]);
-                return Ok((report, e.p_next));
-            }
-            if report.iterations >= options.max_iterations {
-                z[..m].copy_from_slice(&x[..m]);
-                return Err(NewtonFailure::NotConverged(report));
+            match convergence.check(&report, p_scale.max(e.term_scale)) {
+                Ok(false) => {}
+                verdict => {
+                    // Converged or failed: the last iterate goes back (a failure names φ there).
+                    z[..m].copy_from_slice(&x[..m]);
+                    return verdict.map(|_| (report, e.p_next));
+                }
             }
             if expect_convergence {
                 // The speculation failed: the Jacobian at this iterate.
@@ -227,7 +222,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallKernel
             let size = update[..m].iter().fold(0.0_f64, |s, u| s.max(u.abs()));
             x[..m].iter_mut().zip(&update).for_each(|(a, u)| *a += u);
             let xnorm = x[..m].iter().fold(q_scale, |s, a| s.max(a.abs()));
-            update_converged = size <= options.step_tolerance * xnorm;
+            convergence.record_update(size, xnorm);
             expect_convergence = size <= SPECULATE * xnorm;
         }
     }

@@ -20,7 +20,7 @@ use super::{SPECULATE, SmallKernel, first_derivatives};
 use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::numerics::dense::solve_fixed;
 use crate::numerics::dual::{SmallDual, SmallGradient};
-use crate::numerics::newton::{NewtonFailure, NewtonOptions, NewtonReport};
+use crate::numerics::newton::{Convergence, NewtonFailure, NewtonOptions, NewtonReport};
 
 /// Residual, Jacobian and `p_{k+1}` of one step at the offset `delta`.
 struct Evaluation<const N: usize> {
@@ -126,7 +126,7 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallKernel for SmallStep<'_, A, F> {
             .iter()
             .fold(f64::MIN_POSITIVE, |m, q| m.max(q.abs()));
         let mut report = NewtonReport::default();
-        let mut update_converged = false;
+        let mut convergence = Convergence::new(options);
         let mut expect_convergence = false;
         loop {
             let (mut e, term_scale) = if expect_convergence {
@@ -137,16 +137,9 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallKernel for SmallStep<'_, A, F> {
             report.evaluations += 1;
             report.residual = e.residual.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
             // Relative to the size of the residual's terms, as in `StepSystem`.
-            let tol = options.residual_tolerance * p_scale.max(term_scale);
-            if !report.residual.is_finite() {
-                return Err(NewtonFailure::NonFinite(report));
-            }
-            if report.residual <= tol || update_converged {
+            if convergence.check(&report, p_scale.max(term_scale))? {
                 z[..N].copy_from_slice(&delta);
                 return Ok((report, e.p_next));
-            }
-            if report.iterations >= options.max_iterations {
-                return Err(NewtonFailure::NotConverged(report));
             }
             if expect_convergence {
                 // The speculation failed: the Jacobian at this iterate.
@@ -163,7 +156,7 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallKernel for SmallStep<'_, A, F> {
             let size = update.iter().fold(0.0_f64, |m, u| m.max(u.abs()));
             delta.iter_mut().zip(&update).for_each(|(d, u)| *d += u);
             let znorm = delta.iter().fold(q_scale, |m, d| m.max(d.abs()));
-            update_converged = size <= options.step_tolerance * znorm;
+            convergence.record_update(size, znorm);
             // Quadratic convergence: the next error is about ‖δ‖²/‖Δ‖ in relative terms.
             expect_convergence = size <= SPECULATE * znorm;
         }

@@ -15,6 +15,7 @@
 //! # Ok::<(), marsden::systems::nbody::NBodyFileError>(())
 //! ```
 
+use crate::error::InputError;
 use std::path::Path;
 
 use thiserror::Error;
@@ -52,11 +53,11 @@ impl NBodyData {
     ) -> Result<(NBody, Vec<f64>, Vec<f64>), NBodyFileError> {
         let p = self.momenta();
         let system = NBody::with_parameters(self.masses, g, softening).map_err(|e| match e {
-            crate::error::Error::InvalidOption {
+            crate::error::Error::Input(InputError::InvalidOption {
                 name,
                 value,
                 reason,
-            } => NBodyFileError::InvalidParameter {
+            }) => NBodyFileError::InvalidParameter {
                 name,
                 value,
                 reason,

@@ -15,6 +15,7 @@ pub mod gravity;
 pub use file::{NBodyData, NBodyFileError, load, parse as parse_file};
 
 use crate::error::Error;
+use crate::error::InputError;
 use crate::mechanics::{Lagrangian, MassMatrix, Structure};
 use crate::scalar::Scalar;
 
@@ -53,10 +54,12 @@ impl NBody {
     /// # Ok::<(), marsden::Error>(())
     /// ```
     pub fn with_parameters(masses: Vec<f64>, g: f64, softening: f64) -> Result<Self, Error> {
-        let invalid = |name, value, reason| Error::InvalidOption {
-            name,
-            value,
-            reason,
+        let invalid = |name, value, reason| {
+            Error::Input(InputError::InvalidOption {
+                name,
+                value,
+                reason,
+            })
         };
         if masses.is_empty() {
             return Err(invalid("masses", 0.0, "at least one body is needed"));

@@ -1,0 +1,76 @@
+//! What the run loop steps: anything that advances a [`State`] on a uniform grid — the
+//! Lagrangian [`Integrator`] (a discrete Hamiltonian map `F̃_{L_d}`) and the Hamiltonian
+//! integrator ([`crate::hamiltonian::HamiltonianIntegrator`]) — so that one loop
+//! ([`super::simulate()`]) serves both and their trajectories are alike.
+
+use crate::discrete::{DiscreteAction, DiscreteForce};
+use crate::error::Error;
+use crate::holonomic::MomentumProjection;
+use crate::integrator::{Integrator, Statistics, StepReport};
+use crate::mechanics::{Constraint, State};
+
+/// A one-step method with its buffers, as the run loop sees it.
+pub trait Stepper {
+    /// Degrees of freedom `n` and number of constraints `d` of the states it steps.
+    fn dims(&self) -> (usize, usize);
+
+    /// `steps` steps of size `h` from `state` on the grid `t_k = t₀ + k h` (`t₀ = state.t`);
+    /// the report of the last one. On error `state` holds the last good state.
+    fn advance(&mut self, state: &mut State, h: f64, steps: usize) -> Result<StepReport, Error>;
+
+    /// Steps completed over the stepper's life (the loop counts a chunk's steps by it).
+    fn steps_done(&self) -> usize;
+
+    /// Whether [`Stepper::advance`] runs many steps in one loop faster than one by one (the
+    /// explicit path); the run loop then hands it the steps between samples when no observer
+    /// watches each one. Default: false.
+    fn runs_in_chunks(&self) -> bool {
+        false
+    }
+
+    /// The multipliers `λ` of the last step (length d; default: none).
+    fn multipliers(&self) -> &[f64] {
+        &[]
+    }
+
+    /// The projection multipliers `μ` of the last step (length d; default: none).
+    fn projection_multipliers(&self) -> &[f64] {
+        &[]
+    }
+
+    /// Work counters so far (default: none kept).
+    fn statistics(&self) -> Statistics {
+        Statistics::default()
+    }
+}
+
+impl<A, F, C, P> Stepper for Integrator<A, F, C, P>
+where
+    A: DiscreteAction,
+    F: DiscreteForce,
+    C: Constraint,
+    P: MomentumProjection,
+{
+    fn dims(&self) -> (usize, usize) {
+        let shape = self.shape();
+        (shape.n, shape.d)
+    }
+    fn advance(&mut self, state: &mut State, h: f64, steps: usize) -> Result<StepReport, Error> {
+        Integrator::advance(self, state, h, steps)
+    }
+    fn steps_done(&self) -> usize {
+        Integrator::statistics(self).steps
+    }
+    fn runs_in_chunks(&self) -> bool {
+        self.is_explicit()
+    }
+    fn multipliers(&self) -> &[f64] {
+        Integrator::multipliers(self)
+    }
+    fn projection_multipliers(&self) -> &[f64] {
+        Integrator::projection_multipliers(self)
+    }
+    fn statistics(&self) -> Statistics {
+        *Integrator::statistics(self)
+    }
+}
