@@ -45,6 +45,11 @@ use crate::separable::SeparableStep;
 /// }
 /// ```
 pub trait DiscreteLagrangian {
+    /// The number of degrees of freedom, when the type fixes it (the catalog systems): the
+    /// integrator then compiles its statically sized step kernels for that size only. A wrong
+    /// value costs speed, never correctness (the general path takes the steps). Default: `None`.
+    const FIXED_DOF: Option<usize> = None;
+
     /// Degrees of freedom `n`.
     fn dof(&self) -> usize;
 
@@ -85,6 +90,22 @@ pub trait DiscreteLagrangian {
 /// `∂L_d/∂Q_j = 0` for the internal points together with the discrete Legendre transform for
 /// `q_{k+1}`; derivatives are always taken with respect to the control points `Q_j`.
 pub trait DiscreteAction {
+    /// The number of degrees of freedom, when the type fixes it (the catalog systems): the
+    /// integrator then compiles its statically sized step kernels for that size only. A wrong
+    /// value costs speed, never correctness (the general path takes the steps). Default: `None`.
+    const FIXED_DOF: Option<usize> = None;
+
+    /// Whether a step may be two-point (no internal control points) for some value of the
+    /// type; `false` lets the integrator skip compiling the two-point kernels (compositions).
+    /// Default: `true`.
+    const MAY_BE_TWO_POINT: bool = true;
+
+    /// The number of internal control points when the type fixes it (0 for every two-point
+    /// [`DiscreteLagrangian`]); with [`DiscreteAction::FIXED_DOF`] it bounds the size of the
+    /// step's AD evaluations, so that only the chunk widths it needs are compiled. Default:
+    /// `None`.
+    const FIXED_STAGES: Option<usize> = None;
+
     /// Degrees of freedom `n`.
     fn dof(&self) -> usize;
     /// Number of internal control points per step (0 for two-point discrete Lagrangians).
@@ -106,6 +127,7 @@ pub trait DiscreteAction {
 }
 
 impl<D: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &D {
+    const FIXED_DOF: Option<usize> = D::FIXED_DOF;
     fn dof(&self) -> usize {
         (**self).dof()
     }
@@ -126,6 +148,8 @@ impl<D: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &D {
 }
 
 impl<T: DiscreteLagrangian> DiscreteAction for T {
+    const FIXED_DOF: Option<usize> = T::FIXED_DOF;
+    const FIXED_STAGES: Option<usize> = Some(0);
     fn dof(&self) -> usize {
         DiscreteLagrangian::dof(self)
     }
@@ -138,5 +162,14 @@ impl<T: DiscreteLagrangian> DiscreteAction for T {
     }
     fn separable(&self) -> Option<&dyn SeparableStep> {
         DiscreteLagrangian::separable(self)
+    }
+}
+
+/// The length `(s + 1)·n` of the control points `Q₀ … Q_s` of a step of `A`, when its type fixes
+/// it.
+pub(crate) const fn fixed_points<A: DiscreteAction + ?Sized>() -> Option<usize> {
+    match (A::FIXED_DOF, A::FIXED_STAGES) {
+        (Some(n), Some(stages)) => Some((stages + 2) * n),
+        _ => None,
     }
 }

@@ -9,7 +9,8 @@
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 use super::force::DiscreteForce;
-use super::lagrangian::{DiscreteAction, DiscreteLagrangian};
+use super::lagrangian::{DiscreteAction, DiscreteLagrangian, fixed_points};
+use crate::mechanics::lagrangian::times_dof;
 use crate::numerics::ad::{self, MultiFunction};
 use crate::scalar::Scalar;
 
@@ -43,6 +44,7 @@ impl<'a, A: DiscreteAction, F: DiscreteForce> ActionAndForces<'a, A, F> {
 }
 
 impl<A: DiscreteAction, F: DiscreteForce> MultiFunction for ActionAndForces<'_, A, F> {
+    const MAX_INPUTS: Option<usize> = fixed_points::<A>();
     fn inputs(&self) -> usize {
         (self.s + 1) * self.n
     }
@@ -71,6 +73,7 @@ struct TwoPoint<'a, D> {
 }
 
 impl<D: DiscreteLagrangian> MultiFunction for TwoPoint<'_, D> {
+    const MAX_INPUTS: Option<usize> = times_dof(D::FIXED_DOF, 2, 0);
     fn inputs(&self) -> usize {
         2 * self.ld.dof()
     }

@@ -82,6 +82,7 @@ impl<L: Lagrangian, H: HamiltonianForce> FromHamiltonian<L, H> {
 struct OnTangentBundle<'a, L>(&'a L);
 
 impl<L: Lagrangian> ad::MultiFunction for OnTangentBundle<'_, L> {
+    const MAX_INPUTS: Option<usize> = crate::mechanics::lagrangian::times_dof(L::FIXED_DOF, 2, 1);
     fn inputs(&self) -> usize {
         2 * self.0.dof() + 1
     }

@@ -423,6 +423,7 @@ struct InVelocity<'a, L> {
 }
 
 impl<L: Lagrangian> MultiFunction for InVelocity<'_, L> {
+    const MAX_INPUTS: Option<usize> = crate::mechanics::lagrangian::times_dof(L::FIXED_DOF, 1, 0);
     fn inputs(&self) -> usize {
         self.q.len()
     }

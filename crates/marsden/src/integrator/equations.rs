@@ -21,6 +21,7 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LMO08]: Leyendecker, Marsden, Ortiz, ZAMM 88 (2008).
 
+use crate::discrete::lagrangian::fixed_points;
 use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::mechanics::Constraint;
 use crate::numerics::ad::{self, HessianParts, MultiFunction};
@@ -72,6 +73,7 @@ pub(crate) struct StepFunction<'a, A, F, C> {
 impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
     for StepFunction<'_, A, F, C>
 {
+    const MAX_INPUTS: Option<usize> = fixed_points::<A>();
     fn inputs(&self) -> usize {
         self.shape.points_len()
     }

@@ -196,7 +196,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         let o = &self.options;
         let p_next = &mut self.buffers.p_next;
         p_next.resize(sh.n, 0.0);
-        let result = solve_sized(self.dispatch, &small, sh.n, z, o, p_next);
+        let Some(result) = solve_sized(self.dispatch, &small, sh.n, z, o, p_next) else {
+            return self.solve_general(z, state, h);
+        };
         let evaluations = evaluations_of(&result);
         self.statistics.system_evaluations += evaluations;
         self.statistics.action_evaluations += evaluations;
@@ -225,7 +227,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             d: sh.d,
         };
         let (o, p_next) = (&self.options, &mut b.p_next);
-        let result = solve_sized(self.dispatch, &small, sh.n, z, o, p_next);
+        let Some(result) = solve_sized(self.dispatch, &small, sh.n, z, o, p_next) else {
+            return self.solve_general(z, state, h);
+        };
         let evaluations = evaluations_of(&result);
         self.statistics.system_evaluations += evaluations;
         self.statistics.action_evaluations += evaluations;

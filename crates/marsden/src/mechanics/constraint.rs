@@ -18,6 +18,10 @@ use crate::scalar::Scalar;
 
 /// Holonomic constraints `φ: Q → ℝ^d`.
 pub trait Constraint {
+    /// Whether the type may constrain anything (`false` for [`Unconstrained`]: the integrator
+    /// then skips compiling its constrained kernels). Default: `true`.
+    const MAY_CONSTRAIN: bool = true;
+
     /// Number of constraints `d`.
     fn count(&self) -> usize;
     /// Writes `φ(q)` into `out` (length d).
@@ -34,6 +38,7 @@ pub trait Constraint {
 pub struct Unconstrained;
 
 impl Constraint for Unconstrained {
+    const MAY_CONSTRAIN: bool = false;
     fn count(&self) -> usize {
         0
     }
@@ -41,6 +46,7 @@ impl Constraint for Unconstrained {
 }
 
 impl<C: Constraint + ?Sized> Constraint for &C {
+    const MAY_CONSTRAIN: bool = C::MAY_CONSTRAIN;
     fn count(&self) -> usize {
         (**self).count()
     }

@@ -21,6 +21,7 @@
 
 use crate::error::Error;
 use crate::error::SetupError;
+use crate::mechanics::lagrangian::times_dof;
 use crate::mechanics::{Lagrangian, structure};
 use crate::numerics::ad::{self, HessianParts, MultiFunction};
 use crate::numerics::dense::{Lu, max_norm};
@@ -30,6 +31,7 @@ use crate::scalar::Scalar;
 struct OnTangentBundle<'a, L>(&'a L);
 
 impl<L: Lagrangian> MultiFunction for OnTangentBundle<'_, L> {
+    const MAX_INPUTS: Option<usize> = times_dof(L::FIXED_DOF, 2, 1);
     fn inputs(&self) -> usize {
         2 * self.0.dof() + 1
     }

@@ -37,6 +37,11 @@ use crate::scalar::Scalar;
 /// the CPU has it ([`crate::integrator::small::dispatch`]), but only what is inlined into it; marking `lagrangian`
 /// `#[inline(always)]`, as the built-in systems do, makes sure yours is (same results either way).
 pub trait Lagrangian {
+    /// The number of degrees of freedom, when the type fixes it (the catalog systems): the
+    /// integrator then compiles its statically sized step kernels for that size only. A wrong
+    /// value costs speed, never correctness (the general path takes the steps). Default: `None`.
+    const FIXED_DOF: Option<usize> = None;
+
     /// Number of degrees of freedom `n` (length of `q` and `v`).
     fn dof(&self) -> usize;
 
@@ -123,6 +128,7 @@ impl MassMatrix {
 }
 
 impl<L: Lagrangian + ?Sized> Lagrangian for &L {
+    const FIXED_DOF: Option<usize> = L::FIXED_DOF;
     fn dof(&self) -> usize {
         (**self).dof()
     }
@@ -145,6 +151,15 @@ impl<L: Lagrangian + ?Sized> Lagrangian for &L {
     }
 }
 
+/// `k · n + plus` when the type fixes `n` (the size of an AD evaluation of `L`, for
+/// [`MultiFunction::MAX_INPUTS`]).
+pub(crate) const fn times_dof(dof: Option<usize>, k: usize, plus: usize) -> Option<usize> {
+    match dof {
+        Some(n) => Some(k * n + plus),
+        None => None,
+    }
+}
+
 // ---- The potential of a separable Lagrangian by AD: the defaults of the trait above ----
 
 /// `q ↦ −L(t, q, 0)`: the potential `V(t, q)` of a separable Lagrangian.
@@ -156,6 +171,7 @@ pub(crate) struct PotentialOf<'a, L: ?Sized> {
 }
 
 impl<L: Lagrangian + ?Sized> MultiFunction for PotentialOf<'_, L> {
+    const MAX_INPUTS: Option<usize> = times_dof(L::FIXED_DOF, 1, 0);
     fn inputs(&self) -> usize {
         self.lagrangian.dof()
     }

@@ -13,6 +13,7 @@
 
 use crate::error::Error;
 use crate::error::SetupError;
+use crate::mechanics::lagrangian::times_dof;
 use crate::mechanics::{Lagrangian, MassMatrix, Structure};
 use crate::numerics::ad::{self, MultiFunction};
 use crate::numerics::dense::{Lu, PIVOT_TOLERANCE, max_norm};
@@ -105,6 +106,7 @@ pub fn velocity(
 struct OnTangentBundle<'a, L: ?Sized>(&'a L);
 
 impl<L: Lagrangian + ?Sized> MultiFunction for OnTangentBundle<'_, L> {
+    const MAX_INPUTS: Option<usize> = times_dof(L::FIXED_DOF, 2, 1);
     fn inputs(&self) -> usize {
         2 * self.0.dof() + 1
     }

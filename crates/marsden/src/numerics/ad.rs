@@ -24,6 +24,11 @@ use num_dual::{Derivative, Dual, DualSVec64, HyperDual64, HyperDualSVec64};
 
 /// A vector-valued function written once over the scalar type.
 pub trait MultiFunction {
+    /// The largest number of inputs the type can have, when the type fixes it: only the chunk
+    /// widths that many inputs can need are compiled (a wrong value costs speed, never
+    /// correctness: a smaller width covers the ranges in blocks). Default: `None`.
+    const MAX_INPUTS: Option<usize> = None;
+
     /// Number of inputs.
     fn inputs(&self) -> usize;
     /// Number of outputs.
@@ -60,6 +65,24 @@ impl HessianParts {
     }
 }
 
+/// Which chunk widths are compiled for `F`: each is a constant of the monomorphised driver,
+/// so the code of the others is never generated.
+struct Widths<F>(std::marker::PhantomData<F>);
+
+impl<F: MultiFunction> Widths<F> {
+    const TWO: bool = may_reach::<F>(2);
+    const FOUR: bool = may_reach::<F>(3);
+    const EIGHT: bool = may_reach::<F>(5);
+}
+
+/// Whether a range of `len` inputs can occur for `F`.
+const fn may_reach<F: MultiFunction>(len: usize) -> bool {
+    match F::MAX_INPUTS {
+        Some(max) => len <= max,
+        None => true,
+    }
+}
+
 /// Values and Jacobian `∂f/∂x[cols]` (row-major `outputs × cols.len()`) of `f` at `x`.
 ///
 /// Returns the number of function evaluations performed.
@@ -76,9 +99,11 @@ pub fn jacobian<F: MultiFunction>(
             1
         }
         1 => jacobian_chunked::<1, F>(f, x, cols, values, jac),
-        2 => jacobian_chunked::<2, F>(f, x, cols, values, jac),
-        3 | 4 => jacobian_chunked::<4, F>(f, x, cols, values, jac),
-        _ => jacobian_chunked::<8, F>(f, x, cols, values, jac),
+        2 if Widths::<F>::TWO => jacobian_chunked::<2, F>(f, x, cols, values, jac),
+        3 | 4 if Widths::<F>::FOUR => jacobian_chunked::<4, F>(f, x, cols, values, jac),
+        5.. if Widths::<F>::EIGHT => jacobian_chunked::<8, F>(f, x, cols, values, jac),
+        // Beyond `F::MAX_INPUTS`: one column at a time.
+        _ => jacobian_chunked::<1, F>(f, x, cols, values, jac),
     }
 }
 
@@ -98,9 +123,11 @@ pub fn partial_hessian<F: MultiFunction>(
             out.evaluations = 1;
         }
         1 => hessian_scalar(f, x, rows, cols, out),
-        2 => hessian_chunked::<2, F>(f, x, rows, cols, out),
-        3 | 4 => hessian_chunked::<4, F>(f, x, rows, cols, out),
-        _ => hessian_chunked::<8, F>(f, x, rows, cols, out),
+        2 if Widths::<F>::TWO => hessian_chunked::<2, F>(f, x, rows, cols, out),
+        3 | 4 if Widths::<F>::FOUR => hessian_chunked::<4, F>(f, x, rows, cols, out),
+        5.. if Widths::<F>::EIGHT => hessian_chunked::<8, F>(f, x, rows, cols, out),
+        // Beyond `F::MAX_INPUTS`: one row and column at a time.
+        _ => hessian_chunked::<1, F>(f, x, rows, cols, out),
     }
 }
 

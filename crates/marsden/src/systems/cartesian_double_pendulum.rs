@@ -82,6 +82,7 @@ impl CartesianDoublePendulum {
 }
 
 impl Lagrangian for CartesianDoublePendulum {
+    const FIXED_DOF: Option<usize> = Some(4);
     fn dof(&self) -> usize {
         4
     }

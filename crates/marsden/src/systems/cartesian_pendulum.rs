@@ -56,6 +56,7 @@ impl CartesianPendulum {
 }
 
 impl Lagrangian for CartesianPendulum {
+    const FIXED_DOF: Option<usize> = Some(2);
     fn dof(&self) -> usize {
         2
     }

@@ -55,6 +55,7 @@ impl DampedDrivenPendulum {
 }
 
 impl Lagrangian for DampedDrivenPendulum {
+    const FIXED_DOF: Option<usize> = Some(1);
     fn dof(&self) -> usize {
         1
     }

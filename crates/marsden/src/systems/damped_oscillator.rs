@@ -56,6 +56,7 @@ impl DampedOscillator {
 }
 
 impl Lagrangian for DampedOscillator {
+    const FIXED_DOF: Option<usize> = Some(1);
     fn dof(&self) -> usize {
         1
     }

@@ -46,6 +46,7 @@ impl DoublePendulum {
 }
 
 impl Lagrangian for DoublePendulum {
+    const FIXED_DOF: Option<usize> = Some(2);
     fn dof(&self) -> usize {
         2
     }

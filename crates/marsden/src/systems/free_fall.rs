@@ -29,6 +29,7 @@ impl FreeFall {
 }
 
 impl Lagrangian for FreeFall {
+    const FIXED_DOF: Option<usize> = Some(1);
     fn dof(&self) -> usize {
         1
     }

@@ -27,6 +27,7 @@ impl HenonHeiles {
 }
 
 impl Lagrangian for HenonHeiles {
+    const FIXED_DOF: Option<usize> = Some(2);
     fn dof(&self) -> usize {
         2
     }

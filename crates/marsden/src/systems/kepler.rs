@@ -49,6 +49,7 @@ impl Kepler {
 }
 
 impl Lagrangian for Kepler {
+    const FIXED_DOF: Option<usize> = Some(2);
     fn dof(&self) -> usize {
         2
     }

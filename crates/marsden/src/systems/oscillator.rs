@@ -38,6 +38,7 @@ impl HarmonicOscillator {
 }
 
 impl Lagrangian for HarmonicOscillator {
+    const FIXED_DOF: Option<usize> = Some(1);
     fn dof(&self) -> usize {
         1
     }

@@ -55,6 +55,7 @@ impl Pendulum {
 }
 
 impl Lagrangian for Pendulum {
+    const FIXED_DOF: Option<usize> = Some(1);
     fn dof(&self) -> usize {
         1
     }

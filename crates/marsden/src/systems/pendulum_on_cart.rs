@@ -66,6 +66,7 @@ impl PendulumOnCart {
 }
 
 impl Lagrangian for PendulumOnCart {
+    const FIXED_DOF: Option<usize> = Some(2);
     fn dof(&self) -> usize {
         2
     }

@@ -74,6 +74,7 @@ impl SphericalPendulum {
 }
 
 impl Lagrangian for SphericalPendulum {
+    const FIXED_DOF: Option<usize> = Some(3);
     fn dof(&self) -> usize {
         3
     }

@@ -42,6 +42,7 @@ pub struct AlphaLd<L> {
 }
 
 impl<L: Lagrangian> DiscreteLagrangian for AlphaLd<L> {
+    const FIXED_DOF: Option<usize> = L::FIXED_DOF;
     fn dof(&self) -> usize {
         self.lagrangian.dof()
     }

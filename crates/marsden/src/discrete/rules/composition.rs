@@ -297,6 +297,9 @@ fn for_each_substep<S: Scalar>(
 }
 
 impl<D: DiscreteAction> DiscreteAction for ComposedLd<D> {
+    const FIXED_DOF: Option<usize> = D::FIXED_DOF;
+    // Every scheme has at least three substeps.
+    const MAY_BE_TWO_POINT: bool = false;
     fn dof(&self) -> usize {
         self.base.dof()
     }

@@ -228,6 +228,7 @@ pub struct GalerkinLd<L> {
 }
 
 impl<L: Lagrangian> DiscreteAction for GalerkinLd<L> {
+    const FIXED_DOF: Option<usize> = L::FIXED_DOF;
     fn dof(&self) -> usize {
         self.lagrangian.dof()
     }

@@ -94,6 +94,7 @@ impl<L: Lagrangian> ExplicitStep for SymmetrizedLd<L> {
 }
 
 impl<L: Lagrangian> DiscreteLagrangian for SymmetrizedLd<L> {
+    const FIXED_DOF: Option<usize> = L::FIXED_DOF;
     fn dof(&self) -> usize {
         self.lagrangian.dof()
     }

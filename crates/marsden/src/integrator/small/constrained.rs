@@ -161,6 +161,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallConstrainedStep<'_
 impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallKernel
     for SmallConstrainedStep<'_, A, F, C>
 {
+    const APPLIES: bool = A::MAY_BE_TWO_POINT && C::MAY_CONSTRAIN;
+    const FIXED_DOF: Option<usize> = A::FIXED_DOF;
+
     /// Newton's method on the step equations from `z = (Δ, λ)` (overwritten with the solution);
     /// returns the report and `p_{k+1}`. An evaluation expected to end the iteration takes the
     /// cheaper duals `G` (see [`crate::integrator::small::unconstrained`]).

@@ -67,6 +67,13 @@ where
 /// solved for `N` degrees of freedom with hyper-duals `D` and the cheaper duals `G` of the
 /// confirming evaluation; returns the report and `p_{k+1}`.
 pub(crate) trait SmallKernel {
+    /// Whether the kernel can apply to the types it is made of (a composition is never
+    /// two-point; [`crate::mechanics::Unconstrained`] needs no SHAKE kernel): when not, none of
+    /// its sizes is compiled.
+    const APPLIES: bool;
+    /// The degrees of freedom the types fix, if they do: only that size is compiled.
+    const FIXED_DOF: Option<usize>;
+
     /// Newton's method on the step equations from `z` (overwritten with the solution).
     fn solve<const N: usize, D: SmallDual<N>, G: SmallGradient<N>>(
         &self,
@@ -75,9 +82,31 @@ pub(crate) trait SmallKernel {
     ) -> Result<(NewtonReport, [f64; N]), NewtonFailure>;
 }
 
+/// Which sizes of a kernel are compiled: each is a constant of the monomorphised kernel, so the
+/// code of the other sizes is never generated (a branch on a constant is not lowered).
+struct Sizes<K>(std::marker::PhantomData<K>);
+
+impl<K: SmallKernel> Sizes<K> {
+    const ONE: bool = compiled::<K>(1);
+    const TWO: bool = compiled::<K>(2);
+    const THREE: bool = compiled::<K>(3);
+    const FOUR: bool = compiled::<K>(4);
+}
+
+/// Whether the kernel `K` of size `n` is compiled.
+const fn compiled<K: SmallKernel>(n: usize) -> bool {
+    K::APPLIES
+        && match K::FIXED_DOF {
+            Some(dof) => dof == n,
+            None => true,
+        }
+}
+
 /// `kernel` for the run-time `n ≤ 4` (the duals of each size: `HyperDual64`/`Dual2` for n = 1,
 /// [`crate::numerics::dual`]'s for n = 2…4) in the instruction set `dispatch` chose
-/// ([`crate::integrator::small::dispatch`]); writes `p_{k+1}` into `p_next`.
+/// ([`crate::integrator::small::dispatch`]); writes `p_{k+1}` into `p_next`. `None` when the
+/// kernel of size `n` is not compiled for these types ([`SmallKernel::APPLIES`],
+/// [`SmallKernel::FIXED_DOF`]): the caller takes the general path.
 #[inline(always)]
 pub(crate) fn solve_sized<K: SmallKernel>(
     dispatch: Dispatch,
@@ -86,7 +115,7 @@ pub(crate) fn solve_sized<K: SmallKernel>(
     z: &mut [f64],
     options: &NewtonOptions,
     p_next: &mut [f64],
-) -> Result<NewtonReport, NewtonFailure> {
+) -> Option<Result<NewtonReport, NewtonFailure>> {
     let mut keep = |(report, p): (NewtonReport, &[f64])| {
         p_next.copy_from_slice(p);
         report
@@ -94,18 +123,38 @@ pub(crate) fn solve_sized<K: SmallKernel>(
     dispatch.run(
         #[inline(always)]
         || match n {
-            1 => kernel
-                .solve::<1, HyperDual64, Dual2x64>(z, options)
-                .map(|(r, p)| keep((r, &p))),
-            2 => kernel
-                .solve::<2, HyperDual2x64, Dual4x64>(z, options)
-                .map(|(r, p)| keep((r, &p))),
-            3 => kernel
-                .solve::<3, HyperDual3x64, Dual6x64>(z, options)
-                .map(|(r, p)| keep((r, &p))),
-            _ => kernel
-                .solve::<4, HyperDual4x64, Dual8x64>(z, options)
-                .map(|(r, p)| keep((r, &p))),
+            1 => {
+                if Sizes::<K>::ONE {
+                    let solved = kernel.solve::<1, HyperDual64, Dual2x64>(z, options);
+                    Some(solved.map(|(r, p)| keep((r, &p))))
+                } else {
+                    None
+                }
+            }
+            2 => {
+                if Sizes::<K>::TWO {
+                    let solved = kernel.solve::<2, HyperDual2x64, Dual4x64>(z, options);
+                    Some(solved.map(|(r, p)| keep((r, &p))))
+                } else {
+                    None
+                }
+            }
+            3 => {
+                if Sizes::<K>::THREE {
+                    let solved = kernel.solve::<3, HyperDual3x64, Dual6x64>(z, options);
+                    Some(solved.map(|(r, p)| keep((r, &p))))
+                } else {
+                    None
+                }
+            }
+            _ => {
+                if Sizes::<K>::FOUR {
+                    let solved = kernel.solve::<4, HyperDual4x64, Dual8x64>(z, options);
+                    Some(solved.map(|(r, p)| keep((r, &p))))
+                } else {
+                    None
+                }
+            }
         },
     )
 }

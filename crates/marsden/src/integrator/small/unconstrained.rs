@@ -105,6 +105,9 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
 }
 
 impl<A: DiscreteAction, F: DiscreteForce> SmallKernel for SmallStep<'_, A, F> {
+    const APPLIES: bool = A::MAY_BE_TWO_POINT;
+    const FIXED_DOF: Option<usize> = A::FIXED_DOF;
+
     /// Newton's method on the step equations from the offset `z` (overwritten with the
     /// solution); returns the report and `p_{k+1}`.
     ///
