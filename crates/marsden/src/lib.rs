@@ -6,7 +6,7 @@
 //!
 //! ```
 //! use marsden::{Initial, Midpoint, Problem, SolveOptions, TimeGrid, systems::Pendulum};
-//! use marsden::diagnostics::EnergyReport;
+//! use marsden::analysis::diagnostics::EnergyReport;
 //!
 //! let pendulum = Pendulum::default();
 //! let problem = Problem::new(pendulum, Initial::velocity(&[1.5], &[0.0]), TimeGrid::new(0.0, 0.05, 2000)?)?;
@@ -16,29 +16,65 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
-//! ## Map of the crate (data flows down)
+//! ## Map of the crate
+//!
+//! Data flows down; each module uses only those above it (`special` and `systems` stand beside).
 //!
 //! | stage | module | seed concept |
 //! |---|---|---|
-//! | scalar | [`scalar`] | one generic axis: `f64` or dual numbers |
-//! | system | [`lagrangian`], [`force`], [`constraint`], [`systems`] | `L(t, q, v)`, `f_L`, `φ(q)`, the catalog |
-//! | forces | [`forces`] | damping, driving, controls, sums, `f_H ∘ FL`, user `f_d^±` |
-//! | constraints | [`holonomic`] | SHAKE + RATTLE, initial data on `T*N`, distance constraints |
-//! | continuous mechanics | [`mechanics`] | Legendre transform, energy, Euler–Lagrange, regularity |
-//! | discrete Lagrangian | [`discrete`], [`rules`] | `L_d`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; midpoint, trapezoid, α-rules, Galerkin (Gauss, Lobatto), compositions |
-//! | exact discrete Lagrangian | [`exact`] | `L_d^E` by shooting, `F^±L_d^E = FL`, local (variational) error |
-//! | step | [`step`], [`small`], [`small_constrained`], [`small_dual`], [`dispatch`], [`explicit`], [`separable`], [`potential`], [`newton`], [`linalg`], [`banded`], [`ad`] | discrete Hamiltonian map solved by Newton with AD Jacobians; structure-aware fast paths (explicit Störmer–Verlet, `M/h + (h/4)∇²V`, band solves); x86-64-v3 code chosen at run time |
-//! | integrator | [`integrator`], [`compensated`], [`maps`] | rule + forces + constraints + solver + buffers; compensated summation of the update; `F_{L_d}`, `F̃_{L_d}` |
-//! | run | [`problem`], [`simulate`], [`trajectory`] | problem → trajectory, stride, observers, failures |
-//! | order of convergence | [`order`] | empirical order (log–log slope before round-off), references |
-//! | diagnostics | [`diagnostics`] | energy error and drift; momentum maps (Noether) and the force balance; energy balance with forces; constraint residuals and multipliers |
-//! | symmetry | [`symmetry`] | group actions, generators and lifts, `J_L`, `J_H`, `J^±_{L_d}`, symmetry checks |
+//! | errors, scalar | [`error`], [`scalar`] | input / set-up / step errors; one generic axis: `f64` or dual numbers |
+//! | numerics | [`numerics`] | automatic differentiation, dual numbers, Newton's method and its one stopping rule, dense and banded LU |
+//! | continuous mechanics | [`mechanics`] | `L(t, q, v)`, `f_L`, `φ(q)`, states, Legendre transform `FL`, energy, Euler–Lagrange, `FH`, the potential of a separable `L` |
+//! | fast path 1 | [`separable`] | `L = ½vᵀMv − V`: explicit Störmer–Verlet, the α-rule Newton with Jacobian `M/h + hα(1−α)∇²V` |
+//! | discrete mechanics | [`discrete`] | `L_d`, `f_d^±`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; rules (midpoint, trapezoid, α, Galerkin, compositions); `L_d^E` by shooting |
+//! | forces, constraints | [`forces`], [`holonomic`] | damping, driving, controls, `f_H ∘ FL`; RATTLE, initial data on `T*N` |
+//! | catalog | [`systems`], [`special`] | canonical systems; elliptic functions, exact pendulum, Kepler and oscillator solutions |
+//! | integrator | [`integrator`] | the discrete Hamiltonian map `F̃_{L_d}` solved by Newton (the path chosen once), compensated summation, `F_{L_d}` |
+//! | run | [`run`] | problem → one run loop over a [`run::Stepper`] → trajectory; stride, observers, failures |
 //! | Hamiltonian side | [`hamiltonian`] | `H(q, p)`, `X_H`, implicit midpoint, Störmer–Verlet, Legendre adapters |
-//! | certificates | [`certificate`] | exact Jacobian of the step map, symplecticity defect `‖DFᵀJDF − J‖` |
-//! | known answers | [`special`] | elliptic functions, exact pendulum, Kepler and oscillator solutions |
+//! | symmetry | [`symmetry`] | group actions, generators and lifts, `J_L`, `J_H`, `J^±_{L_d}`, symmetry checks |
+//! | analysis | [`analysis`] | energy error and drift, Noether and force balances, energy balance, constraint residuals; symplecticity certificate |
+//! | studies | [`studies`] | ensembles in parallel, empirical orders of convergence |
 //!
-//! Conventions (`q, v, p, h, t, n`) and the discrete Legendre transforms
-//! `p_k = −D₁L_d(q_k, q_{k+1}) − f_d⁻`, `p_{k+1} = D₂L_d(q_k, q_{k+1}) + f_d⁺` follow DESIGN.md §3.
+//! ## Conventions
+//!
+//! * `q` positions, `v` velocities (`q̇`), `p` momenta, `h` the time step, `t` time, `n` degrees of
+//!   freedom, `d` constraints.
+//! * The step is the discrete Hamiltonian map in position–momentum form, with discrete forces
+//!   (the discrete Lagrange–d'Alembert principle, [MW01] §3.2):
+//!   `p_k = −D₁L_d(q_k, q_{k+1}) − f_d⁻(q_k, q_{k+1})` is solved for `q_{k+1}`, then
+//!   `p_{k+1} = D₂L_d(q_k, q_{k+1}) + f_d⁺(q_k, q_{k+1})`.
+//! * Midpoint: `L_d = h L(t + h/2, (q₀+q₁)/2, (q₁−q₀)/h)`, forces `f_d^± = (h/2) f(midpoint)`.
+//!   Trapezoid: `L_d = (h/2)[L(t, q₀, v) + L(t+h, q₁, v)]`, `v = (q₁−q₀)/h`, forces at the ends.
+//! * Constraints (SHAKE, [LMO08]): `p_k + D₁L_d(q_k, q_{k+1}) − h Dφ(q_k)ᵀλ_k = 0`,
+//!   `φ(q_{k+1}) = 0`; RATTLE adds the momentum projection so that `(q_{k+1}, p_{k+1})` lies on
+//!   the cotangent bundle of the constraint manifold (`Dφ(q) · FH(q, p) = 0`).
+//! * The discrete momenta are the `p_k` above: for the midpoint rule `p_k ≠ M (q_{k+1} − q_k)/h`.
+//! * Discrete Noether: for an `L_d` invariant under a group action, `J_k = ⟨p_k, ξ_Q(q_k)⟩` is
+//!   exactly constant (to the Newton tolerance: over `N` steps at most `N · tol · |ξ_Q|`).
+//!
+//! ## Reference cases
+//!
+//! The tests check the library against known answers (`tests/reference/`, a file per case named
+//! after it). The tolerances asserted are at least as tight as these:
+//!
+//! | case | system, method | checked | tolerance |
+//! |---|---|---|---|
+//! | R1 | oscillator, midpoint | closed-form discrete solution; energy (a quadratic invariant); one-step matrix `[[399, 40], [−40, 399]]/401` at `h = 0.1` | 1e-12 (N ≤ 1000), 1e-9 (N = 10⁶); energy 1e-13 |
+//! | R2 | oscillator, trapezoid = Störmer–Verlet | closed form; modified energy `H̃` exact; `max |H − H₀| = h²/8` | 1e-12; `H̃` 1e-11 over 10⁶ steps; 1e-9 relative |
+//! | R3 | oscillator, exact `L_d^E` | `L_d^E` values; local error `O(h³)` of the midpoint `L_d` | 1e-12; 1e-15 |
+//! | R4 | pendulum | unit values of `L_d`, `F^±L_d`, the DEL residual | 1e-15 |
+//! | R5 | pendulum, generalised midpoint α | order 1 for α ≠ ½, 2 at α = ½ and symmetrised | ±0.05 on the slope |
+//! | R6 | pendulum, Galerkin Gauss / Lobatto | order 2s (Gauss), 2s − 2 (Lobatto); second-order regression values | slopes; 1e-11 |
+//! | R8 | pendulum, 10⁶ steps | energy error bounded, no drift; shadow Hamiltonian | as in the case |
+//! | R9 | free fall | every variational integrator exact | 1e-13 relative |
+//! | R10 | Kepler e = 0.6 | angular momentum (discrete Noether); energy bounded; one-period regression | 1e-12 over 10⁵ steps; 2e-4; 1e-10 |
+//! | R12 | damped oscillator, midpoint forces | discrete energy balance `E_{k+1} − E_k = −c(q_{k+1} − q_k)²/h`; closed form | 1e-14 per step; 1e-12 |
+//! | R17 | symmetric rules | time reversibility; `det DF = 1`, `DFᵀJDF = J` | 1e-12 / 1e-11; 1e-8 |
+//!
+//! [MW01]: Marsden & West, *Discrete mechanics and variational integrators*, Acta Numerica 10
+//! (2001). [LMO08]: Leyendecker, Marsden, Ortiz, *Variational integrators for constrained
+//! dynamical systems*, ZAMM 88 (2008).
 
 pub mod analysis;
 pub mod discrete;

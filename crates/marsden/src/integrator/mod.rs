@@ -259,13 +259,14 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     /// (default: false; [`crate::integrator::compensated`]). For long runs of high-order rules, whose
     /// truncation error is below the rounding error of `q + Δ`: over 10⁵ steps of Kepler's
     /// problem gauss-4 keeps the angular momentum to 1.4e-15 instead of 1.6e-11. Costs one
-    /// gradient of the discrete action per step (2 % more instructions for gauss-4 on Kepler;
-    /// `⌈n/8⌉` dual evaluations of the action, so think twice for large `n`), and the explicit
+    /// gradient of the discrete action per step (`⌈n/8⌉` dual evaluations of the action, so
+    /// think twice for large `n`; measured costs in BENCHMARKS.md), and the explicit
     /// run loop is not used (the explicit step of the trapezoid rule goes through Newton's
     /// method). Constrained steps are not compensated.
     ///
     /// ```
-    /// use marsden::{Integrator, Rule, State, rules::Galerkin, systems::Kepler};
+    /// use marsden::discrete::rules::Galerkin;
+    /// use marsden::{Integrator, Rule, State, systems::Kepler};
     ///
     /// let rule = Galerkin::gauss(4)?;
     /// let mut integrator =

@@ -128,9 +128,7 @@ pub fn solve_in_place(a: &mut [f64], b: &mut [f64], n: usize) -> Result<(), Sing
 }
 
 /// [`solve_in_place`] for a size known at compile time (the small kernels): the same
-/// operations in the same order, so the same bits, with the loops unrolled by the compiler
-/// (callgrind, double pendulum: the 2 × 2 solve took 420 instructions per step as a call with
-/// a run-time size).
+/// operations in the same order, so the same bits, with the loops unrolled by the compiler.
 #[inline(always)]
 pub fn solve_fixed<const N: usize>(
     a: &mut [[f64; N]; N],

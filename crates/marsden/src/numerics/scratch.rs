@@ -8,7 +8,7 @@
 
 /// Runs `body` on a buffer of `len` values `init(0) … init(len − 1)`, on the stack if
 /// `len ≤ CAP` (`fill` pads the unused part of the array). Up to two values take an array of
-/// two: padding eight hyper-dual numbers cost 4.5 % of a double-pendulum step (callgrind).
+/// two, so that small systems do not pay for padding a long array of hyper-dual numbers.
 #[inline(always)]
 pub fn with_buffer<S: Copy, const CAP: usize, R>(
     len: usize,

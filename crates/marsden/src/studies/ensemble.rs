@@ -8,7 +8,7 @@
 //! the number of threads, run inside a local pool:
 //!
 //! ```
-//! use marsden::ensemble;
+//! use marsden::studies::ensemble;
 //!
 //! let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build()?;
 //! let squares = pool.install(|| {
@@ -65,7 +65,7 @@ where
 /// Like [`run`] for members made from their index (nothing is built in advance).
 ///
 /// ```
-/// let members = marsden::ensemble::run_indexed(4, |k| Ok::<_, ()>(k * k));
+/// let members = marsden::studies::ensemble::run_indexed(4, |k| Ok::<_, ()>(k * k));
 /// let squares: Vec<usize> = members.into_iter().filter_map(|m| m.result.ok()).collect();
 /// assert_eq!(squares, [0, 1, 4, 9]);
 /// ```
@@ -118,7 +118,8 @@ pub struct MemberFailure {
 /// its final state and energy diagnostics.
 ///
 /// ```
-/// use marsden::{Initial, Midpoint, Problem, SolveOptions, TimeGrid, ensemble, systems::Pendulum};
+/// use marsden::studies::ensemble;
+/// use marsden::{Initial, Midpoint, Problem, SolveOptions, TimeGrid, systems::Pendulum};
 ///
 /// let grid = TimeGrid::new(0.0, 0.05, 200)?;
 /// let problems = [0.5, 1.0, 1.5]

@@ -52,7 +52,7 @@ use crate::scalar::Scalar;
 /// `L_d^E` of a Lagrangian by shooting.
 ///
 /// ```
-/// use marsden::exact::ExactDiscreteLagrangian;
+/// use marsden::discrete::exact::ExactDiscreteLagrangian;
 /// use marsden::systems::HarmonicOscillator;
 ///
 /// let exact = ExactDiscreteLagrangian::new(HarmonicOscillator::default());

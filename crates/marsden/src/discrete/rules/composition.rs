@@ -198,7 +198,7 @@ impl CompositionScheme {
 /// A symmetric composition of a base rule: `Ψ_h = Φ_{γ_m h} ∘ … ∘ Φ_{γ₁ h}`.
 ///
 /// ```
-/// use marsden::rules::{Composition, CompositionScheme};
+/// use marsden::discrete::rules::{Composition, CompositionScheme};
 /// use marsden::{Rule, Trapezoid};
 ///
 /// let verlet8 = Composition::new(Trapezoid, CompositionScheme::SuzukiUmeno8);

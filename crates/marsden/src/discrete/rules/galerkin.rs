@@ -51,7 +51,7 @@ pub const MAX_DEGREE: usize = 10;
 /// The Galerkin rule `P_s` with a quadrature rule.
 ///
 /// ```
-/// use marsden::rules::Galerkin;
+/// use marsden::discrete::rules::Galerkin;
 /// use marsden::{Rule, Problem, Initial, TimeGrid, SolveOptions, systems::Pendulum};
 ///
 /// let gauss3 = Galerkin::gauss(3)?; // P3 with 3 Gauss points: order 6
@@ -59,7 +59,7 @@ pub const MAX_DEGREE: usize = 10;
 /// let problem = Problem::new(Pendulum::default(), Initial::velocity(&[1.5], &[0.0]), TimeGrid::new(0.0, 0.1, 100)?)?;
 /// let run = problem.solve(&gauss3, &SolveOptions::default())?;
 /// assert!((run.q(run.len() - 1)[0] + 1.054049155334075).abs() < 1e-11); // R6
-/// assert!(Galerkin::new(3, marsden::rules::QuadratureFamily::Gauss, 2).is_err()); // too few points
+/// assert!(Galerkin::new(3, marsden::discrete::rules::QuadratureFamily::Gauss, 2).is_err()); // too few points
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Debug, Clone, PartialEq)]

@@ -5,11 +5,11 @@
 //! copy of the code compiled for them, through `pulp`'s [`Arch::dispatch`](pulp::Arch::dispatch);
 //! elsewhere, or when switched off ([`crate::integrator::Integrator::with_wide_instructions`]), the closure
 //! runs as baseline code. Three-operand VEX instructions drop the register copies of SSE2 code;
-//! fewer instructions matter most when the core is shared with another busy thread, where the
-//! double-pendulum step now takes 0.8× its former time (BENCHMARKS.md). Rust never contracts
+//! fewer instructions matter most when the core is shared with another busy thread (figures in
+//! BENCHMARKS.md). Rust never contracts
 //! `a * b + c` into a fused multiply–add and never reassociates floating-point sums, so both
-//! copies give the same bits (tests `static_kernel_equivalence.rs` and
-//! `static_constrained_kernel.rs` compare them).
+//! copies give the same bits (tests `fast_paths/small_kernels.rs` and
+//! `fast_paths/small_constrained_kernels.rs` compare them).
 //!
 //! Only code inlined into the dispatched copy is compiled for the wider set. The small kernels
 //! ([`crate::integrator::small::unconstrained`], [`crate::integrator::small::constrained`]) and the layers between them and the user's

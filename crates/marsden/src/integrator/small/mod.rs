@@ -25,8 +25,7 @@ use crate::numerics::newton::{NewtonFailure, NewtonOptions, NewtonReport};
 /// Relative update size below which the next evaluation is expected to end the iteration.
 /// The step equations are nearly linear in the offset (their curvature is `O(h²)` relative to
 /// `M/h`), so Newton's quadratic convergence leaves round-off after any update this small; a
-/// wrong guess costs one cheap evaluation (145 in 20 000 double-pendulum steps, which take
-/// 3 730 instructions per step against 4 150 with hyper-dual evaluations only, callgrind).
+/// wrong guess costs one cheap evaluation (how often, and what it saves: BENCHMARKS.md).
 pub(crate) const SPECULATE: f64 = 1e-3;
 
 /// `∂L_d/∂Q₀ + f_d⁻` and `p_{k+1} = ∂L_d/∂Q₁ + f_d⁺` at `(q₀, Δ)`, by one first-order dual

@@ -4,9 +4,8 @@
 //! num-dual's vector duals (`HyperDualSVec64<N, N>`, `DualSVec64<2N>`) keep each derivative part
 //! as an `Option` of a matrix, so that a constant costs nothing. In the small step kernels
 //! ([`crate::integrator::small::unconstrained`], [`crate::integrator::small::constrained`]) every part is always present, and the
-//! branches on the options and the products that are not inlined are a third of an evaluation
-//! of the double pendulum's `L_d` (1 710 instructions per hyper-dual evaluation with
-//! `HyperDualSVec64<2, 2>`, 1 110 with `HyperDual2`, callgrind). The types here are num-dual's
+//! branches on the options and the products that are not inlined are a large part of an
+//! evaluation (BENCHMARKS.md has the counts). The types here are num-dual's
 //! scalar [`num_dual::HyperDual`] and [`num_dual::Dual`] with the parts written out as fields
 //! (`hyper_dual!` and `gradient_dual!` below, for N = 2, 3, 4; `Dual2` for N = 1): the sums, the elementary
 //! functions and the trait impls come from num-dual's own exported macros; only the product,
