@@ -198,7 +198,7 @@ fn npy_format_writes_one_array_per_group() {
         text.replace("plots = false", "plots = false\nformat = \"npy\""),
     )
     .unwrap();
-    let run = e2e::marsden("run", &file, &["--steps", "100"]);
+    let run = crate::util::marsden("run", &file, &["--steps", "100"]);
     assert_eq!(run.code, 0, "{}", run.stderr);
     let t = marsden_io::read_npy(run.out.join("t.npy")).unwrap();
     let q = marsden_io::read_npy(run.out.join("q.npy")).unwrap();
@@ -251,7 +251,7 @@ fn a_new_run_replaces_the_files_of_the_previous_one() {
     std::fs::write(first.out.join("notes.txt"), "mine").unwrap();
     let out = first.out.to_str().unwrap();
     let file = fixture("cartesian_pendulum.toml");
-    let second = e2e::marsden_in(
+    let second = crate::util::marsden_in(
         first.tmp.path(),
         &["run", file.to_str().unwrap(), "--out", out, "-q"],
     );

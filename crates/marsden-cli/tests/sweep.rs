@@ -10,7 +10,7 @@ struct SweepCsv {
     rows: Vec<Vec<f64>>,
 }
 
-fn sweep_table(run: &e2e::Run, file: &str) -> SweepCsv {
+fn sweep_table(run: &crate::util::Run, file: &str) -> SweepCsv {
     let path = run.out.join(file);
     let text = std::fs::read_to_string(&path)
         .unwrap_or_else(|e| panic!("no {}: {e}\n{}", path.display(), run.stderr));
@@ -73,7 +73,8 @@ fn a_sweep_writes_one_row_per_member_in_order() {
 fn threads_and_shards_give_the_same_rows() {
     let one = run_ok("pendulum_sweep.toml", &["--threads", "1"]);
     let two = run_ok("pendulum_sweep.toml", &["--threads", "2"]);
-    let read = |run: &e2e::Run, file: &str| std::fs::read_to_string(run.out.join(file)).unwrap();
+    let read =
+        |run: &crate::util::Run, file: &str| std::fs::read_to_string(run.out.join(file)).unwrap();
     assert_eq!(read(&one, "sweep.csv"), read(&two, "sweep.csv"));
     let whole = sweep_table(&one, "sweep.csv");
     let energy = column(&whole, "energy_max_rel_error");
@@ -150,13 +151,13 @@ fn a_malformed_nbody_file_names_the_line() {
 fn nbody_initial_data_come_from_the_file() {
     let run = run_ok("nbody_file.toml", &[]);
     let s = run.summary();
-    let energy = e2e::number(&s, "energy.max_rel_error");
+    let energy = crate::util::number(&s, "energy.max_rel_error");
     assert!(energy < 1e-4, "energy error {energy:e}");
     let traj = run.trajectory();
     // Body 2, the planet at radius 1 (period 2π), is at angle ≈ 20 rad at t = 20 (its
     // neighbour's pull and the star's recoil, mass ratio 1e-3, shift it slightly).
-    let x2 = *e2e::column(&traj, "q_x2").last().unwrap();
-    let y2 = *e2e::column(&traj, "q_y2").last().unwrap();
+    let x2 = *crate::util::column(&traj, "q_x2").last().unwrap();
+    let y2 = *crate::util::column(&traj, "q_y2").last().unwrap();
     let angle = y2.atan2(x2) - (20.0 - 6.0 * std::f64::consts::PI);
     assert!(angle.abs() < 0.05, "angle off by {angle}");
     assert!(((x2 * x2 + y2 * y2).sqrt() - 1.0).abs() < 0.01, "radius");

@@ -147,9 +147,9 @@ fn run<S: Scalar>(code: &Code, inputs: &[S], stack: &mut impl Stack<S>) -> S {
 mod tests {
     use std::mem::discriminant;
 
+    use super::*;
     use crate::functions::Unary;
     use crate::{Program, Symbols};
-    use super::*;
 
     type Case = (&'static str, Op, fn(f64, f64) -> f64);
 

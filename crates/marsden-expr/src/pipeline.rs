@@ -85,7 +85,12 @@ impl Expr {
             .filter(|n| symbols.get(n).is_some())
             .map(str::to_owned)
             .collect();
-        Ok(Program::new(generate(&node), &self.text, names, inputs_used))
+        Ok(Program::new(
+            generate(&node),
+            &self.text,
+            names,
+            inputs_used,
+        ))
     }
 }
 

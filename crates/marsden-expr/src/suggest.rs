@@ -12,10 +12,7 @@ const MAX_DISTANCE: usize = 2;
 /// assert_eq!(closest("thetadot", ["theta", "theta_dot"]), Some("theta_dot"));
 /// assert_eq!(closest("omega", ["theta", "theta_dot"]), None);
 /// ```
-pub fn closest<'a>(
-    name: &str,
-    candidates: impl IntoIterator<Item = &'a str>,
-) -> Option<&'a str> {
+pub fn closest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
     candidates
         .into_iter()
         .map(|c| (edit_distance(name, c), c))

@@ -1,8 +1,6 @@
 //! Every error class: the message text and where the caret points.
 
-use marsden_expr::{
-    ErrorKind, EvalError, Expr, ExprError, Program, ProgramSet, Span, Symbols,
-};
+use marsden_expr::{ErrorKind, EvalError, Expr, ExprError, Program, ProgramSet, Span, Symbols};
 
 fn pendulum() -> Symbols {
     let mut s = Symbols::with_inputs(["theta", "theta_dot"]).unwrap();

@@ -4,14 +4,14 @@
 //! The state advances from one iteration to the next, as in a run, so the predictor is warm
 //! and each step costs what it costs inside `marsden run` (about one Newton update).
 //!
-//! `cargo bench -p marsden-cli --bench lagrangian_path`; the ratio `expr / rust` is the
+//! `cargo bench -p marsden-spec --bench lagrangian_path`; the ratio `expr / rust` is the
 //! overhead of the expression path (goal ≤ 2×).
 
 use divan::{Bencher, black_box};
 use marsden::systems::Pendulum;
 use marsden::{Integrator, Lagrangian, Midpoint, Rule, State};
-use marsden_cli::expr::{Program, Symbols};
-use marsden_cli::model::ExprLagrangian;
+use marsden_expr::{Program, Symbols};
+use marsden_spec::model::ExprLagrangian;
 
 fn main() {
     divan::main();

@@ -252,8 +252,8 @@ impl BuiltinSystem {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use marsden_expr::{Program, Symbols};
     use crate::model::{ExprLagrangian, slots};
+    use marsden_expr::{Program, Symbols};
 
     /// Evaluates `L` at a fixed, generic state.
     struct Sample;

@@ -36,7 +36,10 @@ fn overrides_apply_to_text_too() {
         out: Some("elsewhere".into()),
     };
     let spec = from_toml_str(PENDULUM, "p.toml", &overrides).unwrap();
-    assert_eq!((spec.integrator.grid.steps, spec.integrator.grid.h), (7, 0.01));
+    assert_eq!(
+        (spec.integrator.grid.steps, spec.integrator.grid.h),
+        (7, 0.01)
+    );
     assert_eq!(spec.output.dir.to_str(), Some("elsewhere"));
 }
 
@@ -57,5 +60,8 @@ fn mistakes_point_into_the_text_with_a_caret_and_a_suggestion() {
 #[test]
 fn toml_errors_are_diagnostics_as_well() {
     let d = RunSpec::from_toml_str("[integrator]\nh = 0.05.1\n", "p.toml").unwrap_err();
-    assert!(d.message.starts_with("the problem file is not valid"), "{d}");
+    assert!(
+        d.message.starts_with("the problem file is not valid"),
+        "{d}"
+    );
 }

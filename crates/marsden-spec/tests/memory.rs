@@ -31,7 +31,11 @@ fn file_columns(samples: &Samples) -> Vec<(String, Vec<f64>)> {
 
 #[test]
 fn samples_in_memory_are_the_rows_of_the_file() {
-    for name in ["cartesian_pendulum.toml", "kepler.toml", "double_pendulum.toml"] {
+    for name in [
+        "cartesian_pendulum.toml",
+        "kepler.toml",
+        "double_pendulum.toml",
+    ] {
         let dir = tempfile::tempdir().unwrap();
         let spec = load_example(name, dir.path(), Some(300));
         let both = execute(&spec, Store::FilesAndMemory, &Controls::none()).unwrap();
@@ -40,7 +44,7 @@ fn samples_in_memory_are_the_rows_of_the_file() {
         let columns = file_columns(&samples);
         assert_eq!(table.names().count(), columns.len(), "{name}");
         for (column, values) in &columns {
-            let written = table.column(column).unwrap();
+            let written = table.values(column).unwrap();
             let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             assert_eq!(bits(written), bits(values), "{name}: {column}");
         }
@@ -63,7 +67,11 @@ fn memory_runs_write_nothing() {
     let spec = load_example("pendulum.toml", &out, Some(50));
     let outcome = execute(&spec, Store::Memory, &Controls::none()).unwrap();
     assert!(!out.exists());
-    assert_eq!(outcome.samples.unwrap().len(), 6, "every 10th of 50 steps, and the first");
+    assert_eq!(
+        outcome.samples.unwrap().len(),
+        6,
+        "every 10th of 50 steps, and the first"
+    );
 }
 
 #[test]

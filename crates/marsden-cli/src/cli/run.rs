@@ -86,10 +86,7 @@ fn run_sweep(args: &RunArgs, spec: &RunSpec, sweep: &SweepSpec) -> Result<Status
             outcome.rows.len(),
             spec.integrator.method
         );
-        print!(
-            "{}",
-            sweep_table::render(&outcome.label, &outcome.rows)
-        );
+        print!("{}", sweep_table::render(&outcome.label, &outcome.rows));
         println!(
             "wrote {} in {}",
             outcome.files.join(", "),

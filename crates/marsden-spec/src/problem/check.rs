@@ -6,8 +6,8 @@ use toml::Spanned;
 
 use super::raw::SpannedList;
 use crate::error::Diagnostic;
-use marsden_expr::{Expr, ExprError, ProgramSet, Symbols};
 use crate::source::SourceFile;
+use marsden_expr::{Expr, ExprError, ProgramSet, Symbols};
 
 /// Validation context: the file, to turn spans into locations.
 #[derive(Debug, Clone, Copy)]

@@ -9,9 +9,9 @@ use super::check::{Checker, count_coordinates};
 use super::raw::{RawParameter, RawSystem, SpannedList};
 use crate::catalog::{Builtin, MASSES};
 use crate::error::Diagnostic;
+use crate::model::slots::velocity_name;
 use marsden_expr::closest;
 use marsden_expr::{is_identifier, is_reserved};
-use crate::model::slots::velocity_name;
 
 /// A scalar parameter as written.
 #[derive(Debug, Clone, PartialEq)]

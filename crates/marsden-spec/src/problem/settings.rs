@@ -12,9 +12,9 @@ use super::nbody_file::BodiesFile;
 use super::raw::{RawInitial, RawIntegrator, RawOutput};
 use super::spec::{Format, InitialData, InitialSpec, IntegratorSpec, OutputSpec, Overrides};
 use crate::error::Diagnostic;
-use marsden_expr::closest;
 use crate::model::ExprConstraint;
 use marsden::Constraint;
+use marsden_expr::closest;
 
 /// Where `q` and `v`/`p` were written.
 #[derive(Debug, Clone, PartialEq)]

@@ -10,10 +10,10 @@ use super::raw::{RawSymmetry, RawSystem, SpannedList};
 use super::spec::{LagrangianSpec, SystemSpec};
 use crate::catalog::{Builtin, MASSES};
 use crate::error::Diagnostic;
-use marsden_expr::closest;
-use marsden_expr::{Expr, Program, Symbols};
 use crate::model::slots::{tangent_inputs, velocity_name};
 use crate::model::{ExprConstraint, ExprForce, ExprLagrangian, MomentumMap as _, Symmetry};
+use marsden_expr::closest;
+use marsden_expr::{Expr, Program, Symbols};
 
 /// The expressions besides the Lagrangian, parsed (syntax checked) before names are resolved.
 struct Parsed {

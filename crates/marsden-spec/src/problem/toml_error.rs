@@ -3,8 +3,8 @@
 //! point at the span it reports.
 
 use crate::error::Diagnostic;
-use marsden_expr::closest;
 use crate::source::SourceFile;
+use marsden_expr::closest;
 
 /// Turns a parse error of `source` into a diagnostic.
 pub fn diagnose(source: &SourceFile, error: &toml::de::Error) -> Diagnostic {

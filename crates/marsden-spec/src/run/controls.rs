@@ -44,7 +44,9 @@ impl Controls<'_> {
 
     /// Whether a stop was requested.
     pub fn stop_requested(&self) -> bool {
-        self.stop.as_ref().is_some_and(|s| s.load(Ordering::Relaxed))
+        self.stop
+            .as_ref()
+            .is_some_and(|s| s.load(Ordering::Relaxed))
     }
 
     /// Whether anything has to be looked at during the run.

@@ -116,7 +116,9 @@ impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's
         if self.with_velocity {
             match finite {
                 true => self.row.extend_from_slice(&self.velocity),
-                false => self.row.resize(self.row.len() + self.velocity.len(), f64::NAN),
+                false => self
+                    .row
+                    .resize(self.row.len() + self.velocity.len(), f64::NAN),
             }
         }
         if !finite {

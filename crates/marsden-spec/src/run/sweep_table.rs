@@ -186,7 +186,10 @@ pub fn write(
 
 /// `summary.json` of a sweep: counts, the worst energy error, the CSV's name.
 fn summary(shard: Shard, label: &str, rows: &[SweepRow], total: usize) -> serde_json::Value {
-    let failed = rows.iter().filter(|r| r.status == RunStatus::Failed).count();
+    let failed = rows
+        .iter()
+        .filter(|r| r.status == RunStatus::Failed)
+        .count();
     let interrupted = rows.iter().any(|r| r.status == RunStatus::Interrupted);
     let worst = rows
         .iter()
