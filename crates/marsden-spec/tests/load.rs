@@ -49,7 +49,7 @@ fn mistakes_point_into_the_text_with_a_caret_and_a_suggestion() {
     let d = RunSpec::from_toml_str(&text, "p.toml").unwrap_err();
     let shown = d.to_string();
     assert!(
-        shown.starts_with("error: in lagrangian: unknown name `thetaa`\n"),
+        shown.starts_with("error: in [system] lagrangian: unknown name `thetaa`\n"),
         "{shown}"
     );
     assert!(shown.contains(" --> p.toml:5:"), "{shown}");

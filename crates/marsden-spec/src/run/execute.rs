@@ -136,7 +136,6 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
     let mut summary = Summary::new(spec, &record, columns, written);
     if !store.files() {
         summary.output.format = "memory";
-        summary.output.rows = samples.as_ref().map_or(0, |s| s.len() as u64);
     }
     if store.files() {
         summary

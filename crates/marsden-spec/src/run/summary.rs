@@ -264,8 +264,16 @@ impl Summary {
     /// The I/O error, as text naming the file.
     pub fn write(&self, dir: &Path) -> Result<(), String> {
         let path = dir.join(SUMMARY_JSON);
-        let text = serde_json::to_string_pretty(self).map_err(|e| e.to_string())?;
+        let text = self.to_json()?;
         std::fs::write(&path, text + "\n")
             .map_err(|e| format!("cannot write {}: {e}", path.display()))
+    }
+
+    /// The text of `summary.json` (pretty-printed, without the final line break).
+    ///
+    /// # Errors
+    /// Only if serialisation fails, as text.
+    pub fn to_json(&self) -> Result<String, String> {
+        serde_json::to_string_pretty(self).map_err(|e| e.to_string())
     }
 }
