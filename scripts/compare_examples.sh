@@ -12,11 +12,14 @@
 #
 # Prints one line per difference and a closing `N passed, N failed`; exits 1 on any difference.
 set -u
-old=$(realpath "$1")
-new=$(realpath "$2")
 work=${3:-$(mktemp -d)}
+mkdir -p "$work/bin-old" "$work/bin-new"
+# Both named `marsden`: clap prints the program's name in its usage lines.
+ln -sf "$(realpath "$1")" "$work/bin-old/marsden"
+ln -sf "$(realpath "$2")" "$work/bin-new/marsden"
+old=$work/bin-old/marsden
+new=$work/bin-new/marsden
 cd "$(dirname "$0")/.."
-mkdir -p "$work"
 passed=0
 failed=0
 
