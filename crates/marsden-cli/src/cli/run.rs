@@ -1,5 +1,12 @@
 //! `marsden run FILE [--steps N] [--h H] [--out DIR] [--quiet] [--no-progress]
 //! [--shard I/N] [--threads N]`.
+//!
+//! Ctrl-C stops the run within 256 steps (a sweep: its running members, the others are not
+//! started); what was computed is written, with status "interrupted", and the command exits
+//! with 1. A second Ctrl-C ends the process at once (130).
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use marsden_spec::run::sweep::{self, SweepOptions};
 use marsden_spec::run::{RunStatus, sweep_table};
@@ -37,7 +44,7 @@ pub fn run(args: &RunArgs) -> Result<Status, CliError> {
     };
     let controls = Controls {
         progress: bar.is_some().then_some(&update as &dyn Fn(Progress)),
-        stop: None,
+        stop: stop_on_ctrl_c(),
     };
     let outcome = marsden_spec::execute(&spec, Store::Files, &controls)?;
     for warning in &outcome.warnings {
@@ -73,7 +80,7 @@ fn run_sweep(args: &RunArgs, spec: &RunSpec, sweep: &SweepSpec) -> Result<Status
     let options = SweepOptions {
         shard: args.shard.unwrap_or_default(),
         threads: args.threads.map(usize::from),
-        stop: None,
+        stop: stop_on_ctrl_c(),
     };
     let outcome = sweep::execute(spec, sweep, &args.file.overrides(), &options)?;
     if !args.quiet {
@@ -93,8 +100,22 @@ fn run_sweep(args: &RunArgs, spec: &RunSpec, sweep: &SweepSpec) -> Result<Status
             outcome.dir.display()
         );
     }
+    let interrupted = outcome
+        .rows
+        .iter()
+        .any(|r| r.status == RunStatus::Interrupted);
     match outcome.failed() {
         0 => Ok(Status::Completed),
+        n if interrupted => {
+            eprintln!(
+                "error: the sweep was interrupted: {n} of {} member{} did not complete (rows \
+                 with status \"interrupted\" or \"failed\" in {})",
+                outcome.rows.len(),
+                if outcome.rows.len() == 1 { "" } else { "s" },
+                outcome.dir.join(&outcome.files[0]).display()
+            );
+            Ok(Status::Failed)
+        }
         n => {
             eprintln!(
                 "error: {n} of {} member{} failed (rows with status \"failed\" in {})",
@@ -105,4 +126,17 @@ fn run_sweep(args: &RunArgs, spec: &RunSpec, sweep: &SweepSpec) -> Result<Status
             Ok(Status::Failed)
         }
     }
+}
+
+/// A flag that the first Ctrl-C sets (the second one exits with 130); `None` if the handler
+/// cannot be installed (then Ctrl-C ends the process as usual).
+fn stop_on_ctrl_c() -> Option<Arc<AtomicBool>> {
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = Arc::clone(&stop);
+    let handler = move || {
+        if flag.swap(true, Ordering::Relaxed) {
+            std::process::exit(130);
+        }
+    };
+    ctrlc::set_handler(handler).ok().map(|()| stop)
 }
