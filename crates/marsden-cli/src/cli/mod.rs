@@ -15,9 +15,10 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 
+use marsden_spec::Overrides;
+use marsden_spec::run::shard::Shard;
+
 use crate::error::{CliError, Status};
-use crate::problem::Overrides;
-use crate::run::shard::Shard;
 
 /// Discrete mechanics and variational integrators from TOML problem files.
 #[derive(Debug, Parser)]

@@ -20,14 +20,15 @@
 //! is still printed) or the reference could not be computed; 2 bad input (unknown method, empty
 //! list, a step size that is not positive or does not divide `T − t₀`, a constrained problem).
 
+use marsden_spec::order::{self, Request, runner, table};
+use marsden_spec::{Diagnostic, Overrides};
+
 use super::OrderArgs;
-use crate::error::{CliError, Diagnostic, Status};
-use crate::order::{self, Request, runner, table};
-use crate::problem::{self, Overrides};
+use crate::error::{CliError, Status};
 
 /// Runs the study and prints the table.
 pub fn order(args: &OrderArgs) -> Result<Status, CliError> {
-    let spec = problem::load(&args.file, &Overrides::default())?;
+    let spec = marsden_spec::load(&args.file, &Overrides::default())?;
     let request = Request {
         methods: args.methods.clone(),
         h: args.h.clone(),

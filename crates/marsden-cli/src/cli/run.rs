@@ -1,17 +1,25 @@
 //! `marsden run FILE [--steps N] [--h H] [--out DIR] [--quiet] [--no-progress]
 //! [--shard I/N] [--threads N]`.
+//!
+//! Ctrl-C stops the run within 256 steps (a sweep: its running members, the others are not
+//! started); what was computed is written, with status "interrupted", and the command exits
+//! with 1. A second Ctrl-C ends the process at once (130).
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use marsden_spec::run::sweep::{self, SweepOptions};
+use marsden_spec::run::{RunStatus, sweep_table};
+use marsden_spec::{Controls, Diagnostic, Progress, RunSpec, Store, SweepSpec, report};
 
 use super::RunArgs;
-use crate::error::{CliError, Diagnostic, Status};
-use crate::problem::{RunSpec, SweepSpec};
-use crate::run::shard::Shard;
-use crate::run::sweep::{self, SweepOptions};
-use crate::{problem, run};
+use crate::error::{CliError, Status};
+use crate::progress::Bar;
 
 /// Runs the problem file (or its sweep); status 1 if the simulation (or a member) failed,
 /// results still written.
 pub fn run(args: &RunArgs) -> Result<Status, CliError> {
-    let spec = problem::load(&args.file.file, &args.file.overrides())?;
+    let spec = marsden_spec::load(&args.file.file, &args.file.overrides())?;
     if let Some(sweep) = &spec.sweep {
         return run_sweep(args, &spec, sweep);
     }
@@ -28,22 +36,40 @@ pub fn run(args: &RunArgs) -> Result<Status, CliError> {
             .help("add [sweep] with `parameter = \"...\"` and `values = [...]`"),
         ));
     }
-    let outcome = run::execute(&spec, !args.no_progress)?;
+    let bar = Bar::new(!args.no_progress);
+    let update = |p: Progress| {
+        if let Some(bar) = &bar {
+            bar.update(p);
+        }
+    };
+    let controls = Controls {
+        progress: bar.is_some().then_some(&update as &dyn Fn(Progress)),
+        stop: stop_on_ctrl_c(),
+    };
+    let outcome = marsden_spec::execute(&spec, Store::Files, &controls)?;
     for warning in &outcome.warnings {
         eprintln!("warning: {warning}");
     }
     if !args.quiet {
-        print!("{}", run::report::render(&outcome));
+        print!("{}", report::run::render(&outcome));
     }
-    match &outcome.summary.error {
-        None => Ok(Status::Completed),
-        Some(e) => {
+    let s = &outcome.summary;
+    let dir = spec.output.dir.display();
+    match (&s.error, s.status) {
+        (None, RunStatus::Completed) => Ok(Status::Completed),
+        (Some(e), _) => {
             eprintln!(
                 "error: the simulation failed after {} of {} steps: {e}\n  = note: the partial \
-                 trajectory and summary.json (status \"failed\") are in {}",
-                outcome.summary.steps,
-                outcome.summary.steps_requested,
-                outcome.dir.display()
+                 trajectory and summary.json (status \"failed\") are in {dir}",
+                s.steps, s.steps_requested,
+            );
+            Ok(Status::Failed)
+        }
+        (None, _) => {
+            eprintln!(
+                "error: the run was interrupted after {} of {} steps\n  = note: the partial \
+                 trajectory and summary.json (status \"interrupted\") are in {dir}",
+                s.steps, s.steps_requested,
             );
             Ok(Status::Failed)
         }
@@ -52,10 +78,11 @@ pub fn run(args: &RunArgs) -> Result<Status, CliError> {
 
 fn run_sweep(args: &RunArgs, spec: &RunSpec, sweep: &SweepSpec) -> Result<Status, CliError> {
     let options = SweepOptions {
-        shard: args.shard.unwrap_or(Shard::ALL),
+        shard: args.shard.unwrap_or_default(),
         threads: args.threads.map(usize::from),
+        stop: stop_on_ctrl_c(),
     };
-    let outcome = sweep::execute(spec, sweep, &args.file.overrides(), options)?;
+    let outcome = sweep::execute(spec, sweep, &args.file.overrides(), &options)?;
     if !args.quiet {
         println!(
             "{}: sweep of {} over {} member{} ({} run here), {}",
@@ -66,18 +93,29 @@ fn run_sweep(args: &RunArgs, spec: &RunSpec, sweep: &SweepSpec) -> Result<Status
             outcome.rows.len(),
             spec.integrator.method
         );
-        print!(
-            "{}",
-            run::sweep_table::render(&outcome.label, &outcome.rows)
-        );
+        print!("{}", sweep_table::render(&outcome.label, &outcome.rows));
         println!(
             "wrote {} in {}",
             outcome.files.join(", "),
             outcome.dir.display()
         );
     }
+    let interrupted = outcome
+        .rows
+        .iter()
+        .any(|r| r.status == RunStatus::Interrupted);
     match outcome.failed() {
         0 => Ok(Status::Completed),
+        n if interrupted => {
+            eprintln!(
+                "error: the sweep was interrupted: {n} of {} member{} did not complete (rows \
+                 with status \"interrupted\" or \"failed\" in {})",
+                outcome.rows.len(),
+                if outcome.rows.len() == 1 { "" } else { "s" },
+                outcome.dir.join(&outcome.files[0]).display()
+            );
+            Ok(Status::Failed)
+        }
         n => {
             eprintln!(
                 "error: {n} of {} member{} failed (rows with status \"failed\" in {})",
@@ -88,4 +126,17 @@ fn run_sweep(args: &RunArgs, spec: &RunSpec, sweep: &SweepSpec) -> Result<Status
             Ok(Status::Failed)
         }
     }
+}
+
+/// A flag that the first Ctrl-C sets (the second one exits with 130); `None` if the handler
+/// cannot be installed (then Ctrl-C ends the process as usual).
+fn stop_on_ctrl_c() -> Option<Arc<AtomicBool>> {
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = Arc::clone(&stop);
+    let handler = move || {
+        if flag.swap(true, Ordering::Relaxed) {
+            std::process::exit(130);
+        }
+    };
+    ctrlc::set_handler(handler).ok().map(|()| stop)
 }

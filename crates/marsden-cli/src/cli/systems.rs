@@ -1,63 +1,11 @@
 //! `marsden systems [NAME]`: the catalog with coordinates, parameters and defaults.
 
-use std::fmt::Write as _;
+use marsden_spec::report;
 
-use crate::catalog::{Builtin, MASSES};
-use crate::error::{CliError, Diagnostic, Status};
-use crate::expr::suggest::closest;
+use crate::error::{CliError, Status};
 
 /// Prints the catalog (or one entry).
 pub fn systems(name: Option<&str>) -> Result<Status, CliError> {
-    let selected: Vec<Builtin> = match name {
-        None => Builtin::ALL.to_vec(),
-        Some(name) => match Builtin::from_name(name) {
-            Some(b) => vec![b],
-            None => {
-                let names = Builtin::ALL.map(Builtin::name);
-                return Err(Diagnostic::new(format!("unknown builtin `{name}`"))
-                    .suggest(closest(name, names))
-                    .note(format!("builtins: {}", names.join(", ")))
-                    .into());
-            }
-        },
-    };
-    let mut out = String::new();
-    if name.is_none() {
-        out.push_str(
-            "Catalog systems: use `builtin = \"<name>\"` in [system]; `parameters` override the \
-             defaults.\n",
-        );
-    }
-    for (i, b) in selected.into_iter().enumerate() {
-        if i > 0 || name.is_none() {
-            out.push('\n');
-        }
-        out.push_str(&describe(b));
-    }
-    print!("{out}");
+    print!("{}", report::systems::render(name)?);
     Ok(Status::Completed)
-}
-
-/// The catalog entry of `b`.
-pub fn describe(b: Builtin) -> String {
-    let mut out = String::new();
-    let _ = writeln!(out, "{}  —  {}", b.name(), b.summary());
-    let coordinates = if b.needs_masses() {
-        "x1 y1 z1 x2 y2 z2 … (three per body)".to_owned()
-    } else {
-        b.coordinates(0).join(" ")
-    };
-    let _ = writeln!(out, "  coordinates  {coordinates}");
-    let mut params: Vec<String> = Vec::new();
-    if b.needs_masses() {
-        params.push(format!("{MASSES} = [..] (required: one mass per body)"));
-    }
-    params.extend(
-        b.parameters()
-            .iter()
-            .map(|p| format!("{} = {} ({})", p.name, p.default, p.doc)),
-    );
-    let _ = writeln!(out, "  parameters   {}", params.join(", "));
-    let _ = writeln!(out, "  lagrangian   {}", b.formula());
-    out
 }

@@ -9,36 +9,34 @@
 /// Runs `body` on a buffer of `len` values `init(0) … init(len − 1)`, on the stack if
 /// `len ≤ CAP` (`fill` pads the unused part of the array). Up to two values take an array of
 /// two, so that small systems do not pay for padding a long array of hyper-dual numbers.
+///
+/// `body` is called at exactly one place: these buffers nest (a rule's node inside the step's
+/// offsets inside an AD chunk), and a body inlined once per storage kind would be compiled
+/// three times per level.
 #[inline(always)]
 pub fn with_buffer<S: Copy, const CAP: usize, R>(
-    len: usize,
-    fill: S,
-    init: impl FnMut(usize) -> S,
-    body: impl FnOnce(&mut [S]) -> R,
-) -> R {
-    if len <= 2 {
-        on_stack::<S, 2, R>(len, fill, init, body)
-    } else if len <= CAP {
-        on_stack::<S, CAP, R>(len, fill, init, body)
-    } else {
-        let mut heap: Vec<S> = (0..len).map(init).collect();
-        body(&mut heap)
-    }
-}
-
-/// [`with_buffer`] in an array of `K ≥ len` values.
-#[inline(always)]
-fn on_stack<S: Copy, const K: usize, R>(
     len: usize,
     fill: S,
     mut init: impl FnMut(usize) -> S,
     body: impl FnOnce(&mut [S]) -> R,
 ) -> R {
-    let mut buf = [fill; K];
-    for (i, slot) in buf[..len].iter_mut().enumerate() {
+    let mut two;
+    let mut inline;
+    let mut heap;
+    let buffer: &mut [S] = if len <= 2 {
+        two = [fill; 2];
+        &mut two[..len]
+    } else if len <= CAP {
+        inline = [fill; CAP];
+        &mut inline[..len]
+    } else {
+        heap = vec![fill; len];
+        &mut heap
+    };
+    for (i, slot) in buffer.iter_mut().enumerate() {
         *slot = init(i);
     }
-    body(&mut buf[..len])
+    body(buffer)
 }
 
 /// Inline capacity for per-node vectors of length n (positions, velocities, forces).

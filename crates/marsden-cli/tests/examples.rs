@@ -1,0 +1,74 @@
+//! Every problem file in `examples/` runs (with fewer steps), as CI does; `pendulum.toml` also
+//! the way README.md quotes it, from the repository root with a relative path.
+
+use crate::util::{marsden, marsden_in, repo_root};
+
+#[test]
+fn every_example_runs_with_reduced_steps() {
+    let mut files: Vec<_> = std::fs::read_dir(repo_root().join("examples"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 10, "examples: {files:?}");
+    for file in &files {
+        let run = marsden("run", file, &["--steps", "40", "--quiet"]);
+        let name = file.display();
+        assert_eq!(run.code, 0, "{name}: {}", run.stderr);
+        assert!(run.stdout.is_empty(), "--quiet");
+        let s = run.summary();
+        assert_eq!(s["status"], "completed", "{name}");
+        assert_eq!(s["steps"], 40, "{name}");
+        assert!(
+            s["energy"]["max_rel_error"].as_f64().is_some(),
+            "{name}: energy"
+        );
+    }
+}
+
+#[test]
+fn every_catalog_system_has_an_example() {
+    let root = repo_root().join("examples");
+    for name in [
+        "harmonic_oscillator",
+        "free_fall",
+        "pendulum",
+        "double_pendulum",
+        "kepler",
+        "henon_heiles",
+        "nbody",
+    ] {
+        assert!(
+            root.join(format!("{name}.toml")).is_file(),
+            "examples/{name}.toml"
+        );
+    }
+}
+
+#[test]
+fn readme_command_works_from_the_repository_root() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("pendulum");
+    let args = [
+        "run",
+        "examples/pendulum.toml",
+        "--steps",
+        "200",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let output = marsden_in(&repo_root(), &args);
+    assert_eq!(
+        output.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let stdout = String::from_utf8(output.stdout).unwrap();
+    assert!(
+        stdout.starts_with("pendulum: expression, 1 coordinate (theta), midpoint"),
+        "{stdout}"
+    );
+    assert!(out.join("trajectory.csv").is_file() && out.join("energy_error.png").is_file());
+}

@@ -1,0 +1,24 @@
+//! The `marsden` command end to end, in one test binary: each module runs the built binary on
+//! fixture files (`tests/fixtures/`) or on `examples/`, in temporary directories.
+
+// Helpers outside #[test] functions unwrap too; a failure is a test failure.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+// Helpers: run the binary, read back trajectory.csv and summary.json, compare numbers.
+#[allow(dead_code)]
+mod util;
+
+// `marsden run` on malformed or impossible problem files: exit status 2, the message, the
+// caret, "did you mean" (the fixtures in tests/fixtures/bad/); failing runs: status 1.
+mod bad_input;
+// `check`, `systems`, `plot` and usage errors.
+mod commands;
+// Every file in examples/ runs with reduced steps, as README.md quotes them.
+mod examples;
+// `marsden order`: the table, the fitted orders, the CSV, the refused requests.
+mod order;
+// `marsden run`: reference values read back from the trajectory, summary.json's fields, the
+// expression path against the Rust path, the output formats.
+mod run;
+// `marsden run` on a file with [sweep]: the table, sweep.csv, shards, threads, failing members.
+mod sweep;

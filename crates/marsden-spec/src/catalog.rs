@@ -1,0 +1,301 @@
+//! The catalog systems of `marsden::systems` as problem files name them (`builtin = "…"`):
+//! names, coordinates, parameters with their documented defaults, and the Lagrangian written
+//! in the expression language (so `marsden systems` shows text a user can copy into
+//! `lagrangian = "…"`).
+//!
+//! Defaults are read from the core types' `Default` impls, never repeated here.
+
+use marsden::Lagrangian;
+use marsden::systems::{
+    DoublePendulum, FreeFall, HarmonicOscillator, HenonHeiles, Kepler, NBody, Pendulum,
+};
+
+/// A catalog system, by name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Builtin {
+    /// `harmonic_oscillator`: [`HarmonicOscillator`].
+    HarmonicOscillator,
+    /// `free_fall`: [`FreeFall`].
+    FreeFall,
+    /// `pendulum`: [`Pendulum`].
+    Pendulum,
+    /// `double_pendulum`: [`DoublePendulum`].
+    DoublePendulum,
+    /// `kepler`: [`Kepler`].
+    Kepler,
+    /// `henon_heiles`: [`HenonHeiles`].
+    HenonHeiles,
+    /// `nbody`: [`NBody`].
+    NBody,
+}
+
+/// A scalar parameter of a builtin: name, default, meaning.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Parameter {
+    /// Name in `parameters = { … }`.
+    pub name: &'static str,
+    /// The catalog default.
+    pub default: f64,
+    /// What it is.
+    pub doc: &'static str,
+}
+
+/// The list parameter of `nbody`.
+pub const MASSES: &str = "masses";
+
+impl Builtin {
+    /// Every catalog system, in the order `marsden systems` lists them.
+    pub const ALL: [Builtin; 7] = [
+        Builtin::HarmonicOscillator,
+        Builtin::FreeFall,
+        Builtin::Pendulum,
+        Builtin::DoublePendulum,
+        Builtin::Kepler,
+        Builtin::HenonHeiles,
+        Builtin::NBody,
+    ];
+
+    /// The name used in problem files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Builtin::HarmonicOscillator => "harmonic_oscillator",
+            Builtin::FreeFall => "free_fall",
+            Builtin::Pendulum => "pendulum",
+            Builtin::DoublePendulum => "double_pendulum",
+            Builtin::Kepler => "kepler",
+            Builtin::HenonHeiles => "henon_heiles",
+            Builtin::NBody => "nbody",
+        }
+    }
+
+    /// Looks a name up.
+    pub fn from_name(name: &str) -> Option<Builtin> {
+        Self::ALL.into_iter().find(|b| b.name() == name)
+    }
+
+    /// One line on what the system is.
+    pub fn summary(self) -> &'static str {
+        match self {
+            Builtin::HarmonicOscillator => "harmonic oscillator (exact solution known)",
+            Builtin::FreeFall => "free fall in a uniform field (variational integrators are exact)",
+            Builtin::Pendulum => "planar pendulum, angle from the downward vertical",
+            Builtin::DoublePendulum => "planar double pendulum, both angles from the vertical",
+            Builtin::Kepler => "planar Kepler problem, unit mass",
+            Builtin::HenonHeiles => "Hénon–Heiles potential",
+            Builtin::NBody => "gravitational N-body problem in 3-D with Plummer softening",
+        }
+    }
+
+    /// The Lagrangian in the expression language (for `nbody`, in words).
+    pub fn formula(self) -> &'static str {
+        match self {
+            Builtin::HarmonicOscillator => "0.5*m*x_dot^2 - 0.5*k*x^2",
+            Builtin::FreeFall => "0.5*m*z_dot^2 - m*g*z",
+            Builtin::Pendulum => "0.5*m*l^2*theta_dot^2 + m*g*l*cos(theta)",
+            Builtin::DoublePendulum => {
+                "0.5*(m1+m2)*l1^2*theta1_dot^2 + 0.5*m2*l2^2*theta2_dot^2 \
+                 + m2*l1*l2*theta1_dot*theta2_dot*cos(theta1-theta2) \
+                 + (m1+m2)*g*l1*cos(theta1) + m2*g*l2*cos(theta2)"
+            }
+            Builtin::Kepler => "0.5*(x_dot^2 + y_dot^2) + mu/sqrt(x^2 + y^2)",
+            Builtin::HenonHeiles => {
+                "0.5*(x_dot^2 + y_dot^2) - 0.5*(x^2 + y^2) - lambda*(x^2*y - y^3/3)"
+            }
+            Builtin::NBody => {
+                "sum_i 0.5*m_i*|v_i|^2 + sum_{i<j} G*m_i*m_j/sqrt(|q_i - q_j|^2 + softening^2)"
+            }
+        }
+    }
+
+    /// The scalar parameters with their defaults (`nbody` also needs the list `masses`).
+    pub fn parameters(self) -> Vec<Parameter> {
+        let p = |name, default, doc| Parameter { name, default, doc };
+        match self {
+            Builtin::HarmonicOscillator => {
+                let d = HarmonicOscillator::default();
+                vec![p("m", d.m, "mass"), p("k", d.k, "stiffness")]
+            }
+            Builtin::FreeFall => {
+                let d = FreeFall::default();
+                vec![p("m", d.m, "mass"), p("g", d.g, "field strength")]
+            }
+            Builtin::Pendulum => {
+                let d = Pendulum::default();
+                let (m, l, g) = (d.m, d.l, d.g);
+                vec![
+                    p("m", m, "bob mass"),
+                    p("l", l, "rod length"),
+                    p("g", g, "gravity"),
+                ]
+            }
+            Builtin::DoublePendulum => {
+                let d = DoublePendulum::default();
+                vec![
+                    p("m1", d.m1, "upper mass"),
+                    p("m2", d.m2, "lower mass"),
+                    p("l1", d.l1, "upper rod length"),
+                    p("l2", d.l2, "lower rod length"),
+                    p("g", d.g, "gravity"),
+                ]
+            }
+            Builtin::Kepler => vec![p("mu", Kepler::default().mu, "gravitational parameter")],
+            Builtin::HenonHeiles => {
+                vec![p("lambda", HenonHeiles::default().lambda, "cubic coupling")]
+            }
+            Builtin::NBody => {
+                let d = NBody::new(Vec::new());
+                vec![
+                    p("G", d.g, "gravitational constant"),
+                    p("softening", d.softening, "Plummer softening length"),
+                ]
+            }
+        }
+    }
+
+    /// Whether the system needs the list parameter `masses` (one mass per body).
+    pub fn needs_masses(self) -> bool {
+        self == Builtin::NBody
+    }
+
+    /// Coordinate names (`nbody`: `x1 y1 z1 x2 …` for `bodies` bodies; ignored otherwise).
+    pub fn coordinates(self, bodies: usize) -> Vec<String> {
+        let names: &[&str] = match self {
+            Builtin::HarmonicOscillator => &["x"],
+            Builtin::FreeFall => &["z"],
+            Builtin::Pendulum => &["theta"],
+            Builtin::DoublePendulum => &["theta1", "theta2"],
+            Builtin::Kepler | Builtin::HenonHeiles => &["x", "y"],
+            Builtin::NBody => {
+                return (1..=bodies)
+                    .flat_map(|i| ["x", "y", "z"].map(|axis| format!("{axis}{i}")))
+                    .collect();
+            }
+        };
+        names.iter().map(|s| s.to_string()).collect()
+    }
+
+    /// The configured system from the values of [`Builtin::parameters`] (in that order) and,
+    /// for `nbody`, the masses.
+    pub fn build(self, values: &[f64], masses: Vec<f64>) -> BuiltinSystem {
+        let v = |i: usize| values.get(i).copied().unwrap_or(f64::NAN);
+        match self {
+            Builtin::HarmonicOscillator => {
+                BuiltinSystem::HarmonicOscillator(HarmonicOscillator { m: v(0), k: v(1) })
+            }
+            Builtin::FreeFall => BuiltinSystem::FreeFall(FreeFall { m: v(0), g: v(1) }),
+            Builtin::Pendulum => BuiltinSystem::Pendulum(Pendulum {
+                m: v(0),
+                l: v(1),
+                g: v(2),
+            }),
+            Builtin::DoublePendulum => BuiltinSystem::DoublePendulum(DoublePendulum {
+                m1: v(0),
+                m2: v(1),
+                l1: v(2),
+                l2: v(3),
+                g: v(4),
+            }),
+            Builtin::Kepler => BuiltinSystem::Kepler(Kepler { mu: v(0) }),
+            Builtin::HenonHeiles => BuiltinSystem::HenonHeiles(HenonHeiles { lambda: v(0) }),
+            Builtin::NBody => BuiltinSystem::NBody(NBody {
+                masses,
+                g: v(0),
+                softening: v(1),
+            }),
+        }
+    }
+}
+
+/// A catalog system with its parameters set.
+#[derive(Debug, Clone, PartialEq)]
+pub enum BuiltinSystem {
+    /// See [`HarmonicOscillator`].
+    HarmonicOscillator(HarmonicOscillator),
+    /// See [`FreeFall`].
+    FreeFall(FreeFall),
+    /// See [`Pendulum`].
+    Pendulum(Pendulum),
+    /// See [`DoublePendulum`].
+    DoublePendulum(DoublePendulum),
+    /// See [`Kepler`].
+    Kepler(Kepler),
+    /// See [`HenonHeiles`].
+    HenonHeiles(HenonHeiles),
+    /// See [`NBody`].
+    NBody(NBody),
+}
+
+/// A computation generic over the Lagrangian: how the command calls monomorphic code
+/// ([`crate::run::run_problem`]) with whichever system the file describes.
+pub trait WithLagrangian {
+    /// What the computation returns.
+    type Output;
+    /// Runs the computation with `lagrangian`.
+    fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output;
+}
+
+impl BuiltinSystem {
+    /// Calls `f` with the concrete catalog type.
+    pub fn dispatch<W: WithLagrangian>(&self, f: W) -> W::Output {
+        match self {
+            BuiltinSystem::HarmonicOscillator(s) => f.call(s),
+            BuiltinSystem::FreeFall(s) => f.call(s),
+            BuiltinSystem::Pendulum(s) => f.call(s),
+            BuiltinSystem::DoublePendulum(s) => f.call(s),
+            BuiltinSystem::Kepler(s) => f.call(s),
+            BuiltinSystem::HenonHeiles(s) => f.call(s),
+            BuiltinSystem::NBody(s) => f.call(s),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{ExprLagrangian, slots};
+    use marsden_expr::{Program, Symbols};
+
+    /// Evaluates `L` at a fixed, generic state.
+    struct Sample;
+    impl WithLagrangian for Sample {
+        type Output = f64;
+        fn call<L: Lagrangian>(self, l: &L) -> f64 {
+            let n = l.dof();
+            let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.2 * i as f64).collect();
+            let v: Vec<f64> = (0..n).map(|i| -0.7 + 0.3 * i as f64).collect();
+            l.lagrangian(0.0, &q, &v)
+        }
+    }
+
+    #[test]
+    fn formulas_are_the_catalog_lagrangians() {
+        for b in Builtin::ALL.into_iter().filter(|b| !b.needs_masses()) {
+            let params = b.parameters();
+            let values: Vec<f64> = params.iter().map(|p| p.default * 1.3).collect();
+            let rust = b.build(&values, Vec::new()).dispatch(Sample);
+            let coordinates = b.coordinates(0);
+            let mut symbols = Symbols::with_inputs(slots::tangent_inputs(&coordinates)).unwrap();
+            for (p, v) in params.iter().zip(&values) {
+                symbols.add_constant(p.name, *v).unwrap();
+            }
+            let program = Program::compile(b.formula(), &symbols).unwrap();
+            let expr = Sample.call(&ExprLagrangian::new(program, coordinates.len()));
+            assert!(
+                (rust - expr).abs() <= 1e-14 * rust.abs().max(1.0),
+                "{}",
+                b.name()
+            );
+        }
+    }
+
+    #[test]
+    fn names_round_trip_and_nbody_coordinates() {
+        for b in Builtin::ALL {
+            assert_eq!(Builtin::from_name(b.name()), Some(b));
+        }
+        assert_eq!(
+            Builtin::NBody.coordinates(2),
+            ["x1", "y1", "z1", "x2", "y2", "z2"]
+        );
+    }
+}

@@ -1,0 +1,124 @@
+//! The runs of an order study: the file's problem (Lagrangian, forces, initial data) built
+//! once as in `marsden run` ([`crate::run::start::constrained_problem`]), one reference
+//! solution `(q(T), p(T))` by the extrapolation integrator of [`marsden::discrete::exact`], then
+//! [`marsden::studies::order::measure_order`] for each method, dispatched to its concrete rule.
+
+use marsden::discrete::rules::WithRule;
+use marsden::studies::order::{OrderOptions, OrderStudy, measure_order, reference_solution};
+use marsden::{Constraint, Force, Lagrangian, NewtonOptions, Problem, Rule};
+
+use super::Plan;
+use crate::catalog::WithLagrangian;
+use crate::error::{Diagnostic, Error};
+use crate::problem::{Method, RunSpec};
+use crate::run::start;
+
+/// The reference solution and one study per method (in the plan's order).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Results {
+    /// `(q(T), p(T))`.
+    pub reference: (Vec<f64>, Vec<f64>),
+    /// One study per method.
+    pub studies: Vec<OrderStudy>,
+}
+
+/// Runs the study.
+///
+/// # Errors
+/// Status 2 for a constrained problem (the reference flow has no constraints) or initial data
+/// the core rejects; status 1 if the reference solution cannot be computed. A run that fails
+/// is a point with error `NaN` in its study, not an error.
+pub fn measure(spec: &RunSpec, plan: &Plan) -> Result<Results, Error> {
+    if spec.system.constraint.count() > 0 {
+        return Err(Error::bad_input(
+            Diagnostic::new("marsden order does not support constrained problems").note(
+                "the reference solution integrates the unconstrained Euler–Lagrange equations",
+            ),
+        ));
+    }
+    spec.system.lagrangian.dispatch(Study { spec, plan })
+}
+
+/// Newton options of the runs: the file's, with the residual tolerance tightened to the order
+/// study's (round-off, so that the solver's error does not mask the method's).
+pub fn options(spec: &RunSpec) -> OrderOptions {
+    let study = OrderOptions::default();
+    let file = spec.integrator.newton;
+    OrderOptions {
+        newton: NewtonOptions {
+            residual_tolerance: file.residual_tolerance.min(study.newton.residual_tolerance),
+            ..file
+        },
+        ..study
+    }
+}
+
+struct Study<'a> {
+    spec: &'a RunSpec,
+    plan: &'a Plan,
+}
+
+impl WithLagrangian for Study<'_> {
+    type Output = Result<Results, Error>;
+
+    fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output {
+        let system = &self.spec.system;
+        let problem = start::constrained_problem(self.spec, lagrangian, &system.constraint)?
+            .with_force(&system.force);
+        let reference = reference_solution(&problem, self.plan.t_end).map_err(|e| {
+            Error::failed(Diagnostic::new(format!(
+                "cannot compute the reference solution at T = {}: {e}",
+                self.plan.t_end
+            )))
+        })?;
+        let options = options(self.spec);
+        let studies = self
+            .plan
+            .methods
+            .iter()
+            .map(|method| study(&problem, method, self.plan, &reference, &options))
+            .collect::<Result<_, _>>()?;
+        Ok(Results { reference, studies })
+    }
+}
+
+/// One method's study (dispatch on the rule type).
+fn study<L: Lagrangian, F: Force, C: Constraint>(
+    problem: &Problem<L, F, C>,
+    method: &Method,
+    plan: &Plan,
+    (q, p): &(Vec<f64>, Vec<f64>),
+    options: &OrderOptions,
+) -> Result<OrderStudy, Error>
+where
+    Problem<L, F, C>: Clone,
+{
+    struct Measure<'a, L, F, C> {
+        problem: &'a Problem<L, F, C>,
+        grid: (f64, &'a [usize]),
+        reference: (&'a [f64], &'a [f64]),
+        options: &'a OrderOptions,
+    }
+    impl<L: Lagrangian, F: Force, C: Constraint> WithRule for Measure<'_, L, F, C>
+    where
+        Problem<L, F, C>: Clone,
+    {
+        type Output = Result<OrderStudy, marsden::Error>;
+        fn call<R: Rule>(self, rule: &R) -> Self::Output {
+            measure_order(self.problem, rule, self.grid, self.reference, self.options)
+        }
+    }
+    let steps = plan.steps();
+    method
+        .dispatch(Measure {
+            problem,
+            grid: (plan.t_end, &steps),
+            reference: (q, p),
+            options,
+        })
+        .map_err(|e| {
+            Error::bad_input(Diagnostic::new(format!(
+                "cannot set up the runs of {method}: {e}"
+            )))
+        })
+}

@@ -1,0 +1,178 @@
+//! Problem files, in two stages (as ripgrep separates raw flags from validated arguments):
+//!
+//! 1. [`raw`]: the TOML as written — serde structs with `deny_unknown_fields`, every value
+//!    with its span; `toml`'s errors are reworded by [`toml_error`].
+//! 2. [`spec`]: the validated [`RunSpec`] — every check made here ([`system`], [`parameters`],
+//!    [`settings`], helpers in [`check`]), each failure a [`Diagnostic`] pointing at the
+//!    value at fault. Building and running the problem is [`crate::run`]'s job.
+//!
+//! Entry points: [`load`] (a file on disk), [`from_toml_str`] (text from anywhere, e.g. a
+//! notebook cell), [`member`] (one member of a sweep).
+
+pub mod check;
+pub mod method;
+pub mod nbody_file;
+pub mod parameters;
+pub mod raw;
+pub mod settings;
+pub mod spec;
+pub mod sweep;
+pub mod system;
+pub mod toml_error;
+
+use std::path::{Path, PathBuf};
+
+pub use method::Method;
+pub use spec::{
+    Format, InitialData, InitialSpec, IntegratorSpec, LagrangianSpec, OutputSpec, Overrides,
+    RunSpec, SpecSpans, SystemSpec,
+};
+pub use sweep::{SweepSpec, SweepTarget};
+
+use crate::error::Diagnostic;
+use crate::source::SourceFile;
+use check::Checker;
+
+/// Reads and validates the problem file at `path`, applying the command-line overrides.
+///
+/// # Errors
+/// A diagnostic for the first mistake found (the command exits with status 2).
+pub fn load(path: &Path, overrides: &Overrides) -> Result<RunSpec, Diagnostic> {
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        Diagnostic::new(format!(
+            "cannot read the problem file {}: {e}",
+            path.display()
+        ))
+    })?;
+    validate(SourceFile::new(path, text), overrides)
+}
+
+/// Validates the text of a problem file; `origin` names it in the diagnostics and in the
+/// provenance of the results (a path, or a label such as `<notebook>`), and relative paths in
+/// the file (an N-body `file = "…"`) are read from the current directory.
+///
+/// ```
+/// use marsden_spec::{Overrides, from_toml_str};
+///
+/// let text = "[system]\nbuiltin = \"pendulum\"\n[initial]\nq = [1.0]\nv = [0.0]\n\
+///             [integrator]\nh = 0.1\nsteps = 10\n";
+/// let spec = from_toml_str(text, "pendulum.toml", &Overrides::default())?;
+/// assert_eq!(spec.integrator.grid.steps, 10);
+///
+/// let err = from_toml_str("[integrator]\nh = -1\n", "bad.toml", &Overrides::default());
+/// assert!(err.unwrap_err().to_string().starts_with("error: "));
+/// # Ok::<(), marsden_spec::Diagnostic>(())
+/// ```
+///
+/// # Errors
+/// A diagnostic for the first mistake found.
+pub fn from_toml_str(
+    text: &str,
+    origin: impl Into<PathBuf>,
+    overrides: &Overrides,
+) -> Result<RunSpec, Diagnostic> {
+    validate(SourceFile::new(origin, text.to_owned()), overrides)
+}
+
+impl RunSpec {
+    /// [`load`] without overrides.
+    ///
+    /// # Errors
+    /// As [`load`].
+    pub fn load(path: impl AsRef<Path>) -> Result<RunSpec, Diagnostic> {
+        load(path.as_ref(), &Overrides::default())
+    }
+
+    /// [`from_toml_str`] without overrides.
+    ///
+    /// # Errors
+    /// As [`from_toml_str`].
+    pub fn from_toml_str(text: &str, origin: impl Into<PathBuf>) -> Result<RunSpec, Diagnostic> {
+        from_toml_str(text, origin, &Overrides::default())
+    }
+}
+
+/// Validates the text of a problem file (stage 1 then stage 2), its `[sweep]` included.
+///
+/// # Errors
+/// A diagnostic for the first mistake found.
+pub fn validate(source: SourceFile, overrides: &Overrides) -> Result<RunSpec, Diagnostic> {
+    let raw = raw::parse(source.text()).map_err(|e| toml_error::diagnose(&source, &e))?;
+    validate_raw(source, &raw, overrides, true)
+}
+
+/// Member `k` of the sweep of `base`: the file with the swept value replaced by the member's
+/// value, validated again (without its `[sweep]`).
+///
+/// # Errors
+/// A value the problem cannot take (e.g. initial positions off the constraints).
+pub fn member(base: &RunSpec, overrides: &Overrides, k: usize) -> Result<RunSpec, Diagnostic> {
+    let source = base.source.clone();
+    let mut raw = raw::parse(source.text()).map_err(|e| toml_error::diagnose(&source, &e))?;
+    if let Some(sweep) = &base.sweep
+        && let Some(value) = sweep.values.get(k)
+    {
+        sweep::apply(&mut raw, sweep, *value);
+    }
+    validate_raw(source, &raw, overrides, false)
+}
+
+fn validate_raw(
+    source: SourceFile,
+    raw: &raw::RawProblem,
+    overrides: &Overrides,
+    with_sweep: bool,
+) -> Result<RunSpec, Diagnostic> {
+    let ck = Checker::new(&source);
+    let bodies = nbody_file::read(&ck, raw.initial.as_ref())?;
+    let system = system::system(&ck, raw.system.as_ref(), bodies.as_ref())?;
+    let (initial, initial_spans) = settings::initial(
+        &ck,
+        raw.initial.as_ref(),
+        &system.coordinates,
+        bodies.as_ref(),
+    )?;
+    settings::constraints_at_start(&ck, &system.constraint, &initial.q, initial_spans.q)?;
+    let integrator = settings::integrator(&ck, raw.integrator.as_ref(), initial.t0, overrides)?;
+    let name = run_name(raw, &system, source.path());
+    let output = settings::output(&ck, raw.output.as_ref(), &name, overrides)?;
+    let sweep = match with_sweep {
+        true => {
+            let parts = (&system, &initial, bodies.is_some());
+            sweep::sweep(&ck, raw.sweep.as_ref(), parts)?
+        }
+        false => None,
+    };
+    let system_table = raw.system.as_ref().map(|s| s.get_ref());
+    let lagrangian_span = system_table
+        .and_then(|s| s.lagrangian.as_ref().or(s.builtin.as_ref()))
+        .map(|v| v.span());
+    let spans = SpecSpans {
+        lagrangian: lagrangian_span,
+        initial_data: Some(initial_spans.data),
+    };
+    Ok(RunSpec {
+        source,
+        name,
+        system,
+        initial,
+        integrator,
+        output,
+        spans,
+        sweep,
+    })
+}
+
+/// `[system] name`, else the builtin's name, else the file's stem.
+fn run_name(raw: &raw::RawProblem, system: &SystemSpec, path: &Path) -> String {
+    let written = raw.system.as_ref().and_then(|s| s.get_ref().name.as_ref());
+    if let Some(name) = written {
+        return name.get_ref().clone();
+    }
+    match &system.lagrangian {
+        LagrangianSpec::Builtin { builtin, .. } => builtin.name().to_owned(),
+        LagrangianSpec::Expression(_) => path
+            .file_stem()
+            .map_or("run".to_owned(), |s| s.to_string_lossy().into_owned()),
+    }
+}

@@ -1,0 +1,310 @@
+//! Stage 1: the problem file as written — serde structs mirroring the TOML, nothing checked
+//! beyond types and key names (`deny_unknown_fields` everywhere).
+//!
+//! Every field is optional here so that [`super::spec`] can say what is missing in its own
+//! words; values carry their byte span ([`Spanned`]) so that every later message can point at
+//! the value at fault. The schema is a contract: extend it, never rename.
+//!
+//! ```toml
+//! [system]
+//! name = "pendulum"
+//! coordinates = ["theta"]
+//! parameters = { m = 1.0, l = 1.0, g = 1.0 }
+//! lagrangian = "0.5*m*l^2*theta_dot^2 + m*g*l*cos(theta)"   # or builtin = "pendulum"
+//! forces = ["-c*theta_dot"]                                  # optional
+//! constraints = ["x^2 + y^2 - l^2"]                          # optional
+//! [[system.symmetry]]                                        # optional, repeatable
+//! name = "Lz"
+//! generator = ["-y", "x"]
+//! [initial]
+//! q = [1.5]
+//! v = [0.0]                  # or p = [...]
+//! t0 = 0.0                   # extension: initial time (default 0)
+//! project = false            # with constraints: project (q, v) onto the manifold first
+//! [integrator]
+//! method = "midpoint"
+//! h = 0.05
+//! steps = 100000             # or t_end = ...
+//! tolerance = 1e-12
+//! max_iterations = 50
+//! fast_paths = true          # false: the general Newton path (the reference)
+//! compensated = false        # true: compensated summation of the update (long high-order runs)
+//! [output]
+//! dir = "out/pendulum"
+//! format = "csv"
+//! every = 1
+//! plots = true
+//! [sweep]                    # optional: an ensemble of runs
+//! parameter = "l"            # or initial = "q[0]"
+//! values = [0.5, 1.0]        # or range = { start = 0.1, stop = 1.0, count = 10 }
+//! ```
+
+use std::fmt;
+use std::marker::PhantomData;
+
+use serde::Deserialize;
+use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
+use toml::Spanned;
+
+/// A list of spanned values, itself spanned.
+pub type SpannedList<T> = Spanned<Vec<Spanned<T>>>;
+
+/// The whole problem file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawProblem {
+    /// `[system]`: what is simulated.
+    pub system: Option<Spanned<RawSystem>>,
+    /// `[initial]`: the initial state.
+    pub initial: Option<Spanned<RawInitial>>,
+    /// `[integrator]`: method, step, length of the run, Newton options.
+    pub integrator: Option<Spanned<RawIntegrator>>,
+    /// `[output]`: where and how results are written.
+    pub output: Option<Spanned<RawOutput>>,
+    /// `[sweep]`: one parameter or initial value over a list of values (an ensemble of runs).
+    pub sweep: Option<Spanned<RawSweep>>,
+}
+
+/// `[sweep]`: what is swept (`parameter` or `initial`) and over what (`values` or `range`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSweep {
+    /// A scalar parameter of `[system] parameters` (or a builtin's default).
+    pub parameter: Option<Spanned<String>>,
+    /// An initial value: `q[i]`, `v[i]` or `p[i]`.
+    pub initial: Option<Spanned<String>>,
+    /// The values, as a list.
+    pub values: Option<SpannedList<f64>>,
+    /// The values, evenly spaced from `start` to `stop` (both included).
+    pub range: Option<Spanned<RawRange>>,
+}
+
+/// `range = { start = 0.1, stop = 1.0, count = 10 }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawRange {
+    /// First value.
+    pub start: Option<Spanned<f64>>,
+    /// Last value (included).
+    pub stop: Option<Spanned<f64>>,
+    /// Number of values (at least 1).
+    pub count: Option<Spanned<i64>>,
+}
+
+/// `[system]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSystem {
+    /// A name for the run (default: the builtin's name or the file's stem).
+    pub name: Option<Spanned<String>>,
+    /// Names of the coordinates `q`; velocities are `<name>_dot`.
+    pub coordinates: Option<SpannedList<String>>,
+    /// Parameters: numbers usable in every expression, or overrides of a builtin's defaults.
+    pub parameters: Option<Spanned<Ordered<Spanned<RawParameter>>>>,
+    /// The Lagrangian `L(q, q_dot, t)` as an expression.
+    pub lagrangian: Option<Spanned<String>>,
+    /// The Hamiltonian `H(q, p, t)` (reserved: not supported yet).
+    pub hamiltonian: Option<Spanned<String>>,
+    /// A catalog system instead of an expression.
+    pub builtin: Option<Spanned<String>>,
+    /// Generalised forces, one expression per coordinate.
+    pub forces: Option<SpannedList<String>>,
+    /// Holonomic constraints `φ(q) = 0`, one expression each.
+    pub constraints: Option<SpannedList<String>>,
+    /// Symmetries whose momentum maps are monitored.
+    pub symmetry: Option<Vec<Spanned<RawSymmetry>>>,
+}
+
+/// One `[[system.symmetry]]` entry.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSymmetry {
+    /// Name of the momentum map (the column is `J_<name>`).
+    pub name: Option<Spanned<String>>,
+    /// The infinitesimal generator `ξ_Q(q)`, one expression per coordinate.
+    pub generator: Option<SpannedList<String>>,
+}
+
+/// `[initial]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawInitial {
+    /// Initial time (extension; default 0).
+    pub t0: Option<Spanned<f64>>,
+    /// Positions.
+    pub q: Option<SpannedList<f64>>,
+    /// Velocities (exactly one of `v` and `p`).
+    pub v: Option<SpannedList<f64>>,
+    /// Momenta (exactly one of `v` and `p`).
+    pub p: Option<SpannedList<f64>>,
+    /// `nbody` only: masses, positions and velocities from a file in the benchmark format
+    /// (`N`, then `m x y z vx vy vz` per body), relative to the problem file.
+    pub file: Option<Spanned<String>>,
+    /// Project `(q, v)` or `(q, p)` onto the constraint manifold before the run (default
+    /// false: initial data off the constraints are an error).
+    pub project: Option<bool>,
+}
+
+/// `[integrator]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawIntegrator {
+    /// Method name (default `midpoint`).
+    pub method: Option<Spanned<String>>,
+    /// Time step.
+    pub h: Option<Spanned<f64>>,
+    /// Number of steps (exactly one of `steps` and `t_end`).
+    pub steps: Option<Spanned<i64>>,
+    /// Final time (exactly one of `steps` and `t_end`).
+    pub t_end: Option<Spanned<f64>>,
+    /// Newton residual tolerance (default 1e-12).
+    pub tolerance: Option<Spanned<f64>>,
+    /// Newton iterations per step (default 50).
+    pub max_iterations: Option<Spanned<i64>>,
+    /// Structure-aware fast paths where they apply (default true); `false` takes the general
+    /// Newton path, the reference they are tested against.
+    pub fast_paths: Option<Spanned<bool>>,
+    /// Compensated summation of each step's increments (default false; unconstrained
+    /// problems only).
+    pub compensated: Option<Spanned<bool>>,
+}
+
+/// `[output]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawOutput {
+    /// Output directory (default `out/<name>`), relative to the working directory.
+    pub dir: Option<Spanned<String>>,
+    /// `csv` (default) or `npy`.
+    pub format: Option<Spanned<String>>,
+    /// Store every k-th step (default 1).
+    pub every: Option<Spanned<i64>>,
+    /// Draw PNG plots (default true).
+    pub plots: Option<Spanned<bool>>,
+}
+
+/// A parameter value: a number, or a list of numbers (N-body masses).
+#[derive(Debug, Clone, PartialEq)]
+pub enum RawParameter {
+    /// `m = 1.0` (integers are accepted).
+    Number(f64),
+    /// `masses = [1.0, 1e-3]`.
+    List(Vec<f64>),
+}
+
+impl<'de> Deserialize<'de> for RawParameter {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_any(ParameterVisitor)
+    }
+}
+
+struct ParameterVisitor;
+
+impl<'de> Visitor<'de> for ParameterVisitor {
+    type Value = RawParameter;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("a number or a list of numbers")
+    }
+
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<RawParameter, E> {
+        Ok(RawParameter::Number(v))
+    }
+
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<RawParameter, E> {
+        Ok(RawParameter::Number(v as f64))
+    }
+
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<RawParameter, E> {
+        Ok(RawParameter::Number(v as f64))
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<RawParameter, A::Error> {
+        let mut values = Vec::new();
+        while let Some(v) = seq.next_element::<f64>()? {
+            values.push(v);
+        }
+        Ok(RawParameter::List(values))
+    }
+}
+
+/// A TOML table read in the file's order (so parameters are listed as written).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ordered<T>(pub Vec<(String, T)>);
+
+impl<'de, T: Deserialize<'de>> Deserialize<'de> for Ordered<T> {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_map(OrderedVisitor(PhantomData))
+    }
+}
+
+struct OrderedVisitor<T>(PhantomData<T>);
+
+impl<'de, T: Deserialize<'de>> Visitor<'de> for OrderedVisitor<T> {
+    type Value = Ordered<T>;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("a table")
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Ordered<T>, A::Error> {
+        let mut entries = Vec::new();
+        while let Some(entry) = map.next_entry::<String, T>()? {
+            entries.push(entry);
+        }
+        Ok(Ordered(entries))
+    }
+}
+
+/// Parses the text of a problem file (types and key names only).
+///
+/// # Errors
+/// `toml`'s error, with the span of the offending key or value.
+pub fn parse(text: &str) -> Result<RawProblem, toml::de::Error> {
+    toml::from_str(text)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_the_issue_schema_with_spans() {
+        let text = r#"
+[system]
+coordinates = ["theta"]
+parameters = { m = 1, masses = [1.0, 2] }
+lagrangian = "0.5*theta_dot^2"
+[[system.symmetry]]
+name = "Lz"
+generator = ["0"]
+[initial]
+q = [1.5]
+v = [0.0]
+[integrator]
+h = 0.05
+steps = 10
+"#;
+        let raw = parse(text).unwrap();
+        let system = raw.system.unwrap().into_inner();
+        let params = system.parameters.unwrap().into_inner().0;
+        assert_eq!(params[0].0, "m");
+        assert_eq!(*params[0].1.get_ref(), RawParameter::Number(1.0));
+        assert_eq!(params[1].0, "masses");
+        assert_eq!(*params[1].1.get_ref(), RawParameter::List(vec![1.0, 2.0]));
+        let h = raw.integrator.unwrap().into_inner().h.unwrap();
+        assert_eq!(&text[h.span()], "0.05");
+        assert_eq!(system.symmetry.unwrap().len(), 1);
+    }
+
+    #[test]
+    fn rejects_unknown_keys() {
+        let err = parse("[system]\nlagrangain = \"x\"\n").unwrap_err();
+        assert!(
+            err.message().contains("unknown field `lagrangain`"),
+            "{err}"
+        );
+        let err = parse("[output]\nplot = true\n").unwrap_err();
+        assert!(err.message().contains("unknown field `plot`"), "{err}");
+    }
+}

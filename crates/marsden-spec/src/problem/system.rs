@@ -1,0 +1,358 @@
+//! `[system]` → [`SystemSpec`]: which Lagrangian, its coordinates and parameters, and the
+//! forces, constraints and symmetries compiled against them.
+
+use toml::Spanned;
+
+use super::check::{Checker, count_coordinates};
+use super::nbody_file::BodiesFile;
+use super::parameters::{self, Parameters};
+use super::raw::{RawSymmetry, RawSystem, SpannedList};
+use super::spec::{LagrangianSpec, SystemSpec};
+use crate::catalog::{Builtin, MASSES};
+use crate::error::Diagnostic;
+use crate::model::slots::{tangent_inputs, velocity_name};
+use crate::model::{ExprConstraint, ExprForce, ExprLagrangian, MomentumMap as _, Symmetry};
+use marsden_expr::closest;
+use marsden_expr::{Expr, Program, Symbols};
+
+/// The expressions besides the Lagrangian, parsed (syntax checked) before names are resolved.
+struct Parsed {
+    forces: Vec<Expr>,
+    constraints: Vec<Expr>,
+    generators: Vec<Vec<Expr>>,
+}
+
+impl Parsed {
+    fn read(ck: &Checker<'_>, system: &RawSystem) -> Result<Self, Diagnostic> {
+        let list = |what: &str, l: Option<&SpannedList<String>>| -> Result<Vec<Expr>, Diagnostic> {
+            l.map_or(&[][..], |l| l.get_ref().as_slice())
+                .iter()
+                .enumerate()
+                .map(|(i, v)| ck.parse_expr(&format!("[system] {what}[{i}]"), v))
+                .collect()
+        };
+        let mut generators = Vec::new();
+        for (k, s) in symmetries(system).iter().enumerate() {
+            let what = format!("symmetry {} generator", symmetry_label(s.get_ref(), k));
+            generators.push(list(&what, s.get_ref().generator.as_ref())?);
+        }
+        Ok(Self {
+            forces: list("forces", system.forces.as_ref())?,
+            constraints: list("constraints", system.constraints.as_ref())?,
+            generators,
+        })
+    }
+
+    /// Every name the expressions use.
+    fn names(&self) -> Vec<String> {
+        let all = self.forces.iter().chain(&self.constraints);
+        let mut names: Vec<String> = all
+            .chain(self.generators.iter().flatten())
+            .flat_map(|e| e.names().into_iter().map(str::to_owned))
+            .collect();
+        names.sort_unstable();
+        names.dedup();
+        names
+    }
+}
+
+fn symmetries(system: &RawSystem) -> &[Spanned<RawSymmetry>] {
+    system.symmetry.as_deref().unwrap_or(&[])
+}
+
+fn symmetry_label(s: &RawSymmetry, k: usize) -> String {
+    s.name
+        .as_ref()
+        .map_or(format!("#{}", k + 1), |n| format!("`{}`", n.get_ref()))
+}
+
+/// Validates `[system]`; `bodies` are the masses of an `[initial] file` (N-body only).
+pub fn system(
+    ck: &Checker<'_>,
+    raw: Option<&Spanned<RawSystem>>,
+    bodies: Option<&BodiesFile>,
+) -> Result<SystemSpec, Diagnostic> {
+    let Some(raw) = raw else {
+        return Err(Diagnostic::new("the problem file has no [system] table").help(
+            "add [system] with `builtin = \"pendulum\"`, or with `coordinates` and `lagrangian`",
+        ));
+    };
+    let system = raw.get_ref();
+    if let Some(h) = &system.hamiltonian {
+        return Err(ck
+            .error(Some(h.span()), "`hamiltonian` problems are not supported yet")
+            .help("write the Lagrangian instead: `lagrangian = \"...\"` with `<coordinate>_dot` velocities"));
+    }
+    let mut params = Parameters::read(ck, system)?;
+    if let Some(bodies) = bodies {
+        file_masses(ck, system, &mut params, bodies)?;
+    }
+    let parsed = Parsed::read(ck, system)?;
+    let (lagrangian, coordinates, constants, masses) = match (&system.lagrangian, &system.builtin) {
+        (Some(_), Some(b)) => {
+            return Err(ck.error(
+                Some(b.span()),
+                "give either `lagrangian` or `builtin`, not both",
+            ));
+        }
+        (None, None) => {
+            return Err(ck
+                .error(
+                    Some(raw.span()),
+                    "[system] needs a `lagrangian` or a `builtin`",
+                )
+                .help("e.g. `builtin = \"pendulum\"`; `marsden systems` lists the builtins"));
+        }
+        (None, Some(b)) => builtin(ck, b, system, &params, &parsed.names())?,
+        (Some(l), None) => expression(ck, l, system, &params)?,
+    };
+    let tangent = symbols(ck, tangent_inputs(&coordinates), &constants, &params)?;
+    let positions = symbols(ck, coordinates.clone(), &constants, &params)?;
+    let force = forces(ck, system, &parsed, &coordinates, &tangent)?;
+    let constraint = constraints(ck, system, &parsed, &coordinates, &positions)?;
+    let symmetries = compile_symmetries(ck, system, &parsed, &coordinates, &positions)?;
+    Ok(SystemSpec {
+        lagrangian,
+        coordinates,
+        parameters: constants,
+        masses,
+        force,
+        constraint,
+        symmetries,
+    })
+}
+
+/// The masses of an `[initial] file` become the `masses` parameter of `builtin = "nbody"`.
+fn file_masses(
+    ck: &Checker<'_>,
+    system: &RawSystem,
+    params: &mut Parameters,
+    bodies: &BodiesFile,
+) -> Result<(), Diagnostic> {
+    let builtin = system.builtin.as_ref().map(|b| b.get_ref().as_str());
+    if builtin != Some(Builtin::NBody.name()) {
+        return Err(ck
+            .error(
+                Some(bodies.span.clone()),
+                "`[initial] file` holds N-body data: it needs `builtin = \"nbody\"`",
+            )
+            .help("for other systems give `q = [...]` and `v = [...]` (or `p`)"));
+    }
+    if let Some((_, _, span)) = params.lists.iter().find(|(name, ..)| name == MASSES) {
+        return Err(ck
+            .error(
+                Some(span.clone()),
+                "the masses are given twice: in `parameters` and in `[initial] file`",
+            )
+            .help("remove `masses` from `parameters`: the file's masses are used"));
+    }
+    let masses = bodies.data.masses.clone();
+    params
+        .lists
+        .push((MASSES.to_owned(), masses, bodies.span.clone()));
+    Ok(())
+}
+
+type Resolved = (
+    LagrangianSpec,
+    Vec<String>,
+    Vec<(String, f64)>,
+    Option<Vec<f64>>,
+);
+
+fn builtin(
+    ck: &Checker<'_>,
+    name: &Spanned<String>,
+    system: &RawSystem,
+    params: &Parameters,
+    used: &[String],
+) -> Result<Resolved, Diagnostic> {
+    let Some(b) = Builtin::from_name(name.get_ref()) else {
+        let names: Vec<&str> = Builtin::ALL.iter().map(|b| b.name()).collect();
+        return Err(ck
+            .error(
+                Some(name.span()),
+                format!("unknown builtin `{}`", name.get_ref()),
+            )
+            .suggest(closest(name.get_ref(), names.iter().copied()))
+            .note(format!("builtins: {}", names.join(", ")))
+            .note("`marsden systems` lists them with their coordinates and parameters"));
+    };
+    let resolved = parameters::resolve_builtin(ck, (b, name.span()), params, used)?;
+    let bodies = resolved.masses.len();
+    let coordinates = parameters::builtin_coordinates(ck, b, bodies, system.coordinates.as_ref())?;
+    let masses = b.needs_masses().then(|| resolved.masses.clone());
+    let built = b.build(&resolved.values, resolved.masses);
+    let spec = LagrangianSpec::Builtin {
+        builtin: b,
+        system: built,
+    };
+    Ok((spec, coordinates, resolved.all, masses))
+}
+
+fn expression(
+    ck: &Checker<'_>,
+    text: &Spanned<String>,
+    system: &RawSystem,
+    params: &Parameters,
+) -> Result<Resolved, Diagnostic> {
+    let Some(list) = &system.coordinates else {
+        return Err(ck
+            .error(
+                Some(text.span()),
+                "a `lagrangian` needs `coordinates` in [system]",
+            )
+            .help("e.g. `coordinates = [\"theta\"]`; velocities are then named `theta_dot`"));
+    };
+    let coordinates = parameters::check_coordinates(ck, list)?;
+    params.numbers_only(ck, "an expression Lagrangian")?;
+    let constants: Vec<(String, f64)> = params
+        .numbers
+        .iter()
+        .map(|w| (w.name.clone(), w.value))
+        .collect();
+    let expr = ck.parse_expr("[system] lagrangian", text)?;
+    let symbols = symbols(ck, tangent_inputs(&coordinates), &constants, params)?;
+    let program: Program = expr
+        .compile(&symbols)
+        .map_err(|e| ck.expr_error("[system] lagrangian", text, &e))?;
+    let l = ExprLagrangian::new(program, coordinates.len());
+    Ok((LagrangianSpec::Expression(l), coordinates, constants, None))
+}
+
+/// A symbol table of `inputs` (slots in order) and the parameters as constants.
+fn symbols(
+    ck: &Checker<'_>,
+    inputs: Vec<String>,
+    constants: &[(String, f64)],
+    params: &Parameters,
+) -> Result<Symbols, Diagnostic> {
+    let mut symbols = Symbols::with_inputs(&inputs).map_err(|e| Diagnostic::new(e.to_string()))?;
+    for (name, value) in constants {
+        if let Err(e) = symbols.add_constant(name, *value) {
+            let span = params.number(name).map(|w| w.span.clone());
+            let clash = if inputs.contains(name) {
+                format!("parameter `{name}` has the name of a coordinate, a velocity or `t`")
+            } else {
+                format!("parameter `{name}`: {e}")
+            };
+            return Err(ck.error(span, clash));
+        }
+    }
+    Ok(symbols)
+}
+
+fn forces(
+    ck: &Checker<'_>,
+    system: &RawSystem,
+    parsed: &Parsed,
+    coordinates: &[String],
+    symbols: &Symbols,
+) -> Result<ExprForce, Diagnostic> {
+    let Some(list) = &system.forces else {
+        return Ok(ExprForce::none());
+    };
+    ck.one_per_coordinate("`forces`", list, coordinates)?;
+    let set = ck.compile_all("[system] forces", list, &parsed.forces, symbols)?;
+    Ok(ExprForce::new(set))
+}
+
+fn constraints(
+    ck: &Checker<'_>,
+    system: &RawSystem,
+    parsed: &Parsed,
+    coordinates: &[String],
+    symbols: &Symbols,
+) -> Result<ExprConstraint, Diagnostic> {
+    let Some(list) = &system.constraints else {
+        return Ok(ExprConstraint::none());
+    };
+    let d = list.get_ref().len();
+    if d >= coordinates.len() {
+        let msg = format!(
+            "{d} constraint(s) on {} leave no freedom to move",
+            count_coordinates(coordinates)
+        );
+        return Err(ck.error(Some(list.span()), msg));
+    }
+    let what = "[system] constraints";
+    positions_only(
+        ck,
+        what,
+        list,
+        &parsed.constraints,
+        coordinates,
+        "holonomic constraints φ(q)",
+    )?;
+    let set = ck.compile_all(what, list, &parsed.constraints, symbols)?;
+    Ok(ExprConstraint::new(set))
+}
+
+/// Rejects velocities and `t` in expressions of the coordinates only, with a precise message.
+fn positions_only(
+    ck: &Checker<'_>,
+    context: &str,
+    list: &SpannedList<String>,
+    parsed: &[Expr],
+    coordinates: &[String],
+    what: &str,
+) -> Result<(), Diagnostic> {
+    for (i, (expr, value)) in parsed.iter().zip(list.get_ref()).enumerate() {
+        for id in expr.identifiers() {
+            let velocity = coordinates.iter().any(|c| velocity_name(c) == id.name);
+            if velocity || id.name == "t" {
+                let msg = format!(
+                    "{what} depend on the coordinates only, not on `{}`",
+                    id.name
+                );
+                let e = expr.error_at(id.span, msg, None);
+                return Err(ck.expr_error(&format!("{context}[{i}]"), value, &e));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn compile_symmetries(
+    ck: &Checker<'_>,
+    system: &RawSystem,
+    parsed: &Parsed,
+    coordinates: &[String],
+    symbols: &Symbols,
+) -> Result<Vec<Symmetry>, Diagnostic> {
+    let mut out: Vec<Symmetry> = Vec::new();
+    for (k, (raw, exprs)) in symmetries(system)
+        .iter()
+        .zip(&parsed.generators)
+        .enumerate()
+    {
+        let s = raw.get_ref();
+        let Some(name) = &s.name else {
+            return Err(ck.error(
+                Some(raw.span()),
+                format!("symmetry #{} has no `name`", k + 1),
+            ));
+        };
+        let label = name.get_ref();
+        if !marsden_expr::is_identifier(label) || out.iter().any(|o| o.name() == label) {
+            let msg = format!(
+                "symmetry name `{label}` must be unique and made of letters, digits and '_' (its column is J_{label})"
+            );
+            return Err(ck.error(Some(name.span()), msg));
+        }
+        let Some(list) = &s.generator else {
+            return Err(ck.error(
+                Some(raw.span()),
+                format!("symmetry `{label}` has no `generator`"),
+            ));
+        };
+        ck.one_per_coordinate(&format!("the generator of `{label}`"), list, coordinates)?;
+        let context = format!("symmetry `{label}` generator");
+        positions_only(ck, &context, list, exprs, coordinates, "generators ξ_Q(q)")?;
+        out.push(Symmetry::new(
+            label.clone(),
+            ck.compile_all(&context, list, exprs, symbols)?,
+        ));
+    }
+    Ok(out)
+}

@@ -1,0 +1,169 @@
+//! The one-screen summary on stdout: what ran, how long, what was preserved and how well.
+//!
+//! ```text
+//! pendulum: builtin pendulum, 1 coordinate (theta), midpoint (order 2), h = 0.05
+//!   completed   100000 steps, t = 0 → 5000, in 0.21 s (2.1 µs/step)
+//!   newton      1.02 iterations/step (max 3), tolerance 1e-12
+//!   energy      E0 = -0.0707372, max |ΔE/E0| = 1.27e-3, final 8.6e-5, drift 3.1e-12 per unit time
+//!   momentum    Lz: J0 = 0.8, max |ΔJ| = 3.3e-16
+//!   constraints max |φ(q)| = 2.2e-16
+//!   wrote       out/pendulum: trajectory.csv (100001 rows), summary.json, …
+//! ```
+
+use std::fmt::Write as _;
+
+use crate::problem::check::count_coordinates;
+use crate::run::{Outcome, RunStatus};
+
+/// The report of a run.
+pub fn render(outcome: &Outcome) -> String {
+    let s = &outcome.summary;
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "{}: {}, {}, {} (order {}), h = {}",
+        s.name,
+        s.system,
+        count_coordinates(&s.coordinates),
+        s.method,
+        s.order,
+        s.h
+    );
+    let per_step = if s.steps > 0 {
+        s.wall_seconds / s.steps as f64
+    } else {
+        0.0
+    };
+    let span = format!("t = {} → {}", s.t_initial, s.t_final);
+    match &s.error {
+        None if s.status == RunStatus::Interrupted => line(
+            &mut out,
+            "INTERRUPTED",
+            format!(
+                "after {} of {} steps ({span}), in {}",
+                s.steps,
+                s.steps_requested,
+                seconds(s.wall_seconds)
+            ),
+        ),
+        None => line(
+            &mut out,
+            "completed",
+            format!(
+                "{} steps, {span}, in {} ({}/step)",
+                s.steps,
+                seconds(s.wall_seconds),
+                seconds(per_step)
+            ),
+        ),
+        Some(e) => line(
+            &mut out,
+            "FAILED",
+            format!(
+                "after {} of {} steps ({span}): {e}",
+                s.steps, s.steps_requested
+            ),
+        ),
+    }
+    let mean = s.newton.iterations_total as f64 / s.steps.max(1) as f64;
+    line(
+        &mut out,
+        "newton",
+        format!(
+            "{mean:.2} iterations/step (max {}), tolerance {:e}",
+            s.newton.iterations_max, s.newton.tolerance
+        ),
+    );
+    let e = &s.energy;
+    line(
+        &mut out,
+        "energy",
+        format!(
+            "E0 = {}, max |ΔE/E0| = {}, final {}, drift {} per unit time",
+            e.initial,
+            sci(e.max_rel_error),
+            sci(e.final_rel_error),
+            sci(e.drift_per_unit_time)
+        ),
+    );
+    for (name, m) in &s.momenta {
+        line(
+            &mut out,
+            "momentum",
+            format!(
+                "{name}: J0 = {}, max |ΔJ| = {}",
+                m.initial,
+                sci(m.max_abs_drift)
+            ),
+        );
+    }
+    if let Some(r) = s.constraints.max_residual {
+        line(
+            &mut out,
+            "constraints",
+            format!(
+                "max |φ(q)| = {} ({} constraint(s))",
+                sci(r),
+                s.constraints.count
+            ),
+        );
+    }
+    let files: Vec<String> = s
+        .output
+        .files
+        .iter()
+        .map(|f| match f.as_str() {
+            "trajectory.csv" | "t.npy" => format!("{f} ({} rows)", s.output.rows),
+            _ => f.clone(),
+        })
+        .collect();
+    match &outcome.dir {
+        Some(dir) => line(
+            &mut out,
+            "wrote",
+            format!("{}: {}", dir.display(), files.join(", ")),
+        ),
+        None => line(
+            &mut out,
+            "kept",
+            format!("{} samples in memory", s.output.rows),
+        ),
+    }
+    out
+}
+
+fn line(out: &mut String, label: &str, text: String) {
+    let _ = writeln!(out, "  {label:<11} {text}");
+}
+
+/// `1.27e-3`, `0`.
+fn sci(x: f64) -> String {
+    if x == 0.0 {
+        "0".to_owned()
+    } else {
+        format!("{x:.2e}")
+    }
+}
+
+/// `0.213 s`, `2.1 µs`.
+fn seconds(s: f64) -> String {
+    match s {
+        s if s >= 1.0 => format!("{s:.2} s"),
+        s if s >= 1e-3 => format!("{:.1} ms", s * 1e3),
+        s if s >= 1e-6 => format!("{:.2} µs", s * 1e6),
+        s => format!("{:.0} ns", s * 1e9),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_short() {
+        assert_eq!(sci(1.2345e-3), "1.23e-3");
+        assert_eq!(sci(0.0), "0");
+        assert_eq!(seconds(2.5e-6), "2.50 µs");
+        assert_eq!(seconds(0.25), "250.0 ms");
+    }
+}

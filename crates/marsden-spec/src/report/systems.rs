@@ -1,0 +1,66 @@
+//! The text of `marsden systems [NAME]`: the catalog with coordinates, parameters and
+//! defaults, and each Lagrangian as a formula one can copy into `lagrangian = "…"`.
+
+use std::fmt::Write as _;
+
+use marsden_expr::closest;
+
+use crate::catalog::{Builtin, MASSES};
+use crate::error::Diagnostic;
+
+/// The catalog (or the entry `name`).
+///
+/// # Errors
+/// An unknown name, with the closest one and the list.
+pub fn render(name: Option<&str>) -> Result<String, Diagnostic> {
+    let selected: Vec<Builtin> = match name {
+        None => Builtin::ALL.to_vec(),
+        Some(name) => match Builtin::from_name(name) {
+            Some(b) => vec![b],
+            None => {
+                let names = Builtin::ALL.map(Builtin::name);
+                return Err(Diagnostic::new(format!("unknown builtin `{name}`"))
+                    .suggest(closest(name, names))
+                    .note(format!("builtins: {}", names.join(", "))));
+            }
+        },
+    };
+    let mut out = String::new();
+    if name.is_none() {
+        out.push_str(
+            "Catalog systems: use `builtin = \"<name>\"` in [system]; `parameters` override the \
+             defaults.\n",
+        );
+    }
+    for (i, b) in selected.into_iter().enumerate() {
+        if i > 0 || name.is_none() {
+            out.push('\n');
+        }
+        out.push_str(&describe(b));
+    }
+    Ok(out)
+}
+
+/// The catalog entry of `b`.
+pub fn describe(b: Builtin) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "{}  —  {}", b.name(), b.summary());
+    let coordinates = if b.needs_masses() {
+        "x1 y1 z1 x2 y2 z2 … (three per body)".to_owned()
+    } else {
+        b.coordinates(0).join(" ")
+    };
+    let _ = writeln!(out, "  coordinates  {coordinates}");
+    let mut params: Vec<String> = Vec::new();
+    if b.needs_masses() {
+        params.push(format!("{MASSES} = [..] (required: one mass per body)"));
+    }
+    params.extend(
+        b.parameters()
+            .iter()
+            .map(|p| format!("{} = {} ({})", p.name, p.default, p.doc)),
+    );
+    let _ = writeln!(out, "  parameters   {}", params.join(", "));
+    let _ = writeln!(out, "  lagrangian   {}", b.formula());
+    out
+}

@@ -1,0 +1,151 @@
+//! A whole run of a problem file, as `marsden run` does it and as a binding calls it: check
+//! the initial state, open the outputs, run with streaming rows, then draw the plots and
+//! write `summary.json` — or keep the samples in memory ([`Store`]), or both.
+
+use std::path::PathBuf;
+
+use super::controls::Controls;
+use super::samples::{NullSink, Samples, Tee};
+use super::solve::{Destination, Runner};
+use super::summary::Summary;
+use super::{output, plots, start};
+use crate::error::{Diagnostic, Error};
+use crate::problem::RunSpec;
+
+/// Where the samples of a run go.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Store {
+    /// The trajectory files, `summary.json` and the plots in `[output] dir` (`marsden run`).
+    Files,
+    /// Only into [`Outcome::samples`]; nothing is written (the summary's format is `memory`).
+    Memory,
+    /// Both.
+    FilesAndMemory,
+}
+
+impl Store {
+    fn files(self) -> bool {
+        self != Store::Memory
+    }
+
+    fn memory(self) -> bool {
+        self != Store::Files
+    }
+}
+
+/// The result of a run: the summary (also on disk when files are written), the samples (when
+/// kept in memory) and remarks for the user.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// What `summary.json` holds.
+    pub summary: Summary,
+    /// Where the files are (`None`: nothing written).
+    pub dir: Option<PathBuf>,
+    /// The stored samples (with [`Store::Memory`] or [`Store::FilesAndMemory`]).
+    pub samples: Option<Samples>,
+    /// Problems that did not stop the run (a symmetry that is not one, a plot not drawn, …).
+    pub warnings: Vec<String>,
+}
+
+/// Runs `spec`: checks the initial state, creates the output directory (unless only in
+/// memory), runs with streaming output watched by `controls`, then draws the plots and writes
+/// `summary.json`.
+///
+/// # Errors
+/// [`ErrorKind::BadInput`](crate::ErrorKind::BadInput) if the problem cannot start (nothing
+/// written); [`ErrorKind::Failed`](crate::ErrorKind::Failed) only if not even the summary could
+/// be written. A failed or interrupted simulation is an `Ok` outcome with that status.
+pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<Outcome, Error> {
+    let start = start::prepare(spec)?;
+    let dir = spec.output.dir.clone();
+    let io = |what: &str, e: &dyn std::fmt::Display| {
+        Error::bad_input(Diagnostic::new(format!(
+            "cannot {what} {}: {e}",
+            dir.display()
+        )))
+    };
+    if store.files() {
+        std::fs::create_dir_all(&dir).map_err(|e| io("create the output directory", &e))?;
+        output::clear_previous(&dir).map_err(|e| io("clear the previous results in", &e))?;
+    }
+    let layout = output::layout(&spec.system).map_err(|e| io("lay out the columns of", &e))?;
+    let mut files = match store.files() {
+        true => Some(
+            output::open_sink(&dir, spec.output.format, &layout)
+                .map_err(|e| io("write the trajectory into", &e))?,
+        ),
+        false => None,
+    };
+    let mut samples = store.memory().then(|| Samples::new(&spec.system));
+    let (mut tee, mut null);
+    let destination = match (files.as_mut(), samples.as_mut()) {
+        (Some(files), None) => Destination {
+            sink: files.as_mut(),
+            with_velocity: false,
+        },
+        (None, Some(memory)) => Destination {
+            sink: memory,
+            with_velocity: true,
+        },
+        (Some(files), Some(memory)) => Destination {
+            sink: {
+                tee = Tee {
+                    files: files.as_mut(),
+                    memory,
+                };
+                &mut tee
+            },
+            with_velocity: true,
+        },
+        (None, None) => Destination {
+            sink: {
+                null = NullSink::default();
+                &mut null
+            },
+            with_velocity: false,
+        },
+    };
+    let mut record = Runner {
+        spec,
+        destination,
+        controls,
+    }
+    .run()?;
+    let mut warnings = start.warnings;
+    let mut written = Vec::new();
+    if let Some(sink) = files.as_mut() {
+        if let Err(e) = sink.finish() {
+            record
+                .error
+                .get_or_insert(format!("writing the trajectory failed: {e}"));
+        }
+        written = output::trajectory_files(spec.output.format, &layout);
+        written.push(output::SUMMARY_JSON.to_owned());
+        if spec.output.plots && record.rows > 0 {
+            match plots::draw(spec, &layout) {
+                Ok(pngs) => written.extend(pngs),
+                Err(e) => warnings.push(format!("plots were not drawn: {e}")),
+            }
+        }
+    }
+    let columns = layout
+        .column_names()
+        .into_iter()
+        .map(str::to_owned)
+        .collect();
+    let mut summary = Summary::new(spec, &record, columns, written);
+    if !store.files() {
+        summary.output.format = "memory";
+    }
+    if store.files() {
+        summary
+            .write(&dir)
+            .map_err(|e| Error::failed(Diagnostic::new(e)))?;
+    }
+    Ok(Outcome {
+        summary,
+        dir: store.files().then_some(dir),
+        samples,
+        warnings,
+    })
+}

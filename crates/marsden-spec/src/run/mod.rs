@@ -1,0 +1,36 @@
+//! Running a validated problem: build it, stream the samples to disk (or keep them in memory)
+//! through an observer, then write the summary and the plots.
+//!
+//! | step | module | what |
+//! |---|---|---|
+//! | entry point | [`execute`] | the whole run ([`Store`]: files, memory or both) → [`Outcome`] |
+//! | caller's hold | [`controls`] | [`Progress`] callback and stop flag ([`Controls`]) |
+//! | initial state | [`start`] | `p` from `v` (or back), projection, regularity, symmetry warnings |
+//! | generic runner | [`solve`] | `Problem` from any `Lagrangian`, `Force`, `Constraint`; the method's rule |
+//! | per sample | [`observer`] | one row `t, q, p, energy, J…, residual`, [`diagnostics`] |
+//! | where rows go | [`output`], [`samples`] | columns and writers of the files; in-memory [`Samples`] |
+//! | afterwards | [`summary`], [`plots`] | `summary.json`; the PNG plots (also `marsden plot`) |
+//! | sweeps | [`sweep`], [`shard`], [`sweep_table`] | members in parallel ([`marsden::studies::ensemble`]), one row each |
+//!
+//! Catalog systems and expressions reach the generic runner through
+//! [`crate::catalog::WithLagrangian`]: one monomorphised run per Lagrangian type and rule.
+
+pub mod controls;
+pub mod diagnostics;
+pub mod execute;
+pub mod observer;
+pub mod output;
+pub mod plots;
+pub mod samples;
+pub mod shard;
+pub mod solve;
+pub mod start;
+pub mod summary;
+pub mod sweep;
+pub mod sweep_table;
+
+pub use controls::{CHECK_EVERY, Controls, Progress};
+pub use execute::{Outcome, Store, execute};
+pub use samples::Samples;
+pub use solve::{RunRecord, run_problem, solve};
+pub use summary::{RunStatus, Summary};

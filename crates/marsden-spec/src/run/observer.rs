@@ -1,0 +1,228 @@
+//! The observer that streams a run to disk: every `every`-th state (and the first and the last)
+//! becomes one row `t, q, p, energy, J…, residual`, written at once, and feeds the diagnostics.
+//! Memory stays bounded whatever the number of steps; a failed run keeps every row written.
+//!
+//! Per step the observer does nothing but compare the step with the sampling stride, plus one
+//! flag test for the [`Controls`] (looked at every [`CHECK_EVERY`] steps, only if the caller
+//! gave any).
+
+use std::ops::ControlFlow;
+use std::time::Instant;
+
+use marsden::{Constraint, Lagrangian, Observer, StepView, Trajectory, mechanics};
+use marsden_io::RowSink;
+
+use super::controls::{CHECK_EVERY, Controls, Progress};
+use super::diagnostics::Diagnostics;
+use crate::model::MomentumMap;
+
+/// Streams samples to a [`RowSink`] and accumulates [`Diagnostics`].
+pub struct StreamObserver<'a, 's, L, C, M> {
+    lagrangian: &'a L,
+    constraint: &'a C,
+    maps: &'a [M],
+    sink: &'s mut (dyn RowSink + 's),
+    every: usize,
+    total: usize,
+    row: Vec<f64>,
+    velocity: Vec<f64>,
+    scratch: Vec<f64>,
+    last_written: Option<usize>,
+    /// Append the velocities to each row (for the in-memory samples, see `samples`).
+    with_velocity: bool,
+    controls: &'a Controls<'a>,
+    /// Whether `controls` has anything to look at.
+    watch: bool,
+    started: Instant,
+    /// What was monitored so far.
+    pub diagnostics: Diagnostics,
+    /// The first write error (the run stops there).
+    pub io_error: Option<marsden_io::Error>,
+    /// Whether the run was stopped through [`Controls::stop`].
+    pub interrupted: bool,
+}
+
+/// Where a sample comes from.
+#[derive(Debug, Clone, Copy)]
+pub struct Sample<'s> {
+    /// Steps completed.
+    pub step: usize,
+    /// Time.
+    pub t: f64,
+    /// Positions.
+    pub q: &'s [f64],
+    /// Momenta.
+    pub p: &'s [f64],
+}
+
+impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's, L, C, M> {
+    /// An observer writing every `every`-th of `total` steps to `sink` (each row followed by
+    /// the velocities if `with_velocity`), watched by `controls`.
+    pub fn new(
+        (lagrangian, constraint, maps): (&'a L, &'a C, &'a [M]),
+        (sink, with_velocity): (&'s mut (dyn RowSink + 's), bool),
+        (every, total): (usize, usize),
+        controls: &'a Controls<'a>,
+    ) -> Self {
+        let n = lagrangian.dof();
+        Self {
+            lagrangian,
+            constraint,
+            maps,
+            sink,
+            every: every.max(1),
+            total,
+            row: Vec::with_capacity(2 * n + 3 + maps.len()),
+            velocity: vec![0.0; n],
+            scratch: Vec::new(),
+            last_written: None,
+            with_velocity,
+            controls,
+            watch: controls.is_active(),
+            started: Instant::now(),
+            diagnostics: Diagnostics::new(maps.len(), constraint.count() > 0),
+            io_error: None,
+            interrupted: false,
+        }
+    }
+
+    /// Number of rows written.
+    pub fn rows(&self) -> u64 {
+        self.sink.rows_written()
+    }
+
+    /// Evaluates and writes one sample.
+    pub fn record(&mut self, s: Sample<'_>) -> ControlFlow<()> {
+        let energy =
+            mechanics::energy_from_momentum(self.lagrangian, s.t, s.q, s.p, &mut self.velocity)
+                .unwrap_or(f64::NAN);
+        let finite = energy.is_finite();
+        self.diagnostics.energy.push(s.t, energy);
+        self.row.clear();
+        self.row.push(s.t);
+        self.row.extend_from_slice(s.q);
+        self.row.extend_from_slice(s.p);
+        self.row.push(energy);
+        for (map, stats) in self.maps.iter().zip(&mut self.diagnostics.maps) {
+            let j = map.value(s.q, s.p, &mut self.scratch);
+            stats.push(j);
+            self.row.push(j);
+        }
+        if self.constraint.count() > 0 {
+            let r = self.residual(s.q);
+            self.diagnostics.push_residual(r);
+            self.row.push(r);
+        }
+        if self.with_velocity {
+            match finite {
+                true => self.row.extend_from_slice(&self.velocity),
+                false => self
+                    .row
+                    .resize(self.row.len() + self.velocity.len(), f64::NAN),
+            }
+        }
+        if !finite {
+            // A failed inverse Legendre transform leaves a poor guess behind: restart from 0.
+            self.velocity.fill(0.0);
+        }
+        self.last_written = Some(s.step);
+        match self.sink.write_row(&self.row) {
+            Ok(()) => ControlFlow::Continue(()),
+            Err(e) => {
+                self.io_error = Some(e);
+                ControlFlow::Break(())
+            }
+        }
+    }
+
+    /// Calls the progress callback and reads the stop flag (every [`CHECK_EVERY`] steps).
+    fn tick(&mut self, step: usize) -> ControlFlow<()> {
+        if let Some(progress) = self.controls.progress {
+            progress(self.progress(step, false));
+        }
+        self.stop_if_requested()
+    }
+
+    fn progress(&self, step: usize, done: bool) -> Progress {
+        Progress {
+            step,
+            total: self.total,
+            elapsed: self.started.elapsed(),
+            done,
+        }
+    }
+
+    fn stop_if_requested(&mut self) -> ControlFlow<()> {
+        if self.controls.stop_requested() {
+            self.interrupted = true;
+            return ControlFlow::Break(());
+        }
+        ControlFlow::Continue(())
+    }
+
+    /// After the run: the callback's last call (`done = true`) at `steps` steps.
+    pub fn finish(&self, steps: usize) {
+        if let Some(progress) = self.controls.progress {
+            progress(self.progress(steps, true));
+        }
+    }
+
+    fn residual(&mut self, q: &[f64]) -> f64 {
+        self.scratch.resize(self.constraint.count(), 0.0);
+        self.constraint.constraint(q, &mut self.scratch);
+        self.scratch.iter().fold(
+            0.0,
+            |m: f64, x| if x.is_nan() { f64::NAN } else { m.max(x.abs()) },
+        )
+    }
+
+    /// After the run: writes the last state of `trajectory` unless it is already on disk (a
+    /// failure between two stored steps), so nothing computed is lost.
+    pub fn record_last(&mut self, trajectory: &Trajectory) {
+        let Some(i) = trajectory.len().checked_sub(1) else {
+            return;
+        };
+        let step = trajectory.step_indices[i];
+        if self.last_written != Some(step) && self.io_error.is_none() {
+            let (t, q, p) = (trajectory.t(i), trajectory.q(i), trajectory.p(i));
+            let _ = self.record(Sample { step, t, q, p });
+        }
+    }
+}
+
+impl<L: Lagrangian, C: Constraint, M: MomentumMap> Observer for StreamObserver<'_, '_, L, C, M> {
+    fn start(&mut self, initial: &StepView<'_>) {
+        self.started = Instant::now();
+        let s = Sample {
+            step: 0,
+            t: initial.t,
+            q: initial.q,
+            p: initial.p,
+        };
+        // A write error is kept in `io_error`; the first step then stops the run.
+        let _ = self.record(s);
+    }
+
+    fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()> {
+        if self.io_error.is_some() {
+            return ControlFlow::Break(());
+        }
+        if self.watch && view.step.is_multiple_of(CHECK_EVERY) && self.tick(view.step).is_break() {
+            return ControlFlow::Break(());
+        }
+        if view.step.is_multiple_of(self.every) || view.step == self.total {
+            let s = Sample {
+                step: view.step,
+                t: view.t,
+                q: view.q,
+                p: view.p,
+            };
+            let flow = self.record(s);
+            if self.watch && flow.is_continue() {
+                return self.stop_if_requested();
+            }
+            return flow;
+        }
+        ControlFlow::Continue(())
+    }
+}

@@ -1,0 +1,156 @@
+//! The files of a run: the trajectory's columns (a contract: extend, don't rename) and the writer
+//! for the chosen format.
+//!
+//! `t, q_<name>…, p_<name>…, energy`, then `J_<symmetry>` per symmetry, then
+//! `constraint_residual` when there are constraints. The same [`Layout`] names the CSV header
+//! and the `.npy` files (`t.npy`, `q.npy`, `p.npy`, `energy.npy`, `J.npy`,
+//! `constraint_residual.npy`).
+
+use std::path::Path;
+
+use marsden_io::{CsvWriter, Group, Layout, NpyDirWriter, RowSink};
+
+use crate::model::MomentumMap;
+use crate::problem::{Format, SystemSpec};
+
+/// The trajectory file of `format = "csv"`.
+pub const TRAJECTORY_CSV: &str = "trajectory.csv";
+/// The summary of every run.
+pub const SUMMARY_JSON: &str = "summary.json";
+/// Name of the constraint-residual column.
+pub const CONSTRAINT_RESIDUAL: &str = "constraint_residual";
+
+/// The column layout of a system's trajectory.
+///
+/// # Errors
+/// If two columns would have the same name.
+pub fn layout(system: &SystemSpec) -> marsden_io::Result<Layout> {
+    let q = system.coordinates.iter().map(|c| format!("q_{c}"));
+    let p = system.coordinates.iter().map(|c| format!("p_{c}"));
+    let j = system.symmetries.iter().map(|s| format!("J_{}", s.name()));
+    let mut groups = vec![
+        Group::scalar("t"),
+        Group::vector("q", q),
+        Group::vector("p", p),
+        Group::scalar("energy"),
+        Group::vector("J", j),
+    ];
+    if !system.constraint.components().is_empty() {
+        groups.push(Group::scalar(CONSTRAINT_RESIDUAL));
+    }
+    Layout::new(groups)
+}
+
+/// The layout of a finished run from its column names (as `summary.json` lists them):
+/// grouped by the prefixes `q_`, `p_`, `J_`; `t`, `energy` and `constraint_residual` alone.
+///
+/// # Errors
+/// If the names do not form a valid layout.
+pub fn layout_from_columns(names: &[String]) -> marsden_io::Result<Layout> {
+    let with = |prefix: &str| -> Vec<String> {
+        names
+            .iter()
+            .filter(|n| n.starts_with(prefix))
+            .cloned()
+            .collect()
+    };
+    let mut groups = vec![
+        Group::vector("q", with("q_")),
+        Group::vector("p", with("p_")),
+        Group::vector("J", with("J_")),
+    ];
+    for scalar in ["t", "energy", CONSTRAINT_RESIDUAL] {
+        if names.iter().any(|n| n == scalar) {
+            groups.push(Group::scalar(scalar));
+        }
+    }
+    Layout::new(groups)
+}
+
+/// Files a previous run may have left in an output directory (and nothing else).
+const RUN_FILES: [&str; 12] = [
+    TRAJECTORY_CSV,
+    SUMMARY_JSON,
+    "t.npy",
+    "q.npy",
+    "p.npy",
+    "energy.npy",
+    "J.npy",
+    "constraint_residual.npy",
+    marsden_io::plot::PHASE_PORTRAIT_PNG,
+    marsden_io::plot::ENERGY_ERROR_PNG,
+    marsden_io::plot::MOMENTUM_DRIFT_PNG,
+    marsden_io::plot::CONSTRAINT_RESIDUAL_PNG,
+];
+
+/// Removes the files of a previous run from `dir`, so that a directory never mixes two runs
+/// (say, a momentum-drift plot of an older problem). Other files are left alone.
+///
+/// # Errors
+/// The first file that exists but cannot be removed.
+pub fn clear_previous(dir: &Path) -> std::io::Result<()> {
+    for name in RUN_FILES {
+        match std::fs::remove_file(dir.join(name)) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => return Err(e),
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// Opens the streaming writer of `format` in `dir` (which must exist).
+///
+/// # Errors
+/// An I/O error naming the file.
+pub fn open_sink(
+    dir: &Path,
+    format: Format,
+    layout: &Layout,
+) -> marsden_io::Result<Box<dyn RowSink>> {
+    Ok(match format {
+        Format::Csv => Box::new(CsvWriter::create(
+            dir.join(TRAJECTORY_CSV),
+            &layout.column_names(),
+        )?),
+        Format::Npy => Box::new(NpyDirWriter::create(dir, layout)?),
+    })
+}
+
+/// The trajectory files of `format` for `layout`, for the report.
+pub fn trajectory_files(format: Format, layout: &Layout) -> Vec<String> {
+    match format {
+        Format::Csv => vec![TRAJECTORY_CSV.to_owned()],
+        Format::Npy => layout
+            .groups()
+            .iter()
+            .map(|g| format!("{}.npy", g.name))
+            .collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn column_names_regroup() {
+        let names: Vec<String> = [
+            "t",
+            "q_x",
+            "q_y",
+            "p_x",
+            "p_y",
+            "energy",
+            "J_Lz",
+            "constraint_residual",
+        ]
+        .map(String::from)
+        .to_vec();
+        let layout = layout_from_columns(&names).unwrap();
+        let mut got: Vec<&str> = layout.column_names();
+        got.sort_unstable();
+        let mut want: Vec<&str> = names.iter().map(String::as_str).collect();
+        want.sort_unstable();
+        assert_eq!(got, want);
+    }
+}

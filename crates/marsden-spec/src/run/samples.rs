@@ -1,0 +1,147 @@
+//! The stored samples of a run kept in memory ([`Samples`]), and the sinks that route rows:
+//! [`Tee`] (files and memory at once) and [`NullSink`] (sweep members keep nothing).
+//!
+//! A row is laid out as the files are (`t, q…, p…, energy, J…, constraint_residual`, see
+//! [`output`](super::output)); rows bound for memory carry the velocities `v…` after that.
+
+use marsden_io::RowSink;
+
+use crate::model::MomentumMap as _;
+use crate::problem::SystemSpec;
+
+/// The stored samples of a run, one column per quantity: row `k` of every column is the
+/// `k`-th stored state (every `[output] every`-th step, the first and the last).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Samples {
+    /// Coordinate names (the order of the columns of `q`, `p` and `v`).
+    pub coordinates: Vec<String>,
+    /// Times.
+    pub t: Vec<f64>,
+    /// Positions: `q[i]` is the column of coordinate `i`.
+    pub q: Vec<Vec<f64>>,
+    /// Momenta, per coordinate.
+    pub p: Vec<Vec<f64>>,
+    /// Velocities (by the inverse Legendre transform; NaN where it failed), per coordinate.
+    pub v: Vec<Vec<f64>>,
+    /// Energy `⟨p, v⟩ − L`.
+    pub energy: Vec<f64>,
+    /// Momentum maps `J`, by symmetry name (in the file's order).
+    pub momenta: Vec<(String, Vec<f64>)>,
+    /// `max_i |φ_i(q)|`, if the system has constraints.
+    pub constraint_residual: Option<Vec<f64>>,
+}
+
+impl Samples {
+    /// Empty columns for the trajectory of `system`.
+    pub fn new(system: &SystemSpec) -> Self {
+        let n = system.dof();
+        let constrained = !system.constraint.components().is_empty();
+        Self {
+            coordinates: system.coordinates.clone(),
+            t: Vec::new(),
+            q: vec![Vec::new(); n],
+            p: vec![Vec::new(); n],
+            v: vec![Vec::new(); n],
+            energy: Vec::new(),
+            momenta: (system.symmetries.iter())
+                .map(|s| (s.name().to_owned(), Vec::new()))
+                .collect(),
+            constraint_residual: constrained.then(Vec::new),
+        }
+    }
+
+    /// Number of stored samples.
+    pub fn len(&self) -> usize {
+        self.t.len()
+    }
+
+    /// Whether nothing was stored.
+    pub fn is_empty(&self) -> bool {
+        self.t.is_empty()
+    }
+
+    /// Values per row as the files have them (without the velocities).
+    pub fn file_width(&self) -> usize {
+        let n = self.coordinates.len();
+        2 + 2 * n + self.momenta.len() + usize::from(self.constraint_residual.is_some())
+    }
+}
+
+/// Splits a row (the file columns, then `v`) into the columns.
+impl RowSink for Samples {
+    fn write_row(&mut self, row: &[f64]) -> marsden_io::Result<()> {
+        let mut values = row.iter().copied();
+        let mut next = || values.next().unwrap_or(f64::NAN);
+        self.t.push(next());
+        for column in self.q.iter_mut().chain(&mut self.p) {
+            column.push(next());
+        }
+        self.energy.push(next());
+        for (_, column) in &mut self.momenta {
+            column.push(next());
+        }
+        if let Some(column) = &mut self.constraint_residual {
+            column.push(next());
+        }
+        for column in &mut self.v {
+            column.push(next());
+        }
+        Ok(())
+    }
+    fn flush(&mut self) -> marsden_io::Result<()> {
+        Ok(())
+    }
+    fn finish(&mut self) -> marsden_io::Result<()> {
+        Ok(())
+    }
+    fn rows_written(&self) -> u64 {
+        self.t.len() as u64
+    }
+}
+
+/// Rows to the files (their columns only) and to memory (with the velocities).
+pub struct Tee<'a> {
+    /// The file writer.
+    pub files: &'a mut dyn RowSink,
+    /// The in-memory columns.
+    pub memory: &'a mut Samples,
+}
+
+impl RowSink for Tee<'_> {
+    fn write_row(&mut self, row: &[f64]) -> marsden_io::Result<()> {
+        let width = self.memory.file_width().min(row.len());
+        self.files.write_row(&row[..width])?;
+        self.memory.write_row(row)
+    }
+    fn flush(&mut self) -> marsden_io::Result<()> {
+        self.files.flush()
+    }
+    fn finish(&mut self) -> marsden_io::Result<()> {
+        self.files.finish()
+    }
+    fn rows_written(&self) -> u64 {
+        self.files.rows_written()
+    }
+}
+
+/// A sink that keeps nothing (sweep members write no trajectory).
+#[derive(Debug, Default)]
+pub struct NullSink {
+    rows: u64,
+}
+
+impl RowSink for NullSink {
+    fn write_row(&mut self, _row: &[f64]) -> marsden_io::Result<()> {
+        self.rows += 1;
+        Ok(())
+    }
+    fn flush(&mut self) -> marsden_io::Result<()> {
+        Ok(())
+    }
+    fn finish(&mut self) -> marsden_io::Result<()> {
+        Ok(())
+    }
+    fn rows_written(&self) -> u64 {
+        self.rows
+    }
+}

@@ -1,0 +1,170 @@
+//! The generic runner: a `Problem` from any [`Lagrangian`], [`Force`] and [`Constraint`],
+//! solved with the file's method while the [`StreamObserver`] stores the samples.
+
+use std::time::Instant;
+
+use marsden::discrete::rules::WithRule;
+use marsden::{
+    Constraint, Force, Lagrangian, Observer, Problem, Rule, RunFailure, SolveOptions, Statistics,
+    Trajectory,
+};
+use marsden_io::RowSink;
+
+use super::controls::Controls;
+use super::diagnostics::Diagnostics;
+use super::observer::StreamObserver;
+use super::start;
+use super::summary::FinalState;
+use crate::catalog::WithLagrangian;
+use crate::error::Diagnostic;
+use crate::model::MomentumMap;
+use crate::problem::{Method, RunSpec};
+
+/// What a run did, before it is written up.
+#[derive(Debug, Clone)]
+pub struct RunRecord {
+    /// The failure's message (`None`: completed or interrupted).
+    pub error: Option<String>,
+    /// Whether the run was stopped through [`Controls::stop`].
+    pub interrupted: bool,
+    /// Steps completed.
+    pub steps: usize,
+    /// The last good state.
+    pub final_state: FinalState,
+    /// Newton work.
+    pub statistics: Statistics,
+    /// Wall-clock seconds of the integration.
+    pub wall_seconds: f64,
+    /// What was monitored.
+    pub diagnostics: Diagnostics,
+    /// Rows written.
+    pub rows: u64,
+}
+
+/// Solves `problem` with `method` (dispatch on the rule type: one monomorphised run per rule).
+pub fn solve<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
+    problem: &Problem<L, F, C>,
+    method: &Method,
+    options: &SolveOptions,
+    observer: &mut O,
+) -> Result<Trajectory, Box<RunFailure>> {
+    struct Solve<'a, L, F, C, O: ?Sized> {
+        problem: &'a Problem<L, F, C>,
+        options: &'a SolveOptions,
+        observer: &'a mut O,
+    }
+    impl<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized> WithRule
+        for Solve<'_, L, F, C, O>
+    {
+        type Output = Result<Trajectory, Box<RunFailure>>;
+        fn call<R: Rule>(self, rule: &R) -> Self::Output {
+            self.problem.solve_with(rule, self.options, self.observer)
+        }
+    }
+    method.dispatch(Solve {
+        problem,
+        options,
+        observer,
+    })
+}
+
+/// Where the rows of a run go: a sink, and whether each row carries the velocities too (for
+/// the in-memory [`Samples`](super::samples::Samples)).
+pub struct Destination<'s> {
+    /// The writer.
+    pub sink: &'s mut (dyn RowSink + 's),
+    /// Append `v` to every row.
+    pub with_velocity: bool,
+}
+
+/// Runs `spec` with the given system parts, streaming rows into `destination`.
+///
+/// # Errors
+/// Only if the core rejects the initial state (already checked by [`start::prepare`]); a
+/// failing run is a [`RunRecord`] with an error message, not an `Err`.
+pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap>(
+    (lagrangian, force, constraint, maps): (&L, &F, &C, &[M]),
+    spec: &RunSpec,
+    destination: Destination<'_>,
+    controls: &Controls<'_>,
+) -> Result<RunRecord, Diagnostic> {
+    let grid = spec.integrator.grid;
+    let problem = start::constrained_problem(spec, lagrangian, constraint)?.with_force(force);
+    let options = SolveOptions {
+        newton: spec.integrator.newton,
+        // The observer stores the samples; the core keeps only the first and the last.
+        run: marsden::RunOptions { stride: usize::MAX },
+        general_path: !spec.integrator.fast_paths,
+        compensated: spec.integrator.compensated,
+    };
+    let parts = (lagrangian, constraint, maps);
+    let sink = (destination.sink, destination.with_velocity);
+    let mut observer = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), controls);
+    let clock = Instant::now();
+    let result = solve(&problem, &spec.integrator.method, &options, &mut observer);
+    let wall_seconds = clock.elapsed().as_secs_f64();
+    let (trajectory, error) = match result {
+        Ok(t) => (t, None),
+        Err(failure) => (failure.trajectory, Some(failure.error.to_string())),
+    };
+    observer.finish(trajectory.steps);
+    observer.record_last(&trajectory);
+    let io = observer
+        .io_error
+        .as_ref()
+        .map(|e| format!("writing the trajectory failed: {e}"));
+    Ok(RunRecord {
+        error: error.or(io),
+        interrupted: observer.interrupted,
+        steps: trajectory.steps,
+        final_state: final_state(&trajectory),
+        statistics: trajectory.statistics,
+        wall_seconds,
+        rows: observer.rows(),
+        diagnostics: observer.diagnostics,
+    })
+}
+
+fn final_state(trajectory: &Trajectory) -> FinalState {
+    match trajectory.len().checked_sub(1) {
+        Some(i) => FinalState {
+            t: trajectory.t(i),
+            q: trajectory.q(i).to_vec(),
+            p: trajectory.p(i).to_vec(),
+        },
+        None => FinalState {
+            t: f64::NAN,
+            q: Vec::new(),
+            p: Vec::new(),
+        },
+    }
+}
+
+/// [`run_problem`] with the system of the spec, whichever Lagrangian type it has.
+pub struct Runner<'a> {
+    /// The problem.
+    pub spec: &'a RunSpec,
+    /// Where the rows go.
+    pub destination: Destination<'a>,
+    /// The caller's callback and stop flag.
+    pub controls: &'a Controls<'a>,
+}
+
+impl Runner<'_> {
+    /// Runs the spec's system.
+    ///
+    /// # Errors
+    /// As [`run_problem`].
+    pub fn run(self) -> Result<RunRecord, Diagnostic> {
+        self.spec.system.lagrangian.dispatch(self)
+    }
+}
+
+impl WithLagrangian for Runner<'_> {
+    type Output = Result<RunRecord, Diagnostic>;
+    fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output {
+        let s = &self.spec.system;
+        let parts = (lagrangian, &s.force, &s.constraint, s.symmetries.as_slice());
+        run_problem(parts, self.spec, self.destination, self.controls)
+    }
+}

@@ -1,0 +1,279 @@
+//! `summary.json`: what ran, how it ended and what it preserved (a contract: extend, don't
+//! rename).
+//!
+//! Non-finite numbers are written as `null` (JSON has no NaN).
+
+use std::path::Path;
+
+use serde::Serialize;
+
+use super::output::SUMMARY_JSON;
+use super::solve::RunRecord;
+use crate::problem::{LagrangianSpec, RunSpec};
+
+/// How a run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RunStatus {
+    /// Every requested step was taken.
+    Completed,
+    /// The simulation (or writing the trajectory) failed; the samples before it are kept.
+    Failed,
+    /// Stopped through [`Controls::stop`](super::Controls::stop); the samples are kept.
+    Interrupted,
+}
+
+impl RunStatus {
+    /// `"completed"`, `"failed"` or `"interrupted"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            RunStatus::Completed => "completed",
+            RunStatus::Failed => "failed",
+            RunStatus::Interrupted => "interrupted",
+        }
+    }
+
+    /// The status of `record`: a failure first, then a stop.
+    pub fn of(record: &RunRecord) -> Self {
+        match (&record.error, record.interrupted) {
+            (Some(_), _) => RunStatus::Failed,
+            (None, true) => RunStatus::Interrupted,
+            (None, false) => RunStatus::Completed,
+        }
+    }
+}
+
+/// The whole summary.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// `"completed"`, `"failed"` or `"interrupted"`.
+    pub status: RunStatus,
+    /// The failure's message, or null.
+    pub error: Option<String>,
+    /// The run's name.
+    pub name: String,
+    /// `builtin <name>` or `expression`.
+    pub system: String,
+    /// Coordinate names.
+    pub coordinates: Vec<String>,
+    /// Method name as in the problem file.
+    pub method: String,
+    /// Classical order of the method.
+    pub order: u32,
+    /// Time step.
+    pub h: f64,
+    /// Steps completed.
+    pub steps: usize,
+    /// Steps requested.
+    pub steps_requested: usize,
+    /// Initial time.
+    pub t_initial: f64,
+    /// Time of the last good state.
+    pub t_final: f64,
+    /// Wall-clock time of the integration (streaming included, plots excluded).
+    pub wall_seconds: f64,
+    /// Energy errors over the stored samples.
+    pub energy: EnergySummary,
+    /// Momentum maps, by symmetry name (in the file's order).
+    #[serde(serialize_with = "as_map")]
+    pub momenta: Vec<(String, MomentumSummary)>,
+    /// Constraint residuals.
+    pub constraints: ConstraintSummary,
+    /// Newton work.
+    pub newton: NewtonSummary,
+    /// The last good state.
+    pub final_state: FinalState,
+    /// What was written.
+    pub output: OutputSummary,
+    /// Where the results come from.
+    pub provenance: Provenance,
+}
+
+/// `energy { … }`.
+#[derive(Debug, Clone, Serialize)]
+pub struct EnergySummary {
+    /// `E_0`.
+    pub initial: f64,
+    /// `max |E_k − E_0|`.
+    pub max_abs_error: f64,
+    /// `max |E_k − E_0| / |E_0|`.
+    pub max_rel_error: f64,
+    /// `(E_N − E_0) / |E_0|`.
+    pub final_rel_error: f64,
+    /// Least-squares slope of `E_k − E_0` against time.
+    pub drift_per_unit_time: f64,
+    /// Samples used (the stored states).
+    pub samples: usize,
+}
+
+/// `momenta { name: { … } }`.
+#[derive(Debug, Clone, Serialize)]
+pub struct MomentumSummary {
+    /// `J_0`.
+    pub initial: f64,
+    /// `max |J_k − J_0|` over the stored states.
+    pub max_abs_drift: f64,
+}
+
+/// `constraints { … }`.
+#[derive(Debug, Clone, Serialize)]
+pub struct ConstraintSummary {
+    /// Number of constraints.
+    pub count: usize,
+    /// `max |φ(q_k)|` over the stored states (null without constraints).
+    pub max_residual: Option<f64>,
+}
+
+/// `newton { … }`.
+#[derive(Debug, Clone, Serialize)]
+pub struct NewtonSummary {
+    /// Newton iterations over all steps.
+    pub iterations_total: usize,
+    /// Most iterations in one step.
+    pub iterations_max: usize,
+    /// Residual tolerance used.
+    pub tolerance: f64,
+    /// Iteration limit per step.
+    pub max_iterations: usize,
+}
+
+/// `final_state { … }`.
+#[derive(Debug, Clone, Serialize)]
+pub struct FinalState {
+    /// Time.
+    pub t: f64,
+    /// Positions.
+    pub q: Vec<f64>,
+    /// Momenta.
+    pub p: Vec<f64>,
+}
+
+/// `output { … }`.
+#[derive(Debug, Clone, Serialize)]
+pub struct OutputSummary {
+    /// `csv` or `npy` (`memory` when nothing was written).
+    pub format: &'static str,
+    /// Stored every k-th step.
+    pub every: usize,
+    /// Rows written.
+    pub rows: u64,
+    /// Column names, in order.
+    pub columns: Vec<String>,
+    /// Files written, relative to the output directory.
+    pub files: Vec<String>,
+}
+
+/// `provenance { … }`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Provenance {
+    /// Version of marsden.
+    pub marsden_version: &'static str,
+    /// The problem file as given.
+    pub problem_file: String,
+    /// SHA-256 of the problem file.
+    pub problem_sha256: String,
+}
+
+/// Serialises `(key, value)` pairs as a JSON object, keeping their order.
+fn as_map<S: serde::Serializer>(
+    pairs: &[(String, MomentumSummary)],
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    serializer.collect_map(pairs.iter().map(|(k, v)| (k, v)))
+}
+
+impl Summary {
+    /// The summary of `record`, a run of `spec`.
+    pub fn new(
+        spec: &RunSpec,
+        record: &RunRecord,
+        columns: Vec<String>,
+        files: Vec<String>,
+    ) -> Self {
+        let d = &record.diagnostics;
+        let momenta = spec
+            .system
+            .symmetries
+            .iter()
+            .zip(&d.maps)
+            .map(|(s, m)| {
+                use crate::model::MomentumMap as _;
+                let value = MomentumSummary {
+                    initial: m.initial,
+                    max_abs_drift: m.max_abs_drift,
+                };
+                (s.name().to_owned(), value)
+            })
+            .collect();
+        let integrator = &spec.integrator;
+        Summary {
+            status: RunStatus::of(record),
+            error: record.error.clone(),
+            name: spec.name.clone(),
+            system: match &spec.system.lagrangian {
+                LagrangianSpec::Builtin { builtin, .. } => format!("builtin {}", builtin.name()),
+                LagrangianSpec::Expression(_) => "expression".to_owned(),
+            },
+            coordinates: spec.system.coordinates.clone(),
+            method: integrator.method.to_string(),
+            order: integrator.method.order(),
+            h: integrator.grid.h,
+            steps: record.steps,
+            steps_requested: integrator.grid.steps,
+            t_initial: integrator.grid.t0,
+            t_final: record.final_state.t,
+            wall_seconds: record.wall_seconds,
+            energy: EnergySummary {
+                initial: d.energy.report().initial,
+                max_abs_error: d.energy.report().max_abs_error,
+                max_rel_error: d.energy.report().max_rel_error,
+                final_rel_error: d.energy.report().final_rel_error,
+                drift_per_unit_time: d.energy.report().drift_per_unit_time,
+                samples: d.energy.report().samples,
+            },
+            momenta,
+            constraints: ConstraintSummary {
+                count: spec.system.constraint.components().len(),
+                max_residual: d.max_residual,
+            },
+            newton: NewtonSummary {
+                iterations_total: record.statistics.newton_iterations,
+                iterations_max: record.statistics.max_newton_iterations,
+                tolerance: integrator.newton.residual_tolerance,
+                max_iterations: integrator.newton.max_iterations,
+            },
+            final_state: record.final_state.clone(),
+            output: OutputSummary {
+                format: spec.output.format.name(),
+                every: spec.output.every,
+                rows: record.rows,
+                columns,
+                files,
+            },
+            provenance: Provenance {
+                marsden_version: env!("CARGO_PKG_VERSION"),
+                problem_file: spec.source.path().display().to_string(),
+                problem_sha256: spec.source.sha256().to_owned(),
+            },
+        }
+    }
+
+    /// Writes `summary.json` into `dir`.
+    ///
+    /// # Errors
+    /// The I/O error, as text naming the file.
+    pub fn write(&self, dir: &Path) -> Result<(), String> {
+        let path = dir.join(SUMMARY_JSON);
+        let text = self.to_json()?;
+        std::fs::write(&path, text + "\n")
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))
+    }
+
+    /// The text of `summary.json` (pretty-printed, without the final line break).
+    ///
+    /// # Errors
+    /// Only if serialisation fails, as text.
+    pub fn to_json(&self) -> Result<String, String> {
+        serde_json::to_string_pretty(self).map_err(|e| e.to_string())
+    }
+}

@@ -1,0 +1,33 @@
+//! The problem-file layer through its public entry points, without the binary: what a Python
+//! binding calls. One test binary.
+
+// Helpers outside #[test] functions unwrap too; a failure is a test failure.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+// Problem text from memory: the spec, and diagnostics with the file's line and caret.
+mod load;
+// Runs in memory, to files and both: the same samples bit for bit; summaries; sweeps.
+mod memory;
+// The controls of a run: the progress callback and the stop flag.
+mod controls;
+
+use std::path::{Path, PathBuf};
+
+use marsden_spec::{Overrides, RunSpec};
+
+/// The repository's `examples/` file `name`.
+pub fn example(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name)
+}
+
+/// `examples/<name>`, writing into `out` and with `steps` steps if given.
+pub fn load_example(name: &str, out: &Path, steps: Option<u64>) -> RunSpec {
+    let overrides = Overrides {
+        steps,
+        h: None,
+        out: Some(out.to_owned()),
+    };
+    marsden_spec::load(&example(name), &overrides).unwrap_or_else(|d| panic!("{d}"))
+}
