@@ -1,7 +1,7 @@
 //! The speed-up of an ensemble on 2 threads over 1 (issue 7), measured in interleaved pairs.
 //!
 //! ```sh
-//! cargo run --release -p marsden --example ensemble_speedup [PAIRS]
+//! cargo run --release -p marsden --features tools --example ensemble_speedup [PAIRS]
 //! ```
 //!
 //! The ensemble is that of `benches/ensemble.rs`: 10⁴ pendulums (initial angles 0.1 … 2.6 rad),

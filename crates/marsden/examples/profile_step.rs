@@ -1,5 +1,5 @@
 //! Tight stepping loop for profilers:
-//! `cargo run --profile profiling --example profile_step -- [pendulum|double|coupled4|kepler|constrained|gauss4|gauss4-compensated] 100000 [baseline]`.
+//! `cargo run --profile profiling -p marsden --features tools --example profile_step -- [pendulum|double|coupled4|kepler|constrained|gauss4|gauss4-compensated] 100000 [baseline]`.
 //! `baseline` keeps the small kernels in baseline x86-64 code (`Integrator::with_wide_instructions`),
 //! for valgrind 3.19, which does not decode every AVX instruction of the x86-64-v3 copy.
 use marsden::discrete::rules::Galerkin;

@@ -4,7 +4,7 @@
 //! error `max |ΔE/E₀|` over `[0, T]` against the wall time per step and per 10 simulated days.
 //!
 //! ```sh
-//! cargo run --release -p marsden --example work_precision [FILE] [T] [T_IMPLICIT]
+//! cargo run --release -p marsden --features tools --example work_precision [FILE] [T] [T_IMPLICIT]
 //! ```
 //!
 //! `FILE` defaults to `../shared/bench/data/outer_solar_system_hlw.txt` (from the repository
