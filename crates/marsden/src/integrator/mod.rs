@@ -7,6 +7,7 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
+mod build;
 pub(crate) mod compensated;
 pub(crate) mod equations;
 mod explicit;
@@ -22,7 +23,7 @@ pub use equations::StepShape;
 pub use report::{Statistics, StepReport};
 
 use self::compensated::Compensation;
-use self::path::{Path, separable_applies};
+use self::path::Path;
 use self::predictor::Predictor;
 use self::small::dispatch::Dispatch;
 use crate::discrete::{DiscreteAction, DiscreteForce};
@@ -90,197 +91,9 @@ struct Buffers {
     mu: Vec<f64>,
 }
 
-impl<A: DiscreteAction> Integrator<A> {
-    /// An unforced, unconstrained integrator with default Newton options.
-    pub fn new(action: A) -> Self {
-        let shape = StepShape {
-            n: action.dof(),
-            s: action.internal_stages() + 1,
-            d: 0,
-            forced: false,
-        };
-        Integrator {
-            action,
-            force: NoForce,
-            constraint: Unconstrained,
-            projection: NoProjection,
-            options: NewtonOptions::default(),
-            shape,
-            buffers: Buffers::default(),
-            predictor: Predictor::default(),
-            statistics: Statistics::default(),
-            path: Path::General,
-            fast_paths: true,
-            compensation: Compensation::default(),
-            dispatch: Dispatch::detect(),
-        }
-        .with_path()
-    }
-}
-
 impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     Integrator<A, F, C, P>
 {
-    /// Adds discrete forces (replacing any previous ones).
-    pub fn with_force<F2: DiscreteForce>(self, force: F2) -> Integrator<A, F2, C, P> {
-        let shape = StepShape {
-            forced: force.is_active(),
-            ..self.shape
-        };
-        let switches = self.switches();
-        let parts = (self.action, force, self.constraint, self.projection);
-        Integrator::assemble(parts, shape, self.options, self.statistics, switches)
-    }
-
-    /// Adds holonomic constraints (replacing any previous ones).
-    pub fn with_constraint<C2: Constraint>(self, constraint: C2) -> Integrator<A, F, C2, P> {
-        let shape = StepShape {
-            d: constraint.count(),
-            ..self.shape
-        };
-        let switches = self.switches();
-        let parts = (self.action, self.force, constraint, self.projection);
-        Integrator::assemble(parts, shape, self.options, self.statistics, switches)
-    }
-
-    /// Adds a momentum projection applied after every solved step (replacing any previous one),
-    /// e.g. [`crate::holonomic::Rattle`] for constrained systems.
-    pub fn with_projection<P2: MomentumProjection>(
-        self,
-        projection: P2,
-    ) -> Integrator<A, F, C, P2> {
-        Integrator {
-            action: self.action,
-            force: self.force,
-            constraint: self.constraint,
-            projection,
-            options: self.options,
-            shape: self.shape,
-            buffers: self.buffers,
-            predictor: self.predictor,
-            statistics: self.statistics,
-            path: self.path,
-            fast_paths: self.fast_paths,
-            compensation: self.compensation,
-            dispatch: self.dispatch,
-        }
-    }
-
-    /// An integrator of new parts with fresh buffers, keeping the options, counters and
-    /// switches of the one it replaces; its path is chosen anew.
-    fn assemble(
-        (action, force, constraint, projection): (A, F, C, P),
-        shape: StepShape,
-        options: NewtonOptions,
-        statistics: Statistics,
-        (fast_paths, compensation, dispatch): (bool, Compensation, Dispatch),
-    ) -> Self {
-        Integrator {
-            action,
-            force,
-            constraint,
-            projection,
-            options,
-            shape,
-            buffers: Buffers::default(),
-            predictor: Predictor::default(),
-            statistics,
-            path: Path::General,
-            fast_paths,
-            compensation,
-            dispatch,
-        }
-        .with_path()
-    }
-
-    /// The switches a rebuilt integrator keeps.
-    fn switches(&self) -> (bool, Compensation, Dispatch) {
-        (self.fast_paths, self.compensation.clone(), self.dispatch)
-    }
-
-    /// Chooses the path of the steps ([`Path::choose`]).
-    fn with_path(mut self) -> Self {
-        let (shape, fast, compensated) = (self.shape, self.fast_paths, self.compensation.enabled);
-        let explicit = self.action.explicit().is_some();
-        let (action, workspace) = (&self.action, &mut self.buffers.separable);
-        self.path = Path::choose(shape, fast, compensated, explicit, || {
-            separable_applies(action, workspace)
-        });
-        self
-    }
-
-    /// Sets the Newton options (validated).
-    pub fn with_options(mut self, options: NewtonOptions) -> Result<Self, Error> {
-        options.validate()?;
-        self.options = options;
-        Ok(self)
-    }
-
-    /// Whether to use the fast paths (default: true): the explicit Störmer–Verlet step of the
-    /// trapezoid rule on separable Lagrangians ([`crate::separable::explicit`]), the Newton step with
-    /// Jacobian `M/h + hα(1−α)∇²V` of the α rules on separable Lagrangians
-    /// ([`crate::separable::alpha`]) — both only without forces and constraints — and the statically
-    /// sized Newton steps for small systems ([`crate::integrator::small::unconstrained`], [`crate::integrator::small::constrained`]).
-    /// The general path solves the same equations (tests: equal to round-off); switching is
-    /// for testing and measurement.
-    pub fn with_fast_paths(mut self, enabled: bool) -> Self {
-        self.fast_paths = enabled;
-        self.with_path()
-    }
-
-    /// Whether the small kernels ([`crate::integrator::small::unconstrained`], [`crate::integrator::small::constrained`]) may run in code
-    /// compiled for x86-64-v3 (AVX2, FMA) when the CPU has it (default: true; chosen at run
-    /// time, [`crate::integrator::small::dispatch`]). Both give the same bits; switch it off for tools that do not
-    /// decode every AVX instruction (valgrind 3.19) or to measure the difference.
-    ///
-    /// ```
-    /// use marsden::{Integrator, Midpoint, Rule, State, systems::DoublePendulum};
-    ///
-    /// let mut wide = Integrator::new(Midpoint.discretize(DoublePendulum::default()));
-    /// let mut baseline = Integrator::new(Midpoint.discretize(DoublePendulum::default()))
-    ///     .with_wide_instructions(false);
-    /// let start = State { t: 0.0, q: vec![1.0, 0.5], p: vec![0.0, 0.0] };
-    /// let (mut a, mut b) = (start.clone(), start);
-    /// wide.advance(&mut a, 0.01, 100)?;
-    /// baseline.advance(&mut b, 0.01, 100)?;
-    /// assert_eq!(a.q, b.q);
-    /// # Ok::<(), marsden::Error>(())
-    /// ```
-    pub fn with_wide_instructions(mut self, enabled: bool) -> Self {
-        self.dispatch = if enabled {
-            Dispatch::detect()
-        } else {
-            Dispatch::baseline()
-        };
-        self
-    }
-
-    /// Whether to add each step's increments to the state with compensated summation
-    /// (default: false; [`crate::integrator::compensated`]). For long runs of high-order rules, whose
-    /// truncation error is below the rounding error of `q + Δ`: over 10⁵ steps of Kepler's
-    /// problem gauss-4 keeps the angular momentum to 1.4e-15 instead of 1.6e-11. Costs one
-    /// gradient of the discrete action per step (`⌈n/8⌉` dual evaluations of the action, so
-    /// think twice for large `n`; measured costs in BENCHMARKS.md), and the explicit
-    /// run loop is not used (the explicit step of the trapezoid rule goes through Newton's
-    /// method). Constrained steps are not compensated.
-    ///
-    /// ```
-    /// use marsden::discrete::rules::Galerkin;
-    /// use marsden::{Integrator, Rule, State, systems::Kepler};
-    ///
-    /// let rule = Galerkin::gauss(4)?;
-    /// let mut integrator =
-    ///     Integrator::new(rule.discretize(Kepler::default())).with_compensated_summation(true);
-    /// let mut state = State { t: 0.0, q: vec![0.4, 0.0], p: vec![0.0, 2.0] };
-    /// integrator.advance(&mut state, 0.05, 100)?;
-    /// assert!(integrator.is_compensated());
-    /// # Ok::<(), marsden::Error>(())
-    /// ```
-    pub fn with_compensated_summation(mut self, enabled: bool) -> Self {
-        self.compensation.enabled = enabled;
-        self.with_path()
-    }
-
     /// Whether steps are compensated: asked for and unconstrained
     /// ([`Integrator::with_compensated_summation`]).
     pub fn is_compensated(&self) -> bool {
