@@ -136,7 +136,7 @@ fn kepler_and_pendulum_typed_as_text_equal_the_catalog() {
     };
     let start: (&[f64], &[f64]) = (&[1.5], &[0.0]);
     let (a, _) = run(
-        &lagrangian(pendulum, &["th"], &params),
+        lagrangian(pendulum, &["th"], &params),
         Midpoint,
         start,
         2000,
