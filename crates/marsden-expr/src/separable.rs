@@ -85,7 +85,7 @@ impl Program {
     /// let kepler = Program::compile("0.5*(x_dot^2 + y_dot^2) + 1/sqrt(x^2 + y^2)", &symbols).unwrap();
     /// let form = kepler.separable(2).unwrap();
     /// assert_eq!(form.diagonal_mass(), Some(vec![1.0, 1.0]));
-    /// let (mut grad, mut regs) = ([0.0; 2], Vec::new());
+    /// let (mut grad, mut regs) = ([0.0_f64; 2], Vec::new());
     /// form.gradient().unwrap().eval_into(&[3.0, 4.0, 0.0], &mut regs, &mut grad);
     /// assert!((grad[0] - 3.0 / 125.0).abs() < 1e-15 && (grad[1] - 4.0 / 125.0).abs() < 1e-15);
     ///
