@@ -78,6 +78,8 @@
 //! | entry points | `pipeline` | [`Expr::parse`], [`Expr::compile`], [`Program::compile`] |
 //! | several expressions | `set` | [`ProgramSet`]: one inputs slice, one output slice |
 //! | compiled program | `program` | [`Program`]: evaluate, inspect, list the instructions |
+//! | structure | `separable`, `quadratic` | [`SeparableForm`]: `L = ½ vᵀMv − V` recognised exactly |
+//! | symbolic derivatives | `derive`, `tape` | `∇V`, `∇²V` as a [`Tape`]: shared subexpressions, registers |
 //! | interpreter | `eval` | the accumulator machine over any `S: Scalar`, no allocation |
 //! | code generation | `codegen`, `ops` | folded tree → instructions (Sethi–Ullman order, fused pairs) |
 //! | lowering | `lower`, `ir` | names resolved, constants folded (the normal form of `ir`) |
@@ -87,6 +89,7 @@
 
 mod ast;
 mod codegen;
+mod derive;
 mod error;
 mod eval;
 mod functions;
@@ -97,15 +100,20 @@ mod ops;
 mod parser;
 mod pipeline;
 mod program;
+mod quadratic;
+mod separable;
 mod set;
 mod suggest;
 mod symbols;
+mod tape;
 
 pub use ast::Identifier;
 pub use error::{ErrorKind, EvalError, ExprError, Span, SymbolError};
 pub use functions::{CONSTANTS, Function, is_reserved};
 pub use pipeline::Expr;
 pub use program::Program;
+pub use separable::SeparableForm;
 pub use set::ProgramSet;
 pub use suggest::closest;
 pub use symbols::{Symbol, Symbols, is_identifier};
+pub use tape::Tape;

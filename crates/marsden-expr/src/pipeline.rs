@@ -87,9 +87,9 @@ impl Expr {
             .collect();
         Ok(Program::new(
             generate(&node),
+            node,
             &self.text,
-            names,
-            inputs_used,
+            (names, inputs_used),
         ))
     }
 }

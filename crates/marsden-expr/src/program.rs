@@ -9,6 +9,7 @@ use marsden::Scalar;
 
 use crate::error::EvalError;
 use crate::eval::evaluate;
+use crate::ir::Node;
 #[cfg(test)]
 use crate::ops::Op;
 use crate::ops::{Code, Leaf};
@@ -29,17 +30,25 @@ use crate::ops::{Code, Leaf};
 #[derive(Debug, Clone, PartialEq)]
 pub struct Program {
     code: Code,
+    /// The folded tree the code was generated from (for symbolic work: [`Program::separable`]).
+    tree: Node,
     text: String,
     names: Vec<String>,
     inputs_used: Vec<usize>,
 }
 
 impl Program {
-    /// The program of `code`, compiled from `text`, using the declared `names` and reading
-    /// the input slots `inputs_used` (sorted, no duplicates).
-    pub(crate) fn new(code: Code, text: &str, names: Vec<String>, inputs_used: Vec<usize>) -> Self {
+    /// The program of `code`, generated from `tree` and compiled from `text`, using the
+    /// declared `names` and reading the input slots `inputs_used` (sorted, no duplicates).
+    pub(crate) fn new(
+        code: Code,
+        tree: Node,
+        text: &str,
+        (names, inputs_used): (Vec<String>, Vec<usize>),
+    ) -> Self {
         Program {
             code,
+            tree,
             text: text.to_owned(),
             names,
             inputs_used,
@@ -113,6 +122,11 @@ impl Program {
             (Leaf::Const(c), true) => Some(c),
             _ => None,
         }
+    }
+
+    /// The folded tree.
+    pub(crate) fn tree(&self) -> &Node {
+        &self.tree
     }
 
     #[cfg(test)]

@@ -11,5 +11,7 @@ mod derivatives;
 mod errors;
 // Evaluation at f64 against hand-written Rust on random inputs (proptest).
 mod eval;
+// Structure read off a Lagrangian: separable or not, symbolic derivatives, the register machine.
+mod structure;
 // Parser semantics: precedence, associativity, literals, functions, constants.
 mod parse;

@@ -8,6 +8,8 @@
 mod load;
 // Runs in memory, to files and both: the same samples bit for bit; summaries; sweeps.
 mod memory;
+// Expression Lagrangians recognised as separable: fast paths against the general path.
+mod structure;
 // The controls of a run: the progress callback and the stop flag.
 mod controls;
 

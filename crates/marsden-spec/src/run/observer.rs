@@ -2,9 +2,10 @@
 //! becomes one row `t, q, p, energy, J…, residual`, written at once, and feeds the diagnostics.
 //! Memory stays bounded whatever the number of steps; a failed run keeps every row written.
 //!
-//! Per step the observer does nothing but compare the step with the sampling stride, plus one
-//! flag test for the [`Controls`] (looked at every [`CHECK_EVERY`] steps, only if the caller
-//! gave any).
+//! The observer needs to see only the sampled steps, plus every [`CHECK_EVERY`]-th step when
+//! the caller gave [`Controls`] (a progress callback, a stop flag): it says so
+//! ([`Observer::every_step`], [`Observer::cadence`]), so an explicit run takes the steps in
+//! between in one loop ([`marsden::Integrator::advance`]) with no per-step work of its own.
 
 use std::ops::ControlFlow;
 use std::time::Instant;
@@ -225,4 +226,21 @@ impl<L: Lagrangian, C: Constraint, M: MomentumMap> Observer for StreamObserver<'
         }
         ControlFlow::Continue(())
     }
+
+    fn every_step(&self) -> bool {
+        false
+    }
+
+    /// The sampling stride, and every [`CHECK_EVERY`]-th step when controls are watched.
+    fn cadence(&self) -> usize {
+        match self.watch {
+            true => gcd(self.every, CHECK_EVERY),
+            false => self.every,
+        }
+    }
+}
+
+/// Greatest common divisor (Euclid).
+fn gcd(a: usize, b: usize) -> usize {
+    if b == 0 { a } else { gcd(b, a % b) }
 }

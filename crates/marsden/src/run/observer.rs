@@ -33,6 +33,12 @@ pub trait Observer {
     fn every_step(&self) -> bool {
         true
     }
+    /// When [`Observer::every_step`] is false: besides the stored samples and the last step,
+    /// [`Observer::observe`] sees every step that is a multiple of this number (a progress
+    /// report, a stop flag, a sampling stride of its own). Default: `usize::MAX` (none).
+    fn cadence(&self) -> usize {
+        usize::MAX
+    }
 }
 
 /// Observes nothing.

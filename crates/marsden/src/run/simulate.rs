@@ -44,10 +44,12 @@ where
     let mut last_report = initial;
     // Steps between stored samples run in one loop when nobody watches each step.
     let chunked = stepper.runs_in_chunks() && !observer.every_step();
+    let cadence = observer.cadence().max(1);
     let mut k = 0;
     while k < grid.steps {
         let chunk = if chunked {
-            (stride - k % stride).min(grid.steps - k)
+            let to_sample = (stride - k % stride).min(cadence - k % cadence);
+            to_sample.min(grid.steps - k)
         } else {
             1
         };

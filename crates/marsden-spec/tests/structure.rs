@@ -1,0 +1,166 @@
+//! An expression Lagrangian recognised as separable takes the fast paths of the catalog
+//! systems, and they agree with its general path (AD of the expression, no declared structure)
+//! to round-off; a builtin and the same Lagrangian typed as text agree too.
+
+use marsden::mechanics::Structure;
+use marsden::systems::{Kepler, Pendulum};
+use marsden::{Integrator, Lagrangian, Midpoint, Rule, State, Trapezoid};
+use marsden_expr::{Program, Symbols};
+use marsden_spec::model::{ExprLagrangian, slots};
+
+/// `text` over `coordinates` (velocities `<name>_dot`, time `t`) with parameters.
+fn lagrangian(text: &str, coordinates: &[&str], params: &[(&str, f64)]) -> ExprLagrangian {
+    let names: Vec<String> = coordinates.iter().map(|c| c.to_string()).collect();
+    let mut symbols = Symbols::with_inputs(slots::tangent_inputs(&names)).unwrap();
+    for &(name, value) in params {
+        symbols.add_constant(name, value).unwrap();
+    }
+    let program = Program::compile(text, &symbols).unwrap_or_else(|e| panic!("{e}"));
+    ExprLagrangian::new(program, coordinates.len())
+}
+
+/// `steps` steps of `rule` from `(q0, p0)`; the final state and the explicit steps taken.
+fn run<L: Lagrangian, R: Rule>(
+    l: L,
+    rule: R,
+    start: (&[f64], &[f64]),
+    steps: usize,
+) -> (State, usize) {
+    let mut integrator = Integrator::new(rule.discretize(l));
+    let mut state = State {
+        t: 0.0,
+        q: start.0.to_vec(),
+        p: start.1.to_vec(),
+    };
+    integrator
+        .advance(&mut state, 0.01, steps)
+        .unwrap_or_else(|e| panic!("{e}"));
+    (state, integrator.statistics().explicit_steps)
+}
+
+fn assert_states_close(a: &State, b: &State, tol: f64, what: &str) {
+    for (x, y) in a.q.iter().chain(&a.p).zip(b.q.iter().chain(&b.p)) {
+        assert!(
+            (x - y).abs() <= tol * x.abs().max(1.0),
+            "{what}: {x} vs {y}"
+        );
+    }
+}
+
+/// The separable Lagrangians of the structure tests of `marsden-expr`, with a start.
+fn separable_cases() -> Vec<(ExprLagrangian, Vec<f64>, Vec<f64>)> {
+    let chain =
+        "0.5*(a_dot^2 + b_dot^2 + c_dot^2) - 0.5*a^2 - 0.5*(b - a)^2 - 0.25*(c - b)^4 - 0.5*c^2";
+    vec![
+        (
+            lagrangian(
+                "0.5*(x_dot^2 + y_dot^2) + mu/sqrt(x^2 + y^2)",
+                &["x", "y"],
+                &[("mu", 1.0)],
+            ),
+            vec![0.4, 0.0],
+            vec![0.0, 2.0],
+        ),
+        (
+            lagrangian(
+                "0.5*m*l^2*th_dot^2 + m*g*l*cos(th)",
+                &["th"],
+                &[("m", 1.0), ("l", 1.0), ("g", 1.0)],
+            ),
+            vec![1.5],
+            vec![0.0],
+        ),
+        (
+            lagrangian(
+                "x_dot^2 + x_dot*y_dot + y_dot^2 - x^2 - y^2 - x^4",
+                &["x", "y"],
+                &[],
+            ),
+            vec![0.3, -0.2],
+            vec![0.1, 0.5],
+        ),
+        (
+            lagrangian("0.5*x_dot^2 - 0.5*x^2*(1 + 0.3*cos(2*t))", &["x"], &[]),
+            vec![1.0],
+            vec![0.0],
+        ),
+        (
+            lagrangian(chain, &["a", "b", "c"], &[]),
+            vec![0.1, -0.2, 0.3],
+            vec![0.0, 0.1, 0.0],
+        ),
+    ]
+}
+
+#[test]
+fn fast_paths_of_detected_lagrangians_equal_their_general_path() {
+    for (l, q0, p0) in separable_cases() {
+        let text = l.program().text().to_owned();
+        assert!(
+            matches!(l.structure(), Structure::Separable { .. }),
+            "{text}"
+        );
+        let general = l.clone().without_structure();
+        assert_eq!(general.structure(), Structure::General);
+        let start = (q0.as_slice(), p0.as_slice());
+        // Trapezoid: explicit Störmer–Verlet against the general Newton step.
+        let (fast, explicit) = run(&l, Trapezoid, start, 300);
+        let (slow, none) = run(&general, Trapezoid, start, 300);
+        assert_eq!((explicit, none), (300, 0), "{text}");
+        assert_states_close(&fast, &slow, 1e-10, &text);
+        // Midpoint: the separable α-rule Newton against the general Newton step.
+        let (fast, _) = run(&l, Midpoint, start, 300);
+        let (slow, _) = run(&general, Midpoint, start, 300);
+        assert_states_close(&fast, &slow, 1e-10, &text);
+    }
+}
+
+#[test]
+fn kepler_and_pendulum_typed_as_text_equal_the_catalog() {
+    let kepler = lagrangian(
+        "0.5*(x_dot^2 + y_dot^2) + mu/sqrt(x^2 + y^2)",
+        &["x", "y"],
+        &[("mu", 1.0)],
+    );
+    // e = 0.6: q0 = (0.4, 0), p0 = (0, 2).
+    let start: (&[f64], &[f64]) = (&[0.4, 0.0], &[0.0, 2.0]);
+    let (a, _) = run(&kepler, Trapezoid, start, 2000);
+    let (b, _) = run(Kepler::default(), Trapezoid, start, 2000);
+    assert_states_close(&a, &b, 1e-10, "Kepler trapezoid");
+    let pendulum = "0.5*m*l^2*th_dot^2 + m*g*l*cos(th)";
+    let params = [("m", 1.0), ("l", 1.0), ("g", 1.0)];
+    let p = Pendulum {
+        m: 1.0,
+        l: 1.0,
+        g: 1.0,
+    };
+    let start: (&[f64], &[f64]) = (&[1.5], &[0.0]);
+    let (a, _) = run(
+        lagrangian(pendulum, &["th"], &params),
+        Midpoint,
+        start,
+        2000,
+    );
+    let (b, _) = run(p, Midpoint, start, 2000);
+    assert_states_close(&a, &b, 1e-10, "pendulum midpoint");
+}
+
+#[test]
+fn non_separable_lagrangians_keep_the_general_path() {
+    let cases = [
+        ("0.5*(1 + x^2)*x_dot^2 - x^2", &["x"][..]),
+        ("0.5*x_dot^2 + x*x_dot - x^2", &["x"][..]),
+        (
+            "0.5*(x_dot^2 + y_dot^2) + x*y_dot - y*x_dot",
+            &["x", "y"][..],
+        ),
+        ("0.5*exp(t)*x_dot^2 - x^2", &["x"][..]),
+    ];
+    for (text, coordinates) in cases {
+        let l = lagrangian(text, coordinates, &[]);
+        assert_eq!(l.structure(), Structure::General, "{text}");
+        let q0 = vec![0.2; coordinates.len()];
+        let (_, explicit) = run(&l, Trapezoid, (&q0, &q0), 10);
+        assert_eq!(explicit, 0, "{text}");
+    }
+}
