@@ -159,7 +159,7 @@ impl<A: DiscreteAction, F, C: Constraint> StepFunction<'_, A, F, C> {
             );
             for c in 0..sh.d {
                 let weight = self.h * self.stage_multipliers[i * sh.d + c];
-                out[0] = out[0] - out[block + c] * weight;
+                out[0] -= out[block + c] * weight;
             }
         }
     }
