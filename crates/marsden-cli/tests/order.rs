@@ -144,12 +144,8 @@ fn empty_lists_and_non_positive_steps_are_refused() {
     }
 }
 
-#[test]
-fn constrained_problems_are_refused() {
-    let run = order("cartesian_pendulum.toml", &[]);
-    assert_eq!(run.code, 2);
-    assert!(run.stderr.contains("constrained"), "{}", run.stderr);
-}
+// Constrained problems are studied against a constrained reference: see
+// `constraints::r7_order_study_of_a_constrained_problem`.
 
 #[test]
 fn csv_has_one_line_per_run() {

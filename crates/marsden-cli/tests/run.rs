@@ -156,7 +156,7 @@ fn symmetry_momentum_map_is_conserved_and_written() {
 fn constrained_run_writes_the_residual_column() {
     let run = run_ok("cartesian_pendulum.toml", &[]);
     let t = run.trajectory();
-    assert_eq!(t.names().last(), Some("constraint_residual"));
+    assert_eq!(t.names().last(), Some("lambda_0"));
     let max = column(&t, "constraint_residual")
         .iter()
         .fold(0.0, |m: f64, r| m.max(*r));

@@ -13,6 +13,8 @@ mod util;
 mod bad_input;
 // `check`, `systems`, `plot` and usage errors.
 mod commands;
+// Constrained runs: orders, multipliers, projected starts, refusals, `order` with constraints.
+mod constraints;
 // Every file in examples/ runs with reduced steps, as README.md quotes them.
 mod examples;
 // `marsden order`: the table, the fitted orders, the CSV, the refused requests.

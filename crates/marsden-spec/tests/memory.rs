@@ -26,6 +26,9 @@ fn file_columns(samples: &Samples) -> Vec<(String, Vec<f64>)> {
     if let Some(r) = &samples.constraint_residual {
         out.push(("constraint_residual".to_owned(), r.clone()));
     }
+    for (i, lambda) in samples.lambda.iter().enumerate() {
+        out.push((format!("lambda_{i}"), lambda.clone()));
+    }
     out
 }
 

@@ -10,11 +10,16 @@
 //! * `shake_rattle_step`: a full step as `Problem::integrator` builds it (SHAKE solve for
 //!   `(q_{k+1}, λ_k)` plus the RATTLE momentum projection) — the figure to compare with trep;
 //! * `shake_step`: the SHAKE solve alone (momenta not projected);
-//! * `angle_pendulum_step`: the same pendulum in its angle coordinate, unconstrained, for scale.
+//! * `angle_pendulum_step`: the same pendulum in its angle coordinate, unconstrained, for scale;
+//! * `spherical_*`: one step of the spherical pendulum (`systems::SphericalPendulum`, `θ₀ = 1`,
+//!   `ϕ̇₀ = 0.8`) with SHAKE + RATTLE (midpoint, order 2), constrained Lobatto IIIA–IIIB
+//!   (`lobatto-3`, stage constraints, order 4) and a composition of nine RATTLE steps
+//!   (`kahan-li-6(trapezoid)`, order 6), in the same run.
 
 use divan::Bencher;
+use marsden::discrete::rules::{Composition, CompositionScheme, Galerkin};
 use marsden::holonomic::MomentumProjection;
-use marsden::systems::{CartesianPendulum, Pendulum};
+use marsden::systems::{CartesianPendulum, Pendulum, SphericalPendulum};
 use marsden::{
     DiscreteAction, DiscreteForce, Initial, Integrator, Midpoint, NewtonOptions, Problem, Rule,
     State, TimeGrid,
@@ -89,6 +94,42 @@ fn angle_pendulum_step(bencher: Bencher) {
         return;
     };
     bench_steps(bencher, integrator, problem.start().clone());
+}
+
+fn spherical() -> Option<Problem<SphericalPendulum, marsden::NoForce, SphericalPendulum>> {
+    let sys = SphericalPendulum::default();
+    let grid = TimeGrid::new(0.0, H, 1).ok()?;
+    Problem::new(sys, sys.initial(1.0, 0.0, 0.0, 0.8), grid)
+        .ok()?
+        .with_constraint(sys)
+        .ok()
+}
+
+fn bench_spherical<R: Rule>(bencher: Bencher, rule: &R) {
+    let Some(problem) = spherical() else { return };
+    let Ok(integrator) = problem.integrator(rule, NewtonOptions::default()) else {
+        return;
+    };
+    bench_steps(bencher, integrator, problem.start().clone());
+}
+
+#[divan::bench(sample_size = STEPS_PER_SAMPLE)]
+fn spherical_rattle_midpoint(bencher: Bencher) {
+    bench_spherical(bencher, &Midpoint);
+}
+
+#[divan::bench(sample_size = STEPS_PER_SAMPLE)]
+fn spherical_lobatto_3(bencher: Bencher) {
+    let Ok(rule) = Galerkin::lobatto(3) else {
+        return;
+    };
+    bench_spherical(bencher, &rule);
+}
+
+#[divan::bench(sample_size = STEPS_PER_SAMPLE)]
+fn spherical_kahan_li_6_trapezoid(bencher: Bencher) {
+    let rule = Composition::new(marsden::Trapezoid, CompositionScheme::KahanLi6);
+    bench_spherical(bencher, &rule);
 }
 
 // Measured: see BENCHMARKS.md, section "Constrained pendulum".

@@ -113,6 +113,15 @@ pub enum InputError {
         /// The grammar of valid names.
         valid: String,
     },
+    /// A method cannot impose holonomic constraints at the order it has (a Gauss rule: the
+    /// constraint only at the step end would make the run order 2).
+    #[error("the method `{method}` cannot be used with holonomic constraints: {reason}")]
+    UnconstrainableMethod {
+        /// The method's name.
+        method: String,
+        /// Why, and which method to use instead.
+        reason: String,
+    },
     /// A group action acts on a configuration space of the wrong dimension: its generators
     /// `ξ_Q(q)` have the wrong number of components for this system.
     #[error(
@@ -245,6 +254,20 @@ pub enum SetupError {
         threshold: f64,
         /// The positions at which `Dφ` was factored.
         q: Vec<f64>,
+    },
+    /// The multipliers cannot be computed from the state: `Dφ W⁻¹ Dφᵀ` (`W = ∂²L/∂v²`) is
+    /// singular, i.e. the constraints are redundant there.
+    #[error(
+        "cannot compute the constraint multipliers at t = {t}, q = {q:?}: Dφ W⁻¹ Dφᵀ has pivot \
+         {pivot:.3e} (the constraints are redundant or singular there)"
+    )]
+    SingularConstraintMass {
+        /// Time of the state.
+        t: f64,
+        /// Positions.
+        q: Vec<f64>,
+        /// Smallest pivot of the factorisation.
+        pivot: f64,
     },
     /// Projecting positions onto the constraint manifold `φ(q) = 0` failed.
     #[error(

@@ -48,7 +48,9 @@
 //!   Trapezoid: `L_d = (h/2)[L(t, q₀, v) + L(t+h, q₁, v)]`, `v = (q₁−q₀)/h`, forces at the ends.
 //! * Constraints (SHAKE, [LMO08]): `p_k + D₁L_d(q_k, q_{k+1}) − h Dφ(q_k)ᵀλ_k = 0`,
 //!   `φ(q_{k+1}) = 0`; RATTLE adds the momentum projection so that `(q_{k+1}, p_{k+1})` lies on
-//!   the cotangent bundle of the constraint manifold (`Dφ(q) · FH(q, p) = 0`).
+//!   the cotangent bundle of the constraint manifold (`Dφ(q) · FH(q, p) = 0`). Rules of higher
+//!   order impose `φ = 0` at their stages too (constrained Lobatto IIIA–IIIB; compositions of
+//!   RATTLE steps), so they keep their order; Gauss rules are refused with constraints.
 //! * The discrete momenta are the `p_k` above: for the midpoint rule `p_k ≠ M (q_{k+1} − q_k)/h`.
 //! * Discrete Noether: for an `L_d` invariant under a group action, `J_k = ⟨p_k, ξ_Q(q_k)⟩` is
 //!   exactly constant (to the Newton tolerance: over `N` steps at most `N · tol · |ξ_Q|`).

@@ -20,6 +20,7 @@ mod downsample;
 mod energy;
 mod font;
 mod momentum;
+mod multipliers;
 mod options;
 mod phase;
 mod prepare;
@@ -30,8 +31,10 @@ pub use constraint::plot_constraint_residual;
 pub use energy::plot_energy_error;
 pub use font::FAMILY as FONT_FAMILY;
 pub use momentum::plot_momentum_drift;
+pub use multipliers::plot_multipliers;
 pub use options::{PhaseCurve, PlotOptions, PlotReport, Series};
 pub use phase::plot_phase_portrait;
 pub use run::{
-    CONSTRAINT_RESIDUAL_PNG, ENERGY_ERROR_PNG, MOMENTUM_DRIFT_PNG, PHASE_PORTRAIT_PNG, plot_run,
+    CONSTRAINT_RESIDUAL_PNG, ENERGY_ERROR_PNG, MOMENTUM_DRIFT_PNG, MULTIPLIERS_PNG,
+    PHASE_PORTRAIT_PNG, plot_run,
 };

@@ -5,6 +5,7 @@ use std::path::Path;
 use super::constraint::plot_constraint_residual;
 use super::energy::plot_energy_error;
 use super::momentum::plot_momentum_drift;
+use super::multipliers::plot_multipliers;
 use super::options::{PhaseCurve, PlotOptions, PlotReport, Series};
 use super::phase::plot_phase_portrait;
 use crate::error::{Error, Result};
@@ -18,10 +19,12 @@ pub const ENERGY_ERROR_PNG: &str = "energy_error.png";
 pub const MOMENTUM_DRIFT_PNG: &str = "momentum_drift.png";
 /// File name of the constraint-residual plot written by [`plot_run`].
 pub const CONSTRAINT_RESIDUAL_PNG: &str = "constraint_residual.png";
+/// File name of the multiplier plot written by [`plot_run`].
+pub const MULTIPLIERS_PNG: &str = "multipliers.png";
 
 /// Draws every plot the table's columns allow into `dir`, by the `trajectory.csv`
 /// convention: `t`; `q_<name>` paired with `p_<name>` (phase portrait); `energy`;
-/// `J_<symmetry>` (momentum drift); `constraint_residual`. A plot whose columns are absent is
+/// `J_<symmetry>` (momentum drift); `constraint_residual`; `lambda_<i>` (multipliers). A plot whose columns are absent is
 /// skipped; the reports say which files were written (for `marsden plot DIR`).
 ///
 /// # Errors
@@ -85,6 +88,21 @@ pub fn plot_run(
             dir.join(CONSTRAINT_RESIDUAL_PNG),
             t,
             r,
+            opts,
+        )?);
+    }
+    let multipliers: Vec<Series<'_>> = table
+        .columns_with_prefix("lambda_")
+        .map(|c| Series {
+            name: &c.name,
+            values: &c.values,
+        })
+        .collect();
+    if !multipliers.is_empty() {
+        reports.push(plot_multipliers(
+            dir.join(MULTIPLIERS_PNG),
+            t,
+            &multipliers,
             opts,
         )?);
     }

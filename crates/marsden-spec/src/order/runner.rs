@@ -2,9 +2,14 @@
 //! once as in `marsden run` ([`crate::run::start::constrained_problem`]), one reference
 //! solution `(q(T), p(T))` by the extrapolation integrator of [`marsden::discrete::exact`], then
 //! [`marsden::studies::order::measure_order`] for each method, dispatched to its concrete rule.
+//! A constrained problem's reference comes from constrained Lobatto IIIA–IIIB of order 8 at
+//! small steps ([`marsden::studies::order::constrained_reference`]), with its accuracy estimate.
 
 use marsden::discrete::rules::WithRule;
-use marsden::studies::order::{OrderOptions, OrderStudy, measure_order, reference_solution};
+use marsden::studies::order::{
+    CONSTRAINED_REFERENCE_METHOD, OrderOptions, OrderStudy, constrained_reference, measure_order,
+    reference_solution,
+};
 use marsden::{Constraint, Force, Lagrangian, NewtonOptions, Problem, Rule};
 
 use super::Plan;
@@ -20,22 +25,19 @@ pub struct Results {
     pub reference: (Vec<f64>, Vec<f64>),
     /// One study per method.
     pub studies: Vec<OrderStudy>,
+    /// How the reference was computed.
+    pub reference_source: String,
 }
+
+/// Steps of a constrained reference relative to the finest run of the study.
+const REFERENCE_REFINEMENT: usize = 4;
 
 /// Runs the study.
 ///
 /// # Errors
-/// Status 2 for a constrained problem (the reference flow has no constraints) or initial data
-/// the core rejects; status 1 if the reference solution cannot be computed. A run that fails
-/// is a point with error `NaN` in its study, not an error.
+/// Status 2 for initial data the core rejects; status 1 if the reference solution cannot be
+/// computed. A run that fails is a point with error `NaN` in its study, not an error.
 pub fn measure(spec: &RunSpec, plan: &Plan) -> Result<Results, Error> {
-    if spec.system.constraint.count() > 0 {
-        return Err(Error::bad_input(
-            Diagnostic::new("marsden order does not support constrained problems").note(
-                "the reference solution integrates the unconstrained Euler–Lagrange equations",
-            ),
-        ));
-    }
     spec.system.lagrangian.dispatch(Study { spec, plan })
 }
 
@@ -65,20 +67,39 @@ impl WithLagrangian for Study<'_> {
         let system = &self.spec.system;
         let problem = start::constrained_problem(self.spec, lagrangian, &system.constraint)?
             .with_force(&system.force);
-        let reference = reference_solution(&problem, self.plan.t_end).map_err(|e| {
+        let options = options(self.spec);
+        let failed = |e: marsden::Error| {
             Error::failed(Diagnostic::new(format!(
                 "cannot compute the reference solution at T = {}: {e}",
                 self.plan.t_end
             )))
-        })?;
-        let options = options(self.spec);
+        };
+        let (reference, reference_source) = if system.constraint.count() > 0 {
+            let finest = self.plan.steps().last().copied().unwrap_or(1);
+            let steps = REFERENCE_REFINEMENT * finest;
+            let r = constrained_reference(&problem, self.plan.t_end, steps, options.newton)
+                .map_err(failed)?;
+            let source = format!(
+                "the constrained reference ({CONSTRAINED_REFERENCE_METHOD}, order 8, {} steps; \
+                 {} steps differ by {:.1e})",
+                r.steps, steps, r.difference
+            );
+            ((r.q, r.p), source)
+        } else {
+            let reference = reference_solution(&problem, self.plan.t_end).map_err(failed)?;
+            (reference, "the extrapolated reference".to_owned())
+        };
         let studies = self
             .plan
             .methods
             .iter()
             .map(|method| study(&problem, method, self.plan, &reference, &options))
             .collect::<Result<_, _>>()?;
-        Ok(Results { reference, studies })
+        Ok(Results {
+            reference,
+            studies,
+            reference_source,
+        })
     }
 }
 

@@ -18,10 +18,11 @@ pub fn render(plan: &Plan, results: &Results) -> String {
     rows.extend(results.studies.iter().map(row));
     let mut out = format!(
         "order study: T = {}, t0 = {}, {} step sizes; error |(q_N, p_N) − (q(T), p(T))| \
-         against the extrapolated reference\n",
+         against {}\n",
         plan.t_end,
         plan.t0,
-        plan.grids.len()
+        plan.grids.len(),
+        results.reference_source
     );
     out.push_str(&align(&rows));
     out

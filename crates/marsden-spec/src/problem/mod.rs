@@ -132,8 +132,28 @@ fn validate_raw(
         &system.coordinates,
         bodies.as_ref(),
     )?;
-    settings::constraints_at_start(&ck, &system.constraint, &initial.q, initial_spans.q)?;
+    // With `project = true` the start is projected onto the manifold when the run starts
+    // (`run::start`), so positions off it are accepted here.
+    if !initial.project {
+        settings::constraints_at_start(&ck, &system.constraint, &initial.q, initial_spans.q)?;
+    }
     let integrator = settings::integrator(&ck, raw.integrator.as_ref(), initial.t0, overrides)?;
+    if !system.constraint.components().is_empty()
+        && let Some(reason) = integrator.method.0.constraint_refusal()
+    {
+        let span = (raw.integrator.as_ref())
+            .and_then(|i| i.get_ref().method.as_ref())
+            .map(|m| m.span());
+        return Err(ck
+            .error(
+                span,
+                format!(
+                    "the method `{}` cannot be used with constraints",
+                    integrator.method
+                ),
+            )
+            .note(reason));
+    }
     let name = run_name(raw, &system, source.path());
     let output = settings::output(&ck, raw.output.as_ref(), &name, overrides)?;
     let sweep = match with_sweep {

@@ -85,7 +85,10 @@ fn system(out: &mut Lines, spec: &RunSpec) {
     out.line("forces", or_none(texts(s.force.components()), ", "));
     let mut constraints = or_none(texts(s.constraint.components()), " = 0, ");
     if constraints != "none" {
-        constraints.push_str(" = 0 (SHAKE; momenta not projected yet)");
+        constraints.push_str(
+            " = 0 (SHAKE on the positions at the step end and at every stage, RATTLE \
+             projection of the momenta onto T*N)",
+        );
     }
     out.line("constraints", constraints);
     for sym in &s.symmetries {
@@ -123,6 +126,7 @@ fn integrator(out: &mut Lines, spec: &RunSpec) {
         "integrator",
         format!("{method} (order {order}), h = {}, {length}, {span}", g.h),
     );
+
     let (tol, max) = (i.newton.residual_tolerance, i.newton.max_iterations);
     out.line(
         "",

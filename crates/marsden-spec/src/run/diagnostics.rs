@@ -40,6 +40,9 @@ pub struct Diagnostics {
     pub maps: Vec<MapStats>,
     /// `max_k max_i |φ_i(q_k)|` (`None` without constraints).
     pub max_residual: Option<f64>,
+    /// `max_k max_i |Dφ_i(q_k)·v_k|`, the hidden (velocity) constraint (`None` without
+    /// constraints).
+    pub max_velocity_residual: Option<f64>,
 }
 
 impl Diagnostics {
@@ -49,16 +52,27 @@ impl Diagnostics {
             energy: EnergyAccumulator::default(),
             maps: vec![MapStats::default(); maps],
             max_residual: constrained.then_some(0.0),
+            max_velocity_residual: constrained.then_some(0.0),
         }
     }
 
     /// Adds a constraint residual.
     pub fn push_residual(&mut self, r: f64) {
-        if let Some(max) = &mut self.max_residual
-            && (r > *max || r.is_nan())
-        {
-            *max = r;
-        }
+        raise(&mut self.max_residual, r);
+    }
+
+    /// Adds a velocity-constraint residual.
+    pub fn push_velocity_residual(&mut self, r: f64) {
+        raise(&mut self.max_velocity_residual, r);
+    }
+}
+
+/// `max ← max(max, r)`, NaN sticking (a broken run does not report a perfect residual).
+fn raise(max: &mut Option<f64>, r: f64) {
+    if let Some(max) = max
+        && (r > *max || r.is_nan())
+    {
+        *max = r;
     }
 }
 

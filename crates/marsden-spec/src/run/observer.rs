@@ -1,5 +1,6 @@
 //! The observer that streams a run to disk: every `every`-th state (and the first and the last)
-//! becomes one row `t, q, p, energy, J…, residual`, written at once, and feeds the diagnostics.
+//! becomes one row `t, q, p, energy, J…, residual, λ…`, written at once, and feeds the
+//! diagnostics (with the velocity-constraint residual `|Dφ(q)·v|`).
 //! Memory stays bounded whatever the number of steps; a failed run keeps every row written.
 //!
 //! The observer needs to see only the sampled steps, plus every [`CHECK_EVERY`]-th step when
@@ -10,6 +11,8 @@
 use std::ops::ControlFlow;
 use std::time::Instant;
 
+use marsden::analysis::diagnostics::residuals_at;
+use marsden::holonomic::multipliers_at;
 use marsden::{Constraint, Lagrangian, Observer, StepView, Trajectory, mechanics};
 use marsden_io::RowSink;
 
@@ -29,6 +32,7 @@ pub struct StreamObserver<'a, 's, L, C, M> {
     velocity: Vec<f64>,
     scratch: Vec<f64>,
     last_written: Option<usize>,
+
     /// Append the velocities to each row (for the in-memory samples, see `samples`).
     with_velocity: bool,
     controls: &'a Controls<'a>,
@@ -77,6 +81,7 @@ impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's
             velocity: vec![0.0; n],
             scratch: Vec::new(),
             last_written: None,
+
             with_velocity,
             controls,
             watch: controls.is_active(),
@@ -112,7 +117,17 @@ impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's
         if self.constraint.count() > 0 {
             let r = self.residual(s.q);
             self.diagnostics.push_residual(r);
+            let rate = match finite {
+                true => residuals_at(self.constraint, s.q, &self.velocity).1,
+                false => f64::NAN,
+            };
+            self.diagnostics.push_velocity_residual(rate);
             self.row.push(r);
+            let d = self.constraint.count();
+            match multipliers_at(self.lagrangian, self.constraint, s.t, s.q, &self.velocity) {
+                Ok(lambda) if finite => self.row.extend_from_slice(&lambda),
+                _ => self.row.resize(self.row.len() + d, f64::NAN),
+            }
         }
         if self.with_velocity {
             match finite {

@@ -2,9 +2,11 @@
 //! for the chosen format.
 //!
 //! `t, q_<name>…, p_<name>…, energy`, then `J_<symmetry>` per symmetry, then
-//! `constraint_residual` when there are constraints. The same [`Layout`] names the CSV header
-//! and the `.npy` files (`t.npy`, `q.npy`, `p.npy`, `energy.npy`, `J.npy`,
-//! `constraint_residual.npy`).
+//! `constraint_residual` and the multipliers `lambda_<i>` (the constraint forces `−Dφ(q)ᵀλ`,
+//! implied by each stored state, `marsden::holonomic::multipliers_at`) when there are
+//! constraints. The same [`Layout`] names
+//! the CSV header and the `.npy` files (`t.npy`, `q.npy`, `p.npy`, `energy.npy`, `J.npy`,
+//! `constraint_residual.npy`, `lambda.npy`).
 
 use std::path::Path;
 
@@ -19,6 +21,8 @@ pub const TRAJECTORY_CSV: &str = "trajectory.csv";
 pub const SUMMARY_JSON: &str = "summary.json";
 /// Name of the constraint-residual column.
 pub const CONSTRAINT_RESIDUAL: &str = "constraint_residual";
+/// Name of the multipliers' group (`lambda_0`, `lambda_1`, …; `lambda.npy`).
+pub const LAMBDA: &str = "lambda";
 
 /// The column layout of a system's trajectory.
 ///
@@ -35,8 +39,13 @@ pub fn layout(system: &SystemSpec) -> marsden_io::Result<Layout> {
         Group::scalar("energy"),
         Group::vector("J", j),
     ];
-    if !system.constraint.components().is_empty() {
+    let d = system.constraint.components().len();
+    if d > 0 {
         groups.push(Group::scalar(CONSTRAINT_RESIDUAL));
+        groups.push(Group::vector(
+            LAMBDA,
+            (0..d).map(|i| format!("{LAMBDA}_{i}")),
+        ));
     }
     Layout::new(groups)
 }
@@ -59,6 +68,10 @@ pub fn layout_from_columns(names: &[String]) -> marsden_io::Result<Layout> {
         Group::vector("p", with("p_")),
         Group::vector("J", with("J_")),
     ];
+    let lambda = with("lambda_");
+    if !lambda.is_empty() {
+        groups.push(Group::vector(LAMBDA, lambda));
+    }
     for scalar in ["t", "energy", CONSTRAINT_RESIDUAL] {
         if names.iter().any(|n| n == scalar) {
             groups.push(Group::scalar(scalar));
@@ -68,7 +81,7 @@ pub fn layout_from_columns(names: &[String]) -> marsden_io::Result<Layout> {
 }
 
 /// Files a previous run may have left in an output directory (and nothing else).
-const RUN_FILES: [&str; 12] = [
+const RUN_FILES: [&str; 14] = [
     TRAJECTORY_CSV,
     SUMMARY_JSON,
     "t.npy",
@@ -77,10 +90,12 @@ const RUN_FILES: [&str; 12] = [
     "energy.npy",
     "J.npy",
     "constraint_residual.npy",
+    "lambda.npy",
     marsden_io::plot::PHASE_PORTRAIT_PNG,
     marsden_io::plot::ENERGY_ERROR_PNG,
     marsden_io::plot::MOMENTUM_DRIFT_PNG,
     marsden_io::plot::CONSTRAINT_RESIDUAL_PNG,
+    marsden_io::plot::MULTIPLIERS_PNG,
 ];
 
 /// Removes the files of a previous run from `dir`, so that a directory never mixes two runs
@@ -143,6 +158,7 @@ mod tests {
             "energy",
             "J_Lz",
             "constraint_residual",
+            "lambda_0",
         ]
         .map(String::from)
         .to_vec();

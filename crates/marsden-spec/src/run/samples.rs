@@ -1,7 +1,7 @@
 //! The stored samples of a run kept in memory ([`Samples`]), and the sinks that route rows:
 //! [`Tee`] (files and memory at once) and [`NullSink`] (sweep members keep nothing).
 //!
-//! A row is laid out as the files are (`t, q…, p…, energy, J…, constraint_residual`, see
+//! A row is laid out as the files are (`t, q…, p…, energy, J…, constraint_residual, λ…`, see
 //! [`output`](super::output)); rows bound for memory carry the velocities `v…` after that.
 
 use marsden_io::RowSink;
@@ -29,6 +29,8 @@ pub struct Samples {
     pub momenta: Vec<(String, Vec<f64>)>,
     /// `max_i |φ_i(q)|`, if the system has constraints.
     pub constraint_residual: Option<Vec<f64>>,
+    /// The multipliers `λ_i`, one column per constraint.
+    pub lambda: Vec<Vec<f64>>,
 }
 
 impl Samples {
@@ -47,6 +49,7 @@ impl Samples {
                 .map(|s| (s.name().to_owned(), Vec::new()))
                 .collect(),
             constraint_residual: constrained.then(Vec::new),
+            lambda: vec![Vec::new(); system.constraint.components().len()],
         }
     }
 
@@ -63,7 +66,10 @@ impl Samples {
     /// Values per row as the files have them (without the velocities).
     pub fn file_width(&self) -> usize {
         let n = self.coordinates.len();
-        2 + 2 * n + self.momenta.len() + usize::from(self.constraint_residual.is_some())
+        2 + 2 * n
+            + self.momenta.len()
+            + usize::from(self.constraint_residual.is_some())
+            + self.lambda.len()
     }
 }
 
@@ -83,7 +89,7 @@ impl RowSink for Samples {
         if let Some(column) = &mut self.constraint_residual {
             column.push(next());
         }
-        for column in &mut self.v {
+        for column in self.lambda.iter_mut().chain(&mut self.v) {
             column.push(next());
         }
         Ok(())

@@ -46,7 +46,8 @@ impl WithLagrangian for Prepare<'_> {
         let start = problem.start();
         let v = problem.initial_velocity().to_vec();
         let energy = mechanics::energy(lagrangian, start.t, &start.q, &v);
-        let warnings = non_symmetries(lagrangian, spec, (start.t, &start.q, &v));
+        let mut warnings = non_symmetries(lagrangian, spec, (start.t, &start.q, &v));
+        warnings.extend(constraint_non_symmetries(spec, (start.t, &start.q, &v)));
         Ok(Start {
             t: start.t,
             q: start.q.clone(),
@@ -121,6 +122,33 @@ pub fn start_error(spec: &RunSpec, e: &marsden::Error) -> Diagnostic {
             ),
         _ => Diagnostic::new(format!("cannot set up the problem: {e}")),
     }
+}
+
+/// A warning for each declared symmetry that does not keep the constraints invariant at the
+/// initial state (`Dφ(q)·ξ_Q(q) ≠ 0`, by the core's check): the constraint forces then push
+/// along the generator and its momentum map is not conserved.
+fn constraint_non_symmetries(spec: &RunSpec, (t, q, v): (f64, &[f64], &[f64])) -> Vec<String> {
+    use marsden::symmetry::check::{DEFAULT_TOLERANCE, Sample, check_constraint};
+    let constraint = &spec.system.constraint;
+    if constraint.count() == 0 {
+        return Vec::new();
+    }
+    let samples = [Sample::new(t, q, v)];
+    spec.system
+        .symmetries
+        .iter()
+        .filter_map(|s| check_constraint(constraint, s, &samples, DEFAULT_TOLERANCE).ok())
+        .filter(|report| !report.is_symmetry())
+        .map(|report| {
+            let defect = report.worst().map_or(f64::NAN, |w| w.max_defect);
+            format!(
+                "\"{}\" does not keep the constraints invariant: Dφ(q)·ξ_Q(q) = {defect:.3e} at \
+                 the initial state, so the constraint forces act along it and J_{} is monitored \
+                 but not conserved",
+                report.symmetry, report.symmetry
+            )
+        })
+        .collect()
 }
 
 /// A warning for each declared symmetry that is not one of the Lagrangian at the initial state

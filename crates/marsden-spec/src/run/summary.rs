@@ -58,7 +58,8 @@ pub struct Summary {
     pub coordinates: Vec<String>,
     /// Method name as in the problem file.
     pub method: String,
-    /// Classical order of the method.
+    /// Order of the method, which a constrained run keeps (the Gauss rules, which would not,
+    /// are refused with constraints).
     pub order: u32,
     /// Time step.
     pub h: f64,
@@ -122,6 +123,9 @@ pub struct ConstraintSummary {
     pub count: usize,
     /// `max |φ(q_k)|` over the stored states (null without constraints).
     pub max_residual: Option<f64>,
+    /// `max |Dφ(q_k)·v_k|` over the stored states, the velocity (hidden) constraint (null
+    /// without constraints).
+    pub max_velocity_residual: Option<f64>,
 }
 
 /// `newton { … }`.
@@ -235,6 +239,7 @@ impl Summary {
             constraints: ConstraintSummary {
                 count: spec.system.constraint.components().len(),
                 max_residual: d.max_residual,
+                max_velocity_residual: d.max_velocity_residual,
             },
             newton: NewtonSummary {
                 iterations_total: record.statistics.newton_iterations,

@@ -124,6 +124,34 @@ pub trait DiscreteAction {
     fn separable(&self) -> Option<&dyn SeparableStep> {
         None
     }
+
+    /// Stage constraints: the number of interior points of a step at which a holonomic
+    /// constraint `φ = 0` is imposed besides the end point, each with its own multiplier, so
+    /// that a constrained step keeps the rule's order (constrained Lobatto IIIA–IIIB, [Jay96];
+    /// compositions of RATTLE steps, [Rei96]); `Err(reason)` when the rule has no constrained
+    /// form of its order. Default: `Ok(0)` (two-point rules: SHAKE + RATTLE has their order 2).
+    ///
+    /// [Jay96]: L. Jay, SIAM J. Numer. Anal. 33 (1996). [Rei96]: S. Reich, SIAM J. Numer. Anal.
+    /// 33 (1996).
+    fn constrained_stages(&self) -> Result<usize, String> {
+        Ok(0)
+    }
+
+    /// The position at constrained stage `i` (`0 ≤ i < constrained_stages()`) from `Q₀` and the
+    /// offsets (a linear combination of the control points with weights summing to 1). Default:
+    /// `Q₀` (never called when there are no stage constraints).
+    fn stage_point<S: Scalar>(&self, i: usize, q0: &[S], offsets: &[S], out: &mut [S]) {
+        let _ = (i, offsets);
+        out.copy_from_slice(q0);
+    }
+
+    /// The weight `w` of the end point in the step's quadrature of the constraint force: the
+    /// projection multipliers `μ_k` of a constrained step approximate `w λ(t_{k+1})` of the
+    /// continuous equations (`½` for symmetric two-point rules; `b_s` for Lobatto; `γ_m` times
+    /// the base's for compositions). Default: `½`.
+    fn end_weight(&self) -> f64 {
+        0.5
+    }
 }
 
 impl<D: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &D {

@@ -170,6 +170,36 @@ pub struct PositionProjection {
 /// [`Error::PositionProjectionFailed`] after 50 iterations or when `Dφ Dφᵀ` is singular (for
 /// instance when `φ(q) = 0` has no solution).
 pub fn project_position<C: Constraint>(c: &C, q: &[f64]) -> Result<PositionProjection, Error> {
+    project_in_metric(c, q, None)
+}
+
+/// Projects `q` onto `φ(q) = 0` in the metric of the mass matrix `W` (row-major n × n, e.g.
+/// `∂²L/∂v²` at the initial state): `q ← q − W⁻¹Dφᵀ (Dφ W⁻¹ Dφᵀ)⁻¹ φ(q)`, the nearest point in
+/// the kinetic-energy norm to first order (for a point mass on a sphere the same as
+/// [`project_position`]). Fails as [`project_position`] does, and with
+/// [`Error::PositionProjectionFailed`] at iteration 0 if `W` is singular.
+pub fn project_position_in_metric<C: Constraint>(
+    c: &C,
+    q: &[f64],
+    mass: &[f64],
+) -> Result<PositionProjection, Error> {
+    let mut w = Lu::new();
+    w.factor(mass, q.len()).map_err(|_| {
+        Error::Setup(SetupError::PositionProjectionFailed {
+            iterations: 0,
+            index: 0,
+            residual: f64::NAN,
+        })
+    })?;
+    project_in_metric(c, q, Some(&w))
+}
+
+/// Gauss–Newton for `φ(q) = 0` with corrections `W⁻¹Dφᵀy` (`W = I` without a metric).
+fn project_in_metric<C: Constraint>(
+    c: &C,
+    q: &[f64],
+    metric: Option<&Lu>,
+) -> Result<PositionProjection, Error> {
     const MAX_ITERATIONS: usize = 50;
     let (d, n) = (c.count(), q.len());
     let mut q = q.to_vec();
@@ -179,6 +209,13 @@ pub fn project_position<C: Constraint>(c: &C, q: &[f64]) -> Result<PositionProje
     let (mut last_update, mut previous) = (f64::INFINITY, f64::INFINITY);
     for iterations in 0..=MAX_ITERATIONS {
         let (phi, g) = evaluate(c, &q);
+        // W⁻¹Dφᵀ, row by row (the rows of Dφ are the columns of Dφᵀ).
+        let mut wg = g.clone();
+        if let Some(w) = metric {
+            let mut work = Vec::with_capacity(n);
+            wg.chunks_exact_mut(n.max(1))
+                .for_each(|row| w.solve(row, &mut work));
+        }
         let (index, residual) = worst(&phi);
         let scale = (max_norm(&q) * max_norm(&g)).max(1.0);
         // At round-off: tiny residual, a round-off-sized update, or a stalled small residual.
@@ -203,14 +240,14 @@ pub fn project_position<C: Constraint>(c: &C, q: &[f64]) -> Result<PositionProje
         }
         for a in 0..d {
             for b in 0..d {
-                gram[a * d + b] = (0..n).map(|j| g[a * n + j] * g[b * n + j]).sum();
+                gram[a * d + b] = (0..n).map(|j| g[a * n + j] * wg[b * n + j]).sum();
             }
         }
         lu.factor(&gram, d).map_err(|_| failure)?;
         let mut y = phi;
         lu.solve(&mut y, &mut scratch);
         let delta: Vec<f64> = (0..n)
-            .map(|j| (0..d).map(|a| g[a * n + j] * y[a]).sum::<f64>())
+            .map(|j| (0..d).map(|a| wg[a * n + j] * y[a]).sum::<f64>())
             .collect();
         q.iter_mut().zip(&delta).for_each(|(qi, di)| *qi -= di);
         last_update = max_norm(&delta);
@@ -256,8 +293,9 @@ fn project_with<L: Lagrangian, C: Constraint>(
 }
 
 impl Initial {
-    /// Moves initial data onto the constraint manifold, explicitly: `q₀` by [`project_position`],
-    /// then the momenta by the RATTLE projection at `q₀` ([`project_momentum`]); given velocities
+    /// Moves initial data onto the constraint manifold, explicitly: `q₀` by
+    /// [`project_position_in_metric`] in the mass metric `∂²L/∂v²` at the given data (at `v = 0`
+    /// for given momenta), then the momenta by the RATTLE projection at `q₀` ([`project_momentum`]); given velocities
     /// are mapped to momenta by `FL`, projected, and mapped back (the impulsive-constraint
     /// projection, orthogonal in the kinetic-energy metric).
     pub fn project_onto<L: Lagrangian, C: Constraint>(
@@ -271,7 +309,8 @@ impl Initial {
             Initial::Velocity { q, v } => {
                 Error::check_len("q0", &q, n)?;
                 Error::check_len("v0", &v, n)?;
-                let q = project_position(constraint, &q)?.q;
+                let mass = mechanics::LagrangianJet::at(lagrangian, t, &q, &v).d2l_dv2;
+                let q = project_position_in_metric(constraint, &q, &mass)?.q;
                 let mut p = vec![0.0; n];
                 mechanics::momentum(lagrangian, t, &q, &v, &mut p);
                 let mut rattle = Rattle::new(lagrangian, constraint);
@@ -286,7 +325,9 @@ impl Initial {
             Initial::Momentum { q, mut p } => {
                 Error::check_len("q0", &q, n)?;
                 Error::check_len("p0", &p, n)?;
-                let q = project_position(constraint, &q)?.q;
+                let rest = vec![0.0; n];
+                let mass = mechanics::LagrangianJet::at(lagrangian, t, &q, &rest).d2l_dv2;
+                let q = project_position_in_metric(constraint, &q, &mass)?.q;
                 project_momentum(lagrangian, constraint, t, &q, &mut p)?;
                 Ok(Initial::Momentum { q, p })
             }

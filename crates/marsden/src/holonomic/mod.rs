@@ -29,14 +29,29 @@
 //! `h Dφ(q_k)ᵀλ_k + h Dφ(q_{k+1})ᵀμ_k`, so `λ_k + μ_{k−1} ≈ λ(t_k)` of the continuous equations.
 //!
 //! Both multiplier series are kept in the [`crate::run::Trajectory`]: `multipliers(i)` holds `λ` and
-//! `projection_multipliers(i)` holds `μ` of the step that ended at sample `i`.
+//! `projection_multipliers(i)` holds `μ` of the step that ended at sample `i`. The multipliers
+//! of the continuous equations implied by a state are [`multipliers_at`] (index reduction).
+//!
+//! ## Higher order
+//!
+//! With the constraint at the step end only, the constraint force is discretised at order 2
+//! whatever the rule. Rules with internal stages therefore impose `φ = 0` at their stage points
+//! too, one multiplier each ([`crate::discrete::DiscreteAction::constrained_stages`],
+//! [`crate::integrator::equations`]): the Lobatto rules become constrained Lobatto IIIA–IIIB
+//! ([Jay96]; [HLW06] §VII.1), order `2s − 2`; compositions impose it at every substep, so each
+//! substep is a SHAKE + RATTLE step on `T*N` and the composition keeps its order ([Rei96]). The
+//! Gauss rules need SPARK stage constraints (Jay 2007), not implemented: they are refused.
+//!
+//! [Jay96]: L. Jay, SIAM J. Numer. Anal. 33 (1996). [Rei96]: S. Reich, SIAM J. Numer. Anal. 33
+//! (1996).
 //!
 //! ## Initial data
 //!
 //! [`crate::run::Problem::with_constraint`] refuses initial data off the manifold or not tangent to it
 //! ([`check_initial`]), and constraints whose Jacobian is rank-deficient there
 //! ([`constraint_rank`]); it never moves the data silently. Projections are explicit:
-//! [`project_position`] (Newton on the minimum-norm correction), [`project_momentum`] (the RATTLE
+//! [`project_position`] (Newton on the minimum-norm correction; [`project_position_in_metric`] in
+//! the mass metric, which [`crate::mechanics::Initial::project_onto`] uses), [`project_momentum`] (the RATTLE
 //! projection) and [`crate::mechanics::Initial::project_onto`] for both.
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LMO08]: Leyendecker, Marsden, Ortiz,
@@ -46,13 +61,15 @@
 
 mod distance;
 mod initial;
+mod multipliers;
 mod rattle;
 
 pub use distance::DistanceConstraints;
 pub use initial::{
     ConstraintRank, DEFAULT_TOLERANCE, PositionProjection, RANK_TOLERANCE, check_initial,
-    constraint_rank, project_momentum, project_position,
+    constraint_rank, project_momentum, project_position, project_position_in_metric,
 };
+pub use multipliers::multipliers_at;
 pub use rattle::{
     MomentumProjection, NoProjection, ProjectionFailure, ProjectionReport, ProjectionStatistics,
     Rattle,

@@ -22,6 +22,7 @@ impl<A: DiscreteAction> Integrator<A> {
             s: action.internal_stages() + 1,
             d: 0,
             forced: false,
+            stages: 0,
         };
         Integrator {
             action,
@@ -56,10 +57,20 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         Integrator::assemble(parts, shape, self.options, self.statistics, switches)
     }
 
-    /// Adds holonomic constraints (replacing any previous ones).
+    /// Adds holonomic constraints (replacing any previous ones), imposed at the step's end and
+    /// at the action's stage points ([`DiscreteAction::constrained_stages`]). A rule without
+    /// stage constraints (Gauss) imposes them at the end only, which limits the order to 2:
+    /// [`crate::run::Problem`] refuses it ([`Integrator::stage_constraint_refusal`]).
     pub fn with_constraint<C2: Constraint>(self, constraint: C2) -> Integrator<A, F, C2, P> {
+        let d = constraint.count();
+        let stages = if d > 0 {
+            self.action.constrained_stages().unwrap_or(0)
+        } else {
+            0
+        };
         let shape = StepShape {
-            d: constraint.count(),
+            d,
+            stages,
             ..self.shape
         };
         let switches = self.switches();

@@ -1,6 +1,6 @@
 //! The implicit equations of one step, assembled for Newton's method.
 //!
-//! Unknowns `z = (Δ₁, …, Δ_s, λ)`: the offsets `Δ_j = Q_j − q_k` of the control points after
+//! Unknowns `z = (Δ₁, …, Δ_s, λ, Λ₁, …, Λ_c)`: the offsets `Δ_j = Q_j − q_k` of the control points after
 //! `Q₀ = q_k` (so `q_{k+1} = q_k + Δ_s`) and the constraint multipliers. Offsets, not positions,
 //! keep velocities `Δ/h` free of the `ε|q|/h` cancellation error of `(q_{k+1} − q_k)/h`. Equations (DESIGN.md §3; forced DEL in
 //! position–momentum form, [MW01] §3.2; SHAKE, [LMO08]):
@@ -11,6 +11,19 @@
 //!     φ(Q_s)                              = 0          (holonomic constraints)
 //! ```
 //!
+//! With stage constraints ([`DiscreteAction::constrained_stages`]: constrained Lobatto IIIA–IIIB,
+//! [Jay96]; compositions of RATTLE steps, [Rei96]) the action is augmented by the constraint at
+//! the `c` stage points `X_i` (linear in the control points), one multiplier `Λ_i` each:
+//!
+//! ```text
+//!     L_d  →  L_d − h Σ_i ⟨Λ_i, φ(X_i)⟩,        φ(X_i) = 0,  i = 1 … c,
+//! ```
+//!
+//! so its derivatives carry the stage constraint forces (and the Newton matrix their curvature
+//! `Λ_i·∇²φ`) through the same hyper-dual evaluation. The Jacobian column of `Λ_i` in the
+//! momentum rows needs `∂φ(X_i)/∂Q₀`, which by translation invariance (`Σ_j ∂X_i/∂Q_j = I`) is
+//! `Dφ(X_i) − Σ_{j≥1} ∂φ(X_i)/∂Q_j`; `Dφ(X_i)` is evaluated beside.
+//!
 //! and afterwards `p_{k+1} = ∂L_d/∂Q_s + F_s` (discrete Legendre transform F⁺). One hyper-dual
 //! evaluation of `(L_d, F, φ)` with eps₁ seeded on `Q₀ … Q_{s−1}` and eps₂ on `Q₁ … Q_s` gives
 //! the residual (eps₁ part of `L_d`, values of `F`, `φ`), the Jacobian (eps₁eps₂ part of `L_d`,
@@ -20,10 +33,11 @@
 //! leaves the offsets' real parts untouched.
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LMO08]: Leyendecker, Marsden, Ortiz, ZAMM 88 (2008).
+//! [Jay96]: L. Jay, SIAM J. Numer. Anal. 33 (1996). [Rei96]: S. Reich, SIAM J. Numer. Anal. 33 (1996).
 
 use crate::discrete::lagrangian::fixed_points;
 use crate::discrete::{DiscreteAction, DiscreteForce};
-use crate::mechanics::Constraint;
+use crate::mechanics::{Constraint, constraint_jacobian};
 use crate::numerics::ad::{self, HessianParts, MultiFunction};
 use crate::numerics::dense::max_norm;
 use crate::numerics::newton::NonlinearSystem;
@@ -41,6 +55,8 @@ pub struct StepShape {
     pub d: usize,
     /// Whether a force contributes.
     pub forced: bool,
+    /// Stage constraints: interior points with `φ = 0` imposed (0 without constraints).
+    pub stages: usize,
 }
 
 impl StepShape {
@@ -48,9 +64,13 @@ impl StepShape {
     pub fn points_len(&self) -> usize {
         (self.s + 1) * self.n
     }
-    /// Number of unknowns `s·n + d`.
+    /// Number of unknowns `s·n + d·(1 + c)` (`c` stage constraints).
     pub fn unknowns(&self) -> usize {
-        self.s * self.n + self.d
+        self.s * self.n + self.multipliers()
+    }
+    /// Number of multipliers `d·(1 + c)`: `λ` at the step start, then `Λ₁ … Λ_c`.
+    pub fn multipliers(&self) -> usize {
+        self.d * (1 + self.stages)
     }
     fn force_outputs(&self) -> usize {
         if self.forced { self.points_len() } else { 0 }
@@ -68,6 +88,8 @@ pub(crate) struct StepFunction<'a, A, F, C> {
     pub t0: f64,
     pub h: f64,
     pub shape: StepShape,
+    /// The stage multipliers `Λ₁ … Λ_c` of the current iterate (empty without stages).
+    pub stage_multipliers: Vec<f64>,
 }
 
 impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
@@ -78,7 +100,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
         self.shape.points_len()
     }
     fn outputs(&self) -> usize {
-        1 + self.shape.force_outputs() + self.shape.d
+        1 + self.shape.force_outputs() + self.shape.multipliers()
     }
     #[inline]
     fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
@@ -105,11 +127,41 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
                     zero,
                     |i| q0[i] + last[i],
                     |q_end| {
-                        self.constraint.constraint(q_end, &mut out[1 + nf..]);
+                        self.constraint
+                            .constraint(q_end, &mut out[1 + nf..1 + nf + sh.d]);
                     },
                 );
+                if sh.stages > 0 {
+                    self.stage_constraints(q0, offsets, &mut out[..]);
+                }
             }
         });
+    }
+}
+
+impl<A: DiscreteAction, F, C: Constraint> StepFunction<'_, A, F, C> {
+    /// `φ(X_i)` into the stage outputs and `−h Σ_i ⟨Λ_i, φ(X_i)⟩` onto the action.
+    #[inline]
+    fn stage_constraints<S: Scalar>(&self, q0: &[S], offsets: &[S], out: &mut [S]) {
+        let sh = self.shape;
+        let zero = S::from(0.0);
+        let first = 1 + sh.force_outputs() + sh.d;
+        for i in 0..sh.stages {
+            let block = first + i * sh.d;
+            with_buffer::<S, NODE, ()>(
+                sh.n,
+                zero,
+                |_| zero,
+                |x| {
+                    self.action.stage_point(i, q0, offsets, x);
+                    self.constraint.constraint(x, &mut out[block..block + sh.d]);
+                },
+            );
+            for c in 0..sh.d {
+                let weight = self.h * self.stage_multipliers[i * sh.d + c];
+                out[0] -= out[block + c] * weight;
+            }
+        }
     }
 }
 
@@ -127,6 +179,8 @@ pub(crate) struct StepSystem<'a, A, F, C> {
     pub p_next: &'a mut [f64],
     /// AD evaluations (chunk pairs) performed.
     pub ad_evaluations: usize,
+    /// Scratch for the stage constraints: `X_i`, `φ(X_i)`, `Dφ(X_i)` (n + d + d·n).
+    pub stage_scratch: Vec<f64>,
 }
 
 impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> NonlinearSystem
@@ -152,6 +206,11 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> NonlinearSystem
     fn evaluate(&mut self, z: &[f64], r: &mut [f64], jac: &mut [f64]) {
         let sh = self.func.shape;
         let (n, sn, m) = (sh.n, sh.s * sh.n, sh.unknowns());
+        if sh.stages > 0 {
+            let stage = &mut self.func.stage_multipliers;
+            stage.clear();
+            stage.extend_from_slice(&z[sn + sh.d..]);
+        }
         self.points.clear();
         self.points.extend_from_slice(self.q0);
         self.points.extend_from_slice(&z[..sn]);
@@ -159,7 +218,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> NonlinearSystem
         self.ad_evaluations += self.parts.evaluations;
         let parts = &*self.parts;
         let nf = sh.force_outputs();
-        let lambda = &z[sn..];
+        let lambda = &z[sn..sn + sh.d];
         // Momentum-balance and stage equations.
         for i in 0..sn {
             let force = if nf > 0 { parts.values[1 + i] } else { 0.0 };
@@ -200,6 +259,44 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> NonlinearSystem
                 0.0
             };
             self.p_next[a] = parts.jac_cols[sn - n + a] + force;
+        }
+        if sh.stages > 0 {
+            self.stage_rows(&z[..sn], r, jac);
+        }
+    }
+}
+
+impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> StepSystem<'_, A, F, C> {
+    /// The stage constraints' rows `φ(X_i) = 0` and the columns of their multipliers `Λ_i`:
+    /// `−h ∂φ(X_i)/∂Q_b` in the row of `Q_b` (`Q₀` by translation invariance, see the module
+    /// documentation).
+    fn stage_rows(&mut self, offsets: &[f64], r: &mut [f64], jac: &mut [f64]) {
+        let sh = self.func.shape;
+        let (n, d, sn, m, h) = (sh.n, sh.d, sh.s * sh.n, sh.unknowns(), self.func.h);
+        let nf = sh.force_outputs();
+        self.stage_scratch.resize(n + d + d * n, 0.0);
+        for i in 0..sh.stages {
+            let (x, rest) = self.stage_scratch.split_at_mut(n);
+            let (phi, dphi) = rest.split_at_mut(d);
+            self.func.action.stage_point(i, self.q0, offsets, x);
+            constraint_jacobian(self.func.constraint, x, phi, dphi);
+            for c in 0..d {
+                let out = 1 + nf + d * (1 + i) + c;
+                let derivs = &self.parts.jac_cols[out * sn..(out + 1) * sn];
+                let col = sn + d * (1 + i) + c;
+                for a in 0..n {
+                    let later: f64 = (0..sh.s).map(|j| derivs[j * n + a]).sum();
+                    jac[a * m + col] = -h * (dphi[c * n + a] - later);
+                }
+                for row in n..sn {
+                    jac[row * m + col] = -h * derivs[row - n];
+                }
+                let row = sn + d * (1 + i) + c;
+                r[row] = self.parts.values[out];
+                let entries = &mut jac[row * m..(row + 1) * m];
+                entries[..sn].copy_from_slice(derivs);
+                entries[sn..].fill(0.0);
+            }
         }
     }
 }

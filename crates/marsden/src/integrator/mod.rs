@@ -89,6 +89,12 @@ struct Buffers {
     dphi0_current: bool,
     /// Projection multipliers `μ_k = ν/h` of the last step.
     mu: Vec<f64>,
+    /// `μ_k / w`: the continuous multipliers at the end of the last step.
+    lambda_end: Vec<f64>,
+    /// The stage multipliers of the general path's evaluations.
+    stage_multipliers: Vec<f64>,
+    /// Scratch of the stage constraints (`X_i`, `φ`, `Dφ`).
+    stage_scratch: Vec<f64>,
 }
 
 impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
@@ -139,7 +145,30 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     /// `h Dφ(q_k)ᵀ λ_k`).
     pub fn multipliers(&self) -> &[f64] {
         let sn = self.shape.s * self.shape.n;
-        self.buffers.z.get(sn..).unwrap_or(&[])
+        self.buffers.z.get(sn..sn + self.shape.d).unwrap_or(&[])
+    }
+
+    /// Stage multipliers `Λ₁ … Λ_c` of the last completed step (length `c·d`; empty without
+    /// stage constraints, [`DiscreteAction::constrained_stages`]).
+    pub fn stage_multipliers(&self) -> &[f64] {
+        let start = self.shape.s * self.shape.n + self.shape.d;
+        self.buffers.z.get(start..).unwrap_or(&[])
+    }
+
+    /// Why this integrator's rule cannot impose its constraints at the order it has, if it
+    /// cannot (a Gauss rule with constraints: the step would be order 2).
+    pub fn stage_constraint_refusal(&self) -> Option<String> {
+        if self.shape.d == 0 {
+            return None;
+        }
+        self.action.constrained_stages().err()
+    }
+
+    /// The multipliers `λ(t_{k+1})` of the continuous equations at the state the last step
+    /// reached, estimated as `μ_k / w` from the projection multipliers and the end weight `w`
+    /// of the rule ([`DiscreteAction::end_weight`]); empty without an active projection.
+    pub fn end_multipliers(&self) -> &[f64] {
+        &self.buffers.lambda_end
     }
 
     /// Projection multipliers `μ_k` of the last completed step: the projection replaced

@@ -130,6 +130,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
                 t0: state.t,
                 h,
                 shape: sh,
+                stage_multipliers: std::mem::take(&mut b.stage_multipliers),
             },
             q0: &state.q,
             p0: &state.p,
@@ -138,9 +139,12 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             parts: &mut b.parts,
             p_next: &mut b.p_next,
             ad_evaluations: 0,
+            stage_scratch: std::mem::take(&mut b.stage_scratch),
         };
         let result = newton::solve(&mut system, z, &self.options, &mut b.newton);
         self.statistics.action_evaluations += system.ad_evaluations;
+        b.stage_multipliers = std::mem::take(&mut system.func.stage_multipliers);
+        b.stage_scratch = std::mem::take(&mut system.stage_scratch);
         if let Ok(r) | Err(NewtonFailure::NotConverged(r)) | Err(NewtonFailure::NonFinite(r)) =
             &result
         {

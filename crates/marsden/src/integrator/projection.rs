@@ -1,6 +1,8 @@
 //! The momentum projection after a solved step (RATTLE, [`crate::holonomic::Rattle`]):
 //! `p_{k+1} = p̃_{k+1} − h Dφ(q_{k+1})ᵀ μ_k`, so that `(q_{k+1}, p_{k+1})` lies on the cotangent
-//! bundle of the constraint manifold (DESIGN.md §3; [LMO08]).
+//! bundle of the constraint manifold (DESIGN.md §3; [LMO08]). With the rule's end weight `w`
+//! ([`crate::discrete::DiscreteAction::end_weight`]) `μ_k / w` estimates the multiplier
+//! `λ(t_{k+1})` of the continuous equations (kept as [`Integrator::end_multipliers`]).
 //!
 //! [LMO08]: Leyendecker, Marsden, Ortiz, *Variational integrators for constrained dynamical
 //! systems*, ZAMM 88 (2008).
@@ -28,6 +30,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             return Ok(());
         }
         let (n, sn) = (self.shape.n, self.shape.s * self.shape.n);
+        let weight = self.action.end_weight();
         let (b, d) = (&mut self.buffers, self.shape.d);
         b.q_next.clear();
         b.q_next
@@ -50,6 +53,8 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             Ok(_) => {
                 b.mu.clear();
                 b.mu.extend(self.projection.multipliers().iter().map(|nu| nu / h));
+                b.lambda_end.clear();
+                b.lambda_end.extend(b.mu.iter().map(|mu| mu / weight));
                 // Dφ(q_{k+1}) serves the next step too (see `solve`).
                 std::mem::swap(&mut b.dphi0, &mut b.dphi_next);
                 b.dphi0_current = d > 0;

@@ -17,6 +17,9 @@ pub struct StepView<'a> {
     pub p: &'a [f64],
     /// Multipliers of the step just taken (length d).
     pub multipliers: &'a [f64],
+    /// The continuous multipliers `λ(t)` at the new state, `μ_k / w` (length d; empty before
+    /// the first step and without a projection; [`crate::Integrator::end_multipliers`]).
+    pub end_multipliers: &'a [f64],
     /// Newton report of the step.
     pub report: &'a StepReport,
 }

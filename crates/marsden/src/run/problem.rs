@@ -194,6 +194,10 @@ impl<L: Lagrangian, F: Force, C: Constraint> Problem<L, F, C> {
     /// An integrator for this problem under `rule`, ready to start from [`Problem::start`]: the
     /// rule's `L_d` and `f_d^±`, the constraints, and the RATTLE momentum projection (inactive
     /// without constraints) with the same Newton options.
+    ///
+    /// # Errors
+    /// [`InputError::UnconstrainableMethod`] for a constrained problem and a rule without
+    /// stage constraints (Gauss), besides invalid forces and options.
     #[allow(clippy::type_complexity)]
     pub fn integrator<R: Rule>(
         &self,
@@ -208,6 +212,12 @@ impl<L: Lagrangian, F: Force, C: Constraint> Problem<L, F, C> {
             .with_constraint(&self.constraint)
             .with_projection(rattle)
             .with_options(newton)?;
+        if let Some(reason) = integrator.stage_constraint_refusal() {
+            return Err(Error::Input(InputError::UnconstrainableMethod {
+                method: rule.name(),
+                reason,
+            }));
+        }
         integrator.set_velocity_hint(&self.v0);
         Ok(integrator)
     }

@@ -38,6 +38,7 @@ where
         q: &state.q,
         p: &state.p,
         multipliers: &[],
+        end_multipliers: &[],
         report: &initial,
     });
     let before = stepper.statistics();
@@ -71,6 +72,7 @@ where
             q: &state.q,
             p: &state.p,
             multipliers: stepper.multipliers(),
+            end_multipliers: stepper.end_multipliers(),
             report: &last_report,
         };
         let stop = observer.observe(&view).is_break();

@@ -38,6 +38,12 @@ pub trait Stepper {
         &[]
     }
 
+    /// The multipliers `λ(t)` of the continuous equations at the state the last step reached
+    /// (length d; default: none; [`Integrator::end_multipliers`]).
+    fn end_multipliers(&self) -> &[f64] {
+        &[]
+    }
+
     /// Work counters so far (default: none kept).
     fn statistics(&self) -> Statistics {
         Statistics::default()
@@ -69,6 +75,9 @@ where
     }
     fn projection_multipliers(&self) -> &[f64] {
         Integrator::projection_multipliers(self)
+    }
+    fn end_multipliers(&self) -> &[f64] {
+        Integrator::end_multipliers(self)
     }
     fn statistics(&self) -> Statistics {
         *Integrator::statistics(self)

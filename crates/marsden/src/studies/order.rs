@@ -8,7 +8,9 @@
 //! either condition and all smaller `h` are dropped. [`measure_order`] runs a [`Problem`] with a
 //! rule at each `h` and measures `|(q_N, p_N) − (q(T), p(T))|` (Euclidean), against a reference
 //! from a closed form or from [`reference_solution`] (the extrapolation integrator of
-//! [`crate::discrete::exact::flow`], converged to round-off).
+//! [`crate::discrete::exact::flow`], converged to round-off). For constrained problems (the
+//! flow has no constraints) [`constrained_reference`] runs constrained Lobatto IIIA–IIIB of
+//! order 8 at small steps and says how far it is from converged.
 
 use crate::discrete::exact::{EulerLagrangeFlow, FlowOptions};
 use crate::discrete::rules::Rule;
@@ -110,6 +112,68 @@ pub fn reference_solution<L: Lagrangian, F: Force, C: Constraint>(
     let mut p = vec![0.0; end.q.len()];
     crate::mechanics::momentum(problem.lagrangian(), t_end, &end.q, &end.v, &mut p);
     Ok((end.q, p))
+}
+
+/// A reference of a constrained problem computed by a constrained method of high order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConstrainedReference {
+    /// `q(T)` (from the finer run).
+    pub q: Vec<f64>,
+    /// `p(T)`.
+    pub p: Vec<f64>,
+    /// The steps of the finer run.
+    pub steps: usize,
+    /// `|(q, p)_N − (q, p)_{2N}|`: the coarser run's error to leading order; the finer run's
+    /// is about `2⁻⁸` of it.
+    pub difference: f64,
+}
+
+/// The method of [`constrained_reference`]: `lobatto-5`, constrained Lobatto IIIA–IIIB of order
+/// 8 ([`crate::discrete::DiscreteAction::constrained_stages`]).
+pub const CONSTRAINED_REFERENCE_METHOD: &str = "lobatto-5";
+
+/// `(q(T), p(T))` of a constrained problem by `lobatto-5` with `steps` and `2·steps` steps
+/// (the finer run is the reference, their difference its accuracy estimate). Validated against
+/// the exact solution of the Cartesian pendulum (R7, `tests/constraints`).
+///
+/// # Errors
+/// An invalid grid, or the first failed run's error.
+pub fn constrained_reference<L: Lagrangian, F: Force, C: Constraint>(
+    problem: &Problem<L, F, C>,
+    t_end: f64,
+    steps: usize,
+    newton: NewtonOptions,
+) -> Result<ConstrainedReference, Error>
+where
+    Problem<L, F, C>: Clone,
+{
+    let rule = crate::discrete::rules::Galerkin::lobatto(5)?;
+    let t0 = problem.start().t;
+    let solve = SolveOptions {
+        newton,
+        run: RunOptions { stride: usize::MAX },
+        ..SolveOptions::default()
+    };
+    let mut ends = Vec::with_capacity(2);
+    for n in [steps.max(1), 2 * steps.max(1)] {
+        let grid = TimeGrid::new(t0, (t_end - t0) / n as f64, n)?;
+        let run = problem
+            .clone()
+            .with_grid(grid)?
+            .solve(&rule, &solve)
+            .map_err(|failure| failure.error)?;
+        let last = run.len() - 1;
+        ends.push((run.q(last).to_vec(), run.p(last).to_vec()));
+    }
+    let (coarse, fine) = (&ends[0], &ends[1]);
+    let difference = distance((&coarse.0, &coarse.1), (&fine.0, &fine.1));
+    let (q, p) = ends.swap_remove(1);
+    Ok(ConstrainedReference {
+        q,
+        p,
+        steps: 2 * steps.max(1),
+        difference,
+    })
 }
 
 /// Runs `problem` with `rule` over `[t₀, t_end]` with each number of steps (increasing) and

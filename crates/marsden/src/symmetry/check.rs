@@ -5,7 +5,9 @@
 //! ⟹ `⟨dL_d, ξ_{Q×Q}⟩ = 0`) and *Hamiltonian momentum maps* (`⟨dH, ξ_T*Q⟩ = 0`). At each
 //! sample the directional derivative `⟨dF, ξ⟩ = Σᵢ ∂F/∂xᵢ ξᵢ` is computed exactly by AD; its
 //! size is compared with the size of the terms that should cancel, `Σᵢ |∂F/∂xᵢ ξᵢ|`, so the
-//! relative defect of a true symmetry is at round-off (≈ 1e-16) whatever the units.
+//! relative defect of a true symmetry is at round-off (≈ 1e-16) whatever the units. With
+//! holonomic constraints a symmetry must also keep `φ` invariant (`Dφ·ξ_Q = 0`,
+//! [`check_constraint`]).
 
 use crate::error::SetupError;
 use std::fmt;
@@ -14,7 +16,7 @@ use super::{FiniteAction, GroupAction, tangent_lift, validate};
 use crate::discrete::DiscreteLagrangian;
 use crate::error::Error;
 use crate::hamiltonian::Hamiltonian;
-use crate::mechanics::Lagrangian;
+use crate::mechanics::{Constraint, Lagrangian, constraint_jacobian};
 use crate::numerics::ad::{self, MultiFunction};
 use crate::scalar::Scalar;
 use crate::symmetry::cotangent_lift;
@@ -84,7 +86,7 @@ pub struct GeneratorDefect {
 pub struct SymmetryReport {
     /// Name of the group action.
     pub symmetry: String,
-    /// What was checked: `"L"`, `"L_d"` or `"H"`.
+    /// What was checked: `"L"`, `"L_d"`, `"H"` or `"φ"` (the constraints).
     pub of: &'static str,
     /// Relative tolerance.
     pub tolerance: f64,
@@ -334,6 +336,48 @@ pub fn check_hamiltonian<H: Hamiltonian, G: GroupAction>(
             cotangent_lift(action, a, (&s.q, &s.v), (dq, dp));
             let x: Vec<f64> = s.q.iter().chain(&s.v).copied().collect();
             directional(&OfH(ham, s.t), &x, &d)
+        },
+    ))
+}
+
+/// Checks that every basis generator keeps the constraints invariant, `Dφ(q)·ξ_Q(q) = 0`
+/// (the action maps the constraint manifold `N` to itself, so `J` is a momentum map of the
+/// constrained system; otherwise the constraint forces `Dφᵀλ` have a component along `ξ_Q` and
+/// `J` is not conserved), at every sample's `q`. The defect of a generator is the largest
+/// `|Dφ_c(q)·ξ_Q(q)|` over the constraints `c`, relative to `Σᵢ |∂φ_c/∂qᵢ ξᵢ|`. Without
+/// constraints every action passes.
+pub fn check_constraint<C: Constraint, G: GroupAction>(
+    constraint: &C,
+    action: &G,
+    samples: &[Sample],
+    tolerance: f64,
+) -> Result<SymmetryReport, Error> {
+    let n = action.dof();
+    validate_samples(action, n, samples)?;
+    let d = constraint.count();
+    let (mut phi, mut g, mut xi) = (vec![0.0; d], vec![0.0; d * n], vec![0.0; n]);
+    Ok(check_with(
+        action.name(),
+        "φ",
+        (action.algebra_dim(), samples, tolerance),
+        |a, s| {
+            if d == 0 {
+                return (0.0, 0.0);
+            }
+            constraint_jacobian(constraint, &s.q, &mut phi, &mut g);
+            action.generator(a, &s.q, &mut xi);
+            let mut worst = (0.0, 0.0);
+            let mut worst_relative = -1.0;
+            for row in g.chunks_exact(n) {
+                let (sum, scale) = row.iter().zip(&xi).fold((0.0, 0.0), |(s, m), (gi, x)| {
+                    (s + gi * x, m + (gi * x).abs())
+                });
+                let relative = if sum == 0.0 { 0.0 } else { sum.abs() / scale };
+                if relative > worst_relative {
+                    (worst, worst_relative) = ((sum, scale), relative);
+                }
+            }
+            worst
         },
     ))
 }

@@ -4,3 +4,4 @@ mod double_pendulum_cartesian;
 mod errors;
 mod rattle_closed_form;
 mod spherical_pendulum;
+mod stage_constraints;

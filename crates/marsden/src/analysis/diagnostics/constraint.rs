@@ -126,6 +126,22 @@ pub fn projection_multiplier_series(trajectory: &Trajectory, index: usize) -> Ve
     )
 }
 
+/// `(‖φ(q)‖∞, ‖Dφ(q) v‖∞)` at one state given by its velocities (the hidden constraint).
+pub fn residuals_at<C: Constraint>(constraint: &C, q: &[f64], v: &[f64]) -> (f64, f64) {
+    let d = constraint.count();
+    if d == 0 {
+        return (0.0, 0.0);
+    }
+    let n = q.len();
+    let (mut phi, mut g) = (vec![0.0; d], vec![0.0; d * n]);
+    constraint_jacobian(constraint, q, &mut phi, &mut g);
+    let rate = g
+        .chunks_exact(n)
+        .map(|row| row.iter().zip(v).map(|(a, b)| a * b).sum::<f64>().abs())
+        .fold(0.0, f64::max);
+    (max_norm(&phi), rate)
+}
+
 fn column(data: &[f64], width: usize, index: usize) -> Vec<f64> {
     if index >= width {
         return Vec::new();

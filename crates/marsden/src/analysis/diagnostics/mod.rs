@@ -26,6 +26,7 @@ mod slope;
 pub use balance::{BalanceMonitor, BalanceReport, force_balance};
 pub use constraint::{
     ConstraintMonitor, ConstraintReport, multiplier_series, projection_multiplier_series,
+    residuals_at,
 };
 pub use energy::{EnergyAccumulator, EnergyMonitor, EnergyReport, energy_series};
 pub use energy_balance::EnergyBalance;

@@ -30,6 +30,12 @@
 //! velocity polynomial of degree `s − 1` vanishes at every node, the quadrature of the kinetic
 //! energy is degenerate and the step is not regular.
 //!
+//! With holonomic constraints the Lobatto rules impose `φ = 0` at every interior node
+//! ([`DiscreteAction::constrained_stages`]): the constrained Lobatto IIIA–IIIB method of [Jay96],
+//! which keeps the order `2s − 2`; the Gauss rules have no such form here and are refused.
+//!
+//! [Jay96]: L. Jay, *Symplectic partitioned Runge–Kutta methods for constrained Hamiltonian
+//! systems*, SIAM J. Numer. Anal. 33 (1996).
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001). [OBS15]: Ober-Blöbaum & Saake, Adv. Comput.
 //! Math. 41 (2015). [OB17]: Ober-Blöbaum, IMA J. Numer. Anal. 37 (2017). [HLW06]: Hairer,
 //! Lubich, Wanner, *Geometric Numerical Integration* (2006).
@@ -244,6 +250,58 @@ impl<L: Lagrangian> DiscreteAction for GalerkinLd<L> {
                 sum += self.lagrangian.lagrangian(t, q, v) * weights[i];
             });
         sum * h
+    }
+
+    /// Lobatto IIIA–IIIB with constraints ([Jay96]; [HLW06] §VII.1): `φ` at every interior
+    /// Lobatto node `q(c_i h)`, with one multiplier each, keeps the order `2s − 2`. Other
+    /// quadratures (Gauss) are refused above degree 1: with the constraint at the step ends only
+    /// the constraint force is discretised at order 2 (SPARK stage constraints are not
+    /// implemented).
+    fn constrained_stages(&self) -> Result<usize, String> {
+        let (s, q) = (self.table.degree, &self.table.quadrature);
+        if s == 1 {
+            return Ok(0);
+        }
+        match q.family {
+            QuadratureFamily::Lobatto if q.points() == s + 1 => Ok(q.points() - 2),
+            QuadratureFamily::Gauss if q.points() == s => Err(format!(
+                "gauss-{s} has no stage constraints here (SPARK methods are not implemented): \
+                 with the constraint at the step end only a constrained run has order 2, not \
+                 {}; use lobatto-{} (constrained Lobatto IIIA–IIIB, order {}) instead",
+                2 * s,
+                s + 1,
+                2 * s
+            )),
+            family => Err(format!(
+                "galerkin-{s}-{}-{} has no stage constraints; use lobatto-{} (constrained \
+                 Lobatto IIIA–IIIB, order {})",
+                family.name(),
+                q.points(),
+                s + 1,
+                2 * s
+            )),
+        }
+    }
+
+    /// `q(c_{i+1} h) = Q₀ + Σ_{j≥1} ℓ_j(c_{i+1}) Δ_j` at the interior node `c_{i+1}`.
+    fn stage_point<S: Scalar>(&self, i: usize, q0: &[S], offsets: &[S], out: &mut [S]) {
+        let (n, s1) = (q0.len(), self.table.degree + 1);
+        let ell = &self.table.value[(i + 1) * s1..(i + 2) * s1];
+        for (a, x) in out.iter_mut().enumerate() {
+            let mut sum = q0[a];
+            for (j, &w) in ell.iter().enumerate().skip(1) {
+                sum += offsets[(j - 1) * n + a] * w;
+            }
+            *x = sum;
+        }
+    }
+
+    /// The last quadrature weight (`½` for degree 1).
+    fn end_weight(&self) -> f64 {
+        match (self.table.degree, self.table.quadrature.family) {
+            (1, _) | (_, QuadratureFamily::Gauss) => 0.5,
+            _ => self.table.quadrature.weights.last().copied().unwrap_or(0.5),
+        }
     }
 }
 

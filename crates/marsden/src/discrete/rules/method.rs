@@ -202,6 +202,13 @@ impl Method {
     pub fn order(&self) -> u32 {
         self.dispatch(OrderOf)
     }
+
+    /// Why the method cannot impose holonomic constraints at its order, if it cannot (Gauss
+    /// rules: [`crate::discrete::DiscreteAction::constrained_stages`]); with constraints every
+    /// other method keeps [`Method::order`].
+    pub fn constraint_refusal(&self) -> Option<String> {
+        self.dispatch(RefusalOf)
+    }
 }
 
 impl std::fmt::Display for Method {
@@ -271,6 +278,29 @@ impl WithRule for OrderOf {
     type Output = u32;
     fn call<R: Rule>(self, rule: &R) -> u32 {
         rule.order()
+    }
+}
+
+struct RefusalOf;
+
+impl WithRule for RefusalOf {
+    type Output = Option<String>;
+    fn call<R: Rule>(self, rule: &R) -> Option<String> {
+        use crate::discrete::DiscreteAction;
+        rule.discretize(Probe).constrained_stages().err()
+    }
+}
+
+/// `L = ½v²` in one dimension: asks a rule for its stage constraints (they do not depend on
+/// the Lagrangian).
+struct Probe;
+
+impl crate::mechanics::Lagrangian for Probe {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn lagrangian<S: crate::scalar::Scalar>(&self, _t: S, _q: &[S], v: &[S]) -> S {
+        v[0] * v[0] * 0.5
     }
 }
 
