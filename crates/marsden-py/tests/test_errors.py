@@ -17,7 +17,8 @@ def test_problem_error_is_a_value_error_with_a_caret():
     assert isinstance(info.value, ValueError)
     message = str(info.value)
     assert "unknown name `gg`" in message, message
-    assert "^^" in message and "did you mean `g`?" in message, message
+    assert "<python>:4:41" in message and "^^" in message, message
+    assert "known names: g, l, m" in message, message
 
 
 def test_wrong_number_of_initial_positions():

@@ -44,7 +44,7 @@ _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
 def is_sympy(value: Any) -> bool:
     """Whether ``value`` is a SymPy object (without importing SymPy)."""
-    return any(c.__module__.startswith("sympy") for c in type(value).__mro__)
+    return any((c.__module__ or "").startswith("sympy") for c in type(value).__mro__)
 
 
 def to_grammar(expr: Any) -> str:
