@@ -73,16 +73,30 @@ def median_seconds(run, repeats):
     return statistics.median(times)
 
 
-def cli_seconds(binary, text, repeats):
+def marsden_pair(binary, text, repeats):
+    """Python `solve()` and the command, interleaved (the load of a shared machine drifts):
+    medians of the wall times, of the integration times `summary.wall_seconds`, and whether
+    the final states agree bit for bit."""
+    problem = marsden.Problem.from_toml(text)
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "problem.toml"
         path.write_text(text)
         out = Path(tmp) / "out"
         command = [binary, "run", str(path), "--out", str(out)]
-        seconds = median_seconds(
-            lambda: subprocess.run(command, check=True, capture_output=True), repeats)
-        summary = json.loads((out / "summary.json").read_text())
-    return seconds, summary
+        py, cli, py_loop, cli_loop = [], [], [], []
+        for _ in range(repeats):
+            start = time.perf_counter()
+            solution = problem.solve()
+            py.append(time.perf_counter() - start)
+            py_loop.append(solution.summary["wall_seconds"])
+            start = time.perf_counter()
+            subprocess.run(command, check=True, capture_output=True)
+            cli.append(time.perf_counter() - start)
+            summary = json.loads((out / "summary.json").read_text())
+            cli_loop.append(summary["wall_seconds"])
+    same = solution.summary["final_state"] == summary["final_state"]
+    m = statistics.median
+    return m(py), m(cli), m(py_loop), m(cli_loop), same
 
 
 def rebound_kepler(repeats):
@@ -109,15 +123,14 @@ def main():
     parser.add_argument("--repeats", type=int, default=5)
     args = parser.parse_args()
     rows = []
-    for name, text in (("pendulum midpoint h=0.05", PENDULUM), ("Kepler e=0.6 midpoint h=0.01",
-                                                                 KEPLER)):
-        problem = marsden.Problem.from_toml(text)
-        py = median_seconds(problem.solve, args.repeats)
-        cli, summary = cli_seconds(args.marsden, text, args.repeats)
-        same = problem.solve().summary["final_state"] == summary["final_state"]
-        rows.append((name, "marsden CLI (process)", cli, 1.0, ""))
+    for name, text in (("pendulum midpoint h=0.05", PENDULUM),
+                       ("Kepler e=0.6 midpoint h=0.01", KEPLER)):
+        py, cli, py_loop, cli_loop, same = marsden_pair(args.marsden, text, args.repeats)
+        rows.append((name, "marsden CLI (process)", cli, 1.0,
+                     f"integration {cli_loop:.3f} s"))
         rows.append((name, "marsden Python solve()", py, py / cli,
-                     "final state identical" if same else "FINAL STATE DIFFERS"))
+                     f"integration {py_loop:.3f} s ({py_loop / cli_loop:.2f}x); "
+                     + ("final state identical" if same else "FINAL STATE DIFFERS")))
         if name.startswith("Kepler"):
             reb = rebound_kepler(args.repeats)
             if reb is None:
