@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The Python package's tests: builds and installs crates/marsden-py (once, with maturin's
-# `python` profile) into a fresh virtual environment with pytest, numpy, sympy and
+# The Python package's tests: builds and installs crates/marsden-py (once, with the `python`
+# profile: thin LTO, much quicker to build than the `release` profile users get) into a fresh virtual environment with pytest, numpy, sympy and
 # dask[distributed], then runs crates/marsden-py/tests. The bit-for-bit comparisons with the
 # `marsden` command use $MARSDEN_BIN, else target/{release,debug}/marsden (built if missing).
 #
@@ -15,7 +15,7 @@ rm -rf "$VENV"
 "$VENV/bin/python" -m pip install --quiet --upgrade pip
 "$VENV/bin/python" -m pip install --quiet pytest numpy sympy "dask[distributed]" pandas
 start=$(date +%s)
-"$VENV/bin/python" -m pip install --quiet ./crates/marsden-py
+MATURIN_PEP517_ARGS="--profile python" "$VENV/bin/python" -m pip install --quiet ./crates/marsden-py
 echo "test-python: built and installed the extension in $(( $(date +%s) - start )) s"
 if [ -z "${MARSDEN_BIN:-}" ] && [ ! -x target/debug/marsden ] && [ ! -x target/release/marsden ]; then
     cargo build -p marsden-cli
