@@ -107,3 +107,35 @@ fn sweep_members_run_without_writing() {
     assert!(rows.iter().all(|r| r.status == RunStatus::Completed));
     assert!(!dir.path().join("sweep").exists());
 }
+
+/// Each member's in-memory outcome equals its row of `run_members` and the same member run
+/// alone (bit for bit), whatever the number of threads.
+#[test]
+fn sweep_member_outcomes_match_the_rows_and_single_runs() {
+    let fixture = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../marsden-cli/tests/fixtures/pendulum_sweep.toml");
+    let overrides = marsden_spec::Overrides::default();
+    let spec = marsden_spec::load(&fixture, &overrides).unwrap();
+    let sweep = spec.sweep.clone().unwrap();
+    let rows = sweep::run_members(&spec, &sweep, &overrides, &SweepOptions::default()).unwrap();
+    let one_thread = SweepOptions {
+        threads: Some(1),
+        ..SweepOptions::default()
+    };
+    let outcomes = sweep::member_outcomes(&spec, &sweep, &overrides, &one_thread).unwrap();
+    assert_eq!(outcomes.len(), rows.len());
+    for (k, (outcome, row)) in outcomes.iter().zip(&rows).enumerate() {
+        let outcome = outcome.as_ref().unwrap().as_ref().unwrap();
+        let fin = &outcome.summary.final_state;
+        assert_eq!(row.t_final.to_bits(), fin.t.to_bits(), "member {k}");
+        assert_eq!(
+            row.energy_max_rel_error,
+            outcome.summary.energy.max_rel_error
+        );
+        let samples = outcome.samples.as_ref().unwrap();
+        assert_eq!(samples.q[0].last().copied(), fin.q.first().copied());
+        let alone =
+            sweep::member_outcome(&spec, &overrides, k, &marsden_spec::Controls::none()).unwrap();
+        assert_eq!(alone.samples.as_ref().unwrap(), samples, "member {k}");
+    }
+}

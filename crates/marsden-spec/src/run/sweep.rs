@@ -15,6 +15,7 @@ use std::sync::atomic::AtomicBool;
 use marsden::studies::ensemble;
 
 use super::controls::Controls;
+use super::execute::{Outcome, Store};
 use super::samples::NullSink;
 use super::shard::Shard;
 use super::solve::{Destination, RunRecord, Runner};
@@ -140,6 +141,60 @@ pub fn run_members(
             }
         })
         .collect())
+}
+
+/// Runs every member of `base`'s sweep in parallel and keeps each one's samples in memory
+/// ([`Store::Memory`]): what a binding returns, one [`Outcome`] per member in member order.
+/// A member is built exactly as [`run_members`] builds it ([`member_outcome`]), so each
+/// outcome equals the one of that member run alone, bit for bit.
+///
+/// # Errors
+/// Bad input if the thread pool cannot be made. A member that cannot start is an `Err` in its
+/// place, a failing member an outcome whose status is failed; `Ok(None)`: not run, the sweep
+/// was stopped.
+pub fn member_outcomes(
+    base: &RunSpec,
+    sweep: &SweepSpec,
+    overrides: &Overrides,
+    options: &SweepOptions,
+) -> Result<Vec<Result<Option<Outcome>, Error>>, Error> {
+    let members = options.shard.members(sweep.values.len());
+    let stop = &options.stop;
+    let run_all = || {
+        ensemble::run(&members, |_, &k| {
+            let controls = Controls {
+                progress: None,
+                stop: stop.clone(),
+            };
+            match controls.stop_requested() {
+                true => Ok(None),
+                false => member_outcome(base, overrides, k, &controls).map(Some),
+            }
+        })
+    };
+    let results = match options.threads {
+        None => run_all(),
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map_err(|e| Diagnostic::new(format!("cannot start {n} worker threads: {e}")))?
+            .install(run_all),
+    };
+    Ok(results.into_iter().map(|m| m.result).collect())
+}
+
+/// Member `k` of `base`'s sweep, run alone with its samples in memory.
+///
+/// # Errors
+/// The member cannot start (a value the problem cannot take).
+pub fn member_outcome(
+    base: &RunSpec,
+    overrides: &Overrides,
+    k: usize,
+    controls: &Controls<'_>,
+) -> Result<Outcome, Error> {
+    let spec = problem::member(base, overrides, k)?;
+    super::execute::execute(&spec, Store::Memory, controls)
 }
 
 /// Builds, checks and runs member `k` (no trajectory written).

@@ -1,0 +1,55 @@
+"""marsden: variational integrators for Lagrangian mechanics, from Python.
+
+Write a Lagrangian once — as a string in the problem-file grammar or as a SymPy expression —
+and simulate it with a structure-preserving (symplectic, momentum-conserving) integrator; the
+integration runs in Rust, with no Python in the loop::
+
+    >>> import marsden
+    >>> pendulum = marsden.Problem(
+    ...     lagrangian="0.5*m*l^2*theta_dot^2 + m*g*l*cos(theta)",
+    ...     coordinates=["theta"], parameters={"m": 1.0, "l": 1.0, "g": 9.81},
+    ...     q0=[1.5], v0=[0.0], method="midpoint", h=0.01, t_end=100.0)
+    >>> solution = pendulum.solve()
+    >>> solution.q[-1], solution.summary["energy"]["max_rel_error"]
+
+Problem files work too (``marsden.Problem.load("examples/pendulum.toml")``), the catalog is
+``marsden.systems()``, and ``marsden.sweep`` runs ensembles on all cores or on any
+``concurrent.futures`` executor (Dask, Ray, MPI).
+"""
+
+from __future__ import annotations
+
+from typing import Any, Dict, List
+
+from . import _native
+from ._errors import ProblemError, SimulationError
+from ._problem import Problem
+from ._solution import Solution
+from ._sweep import sweep
+from ._sympy import to_grammar
+
+__all__ = [
+    "Problem",
+    "ProblemError",
+    "SimulationError",
+    "Solution",
+    "sweep",
+    "systems",
+    "to_grammar",
+]
+
+
+def systems() -> List[Dict[str, Any]]:
+    """The catalog of built-in systems: for each, ``name``, ``summary``, ``coordinates``,
+    ``parameters`` (name -> default), ``lagrangian`` (a formula in the grammar) and ``text``
+    (what ``marsden systems`` prints).
+
+    >>> [s["name"] for s in marsden.systems()]
+    ['harmonic_oscillator', 'free_fall', 'pendulum', 'double_pendulum', 'kepler', ...]
+    """
+    entries = []
+    for s in _native.systems():
+        entry = dict(s)
+        entry["parameters"] = dict(entry["parameters"])
+        entries.append(entry)
+    return entries

@@ -1,0 +1,128 @@
+"""``marsden.Solution``: the stored samples of a run as NumPy arrays, and its summary."""
+
+from __future__ import annotations
+
+import json
+from typing import Any, Dict, List, Optional
+
+import numpy as np
+
+from ._errors import SimulationError
+
+
+class Solution:
+    """The stored samples of a run (every ``every``-th step, the first and the last).
+
+    Attributes (NumPy arrays, one row per stored sample):
+
+    - ``t`` (``k``), ``q``, ``p``, ``v`` (``k × n``, one column per coordinate, in the order of
+      ``coordinates``), ``energy`` (``⟨p, v⟩ − L``);
+    - ``momenta``: momentum maps ``J`` by symmetry name (``solution.momenta["Lz"]``);
+    - ``constraint_residual``: ``max_i |φ_i(q)|`` (``None`` without constraints);
+    - ``summary``: the dictionary ``marsden run`` writes as ``summary.json``;
+    - ``status`` (``"completed"``, ``"failed"``), ``error`` (the failure's message),
+      ``warnings``.
+
+    >>> s = pendulum.solve(every=10)
+    >>> s.t[-1], s.q[-1, 0], s.summary["energy"]["max_rel_error"]
+    """
+
+    def __init__(self, fields: Dict[str, Any]) -> None:
+        self.coordinates: List[str] = list(fields["coordinates"])
+        self.t: np.ndarray = fields["t"]
+        self.q: np.ndarray = fields["q"]
+        self.p: np.ndarray = fields["p"]
+        self.v: np.ndarray = fields["v"]
+        self.energy: np.ndarray = fields["energy"]
+        self.momenta: Dict[str, np.ndarray] = dict(fields["momenta"])
+        self.constraint_residual: Optional[np.ndarray] = fields["constraint_residual"]
+        self.summary: Dict[str, Any] = (
+            json.loads(fields["summary"]) if isinstance(fields["summary"], str)
+            else fields["summary"])
+        self.status: str = fields["status"]
+        self.error: Optional[str] = fields["error"]
+        self.warnings: List[str] = list(fields["warnings"])
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    @property
+    def ok(self) -> bool:
+        """Whether every requested step was taken."""
+        return self.status == "completed"
+
+    def final_state(self) -> Dict[str, Any]:
+        """``t``, ``q`` and ``p`` of the last good state (as ``summary.json`` has them)."""
+        final = self.summary["final_state"]
+        return {"t": final["t"], "q": np.array(final["q"]), "p": np.array(final["p"])}
+
+    def to_pandas(self) -> Any:
+        """The samples as a ``pandas.DataFrame``: ``t``, ``q…``, ``p_…``, ``v_…``, ``energy``,
+        ``J_…`` and ``constraint_residual`` columns, as ``trajectory.csv`` (plus ``v``)."""
+        try:
+            import pandas as pd
+        except ImportError as e:  # pragma: no cover - depends on the environment
+            raise ImportError("Solution.to_pandas() needs pandas: pip install pandas") from e
+        columns: Dict[str, Any] = {"t": self.t}
+        for i, name in enumerate(self.coordinates):
+            columns[name] = self.q[:, i]
+        for i, name in enumerate(self.coordinates):
+            columns[f"p_{name}"] = self.p[:, i]
+        columns["energy"] = self.energy
+        for name, values in self.momenta.items():
+            columns[f"J_{name}"] = values
+        if self.constraint_residual is not None:
+            columns["constraint_residual"] = self.constraint_residual
+        for i, name in enumerate(self.coordinates):
+            columns[f"v_{name}"] = self.v[:, i]
+        return pd.DataFrame(columns)
+
+    def plot(self, ax: Any = None) -> Any:
+        """The phase portrait (``q`` against ``p`` per coordinate) and the relative energy
+        error against time, with matplotlib; returns the figure."""
+        try:
+            import matplotlib.pyplot as plt
+        except ImportError as e:  # pragma: no cover - depends on the environment
+            raise ImportError("Solution.plot() needs matplotlib: pip install matplotlib") from e
+        if ax is None:
+            fig, (phase, energy) = plt.subplots(1, 2, figsize=(10, 4))
+        else:
+            phase, energy = ax
+            fig = phase.figure
+        for i, name in enumerate(self.coordinates):
+            phase.plot(self.q[:, i], self.p[:, i], lw=0.6, label=name)
+        phase.set_xlabel("q")
+        phase.set_ylabel("p")
+        phase.set_title("phase portrait")
+        phase.legend()
+        e0 = self.energy[0] if len(self.energy) else 1.0
+        scale = abs(e0) if e0 != 0 else 1.0
+        energy.plot(self.t, (self.energy - e0) / scale, lw=0.6)
+        energy.set_xlabel("t")
+        energy.set_ylabel("(E - E0)/|E0|")
+        energy.set_title("energy error")
+        fig.tight_layout()
+        return fig
+
+    def __repr__(self) -> str:
+        s = self.summary
+        energy = s.get("energy", {})
+        t_final = s.get("t_final")
+        text = (f"Solution({s.get('name', '?')!r}, {self.status}, {len(self)} samples of "
+                f"{len(self.coordinates)} coordinates {self.coordinates}, steps "
+                f"{s.get('steps')}/{s.get('steps_requested')}, t_final={t_final!r}, "
+                f"max |ΔE/E0|={energy.get('max_rel_error')!r}")
+        for name, values in self.momenta.items():
+            drift = s.get("momenta", {}).get(name, {}).get("max_abs_drift")
+            text += f", max |ΔJ_{name}|={drift!r}"
+        if self.error:
+            text += f", error={self.error!r}"
+        return text + ")"
+
+
+def from_native(fields: Dict[str, Any]) -> Solution:
+    """A solution from the native dictionary; raises :class:`SimulationError` if it failed."""
+    solution = Solution(fields)
+    if solution.status == "failed":
+        raise SimulationError(f"the simulation failed: {solution.error}", solution)
+    return solution

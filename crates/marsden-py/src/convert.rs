@@ -1,0 +1,58 @@
+//! A run's [`Outcome`] as the dictionary the Python `Solution` is made from: the samples as
+//! NumPy arrays (one row per stored sample; `q`, `p` and `v` with one column per coordinate),
+//! `summary.json`'s text, the status, the error message and the warnings.
+
+use marsden_spec::{Outcome, Samples};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyArray2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// The dictionary of `outcome` (empty arrays if nothing was stored).
+pub fn outcome<'py>(py: Python<'py>, outcome: &Outcome) -> PyResult<Bound<'py, PyDict>> {
+    let samples = outcome.samples.clone().unwrap_or_default();
+    let d = PyDict::new(py);
+    d.set_item("coordinates", &samples.coordinates)?;
+    d.set_item("q", rows(py, &samples.q, samples.len()))?;
+    d.set_item("p", rows(py, &samples.p, samples.len()))?;
+    d.set_item("v", rows(py, &samples.v, samples.len()))?;
+    let Samples {
+        t,
+        energy,
+        momenta,
+        constraint_residual,
+        ..
+    } = samples;
+    d.set_item("t", PyArray1::from_vec(py, t))?;
+    d.set_item("energy", PyArray1::from_vec(py, energy))?;
+    let maps = PyDict::new(py);
+    for (name, values) in momenta {
+        maps.set_item(name, PyArray1::from_vec(py, values))?;
+    }
+    d.set_item("momenta", maps)?;
+    d.set_item(
+        "constraint_residual",
+        constraint_residual.map(|r| PyArray1::from_vec(py, r)),
+    )?;
+    let summary = outcome
+        .summary
+        .to_json()
+        .map_err(pyo3::exceptions::PyRuntimeError::new_err)?;
+    d.set_item("summary", summary)?;
+    d.set_item("status", outcome.summary.status.name())?;
+    d.set_item("error", outcome.summary.error.clone())?;
+    d.set_item("warnings", outcome.warnings.clone())?;
+    Ok(d)
+}
+
+/// Columns (one per coordinate) as a `samples × columns` array.
+fn rows<'py>(py: Python<'py>, columns: &[Vec<f64>], samples: usize) -> Bound<'py, PyArray2<f64>> {
+    let at = |(i, j): (usize, usize)| {
+        columns
+            .get(j)
+            .and_then(|c| c.get(i))
+            .copied()
+            .unwrap_or(f64::NAN)
+    };
+    Array2::from_shape_fn((samples, columns.len()), at).into_pyarray(py)
+}

@@ -1,0 +1,200 @@
+//! The native half of the `marsden` Python package: problem text in, NumPy arrays out, with
+//! the problem-file library ([`marsden_spec`]) doing all the work — the same parsing, checks,
+//! runs and summaries as the `marsden` command, so a problem gives the same bits from both.
+//!
+//! The Python half (`python/marsden/`) builds problem text from keyword arguments or SymPy
+//! expressions and wraps the dictionaries returned here in `Problem` and `Solution` objects.
+//!
+//! | module | what |
+//! |---|---|
+//! | [`watch`] | runs off the interpreter's lock; Ctrl-C sets the run's stop flag |
+//! | [`convert`] | an [`marsden_spec::Outcome`] as a dictionary of NumPy arrays |
+//! | this file | the functions Python calls and the `ProblemError` exception |
+
+mod convert;
+mod watch;
+
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+
+use marsden_spec::catalog::Builtin;
+use marsden_spec::run::sweep::{self as sweeps, SweepOptions};
+use marsden_spec::{Controls, Diagnostic, Error, ErrorKind, Overrides, RunSpec, Store};
+use pyo3::create_exception;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+create_exception!(
+    _native,
+    ProblemError,
+    PyValueError,
+    "A problem that cannot run: the message is the `marsden` command's, with the caret."
+);
+
+/// The Python exception for an error of the problem-file layer.
+fn to_py(error: Error) -> PyErr {
+    match error.kind {
+        ErrorKind::BadInput => ProblemError::new_err(error.to_string()),
+        ErrorKind::Failed => PyRuntimeError::new_err(error.to_string()),
+    }
+}
+
+fn bad(diagnostic: Diagnostic) -> PyErr {
+    to_py(Error::bad_input(diagnostic))
+}
+
+/// Validates problem text (`origin` names it in messages).
+fn spec_of(text: &str, origin: &str, every: Option<usize>) -> PyResult<RunSpec> {
+    let mut spec = marsden_spec::from_toml_str(text, origin, &Overrides::default()).map_err(bad)?;
+    if let Some(every) = every {
+        if every == 0 {
+            return Err(bad(Diagnostic::new("`every` must be at least 1")));
+        }
+        spec.output.every = every;
+    }
+    Ok(spec)
+}
+
+/// Checks problem text and describes it: name, coordinates, parameters, method, `h`, steps
+/// and the sweep's target, if any.
+#[pyfunction]
+fn check<'py>(py: Python<'py>, text: &str, origin: &str) -> PyResult<Bound<'py, PyDict>> {
+    let spec = spec_of(text, origin, None)?;
+    marsden_spec::run::start::prepare(&spec).map_err(bad)?;
+    let d = PyDict::new(py);
+    d.set_item("name", &spec.name)?;
+    d.set_item("coordinates", &spec.system.coordinates)?;
+    d.set_item("parameters", spec.system.parameters.clone())?;
+    d.set_item("method", spec.integrator.method.to_string())?;
+    d.set_item("h", spec.integrator.grid.h)?;
+    d.set_item("steps", spec.integrator.grid.steps)?;
+    d.set_item("every", spec.output.every)?;
+    d.set_item("lagrangian", spec.system.lagrangian.describe())?;
+    let sweep = spec
+        .sweep
+        .as_ref()
+        .map(|s| (s.target.label(), s.values.clone()));
+    d.set_item("sweep", sweep)?;
+    Ok(d)
+}
+
+/// Runs problem text with its samples in memory (every `every`-th step, the first and the
+/// last), off the interpreter's lock; `progress` prints a line on stderr as it goes.
+#[pyfunction]
+#[pyo3(signature = (text, origin, every=None, progress=false))]
+fn solve<'py>(
+    py: Python<'py>,
+    text: &str,
+    origin: &str,
+    every: Option<usize>,
+    progress: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let spec = spec_of(text, origin, every)?;
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = stop.clone();
+    let outcome = watch::off_the_lock(py, &stop, || {
+        let report = |p: marsden_spec::Progress| watch::report(p);
+        let controls = Controls {
+            progress: progress.then_some(&report as &dyn Fn(marsden_spec::Progress)),
+            stop: Some(flag),
+        };
+        marsden_spec::execute(&spec, Store::Memory, &controls)
+    })?;
+    convert::outcome(py, &outcome.map_err(to_py)?)
+}
+
+/// Runs every member of the `[sweep]` of problem text in parallel in this process, off the
+/// interpreter's lock; one entry per member in order: its result, or the message of a member
+/// that could not start (a string), or `None` if Ctrl-C stopped the sweep before it ran.
+#[pyfunction]
+#[pyo3(signature = (text, origin, every=None, threads=None))]
+fn sweep<'py>(
+    py: Python<'py>,
+    text: &str,
+    origin: &str,
+    every: Option<usize>,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyList>> {
+    let base = spec_of(text, origin, every)?;
+    let Some(members) = base.sweep.clone() else {
+        return Err(bad(Diagnostic::new("the problem has no [sweep]")));
+    };
+    let stop = Arc::new(AtomicBool::new(false));
+    let options = SweepOptions {
+        threads,
+        stop: Some(stop.clone()),
+        ..SweepOptions::default()
+    };
+    let overrides = Overrides::default();
+    let results = watch::off_the_lock(py, &stop, || {
+        sweeps::member_outcomes(&base, &members, &overrides, &options)
+    })?
+    .map_err(to_py)?;
+    let list = PyList::empty(py);
+    for result in results {
+        match result {
+            Ok(Some(outcome)) => list.append(convert::outcome(py, &outcome)?)?,
+            Ok(None) => list.append(py.None())?,
+            Err(e) => list.append(e.to_string())?,
+        }
+    }
+    Ok(list)
+}
+
+/// Runs member `k` of the `[sweep]` of problem text alone (what an executor's worker calls):
+/// the same result as entry `k` of [`sweep`], bit for bit.
+#[pyfunction]
+#[pyo3(signature = (text, origin, k, every=None))]
+fn member<'py>(
+    py: Python<'py>,
+    text: &str,
+    origin: &str,
+    k: usize,
+    every: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let base = spec_of(text, origin, every)?;
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = stop.clone();
+    let outcome = watch::off_the_lock(py, &stop, || {
+        let controls = Controls {
+            progress: None,
+            stop: Some(flag),
+        };
+        sweeps::member_outcome(&base, &Overrides::default(), k, &controls)
+    })?;
+    convert::outcome(py, &outcome.map_err(to_py)?)
+}
+
+/// The catalog: one dictionary per system (name, summary, coordinates, parameters with their
+/// defaults, the Lagrangian as a formula).
+#[pyfunction]
+fn systems<'py>(py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+    let list = PyList::empty(py);
+    for b in Builtin::ALL {
+        let d = PyDict::new(py);
+        d.set_item("name", b.name())?;
+        d.set_item("summary", b.summary())?;
+        d.set_item("coordinates", b.coordinates(0))?;
+        let defaults: Vec<(&str, f64)> =
+            b.parameters().iter().map(|p| (p.name, p.default)).collect();
+        d.set_item("parameters", defaults)?;
+        d.set_item("needs_masses", b.needs_masses())?;
+        d.set_item("lagrangian", b.formula())?;
+        d.set_item("text", marsden_spec::report::systems::describe(b))?;
+        list.append(d)?;
+    }
+    Ok(list)
+}
+
+/// The extension module `marsden._native`.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("ProblemError", m.py().get_type::<ProblemError>())?;
+    m.add_function(wrap_pyfunction!(check, m)?)?;
+    m.add_function(wrap_pyfunction!(solve, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(member, m)?)?;
+    m.add_function(wrap_pyfunction!(systems, m)?)?;
+    Ok(())
+}

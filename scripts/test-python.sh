@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# The Python package's tests: builds and installs crates/marsden-py (once, with the `python`
+# profile: thin LTO, much quicker to build than the `release` profile users get) into a fresh virtual environment with pytest, numpy, sympy and
+# dask[distributed], then runs crates/marsden-py/tests. The bit-for-bit comparisons with the
+# `marsden` command use $MARSDEN_BIN, else target/{release,debug}/marsden (built if missing).
+#
+#   scripts/test-python.sh            # VENV=target/ci-venv by default
+#   PYTHON=python3.12 scripts/test-python.sh -k sweep
+set -euo pipefail
+cd "$(dirname "$0")/.."
+PYTHON="${PYTHON:-python3}"
+VENV="${VENV:-target/ci-venv}"
+rm -rf "$VENV"
+"$PYTHON" -m venv "$VENV"
+"$VENV/bin/python" -m pip install --quiet --upgrade pip
+"$VENV/bin/python" -m pip install --quiet pytest numpy sympy "dask[distributed]" pandas
+start=$(date +%s)
+MATURIN_PEP517_ARGS="--profile python" "$VENV/bin/python" -m pip install --quiet ./crates/marsden-py
+echo "test-python: built and installed the extension in $(( $(date +%s) - start )) s"
+if [ -z "${MARSDEN_BIN:-}" ] && [ ! -x target/debug/marsden ] && [ ! -x target/release/marsden ]; then
+    cargo build -p marsden-cli
+fi
+cd crates/marsden-py/tests
+"../../../$VENV/bin/python" -m pytest -q "$@"
