@@ -1,5 +1,6 @@
 //! A run's [`Outcome`] as the dictionary the Python `Solution` is made from: the samples as
-//! NumPy arrays (one row per stored sample; `q`, `p` and `v` with one column per coordinate),
+//! NumPy arrays (one row per stored sample; `q`, `p` and `v` with one column per coordinate,
+//! the multipliers with one per constraint),
 //! `summary.json`'s text, the status, the error message and the warnings.
 
 use marsden_spec::{Outcome, Samples};
@@ -16,6 +17,7 @@ pub fn outcome<'py>(py: Python<'py>, outcome: &Outcome) -> PyResult<Bound<'py, P
     d.set_item("q", rows(py, &samples.q, samples.len()))?;
     d.set_item("p", rows(py, &samples.p, samples.len()))?;
     d.set_item("v", rows(py, &samples.v, samples.len()))?;
+    d.set_item("multipliers", rows(py, &samples.lambda, samples.len()))?;
     let Samples {
         t,
         energy,

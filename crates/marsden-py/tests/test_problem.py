@@ -98,6 +98,12 @@ def test_constraints_forces_and_t_end():
         q0=[0.9974949866040544, -0.0707372016677029], v0=[0.0, 0.0], h=0.05, steps=200)
     s = cart.solve()
     assert s.constraint_residual is not None and np.max(s.constraint_residual) < 1e-10
+    # R7's multiplier: with φ = x² + y² − l² and m = l = g = 1, a = −e_y − 2λq, so on the circle
+    # λ = (|v|² − y)/2 (positive: the rod pulls inward; a wrong sign fails here).
+    assert s.multipliers.shape == (len(s.t), 1)
+    expected = 0.5 * (s.v[:, 0] ** 2 + s.v[:, 1] ** 2 - s.q[:, 1])
+    assert np.min(expected) > 0.03
+    assert np.allclose(s.multipliers[:, 0], expected, rtol=0, atol=1e-8)
     damped = marsden.Problem(
         lagrangian="0.5*m*x_dot^2 - 0.5*k*x^2", coordinates=["x"],
         parameters={"m": 1.0, "k": 4.0, "c": 0.1}, forces=["-c*x_dot"], q0=[1.0], v0=[0.0],

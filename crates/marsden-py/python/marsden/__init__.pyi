@@ -32,6 +32,7 @@ class Solution:
     energy: FloatArray
     momenta: Dict[str, FloatArray]
     constraint_residual: Optional[FloatArray]
+    multipliers: FloatArray
     summary: Dict[str, Any]
     status: str
     error: Optional[str]

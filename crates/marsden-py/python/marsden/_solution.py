@@ -19,6 +19,8 @@ class Solution:
       ``coordinates``), ``energy`` (``⟨p, v⟩ − L``);
     - ``momenta``: momentum maps ``J`` by symmetry name (``solution.momenta["Lz"]``);
     - ``constraint_residual``: ``max_i |φ_i(q)|`` (``None`` without constraints);
+    - ``multipliers``: the Lagrange multipliers ``λ_i`` of the stored states, one column per
+      constraint (``a = M⁻¹(… − Dφᵀλ)``; zero columns without constraints);
     - ``summary``: the dictionary ``marsden run`` writes as ``summary.json``;
     - ``status`` (``"completed"``, ``"failed"``), ``error`` (the failure's message),
       ``warnings``.
@@ -36,6 +38,7 @@ class Solution:
         self.energy: np.ndarray = fields["energy"]
         self.momenta: Dict[str, np.ndarray] = dict(fields["momenta"])
         self.constraint_residual: Optional[np.ndarray] = fields["constraint_residual"]
+        self.multipliers: np.ndarray = fields["multipliers"]
         self.summary: Dict[str, Any] = (
             json.loads(fields["summary"]) if isinstance(fields["summary"], str)
             else fields["summary"])
@@ -73,6 +76,8 @@ class Solution:
             columns[f"J_{name}"] = values
         if self.constraint_residual is not None:
             columns["constraint_residual"] = self.constraint_residual
+        for i in range(self.multipliers.shape[1]):
+            columns[f"lambda_{i}"] = self.multipliers[:, i]
         for i, name in enumerate(self.coordinates):
             columns[f"v_{name}"] = self.v[:, i]
         return pd.DataFrame(columns)
