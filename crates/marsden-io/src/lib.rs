@@ -9,6 +9,8 @@
 //! * [`npy`] — [`NpyWriter`], [`NpyDirWriter`] (streaming, one file per group),
 //!   [`write_npy_dir`], [`read_npy`], [`read_npy_dir`].
 //! * [`sink`] — [`RowSink`]: the streaming interface both writers implement.
+//! * [`thin`] — [`Thinner`]: a bounded sketch of a long run (first, last, extremes) for plots,
+//!   filled by [`read_csv_thinned`] / [`read_npy_dir_thinned`] in one streaming pass.
 //! * [`plot`] — PNG plots: phase portrait, energy error, momentum-map drift, constraint
 //!   residual; text uses a font embedded in the crate, so no system font is needed.
 //! * [`error`] — [`Error`]: every failure is a value naming its file.
@@ -20,14 +22,19 @@ pub mod npy;
 pub mod plot;
 pub mod sink;
 pub mod table;
+pub mod thin;
 
-pub use csv::{CsvWriter, read_csv, read_csv_from, write_csv};
+pub use csv::{CsvWriter, read_csv, read_csv_from, read_csv_thinned, write_csv};
 pub use error::{Error, Result};
 pub use layout::{Group, GroupKind, Layout};
-pub use npy::{NpyArray, NpyDirWriter, NpyShape, NpyWriter, read_npy, read_npy_dir, write_npy_dir};
+pub use npy::{
+    NpyArray, NpyDirWriter, NpyShape, NpyWriter, read_npy, read_npy_dir, read_npy_dir_thinned,
+    write_npy_dir,
+};
 pub use plot::{
     PhaseCurve, PlotOptions, PlotReport, Series, plot_constraint_residual, plot_energy_error,
     plot_momentum_drift, plot_phase_portrait, plot_run,
 };
 pub use sink::RowSink;
 pub use table::{Column, Table, check_column_name};
+pub use thin::{Thinned, Thinner};

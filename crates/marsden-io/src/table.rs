@@ -103,6 +103,54 @@ impl Table {
     }
 }
 
+/// A [`RowSink`](crate::RowSink) that collects rows into columns: what the readers stream
+/// into when the whole table is wanted.
+#[derive(Debug, Clone)]
+pub(crate) struct Collector {
+    columns: Vec<Column>,
+}
+
+impl Collector {
+    /// An empty collector for these column names.
+    pub(crate) fn new(names: Vec<String>) -> Self {
+        Self {
+            columns: names
+                .into_iter()
+                .map(|n| Column::new(n, Vec::new()))
+                .collect(),
+        }
+    }
+
+    /// The collected table.
+    ///
+    /// # Errors
+    /// The [`Table::new`] checks.
+    pub(crate) fn into_table(self) -> Result<Table> {
+        Table::new(self.columns)
+    }
+}
+
+impl crate::RowSink for Collector {
+    fn write_row(&mut self, row: &[f64]) -> Result<()> {
+        for (c, &v) in self.columns.iter_mut().zip(row) {
+            c.values.push(v);
+        }
+        Ok(())
+    }
+
+    fn flush(&mut self) -> Result<()> {
+        Ok(())
+    }
+
+    fn finish(&mut self) -> Result<()> {
+        Ok(())
+    }
+
+    fn rows_written(&self) -> u64 {
+        self.columns.first().map_or(0, |c| c.values.len() as u64)
+    }
+}
+
 /// Checks that `name` can be a CSV column name written without quoting and read back unchanged:
 /// non-empty, no comma, double quote, carriage return or line feed, no surrounding whitespace.
 ///

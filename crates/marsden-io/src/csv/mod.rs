@@ -19,5 +19,5 @@ mod reader;
 mod writer;
 
 pub use number::{format_f64, parse_f64};
-pub use reader::{read_csv, read_csv_from};
+pub use reader::{read_csv, read_csv_from, read_csv_thinned};
 pub use writer::{CsvWriter, write_csv};

@@ -6,7 +6,9 @@ use std::path::{Path, PathBuf};
 
 use super::number::parse_f64;
 use crate::error::{Error, Result};
-use crate::table::{Column, Table};
+use crate::sink::RowSink;
+use crate::table::{Collector, Table, check_names};
+use crate::thin::{Thinned, Thinner};
 
 /// Reads a CSV file as written by [`CsvWriter`](crate::CsvWriter) into a table.
 ///
@@ -25,42 +27,91 @@ pub fn read_csv(path: impl AsRef<Path>) -> Result<Table> {
 ///
 /// # Errors
 /// As [`read_csv`].
-pub fn read_csv_from(mut reader: impl BufRead, path: impl Into<PathBuf>) -> Result<Table> {
+pub fn read_csv_from(reader: impl BufRead, path: impl Into<PathBuf>) -> Result<Table> {
     let path = path.into();
-    let parse_err = |line: u64, message: String| Error::Parse {
-        path: path.clone(),
+    let collector = stream_csv(reader, &path, |names| Ok(Collector::new(names)), false)?;
+    collector
+        .into_table()
+        .map_err(|e| parse_error(&path, 1, format!("bad header: {e}")))
+}
+
+/// Reads a run's CSV into a bounded [`Thinned`] sketch for plots (see [`Thinner`]), keeping
+/// the extremes of the `monitored` columns. Memory does not grow with the number of rows.
+///
+/// A last line without a line end is a row cut off by a killed run (the writer ends every
+/// row) and is left out, so a half-written number is never drawn.
+///
+/// # Errors
+/// As [`read_csv`].
+pub fn read_csv_thinned(
+    path: impl AsRef<Path>,
+    monitored: &[&str],
+    budget: usize,
+) -> Result<Thinned> {
+    let path = path.as_ref();
+    let file = File::open(path).map_err(|e| Error::io("open", path, e))?;
+    let thinner = stream_csv(
+        BufReader::new(file),
+        path,
+        |names| Ok(Thinner::new(names, monitored, budget)),
+        true,
+    )?;
+    thinner.finish_table()
+}
+
+fn parse_error(path: &Path, line: u64, message: String) -> Error {
+    Error::Parse {
+        path: path.to_path_buf(),
         line,
         message,
-    };
+    }
+}
+
+/// Streams the rows of a CSV into the sink `make` builds from the header; with
+/// `skip_cut_last`, a final line without a line end is dropped rather than read.
+fn stream_csv<S: RowSink>(
+    mut reader: impl BufRead,
+    path: &Path,
+    make: impl FnOnce(Vec<String>) -> Result<S>,
+    skip_cut_last: bool,
+) -> Result<S> {
+    let parse_err = |line: u64, message: String| parse_error(path, line, message);
     let mut line = String::new();
     let mut line_no: u64 = 0;
-    let mut next_line = |line: &mut String, line_no: &mut u64| -> Result<bool> {
+    // Reads one line without its end; returns (any bytes read, the line had an end).
+    let mut next_line = |line: &mut String, line_no: &mut u64| -> Result<(bool, bool)> {
         line.clear();
         let n = reader
             .read_line(line)
-            .map_err(|e| Error::io("read", &path, e))?;
+            .map_err(|e| Error::io("read", path, e))?;
         *line_no += 1;
+        let ended = line.ends_with('\n');
         let trimmed = line.trim_end_matches(['\n', '\r']).len();
         line.truncate(trimmed);
-        Ok(n > 0)
+        Ok((n > 0, ended))
     };
 
-    if !next_line(&mut line, &mut line_no)? {
+    if !next_line(&mut line, &mut line_no)?.0 {
         return Err(parse_err(0, "empty file: no header line".into()));
     }
-    let mut columns: Vec<Column> = line
-        .split(',')
-        .map(|name| Column::new(name, Vec::new()))
-        .collect();
-    if let Some(c) = columns.iter().find(|c| c.name.contains('"')) {
+    let names: Vec<String> = line.split(',').map(str::to_owned).collect();
+    if let Some(name) = names.iter().find(|n| n.contains('"')) {
         return Err(parse_err(
             1,
-            format!("quoted column name {:?} is not supported", c.name),
+            format!("quoted column name {name:?} is not supported"),
         ));
     }
+    check_names(names.iter().map(String::as_str))
+        .map_err(|e| parse_err(1, format!("bad header: {e}")))?;
+    let mut row = Vec::with_capacity(names.len());
+    let mut sink = make(names.clone())?;
 
     let mut blank_at = None;
-    while next_line(&mut line, &mut line_no)? {
+    loop {
+        let (more, ended) = next_line(&mut line, &mut line_no)?;
+        if !more || (skip_cut_last && !ended) {
+            break;
+        }
         if line.is_empty() {
             blank_at.get_or_insert(line_no);
             continue;
@@ -68,29 +119,29 @@ pub fn read_csv_from(mut reader: impl BufRead, path: impl Into<PathBuf>) -> Resu
         if let Some(blank) = blank_at {
             return Err(parse_err(blank, "blank line between rows".into()));
         }
+        row.clear();
         let mut n = 0;
         for field in line.split(',') {
-            let Some(col) = columns.get_mut(n) else {
-                n += 1;
-                continue;
-            };
-            let x = parse_f64(field).ok_or_else(|| {
-                parse_err(
-                    line_no,
-                    format!("column `{}`: {field:?} is not a number", col.name),
-                )
-            })?;
-            col.values.push(x);
+            if let Some(name) = names.get(n) {
+                let x = parse_f64(field).ok_or_else(|| {
+                    parse_err(
+                        line_no,
+                        format!("column `{name}`: {field:?} is not a number"),
+                    )
+                })?;
+                row.push(x);
+            }
             n += 1;
         }
-        if n != columns.len() {
+        if n != names.len() {
             return Err(parse_err(
                 line_no,
-                format!("{n} fields, but the header has {} columns", columns.len()),
+                format!("{n} fields, but the header has {} columns", names.len()),
             ));
         }
+        sink.write_row(&row)?;
     }
-    Table::new(columns).map_err(|e| parse_err(1, format!("bad header: {e}")))
+    Ok(sink)
 }
 
 #[cfg(test)]

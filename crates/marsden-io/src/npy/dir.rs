@@ -3,12 +3,13 @@
 use std::fs::File;
 use std::path::{Path, PathBuf};
 
-use super::reader::read_npy;
+use super::reader::NpyValues;
 use super::writer::{NpyShape, NpyWriter};
 use crate::error::{Error, Result};
-use crate::layout::{GroupKind, Layout};
+use crate::layout::{Group, GroupKind, Layout};
 use crate::sink::RowSink;
-use crate::table::{Column, Table};
+use crate::table::{Collector, Table};
+use crate::thin::{Thinned, Thinner};
 
 fn shape_of(kind: GroupKind, width: usize) -> NpyShape {
     match kind {
@@ -153,26 +154,32 @@ pub fn write_npy_dir(dir: impl AsRef<Path>, layout: &Layout, table: &Table) -> R
 /// An I/O error naming the file, or [`Error::Npy`] if a file's shape does not fit the layout
 /// or the files disagree on the number of rows.
 pub fn read_npy_dir(dir: impl AsRef<Path>, layout: &Layout) -> Result<Table> {
-    let dir = dir.as_ref();
-    let mut columns = Vec::with_capacity(layout.width());
+    stream_npy_dir(dir.as_ref(), layout, Collector::new(owned_names(layout)))?.into_table()
+}
+
+/// Reads a run's `.npy` files into a bounded [`Thinned`] sketch for plots (see [`Thinner`]),
+/// keeping the extremes of the `monitored` columns; memory does not grow with the rows.
+///
+/// # Errors
+/// As [`read_npy_dir`].
+pub fn read_npy_dir_thinned(
+    dir: impl AsRef<Path>,
+    layout: &Layout,
+    monitored: &[&str],
+    budget: usize,
+) -> Result<Thinned> {
+    let thinner = Thinner::new(owned_names(layout), monitored, budget);
+    stream_npy_dir(dir.as_ref(), layout, thinner)?.finish_table()
+}
+
+/// Streams the rows of the group files of `layout` in `dir` into `sink`, all files in step.
+fn stream_npy_dir<S: RowSink>(dir: &Path, layout: &Layout, mut sink: S) -> Result<S> {
+    let mut files = Vec::with_capacity(layout.groups().len());
     let mut rows: Option<(u64, PathBuf)> = None;
     for g in layout.groups() {
         let path = file_of(dir, &g.name);
-        let a = read_npy(&path)?;
-        let width = g.width() as u64;
-        let n = match (g.kind, a.shape.as_slice()) {
-            (GroupKind::Scalar, &[n]) => n,
-            (GroupKind::Vector, &[n, m]) if m == width => n,
-            (_, shape) => {
-                return Err(Error::Npy {
-                    path,
-                    message: format!(
-                        "shape {shape:?} does not fit group `{}` of {width} column(s)",
-                        g.name
-                    ),
-                });
-            }
-        };
+        let file = NpyValues::open(&path)?;
+        let n = rows_of(&path, g, &file.shape)?;
         match &rows {
             Some((first, first_path)) if *first != n => {
                 return Err(Error::Npy {
@@ -183,11 +190,41 @@ pub fn read_npy_dir(dir: impl AsRef<Path>, layout: &Layout) -> Result<Table> {
             Some(_) => {}
             None => rows = Some((n, path.clone())),
         }
-        let w = g.width();
-        for (j, name) in g.columns.iter().enumerate() {
-            let values = a.data.iter().skip(j).step_by(w.max(1)).copied().collect();
-            columns.push(Column::new(name.clone(), values));
-        }
+        files.push(file);
     }
-    Table::new(columns)
+    let mut row = Vec::with_capacity(layout.width());
+    for _ in 0..rows.map_or(0, |r| r.0) {
+        row.clear();
+        for (g, file) in layout.groups().iter().zip(&mut files) {
+            for _ in 0..g.width() {
+                row.push(file.next_value()?);
+            }
+        }
+        sink.write_row(&row)?;
+    }
+    Ok(sink)
+}
+
+/// Number of rows of a group file of shape `shape`, checked against the group's kind and width.
+fn rows_of(path: &Path, g: &Group, shape: &[u64]) -> Result<u64> {
+    let width = g.width() as u64;
+    match (g.kind, shape) {
+        (GroupKind::Scalar, &[n]) => Ok(n),
+        (GroupKind::Vector, &[n, m]) if m == width => Ok(n),
+        (_, shape) => Err(Error::Npy {
+            path: path.to_path_buf(),
+            message: format!(
+                "shape {shape:?} does not fit group `{}` of {width} column(s)",
+                g.name
+            ),
+        }),
+    }
+}
+
+fn owned_names(layout: &Layout) -> Vec<String> {
+    layout
+        .column_names()
+        .into_iter()
+        .map(str::to_owned)
+        .collect()
 }

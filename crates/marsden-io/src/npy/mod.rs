@@ -12,6 +12,6 @@ mod header;
 mod reader;
 mod writer;
 
-pub use dir::{NpyDirWriter, read_npy_dir, write_npy_dir};
+pub use dir::{NpyDirWriter, read_npy_dir, read_npy_dir_thinned, write_npy_dir};
 pub use reader::{NpyArray, read_npy};
 pub use writer::{NpyShape, NpyWriter};

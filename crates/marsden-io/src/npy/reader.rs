@@ -24,10 +24,59 @@ pub struct NpyArray {
 /// file shorter than its header says.
 pub fn read_npy(path: impl AsRef<Path>) -> Result<NpyArray> {
     let path = path.as_ref();
-    let npy_err = |message: String| Error::Npy {
+    let (npy, dtype) = open_npy(path)?;
+    let shape = npy.shape().to_vec();
+    let data = npy
+        .into_vec::<f64>()
+        .map_err(|e| npy_error(path, format!("cannot read data: {e}")))?;
+    Ok(NpyArray { dtype, shape, data })
+}
+
+/// Values of a `.npy` file read one at a time, for streaming a long array.
+pub(crate) struct NpyValues {
+    pub shape: Vec<u64>,
+    values: npyz::NpyReader<f64, BufReader<File>>,
+    path: std::path::PathBuf,
+}
+
+impl NpyValues {
+    /// Opens `path` and checks its header as [`read_npy`] does.
+    pub(crate) fn open(path: &Path) -> Result<Self> {
+        let (npy, _) = open_npy(path)?;
+        let shape = npy.shape().to_vec();
+        let values = npy
+            .data::<f64>()
+            .map_err(|e| npy_error(path, format!("cannot read data: {e}")))?;
+        Ok(Self {
+            shape,
+            values,
+            path: path.to_path_buf(),
+        })
+    }
+
+    /// The next value; a file shorter than its header says is an error.
+    pub(crate) fn next_value(&mut self) -> Result<f64> {
+        match self.values.next() {
+            Some(Ok(v)) => Ok(v),
+            Some(Err(e)) => Err(npy_error(&self.path, format!("cannot read data: {e}"))),
+            None => Err(npy_error(
+                &self.path,
+                "file shorter than its header says".into(),
+            )),
+        }
+    }
+}
+
+fn npy_error(path: &Path, message: String) -> Error {
+    Error::Npy {
         path: path.to_path_buf(),
         message,
-    };
+    }
+}
+
+/// Opens a `.npy` file and checks it holds `f64` values in C order; returns it and its dtype.
+fn open_npy(path: &Path) -> Result<(npyz::NpyFile<BufReader<File>>, String)> {
+    let npy_err = |message: String| npy_error(path, message);
     let file = File::open(path).map_err(|e| Error::io("open", path, e))?;
     let npy = npyz::NpyFile::new(BufReader::new(file))
         .map_err(|e| npy_err(format!("bad .npy header: {e}")))?;
@@ -41,9 +90,5 @@ pub fn read_npy(path: impl AsRef<Path>) -> Result<NpyArray> {
     if npy.order() == npyz::Order::Fortran && npy.shape().len() > 1 {
         return Err(npy_err("Fortran-order arrays are not supported".into()));
     }
-    let shape = npy.shape().to_vec();
-    let data = npy
-        .into_vec::<f64>()
-        .map_err(|e| npy_err(format!("cannot read data: {e}")))?;
-    Ok(NpyArray { dtype, shape, data })
+    Ok((npy, dtype))
 }
