@@ -19,6 +19,8 @@ mod constraints;
 mod examples;
 // `marsden order`: the table, the fitted orders, the CSV, the refused requests.
 mod order;
+// Plots: which pictures a run gets, angles wrapped and recorded, hostile ranges.
+mod plots;
 // `marsden run`: reference values read back from the trajectory, summary.json's fields, the
 // expression path against the Rust path, the output formats.
 mod run;

@@ -96,15 +96,29 @@ fn every_plot_of_a_run_is_a_png_of_the_right_size() {
     let table = sample(5_000);
     let opts = PlotOptions::default();
     let reports = plot_run(&table, &dir, &opts).unwrap();
-    assert_eq!(reports.len(), 4);
+    let names: Vec<String> = reports
+        .iter()
+        .map(|r| r.path.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "phase_portrait.png",
+            "time_series.png",
+            "configuration.png",
+            "energy_error.png",
+            "momentum_drift.png",
+            "constraint_residual.png"
+        ]
+    );
     for r in &reports {
         check_png(&r.path, opts.width, opts.height);
     }
     // 5000 > 4000 points: reduced, and the reports say so.
     assert!(
-        reports[1].notes.iter().any(|n| n.contains("buckets")),
+        reports[3].notes.iter().any(|n| n.contains("buckets")),
         "{:?}",
-        reports[1].notes
+        reports[3].notes
     );
 }
 
@@ -356,4 +370,147 @@ fn child_renders_a_plot() {
         ..PlotOptions::default()
     };
     plot_energy_error(dir.join("child.png"), &t, &e, &opts).unwrap();
+}
+
+/// A trajectory spanning 0 … 1.7e308 (a free particle with an absurd step) draws in bounded
+/// time: axes whose span overflows are not handed to the drawing library.
+#[test]
+fn huge_ranges_draw_in_bounded_time() {
+    let (_keep, dir) = out_dir();
+    let start = std::time::Instant::now();
+    for (t, q) in [
+        ([0.0, 1.7e158], [0.0, 1.7e308]),
+        ([0.0, 1.7e308], [-1.7e308, 1.7e308]),
+    ] {
+        let table = Table::new(vec![
+            Column::new("t", t.to_vec()),
+            Column::new("q_x", q.to_vec()),
+            Column::new("p_x", vec![1e150, 1e150]),
+            Column::new("energy", vec![5e299, 5e299]),
+        ])
+        .unwrap();
+        let reports = plot_run(&table, &dir, &PlotOptions::default()).unwrap();
+        let notes: Vec<&String> = reports.iter().flat_map(|r| &r.notes).collect();
+        assert!(
+            notes.iter().any(|n| n.contains("too large to draw")),
+            "{notes:?}"
+        );
+    }
+    assert!(start.elapsed().as_secs() < 20, "{:?}", start.elapsed());
+}
+
+fn names_of(reports: &[marsden_io::PlotReport]) -> Vec<String> {
+    reports
+        .iter()
+        .map(|r| r.path.file_name().unwrap().to_string_lossy().into_owned())
+        .collect()
+}
+
+/// N-body orbits are drawn in the plane where the bodies spread (here x–y; z ≡ 0), and a
+/// coordinate that never moves (z₁ ≡ 0) gets no phase-portrait panel: it is named in a note.
+#[test]
+fn nbody_orbits_in_their_plane_and_constant_coordinates_skipped() {
+    let (_keep, dir) = out_dir();
+    let dir = dir.join("nbody");
+    std::fs::create_dir_all(&dir).unwrap();
+    let n = 500;
+    let t: Vec<f64> = (0..n).map(|i| i as f64 * 0.02).collect();
+    let mut cols = vec![Column::new("t", t.clone())];
+    for (k, r) in [(1, 1.0), (2, 2.5)] {
+        let w = 1.0 / r;
+        cols.push(Column::new(
+            format!("q_x{k}"),
+            t.iter().map(|t| r * (w * t).cos()).collect(),
+        ));
+        cols.push(Column::new(
+            format!("q_y{k}"),
+            t.iter().map(|t| r * (w * t).sin()).collect(),
+        ));
+        cols.push(Column::new(format!("q_z{k}"), vec![0.0; n]));
+        cols.push(Column::new(
+            format!("p_x{k}"),
+            t.iter().map(|t| -(w * t).sin()).collect(),
+        ));
+        cols.push(Column::new(
+            format!("p_y{k}"),
+            t.iter().map(|t| (w * t).cos()).collect(),
+        ));
+        cols.push(Column::new(format!("p_z{k}"), vec![0.0; n]));
+    }
+    let table = Table::new(cols).unwrap();
+    let reports = plot_run(&table, &dir, &PlotOptions::default()).unwrap();
+    assert!(names_of(&reports).contains(&"configuration.png".to_owned()));
+    let phase = &reports[0];
+    assert!(
+        phase
+            .notes
+            .iter()
+            .any(|n| n.contains("constant throughout: z1, z2")),
+        "{:?}",
+        phase.notes
+    );
+    for r in &reports {
+        check_png(&r.path, 1200, 800);
+    }
+}
+
+/// A pendulum going over the top: θ grows by 2π per turn; declared an angle, it is drawn in
+/// (−π, π] (the axis says "mod 2π") and the plots still render.
+#[test]
+fn declared_angles_are_wrapped() {
+    let (_keep, dir) = out_dir();
+    let dir = dir.join("angles");
+    std::fs::create_dir_all(&dir).unwrap();
+    let n = 2000;
+    let t: Vec<f64> = (0..n).map(|i| i as f64 * 0.01).collect();
+    let theta: Vec<f64> = t.iter().map(|t| -3.0 * t).collect();
+    let table = Table::new(vec![
+        Column::new("t", t),
+        Column::new("q_theta", theta),
+        Column::new("p_theta", vec![-3.0; n]),
+        Column::new("energy", vec![4.5; n]),
+    ])
+    .unwrap();
+    let opts = PlotOptions {
+        angles: vec!["theta".to_owned()],
+        ..PlotOptions::default()
+    };
+    let reports = plot_run(&table, &dir, &opts).unwrap();
+    assert_eq!(
+        names_of(&reports),
+        ["phase_portrait.png", "time_series.png", "energy_error.png"]
+    );
+    for r in &reports {
+        check_png(&r.path, 1200, 800);
+    }
+    assert!(opts.is_angle("q_theta") && !opts.is_angle("p_theta"));
+}
+
+/// A long run read back through the bounded sketch keeps its energy spike, and the plots say
+/// from how many rows they were drawn.
+#[test]
+fn long_runs_are_read_back_through_a_bounded_sketch() {
+    let (_keep, dir) = out_dir();
+    let dir = dir.join("sketch");
+    std::fs::create_dir_all(&dir).unwrap();
+    let table = sample(300_000);
+    let csv = dir.join("trajectory.csv");
+    marsden_io::write_csv(&csv, &table).unwrap();
+    let sketch = marsden_io::read_csv_thinned(&csv, &["energy", "J_rotation"], 1 << 20).unwrap();
+    assert_eq!(sketch.rows_read, 300_000);
+    assert!(sketch.table.n_rows() < 30_000, "{}", sketch.table.n_rows());
+    let e = sketch.table.values("energy").unwrap();
+    let full = table.values("energy").unwrap();
+    let max = |v: &[f64]| v.iter().copied().fold(f64::MIN, f64::max);
+    assert_eq!(max(e), max(full), "the spike survives");
+    let opts = PlotOptions {
+        note: sketch.note(),
+        ..PlotOptions::default()
+    };
+    let reports = plot_run(&sketch.table, &dir, &opts).unwrap();
+    assert!(
+        reports
+            .iter()
+            .all(|r| r.notes.iter().any(|n| n.contains("of 300000 rows")))
+    );
 }

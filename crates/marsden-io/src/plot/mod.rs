@@ -1,6 +1,8 @@
 //! PNG plots of a trajectory, drawn with plotters into memory and encoded with `png`.
 //!
 //! * [`plot_phase_portrait`] — `p_i` against `q_i`, one panel per coordinate (first few).
+//! * [`plot_time_series`] — `q_i(t)` and `p_i(t)`.
+//! * [`plot_configuration`] — paths in a plane with equal axes (orbits, N-body bodies).
 //! * [`plot_energy_error`] — relative energy error against time (linear, scientific ticks).
 //! * [`plot_momentum_drift`] — `J(t) − J(t₀)` per momentum map, with legend.
 //! * [`plot_constraint_residual`] — residual against time (log axis when positive).
@@ -11,10 +13,12 @@
 //! on the machine. Long series are reduced (min/max per bucket) so spikes survive; empty,
 //! constant and non-finite data produce a plot with a note rather than an error.
 //!
-//! Internals: `axis` (ranges, tick labels), `downsample`, `font`, `prepare` (checks, notes),
+//! Internals: `angle` (wrapping to (−π, π]), `axis` (ranges, tick labels), `downsample`, `font`, `prepare` (checks, notes),
 //! `render` (panels → PNG).
 
+mod angle;
 mod axis;
+mod configuration;
 mod constraint;
 mod downsample;
 mod energy;
@@ -26,7 +30,9 @@ mod phase;
 mod prepare;
 mod render;
 mod run;
+mod time_series;
 
+pub use configuration::{Orbit, Plane, plot_configuration};
 pub use constraint::plot_constraint_residual;
 pub use energy::plot_energy_error;
 pub use font::FAMILY as FONT_FAMILY;
@@ -35,6 +41,7 @@ pub use multipliers::plot_multipliers;
 pub use options::{PhaseCurve, PlotOptions, PlotReport, Series};
 pub use phase::plot_phase_portrait;
 pub use run::{
-    CONSTRAINT_RESIDUAL_PNG, ENERGY_ERROR_PNG, MOMENTUM_DRIFT_PNG, MULTIPLIERS_PNG,
-    PHASE_PORTRAIT_PNG, plot_run,
+    CONFIGURATION_PNG, CONSTRAINT_RESIDUAL_PNG, ENERGY_ERROR_PNG, MOMENTUM_DRIFT_PNG,
+    MULTIPLIERS_PNG, PHASE_PORTRAIT_PNG, TIME_SERIES_PNG, plot_run,
 };
+pub use time_series::plot_time_series;

@@ -15,6 +15,18 @@ pub struct PlotOptions {
     pub max_points: usize,
     /// At most this many coordinates get a phase-portrait panel (the first ones).
     pub max_phase_panels: usize,
+    /// Coordinates that are angles (names without the `q_` prefix): drawn wrapped to (−π, π].
+    pub angles: Vec<String>,
+    /// A remark printed on every plot, e.g. how the rows of a long run were chosen.
+    pub note: Option<String>,
+}
+
+impl PlotOptions {
+    /// Whether the column `q_<name>` (or the coordinate `<name>`) was declared an angle.
+    pub fn is_angle(&self, column: &str) -> bool {
+        let name = column.strip_prefix("q_").unwrap_or(column);
+        self.angles.iter().any(|a| a == name)
+    }
 }
 
 impl Default for PlotOptions {
@@ -24,6 +36,8 @@ impl Default for PlotOptions {
             height: 800,
             max_points: 4000,
             max_phase_panels: 4,
+            angles: Vec::new(),
+            note: None,
         }
     }
 }

@@ -2,6 +2,7 @@
 
 use std::path::Path;
 
+use super::angle::split_at_wraps;
 use super::axis::{Scale, extent, padded};
 use super::downsample::{finite_segments, grid_thin};
 use super::options::{PhaseCurve, PlotOptions, PlotReport};
@@ -13,7 +14,8 @@ use crate::error::Result;
 ///
 /// Curves of at most `opts.max_points` points are drawn as lines; longer ones as dots, thinned
 /// to about one per pixel (a long run's orbit reads as its trace, and drawing stays bounded).
-/// Non-finite points are skipped (noted); empty input draws a panel saying so.
+/// Non-finite points are skipped (noted); empty input draws a panel saying so. Coordinates in
+/// `opts.angles` are expected wrapped to (−π, π] already; their curves break where they wrap.
 ///
 /// # Errors
 /// [`Error::PlotInput`](crate::Error::PlotInput) if a curve's `q` and `p` differ in length or
@@ -43,7 +45,7 @@ pub fn plot_phase_portrait(
     );
     let mut panels: Vec<Panel> = shown
         .iter()
-        .map(|c| phase_panel(c, opts.max_points, cell_px))
+        .map(|c| phase_panel(c, opts.max_points, cell_px, opts.is_angle(c.name)))
         .collect();
     match panels.first_mut() {
         None => {
@@ -70,12 +72,23 @@ pub fn plot_phase_portrait(
     })
 }
 
-fn phase_panel(c: &PhaseCurve<'_>, max_points: usize, cell_px: (usize, usize)) -> Panel {
-    let mut panel = Panel::new(c.name, format!("q_{}", c.name), format!("p_{}", c.name));
+fn phase_panel(
+    c: &PhaseCurve<'_>,
+    max_points: usize,
+    cell_px: (usize, usize),
+    angle: bool,
+) -> Panel {
+    let q_label = if angle {
+        format!("q_{} (mod 2π)", c.name)
+    } else {
+        format!("q_{}", c.name)
+    };
+    let mut panel = Panel::new(c.name, q_label, format!("p_{}", c.name));
     let n = c.q.len();
     if n <= max_points {
         let data = finite_segments(c.q, c.p);
         note_segments(None, &data, n, &mut panel.notes);
+        let data = split_at_wraps(data, angle, false);
         panel.lines.push(Line { label: None, data });
         return panel;
     }

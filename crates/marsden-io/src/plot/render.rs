@@ -46,6 +46,10 @@ pub(crate) struct Panel {
     pub lines: Vec<Line>,
     /// Drawn as dots (thinned phase curves).
     pub clouds: Vec<Vec<(f64, f64)>>,
+    /// Single marked points (an orbit's start), coloured like the line or cloud of that index.
+    pub markers: Vec<(f64, f64)>,
+    /// One unit is as long on both axes (the ranges are widened to the panel's aspect).
+    pub equal_axes: bool,
     /// Printed above the plotting area (the first few; all are returned in the report).
     pub notes: Vec<String>,
 }
@@ -63,6 +67,8 @@ impl Panel {
             y_scale: Scale::Linear,
             lines: Vec::new(),
             clouds: Vec::new(),
+            markers: Vec::new(),
+            equal_axes: false,
             notes: Vec::new(),
         }
     }
@@ -72,6 +78,7 @@ impl Panel {
             .iter()
             .flat_map(|l| l.data.points())
             .chain(self.clouds.iter().flatten().copied())
+            .chain(self.markers.iter().copied())
     }
 }
 
@@ -90,6 +97,9 @@ pub(crate) fn render(path: &Path, opts: &PlotOptions, fig: &mut Figure) -> Resul
         message,
     };
     check_options(path, opts)?;
+    if let (Some(note), Some(first)) = (&opts.note, fig.panels.first_mut()) {
+        first.notes.push(note.clone());
+    }
     ensure_registered().map_err(|m| plot_err(m.to_owned()))?;
     let (w, h) = (opts.width, opts.height);
     let mut buf = vec![255u8; w as usize * h as usize * 3];
@@ -130,6 +140,16 @@ fn check_options(path: &Path, opts: &PlotOptions) -> Result<()> {
     }
 }
 
+/// Largest magnitude an axis may reach: the drawing library's tick search does not end for
+/// ranges near the largest `f64` (a free particle with an absurd step reaches 1.7e308).
+const LARGEST_DRAWN: f64 = 1e300;
+
+/// Whether the axis `lo..hi`, padded, stays within what can be drawn.
+fn drawable_range(lo: f64, hi: f64) -> bool {
+    let (a, b) = padded((lo, hi), Scale::Linear);
+    (hi - lo).is_finite() && a.abs() <= LARGEST_DRAWN && b.abs() <= LARGEST_DRAWN
+}
+
 /// Chooses the axes (adding notes for degenerate data) and draws one panel.
 fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
@@ -145,8 +165,10 @@ fn draw_panel<DB: DrawingBackend>(
     let mut drawable = true;
     match (x_ext, y_ext) {
         (Some((x0, x1)), Some((y0, y1))) => {
-            if !(x1 - x0).is_finite() || !(y1 - y0).is_finite() {
-                panel.notes.push("values too large to draw".to_owned());
+            if !drawable_range(x0, x1) || !drawable_range(y0, y1) {
+                panel.notes.push(format!(
+                    "values beyond ±{LARGEST_DRAWN:e} are too large to draw"
+                ));
                 drawable = false;
             } else if y0 == y1 {
                 panel.notes.push(format!("constant: every value is {y0}"));
@@ -161,8 +183,11 @@ fn draw_panel<DB: DrawingBackend>(
         (Some(x), Some(y), true) => (x, y),
         _ => ((0.0, 1.0), (0.0, 1.0)),
     };
-    let (x0, x1) = padded(x_ext, Scale::Linear);
-    let (y0, y1) = padded(y_ext, scale);
+    let (mut x0, mut x1) = padded(x_ext, Scale::Linear);
+    let (mut y0, mut y1) = padded(y_ext, scale);
+    if panel.equal_axes && drawable && scale == Scale::Linear {
+        ((x0, x1), (y0, y1)) = equalised((x0, x1), (y0, y1), plot_pixels(area, panel));
+    }
     match scale {
         Scale::Linear => draw_chart(area, panel, drawable, x0..x1, y0..y1, &|v: &f64| {
             label(*v, y0, y1)
@@ -176,6 +201,31 @@ fn draw_panel<DB: DrawingBackend>(
             &|v: &f64| log_label(*v),
         ),
     }
+}
+
+/// The approximate size in pixels of a panel's plotting area (the layout of [`draw_chart`]).
+fn plot_pixels<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> (f64, f64) {
+    let (w, h) = area.dim_in_pixel();
+    let title = if panel.title.is_empty() { 0 } else { 30 };
+    let notes = 18 * panel.notes.len().min(4) as u32 + 8;
+    let width = w.saturating_sub(96 + 24).max(1);
+    let height = h.saturating_sub(title + notes + 50 + 16).max(1);
+    (f64::from(width), f64::from(height))
+}
+
+/// Widens the shorter of two ranges about its centre so one unit spans as many pixels on
+/// both axes of a `pixels.0 × pixels.1` area.
+fn equalised(x: (f64, f64), y: (f64, f64), pixels: (f64, f64)) -> ((f64, f64), (f64, f64)) {
+    let per_pixel = ((x.1 - x.0) / pixels.0).max((y.1 - y.0) / pixels.1);
+    let widen = |(lo, hi): (f64, f64), px: f64| {
+        let (mid, half) = (0.5 * (lo + hi), 0.5 * per_pixel * px);
+        if half.is_finite() && half > 0.0 {
+            (mid - half, mid + half)
+        } else {
+            (lo, hi)
+        }
+    };
+    (widen(x, pixels.0), widen(y, pixels.1))
 }
 
 fn draw_chart<DB, Y>(
@@ -265,6 +315,12 @@ where
             let color = PALETTE[k % PALETTE.len()];
             chart
                 .draw_series(cloud.iter().map(|&p| Circle::new(p, 1, color.filled())))
+                .map_err(e)?;
+        }
+        for (k, &p) in panel.markers.iter().enumerate() {
+            let color = PALETTE[k % PALETTE.len()];
+            chart
+                .draw_series(std::iter::once(Circle::new(p, 5, color.filled())))
                 .map_err(e)?;
         }
     }

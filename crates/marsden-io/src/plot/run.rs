@@ -2,17 +2,27 @@
 
 use std::path::Path;
 
+use std::collections::HashMap;
+
+use super::angle::wrapped;
+use super::axis::{Scale, extent};
+use super::configuration::{Orbit, Plane, plot_configuration};
 use super::constraint::plot_constraint_residual;
 use super::energy::plot_energy_error;
 use super::momentum::plot_momentum_drift;
 use super::multipliers::plot_multipliers;
 use super::options::{PhaseCurve, PlotOptions, PlotReport, Series};
 use super::phase::plot_phase_portrait;
+use super::time_series::plot_time_series;
 use crate::error::{Error, Result};
 use crate::table::Table;
 
 /// File name of the phase portrait written by [`plot_run`].
 pub const PHASE_PORTRAIT_PNG: &str = "phase_portrait.png";
+/// File name of the time-series plot (`q(t)`, `p(t)`) written by [`plot_run`].
+pub const TIME_SERIES_PNG: &str = "time_series.png";
+/// File name of the configuration-space plot written by [`plot_run`].
+pub const CONFIGURATION_PNG: &str = "configuration.png";
 /// File name of the energy-error plot written by [`plot_run`].
 pub const ENERGY_ERROR_PNG: &str = "energy_error.png";
 /// File name of the momentum-drift plot written by [`plot_run`].
@@ -23,9 +33,11 @@ pub const CONSTRAINT_RESIDUAL_PNG: &str = "constraint_residual.png";
 pub const MULTIPLIERS_PNG: &str = "multipliers.png";
 
 /// Draws every plot the table's columns allow into `dir`, by the `trajectory.csv`
-/// convention: `t`; `q_<name>` paired with `p_<name>` (phase portrait); `energy`;
-/// `J_<symmetry>` (momentum drift); `constraint_residual`; `lambda_<i>` (multipliers). A plot whose columns are absent is
-/// skipped; the reports say which files were written (for `marsden plot DIR`).
+/// convention: `t`; `q_<name>` paired with `p_<name>` (phase portrait, time series, and the
+/// configuration space when the names say where the points are, see [`plane_of`]); `energy`;
+/// `J_<symmetry>` (momentum drift); `constraint_residual`; `lambda_<i>` (multipliers). A plot
+/// whose columns are absent is skipped; the reports say which files were written (for
+/// `marsden plot DIR`). Coordinates named in `opts.angles` are drawn wrapped to (−π, π].
 ///
 /// # Errors
 /// [`Error::PlotInput`] if there is no `t` column; otherwise the first plot error.
@@ -39,24 +51,26 @@ pub fn plot_run(
         path: dir.to_path_buf(),
         message: "the table has no `t` column".to_owned(),
     })?;
+    let columns = Columns::new(table, opts);
     let mut reports = Vec::new();
-
-    let curves: Vec<PhaseCurve<'_>> = table
-        .columns_with_prefix("q_")
-        .filter_map(|q| {
-            let name = &q.name[2..];
-            let p = table.values(&format!("p_{name}"))?;
-            Some(PhaseCurve {
+    let coordinates = columns.coordinates();
+    if !coordinates.is_empty() {
+        reports.push(phase_portrait(dir, &columns, &coordinates, opts)?);
+        reports.push(time_series(dir, t, &columns, &coordinates, opts)?);
+    }
+    if let Some((plane, orbits)) = plane_of(&columns, &coordinates, opts) {
+        let orbits: Vec<Orbit<'_>> = orbits
+            .iter()
+            .map(|(name, x, y)| Orbit {
                 name,
-                q: &q.values,
-                p,
+                x: columns.get(x),
+                y: columns.get(y),
             })
-        })
-        .collect();
-    if !curves.is_empty() {
-        reports.push(plot_phase_portrait(
-            dir.join(PHASE_PORTRAIT_PNG),
-            &curves,
+            .collect();
+        reports.push(plot_configuration(
+            dir.join(CONFIGURATION_PNG),
+            &plane,
+            &orbits,
             opts,
         )?);
     }
@@ -68,13 +82,7 @@ pub fn plot_run(
             opts,
         )?);
     }
-    let maps: Vec<Series<'_>> = table
-        .columns_with_prefix("J_")
-        .map(|c| Series {
-            name: &c.name,
-            values: &c.values,
-        })
-        .collect();
+    let maps = series(table, "J_");
     if !maps.is_empty() {
         reports.push(plot_momentum_drift(
             dir.join(MOMENTUM_DRIFT_PNG),
@@ -91,13 +99,7 @@ pub fn plot_run(
             opts,
         )?);
     }
-    let multipliers: Vec<Series<'_>> = table
-        .columns_with_prefix("lambda_")
-        .map(|c| Series {
-            name: &c.name,
-            values: &c.values,
-        })
-        .collect();
+    let multipliers = series(table, "lambda_");
     if !multipliers.is_empty() {
         reports.push(plot_multipliers(
             dir.join(MULTIPLIERS_PNG),
@@ -107,4 +109,195 @@ pub fn plot_run(
         )?);
     }
     Ok(reports)
+}
+
+/// The columns whose names start with `prefix`, as named series.
+fn series<'a>(table: &'a Table, prefix: &'a str) -> Vec<Series<'a>> {
+    table
+        .columns_with_prefix(prefix)
+        .map(|c| Series {
+            name: &c.name,
+            values: &c.values,
+        })
+        .collect()
+}
+
+/// The table's columns, with angle coordinates replaced by their wrapped values.
+struct Columns<'a> {
+    table: &'a Table,
+    wrapped: HashMap<String, Vec<f64>>,
+}
+
+impl<'a> Columns<'a> {
+    fn new(table: &'a Table, opts: &PlotOptions) -> Self {
+        let wrapped = table
+            .columns_with_prefix("q_")
+            .filter(|c| opts.is_angle(&c.name))
+            .map(|c| (c.name.clone(), wrapped(&c.values)))
+            .collect();
+        Self { table, wrapped }
+    }
+
+    /// The values of column `name` (wrapped if it is an angle); empty if absent.
+    fn get(&self, name: &str) -> &[f64] {
+        match self.wrapped.get(name) {
+            Some(v) => v,
+            None => self.table.values(name).unwrap_or(&[]),
+        }
+    }
+
+    /// Coordinate names having both a `q_` and a `p_` column, in order.
+    fn coordinates(&self) -> Vec<&'a str> {
+        self.table
+            .columns_with_prefix("q_")
+            .map(|q| &q.name[2..])
+            .filter(|name| self.table.values(&format!("p_{name}")).is_some())
+            .collect()
+    }
+}
+
+/// Phase portrait of the coordinates that move (constant ones are skipped, and said).
+fn phase_portrait(
+    dir: &Path,
+    columns: &Columns<'_>,
+    coordinates: &[&str],
+    opts: &PlotOptions,
+) -> Result<PlotReport> {
+    let moving = |name: &&str| {
+        let (q, p) = (
+            columns.get(&format!("q_{name}")),
+            columns.get(&format!("p_{name}")),
+        );
+        !(is_constant(q) && is_constant(p))
+    };
+    let (shown, still): (Vec<&str>, Vec<&str>) =
+        coordinates.iter().copied().partition(|name| moving(name));
+    let shown = if shown.is_empty() {
+        coordinates.to_vec()
+    } else {
+        shown
+    };
+    let curves: Vec<PhaseCurve<'_>> = shown
+        .iter()
+        .map(|name| PhaseCurve {
+            name,
+            q: columns.get(&format!("q_{name}")),
+            p: columns.get(&format!("p_{name}")),
+        })
+        .collect();
+    let mut report = plot_phase_portrait(dir.join(PHASE_PORTRAIT_PNG), &curves, opts)?;
+    if !still.is_empty() && shown.len() < coordinates.len() {
+        report.notes.push(format!(
+            "not shown, constant throughout: {}",
+            still.join(", ")
+        ));
+    }
+    Ok(report)
+}
+
+fn time_series(
+    dir: &Path,
+    t: &[f64],
+    columns: &Columns<'_>,
+    coordinates: &[&str],
+    opts: &PlotOptions,
+) -> Result<PlotReport> {
+    let q_names: Vec<String> = coordinates.iter().map(|n| format!("q_{n}")).collect();
+    let p_names: Vec<String> = coordinates.iter().map(|n| format!("p_{n}")).collect();
+    let q: Vec<Series<'_>> = q_names
+        .iter()
+        .map(|n| Series {
+            name: n,
+            values: columns.get(n),
+        })
+        .collect();
+    let p: Vec<Series<'_>> = p_names
+        .iter()
+        .map(|n| Series {
+            name: n,
+            values: columns.get(n),
+        })
+        .collect();
+    plot_time_series(dir.join(TIME_SERIES_PNG), t, &q, &p, opts)
+}
+
+/// True when every finite value equals the first (or there are none).
+fn is_constant(values: &[f64]) -> bool {
+    let mut finite = values.iter().filter(|v| v.is_finite());
+    match finite.next() {
+        Some(first) => finite.all(|v| v == first),
+        None => true,
+    }
+}
+
+/// The plane of the configuration plot and its orbits `(legend, x column, y column)`, when the
+/// coordinate names say where the points are:
+///
+/// * N-body (`x1 y1 z1 x2 …`): one orbit per body, in the plane of the two axes along which the
+///   bodies spread most (so a planar problem is seen face on);
+/// * coordinates `x` and `y` (Kepler, a Cartesian pendulum): the path in the x–y plane;
+/// * exactly two other coordinates: the path in their plane (angles wrapped, axes not equal).
+fn plane_of(
+    columns: &Columns<'_>,
+    coordinates: &[&str],
+    opts: &PlotOptions,
+) -> Option<(Plane, Vec<(String, String, String)>)> {
+    let has = |name: &str| coordinates.contains(&name);
+    let bodies: Vec<String> = coordinates
+        .iter()
+        .filter_map(|c| c.strip_prefix('x'))
+        .filter(|k| !k.is_empty() && k.chars().all(|ch| ch.is_ascii_digit()))
+        .filter(|k| has(&format!("y{k}")))
+        .map(str::to_owned)
+        .collect();
+    let plane = |x: &str, y: &str, equal: bool| Plane {
+        x_label: x.to_owned(),
+        y_label: y.to_owned(),
+        equal_axes: equal,
+        wrapped: (opts.is_angle(x), opts.is_angle(y)),
+    };
+    if !bodies.is_empty() {
+        let spread = |axis: char| -> f64 {
+            bodies
+                .iter()
+                .map(|k| range_of(columns.get(&format!("q_{axis}{k}"))))
+                .sum()
+        };
+        let mut axes: Vec<char> = ['x', 'y', 'z']
+            .into_iter()
+            .filter(|a| bodies.iter().all(|k| has(&format!("{a}{k}"))))
+            .collect();
+        axes.sort_by(|a, b| spread(*b).total_cmp(&spread(*a)));
+        let (a, b) = (axes[0].min(axes[1]), axes[0].max(axes[1]));
+        let orbits = bodies
+            .iter()
+            .map(|k| {
+                (
+                    format!("body {k}"),
+                    format!("q_{a}{k}"),
+                    format!("q_{b}{k}"),
+                )
+            })
+            .collect();
+        return Some((plane(&a.to_string(), &b.to_string(), true), orbits));
+    }
+    let pair = if has("x") && has("y") {
+        Some(("x", "y"))
+    } else if let [a, b] = coordinates {
+        Some((*a, *b))
+    } else {
+        None
+    }?;
+    let equal = !opts.is_angle(pair.0) && !opts.is_angle(pair.1);
+    let orbit = (
+        String::new(),
+        format!("q_{}", pair.0),
+        format!("q_{}", pair.1),
+    );
+    Some((plane(pair.0, pair.1, equal), vec![orbit]))
+}
+
+/// The spread `max − min` of the finite values (0 if none).
+fn range_of(values: &[f64]) -> f64 {
+    extent(values.iter().copied(), Scale::Linear).map_or(0.0, |(lo, hi)| hi - lo)
 }

@@ -155,7 +155,13 @@ fn validate_raw(
             .note(reason));
     }
     let name = run_name(raw, &system, source.path());
-    let output = settings::output(&ck, raw.output.as_ref(), &name, overrides)?;
+    let output = settings::output(
+        &ck,
+        raw.output.as_ref(),
+        &name,
+        overrides,
+        &system.coordinates,
+    )?;
     let sweep = match with_sweep {
         true => {
             let parts = (&system, &initial, bodies.is_some());

@@ -181,6 +181,8 @@ pub struct RawOutput {
     pub every: Option<Spanned<i64>>,
     /// Draw PNG plots (default true).
     pub plots: Option<Spanned<bool>>,
+    /// Coordinates that are angles: plots show them wrapped to (−π, π].
+    pub angles: Option<SpannedList<String>>,
 }
 
 /// A parameter value: a number, or a list of numbers (N-body masses).

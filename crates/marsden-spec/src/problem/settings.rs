@@ -9,7 +9,7 @@ use toml::Spanned;
 use super::check::Checker;
 use super::method::{METHOD_NAMES, Method};
 use super::nbody_file::BodiesFile;
-use super::raw::{RawInitial, RawIntegrator, RawOutput};
+use super::raw::{RawInitial, RawIntegrator, RawOutput, SpannedList};
 use super::spec::{Format, InitialData, InitialSpec, IntegratorSpec, OutputSpec, Overrides};
 use crate::error::Diagnostic;
 use crate::model::ExprConstraint;
@@ -283,6 +283,7 @@ pub fn output(
     raw: Option<&Spanned<RawOutput>>,
     name: &str,
     overrides: &Overrides,
+    coordinates: &[String],
 ) -> Result<OutputSpec, Diagnostic> {
     let table = raw.map(Spanned::get_ref);
     let written_dir = table.and_then(|t| t.dir.as_ref());
@@ -314,10 +315,38 @@ pub fn output(
     let plots = table
         .and_then(|t| t.plots.as_ref())
         .is_none_or(|p| *p.get_ref());
+    let angles = match table.and_then(|t| t.angles.as_ref()) {
+        None => Vec::new(),
+        Some(list) => angles(ck, list, coordinates)?,
+    };
     Ok(OutputSpec {
         dir,
         format,
         every,
         plots,
+        angles,
     })
+}
+
+/// `angles = ["theta"]`: each must name a coordinate.
+fn angles(
+    ck: &Checker<'_>,
+    list: &SpannedList<String>,
+    coordinates: &[String],
+) -> Result<Vec<String>, Diagnostic> {
+    let mut names = Vec::new();
+    for a in list.get_ref() {
+        let name = a.get_ref();
+        if !coordinates.contains(name) {
+            return Err(ck
+                .error(
+                    Some(a.span()),
+                    format!("`{name}` in `angles` is not a coordinate"),
+                )
+                .suggest(closest(name, coordinates.iter().map(String::as_str)))
+                .note(format!("the coordinates are {}", coordinates.join(", "))));
+        }
+        names.push(name.clone());
+    }
+    Ok(names)
 }

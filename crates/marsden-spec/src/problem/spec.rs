@@ -196,4 +196,6 @@ pub struct OutputSpec {
     pub every: usize,
     /// Draw PNG plots after the run.
     pub plots: bool,
+    /// Coordinates that are angles (plots wrap them to (−π, π]).
+    pub angles: Vec<String>,
 }

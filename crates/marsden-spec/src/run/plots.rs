@@ -3,23 +3,39 @@
 
 use std::path::Path;
 
-use marsden_io::{Layout, PlotOptions, PlotReport, Table, plot_run, read_csv, read_npy_dir};
+use marsden_io::thin::DEFAULT_BUDGET;
+use marsden_io::{
+    Layout, PlotOptions, PlotReport, Thinned, plot_run, read_csv_thinned, read_npy_dir_thinned,
+};
 
 use super::output::{self, SUMMARY_JSON, TRAJECTORY_CSV, layout_from_columns};
 use crate::error::{Diagnostic, Error};
 use crate::problem::{Format, RunSpec};
 
-/// Reads the trajectory of `spec` back and draws every plot; returns the PNG file names.
+/// Reads the trajectory of `spec` back as a bounded sketch and draws every plot; returns the
+/// PNG file names. Memory does not grow with the number of rows (see [`marsden_io::Thinner`]).
 ///
 /// # Errors
 /// The trajectory cannot be read or a plot cannot be written.
 pub fn draw(spec: &RunSpec, layout: &Layout) -> marsden_io::Result<Vec<String>> {
     let dir = &spec.output.dir;
-    let table = match spec.output.format {
-        Format::Csv => read_csv(dir.join(output::TRAJECTORY_CSV))?,
-        Format::Npy => read_npy_dir(dir, layout)?,
+    let names: Vec<String> = layout
+        .column_names()
+        .into_iter()
+        .map(str::to_owned)
+        .collect();
+    let monitored = monitored(&names);
+    let sketch = match spec.output.format {
+        Format::Csv => {
+            read_csv_thinned(dir.join(output::TRAJECTORY_CSV), &monitored, DEFAULT_BUDGET)?
+        }
+        Format::Npy => read_npy_dir_thinned(dir, layout, &monitored, DEFAULT_BUDGET)?,
     };
-    let reports = plot_run(&table, dir, &PlotOptions::default())?;
+    let reports = plot_run(
+        &sketch.table,
+        dir,
+        &options(&sketch, spec.output.angles.clone()),
+    )?;
     Ok(reports
         .iter()
         .filter_map(|r| r.path.file_name())
@@ -32,37 +48,86 @@ pub fn draw(spec: &RunSpec, layout: &Layout) -> marsden_io::Result<Vec<String>> 
 /// # Errors
 /// Bad input if `dir` holds no readable run; failed if a plot cannot be drawn.
 pub fn redraw(dir: &Path) -> Result<Vec<PlotReport>, Error> {
-    let table = read_run(dir)?;
-    plot_run(&table, dir, &PlotOptions::default())
+    let (sketch, angles) = read_run(dir)?;
+    plot_run(&sketch.table, dir, &options(&sketch, angles))
         .map_err(|e| Error::failed(Diagnostic::new(format!("cannot draw the plots: {e}"))))
 }
 
-/// The trajectory of a run directory: `trajectory.csv`, or the `.npy` files named by
-/// `summary.json`.
-fn read_run(dir: &Path) -> Result<Table, Error> {
+/// The columns whose extremes the sketch keeps: the monitored quantities, where a spike is news.
+fn monitored(names: &[String]) -> Vec<&str> {
+    names
+        .iter()
+        .map(String::as_str)
+        .filter(|n| {
+            *n == "energy"
+                || *n == "constraint_residual"
+                || n.starts_with("J_")
+                || n.starts_with("lambda_")
+        })
+        .collect()
+}
+
+fn options(sketch: &Thinned, angles: Vec<String>) -> PlotOptions {
+    PlotOptions {
+        angles,
+        note: sketch.note(),
+        ..PlotOptions::default()
+    }
+}
+
+/// The trajectory of a run directory as a bounded sketch (`trajectory.csv`, or the `.npy`
+/// files named by `summary.json`), and the angles the summary declares.
+fn read_run(dir: &Path) -> Result<(Thinned, Vec<String>), Error> {
     let bad = |message: String| Error::bad_input(Diagnostic::new(message));
+    let summary = dir.join(SUMMARY_JSON);
+    let json: Option<serde_json::Value> = std::fs::read_to_string(&summary)
+        .ok()
+        .and_then(|text| serde_json::from_str(&text).ok());
+    let strings = |v: &serde_json::Value| -> Vec<String> {
+        v.as_array()
+            .map(|a| {
+                a.iter()
+                    .filter_map(|c| c.as_str().map(str::to_owned))
+                    .collect()
+            })
+            .unwrap_or_default()
+    };
+    let angles = json
+        .as_ref()
+        .map(|j| strings(&j["output"]["angles"]))
+        .unwrap_or_default();
     let csv = dir.join(TRAJECTORY_CSV);
     if csv.exists() {
-        return read_csv(&csv).map_err(|e| bad(e.to_string()));
+        let names = csv_header(&csv).map_err(|e| bad(e.to_string()))?;
+        let sketch = read_csv_thinned(&csv, &monitored(&names), DEFAULT_BUDGET)
+            .map_err(|e| bad(e.to_string()))?;
+        return Ok((sketch, angles));
     }
-    let summary = dir.join(SUMMARY_JSON);
-    let text = std::fs::read_to_string(&summary).map_err(|e| {
-        bad(format!(
-            "{} has neither {TRAJECTORY_CSV} nor a readable {SUMMARY_JSON} ({e}): is it the output directory of a run?",
-            dir.display()
-        ))
-    })?;
-    let json: serde_json::Value = serde_json::from_str(&text)
-        .map_err(|e| bad(format!("{} is not valid JSON: {e}", summary.display())))?;
-    let columns: Vec<String> = json["output"]["columns"]
-        .as_array()
-        .map(|a| {
-            a.iter()
-                .filter_map(|c| c.as_str().map(str::to_owned))
-                .collect()
-        })
-        .unwrap_or_default();
+    let json = match json {
+        Some(json) => json,
+        None => {
+            let why = match std::fs::read_to_string(&summary) {
+                Err(e) => format!("({e})"),
+                Ok(_) => "(it is not valid JSON)".to_owned(),
+            };
+            return Err(bad(format!(
+                "{} has neither {TRAJECTORY_CSV} nor a readable {SUMMARY_JSON} {why}: is it the output directory of a run?",
+                dir.display()
+            )));
+        }
+    };
+    let columns = strings(&json["output"]["columns"]);
     let layout = layout_from_columns(&columns)
         .map_err(|e| bad(format!("{}: output.columns: {e}", summary.display())))?;
-    read_npy_dir(dir, &layout).map_err(|e| bad(e.to_string()))
+    let sketch = read_npy_dir_thinned(dir, &layout, &monitored(&columns), DEFAULT_BUDGET)
+        .map_err(|e| bad(e.to_string()))?;
+    Ok((sketch, angles))
+}
+
+/// The column names on the first line of a CSV file.
+fn csv_header(path: &Path) -> std::io::Result<Vec<String>> {
+    use std::io::BufRead;
+    let mut line = String::new();
+    std::io::BufReader::new(std::fs::File::open(path)?).read_line(&mut line)?;
+    Ok(line.trim_end().split(',').map(str::to_owned).collect())
 }

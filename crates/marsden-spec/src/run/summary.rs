@@ -165,6 +165,9 @@ pub struct OutputSummary {
     pub columns: Vec<String>,
     /// Files written, relative to the output directory.
     pub files: Vec<String>,
+    /// Coordinates declared as angles (plots wrap them; `marsden plot` reads them here).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub angles: Vec<String>,
 }
 
 /// `provenance { … }`.
@@ -254,6 +257,7 @@ impl Summary {
                 rows: record.rows,
                 columns,
                 files,
+                angles: spec.output.angles.clone(),
             },
             provenance: Provenance {
                 marsden_version: env!("CARGO_PKG_VERSION"),
