@@ -47,7 +47,7 @@
 //! // Plots (also what `marsden plot DIR` does): read the run back, draw every plot.
 //! let table = if npy { read_npy_dir(out, &layout)? } else { read_csv(out.join("trajectory.csv"))? };
 //! let reports = plot_run(&table, out, &PlotOptions::default())?;
-//! assert_eq!(reports.len(), 2); // phase portrait and energy error (no J, no constraints)
+//! assert_eq!(reports.len(), 3); // phase portrait, time series, energy error (no J, no constraints)
 //! for r in &reports {
 //!     for note in &r.notes {
 //!         eprintln!("{}: {note}", r.path.display());

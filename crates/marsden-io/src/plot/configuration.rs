@@ -8,7 +8,7 @@ use super::axis::{Scale, extent, padded};
 use super::downsample::{finite_segments, grid_thin};
 use super::options::{PlotOptions, PlotReport};
 use super::prepare::{check_lengths, note_segments};
-use super::render::{Figure, Line, Panel, render};
+use super::render::{Line, Panel, draw_figure};
 use crate::error::Result;
 
 /// One point's path in the plane: its legend name and its coordinates over time.
@@ -97,14 +97,11 @@ pub fn plot_configuration(
     if orbits.is_empty() {
         panel.notes.push("no positions to plot".to_owned());
     }
-    let mut fig = Figure {
-        title: "Configuration space (● start)".to_owned(),
-        grid: (1, 1),
-        panels: vec![panel],
-    };
-    let notes = render(path, opts, &mut fig)?;
-    Ok(PlotReport {
-        path: path.to_path_buf(),
-        notes,
-    })
+    draw_figure(
+        path,
+        opts,
+        "Configuration space (● start)".to_owned(),
+        (1, 1),
+        vec![panel],
+    )
 }

@@ -5,7 +5,7 @@ use std::path::Path;
 use super::axis::{Scale, extent};
 use super::options::{PlotOptions, PlotReport};
 use super::prepare::{check_lengths, max_abs, sci, time_line};
-use super::render::{Figure, Panel, render};
+use super::render::{Panel, draw_figure};
 use crate::error::Result;
 
 /// Draws the constraint residual against `t` to a PNG at `path`.
@@ -51,14 +51,6 @@ pub fn plot_constraint_residual(
     };
     panel.lines.push(line);
     panel.notes = notes;
-    let mut fig = Figure {
-        title: format!("Constraint residual (max |r| = {})", sci(max_abs(residual))),
-        grid: (1, 1),
-        panels: vec![panel],
-    };
-    let notes = render(path, opts, &mut fig)?;
-    Ok(PlotReport {
-        path: path.to_path_buf(),
-        notes,
-    })
+    let title = format!("Constraint residual (max |r| = {})", sci(max_abs(residual)));
+    draw_figure(path, opts, title, (1, 1), vec![panel])
 }

@@ -18,6 +18,7 @@
 
 mod angle;
 mod axis;
+mod columns;
 mod configuration;
 mod constraint;
 mod downsample;
@@ -27,6 +28,7 @@ mod momentum;
 mod multipliers;
 mod options;
 mod phase;
+mod plane;
 mod prepare;
 mod render;
 mod run;

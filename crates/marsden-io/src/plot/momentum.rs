@@ -3,8 +3,8 @@
 use std::path::Path;
 
 use super::options::{PlotOptions, PlotReport, Series};
-use super::prepare::{check_lengths, first_finite, max_abs, sci, time_line};
-use super::render::{Figure, Panel, render};
+use super::prepare::{check_lengths, first_finite, max_abs, sci, series_panel};
+use super::render::draw_figure;
 use crate::error::Result;
 
 /// Draws each momentum map's drift `J(t) − J(t₀)` against `t`, one line per map with a
@@ -27,41 +27,27 @@ pub fn plot_momentum_drift(
     for m in maps {
         check_lengths(path, ("t", t), (m.name, m.values))?;
     }
-    let mut panel = Panel::new("", "t", "J(t) − J(t₀)");
-    let mut notes = Vec::new();
-    let mut overall: Option<f64> = None;
-    for m in maps {
-        let drift: Vec<f64> = match first_finite(m.values) {
+    let drifts: Vec<Vec<f64>> = maps
+        .iter()
+        .map(|m| match first_finite(m.values) {
             Some((_, j0)) => m.values.iter().map(|j| j - j0).collect(),
             None => m.values.to_vec(),
-        };
-        let max = max_abs(&drift);
-        overall = match (overall, max) {
-            (Some(a), Some(b)) => Some(a.max(b)),
-            (a, b) => a.or(b),
-        };
-        let label = format!("{} (max |ΔJ| = {})", m.name, sci(max));
-        panel.lines.push(time_line(
-            Some(m.name),
-            Some(label),
-            t,
-            &drift,
-            opts.max_points,
-            &mut notes,
-        ));
-    }
+        })
+        .collect();
+    let drift_series: Vec<Series<'_>> = maps
+        .iter()
+        .zip(&drifts)
+        .map(|(m, d)| Series {
+            name: m.name,
+            values: d,
+        })
+        .collect();
+    let label = |d: &Series<'_>| format!("{} (max |ΔJ| = {})", d.name, sci(max_abs(d.values)));
+    let mut panel = series_panel("J(t) − J(t₀)", t, &drift_series, opts.max_points, label);
     if maps.is_empty() {
-        notes.push("no momentum maps declared".to_owned());
+        panel.notes.push("no momentum maps declared".to_owned());
     }
-    panel.notes = notes;
-    let mut fig = Figure {
-        title: format!("Momentum map drift (max |ΔJ| = {})", sci(overall)),
-        grid: (1, 1),
-        panels: vec![panel],
-    };
-    let notes = render(path, opts, &mut fig)?;
-    Ok(PlotReport {
-        path: path.to_path_buf(),
-        notes,
-    })
+    let overall = drifts.iter().filter_map(|d| max_abs(d)).reduce(f64::max);
+    let title = format!("Momentum map drift (max |ΔJ| = {})", sci(overall));
+    draw_figure(path, opts, title, (1, 1), vec![panel])
 }

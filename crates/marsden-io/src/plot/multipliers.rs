@@ -3,8 +3,8 @@
 use std::path::Path;
 
 use super::options::{PlotOptions, PlotReport, Series};
-use super::prepare::{check_lengths, max_abs, sci, time_line};
-use super::render::{Figure, Panel, render};
+use super::prepare::{check_lengths, max_abs, sci, series_panel};
+use super::render::draw_figure;
 use crate::error::Result;
 
 /// Draws each multiplier `λ_i(t)` (the constraint forces `−Dφ(q)ᵀλ`) against `t`, one line
@@ -24,28 +24,8 @@ pub fn plot_multipliers(
     for m in multipliers {
         check_lengths(path, ("t", t), (m.name, m.values))?;
     }
-    let mut panel = Panel::new("", "t", "λ(t)");
-    let mut notes = Vec::new();
-    for m in multipliers {
-        let label = format!("{} (max |λ| = {})", m.name, sci(max_abs(m.values)));
-        panel.lines.push(time_line(
-            Some(m.name),
-            Some(label),
-            t,
-            m.values,
-            opts.max_points,
-            &mut notes,
-        ));
-    }
-    panel.notes = notes;
-    let mut fig = Figure {
-        title: "Constraint multipliers".to_owned(),
-        grid: (1, 1),
-        panels: vec![panel],
-    };
-    let notes = render(path, opts, &mut fig)?;
-    Ok(PlotReport {
-        path: path.to_path_buf(),
-        notes,
-    })
+    let label = |m: &Series<'_>| format!("{} (max |λ| = {})", m.name, sci(max_abs(m.values)));
+    let panel = series_panel("λ(t)", t, multipliers, opts.max_points, label);
+    let title = "Constraint multipliers".to_owned();
+    draw_figure(path, opts, title, (1, 1), vec![panel])
 }

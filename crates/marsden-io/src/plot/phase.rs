@@ -7,7 +7,7 @@ use super::axis::{Scale, extent, padded};
 use super::downsample::{finite_segments, grid_thin};
 use super::options::{PhaseCurve, PlotOptions, PlotReport};
 use super::prepare::{check_lengths, note_segments};
-use super::render::{Figure, Line, Panel, render};
+use super::render::{Line, Panel, draw_figure};
 use crate::error::Result;
 
 /// Draws a phase portrait of the first `opts.max_phase_panels` coordinates to a PNG at `path`.
@@ -60,16 +60,7 @@ pub fn plot_phase_portrait(
         )),
         Some(_) => {}
     }
-    let mut fig = Figure {
-        title: "Phase portrait".to_owned(),
-        grid,
-        panels,
-    };
-    let notes = render(path, opts, &mut fig)?;
-    Ok(PlotReport {
-        path: path.to_path_buf(),
-        notes,
-    })
+    draw_figure(path, opts, "Phase portrait".to_owned(), grid, panels)
 }
 
 fn phase_panel(

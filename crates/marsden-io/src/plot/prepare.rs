@@ -3,7 +3,8 @@
 use std::path::Path;
 
 use super::downsample::{Segments, min_max};
-use super::render::Line;
+use super::options::Series;
+use super::render::{Line, Panel};
 use crate::error::{Error, Result};
 
 /// Fails with [`Error::PlotInput`] unless `a` and `b` have the same length.
@@ -86,4 +87,29 @@ pub(crate) fn note_segments(
     if data.buckets > 0 && !notes.contains(&bucket_note) {
         notes.push(bucket_note);
     }
+}
+
+/// A panel of named series against `t`, one line each; `label` gives each legend entry.
+pub(crate) fn series_panel(
+    y_label: &str,
+    t: &[f64],
+    series: &[Series<'_>],
+    max_points: usize,
+    label: impl Fn(&Series<'_>) -> String,
+) -> Panel {
+    let mut panel = Panel::new("", "t", y_label);
+    let mut notes = Vec::new();
+    for s in series {
+        let line = time_line(
+            Some(s.name),
+            Some(label(s)),
+            t,
+            s.values,
+            max_points,
+            &mut notes,
+        );
+        panel.lines.push(line);
+    }
+    panel.notes = notes;
+    panel
 }

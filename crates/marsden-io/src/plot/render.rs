@@ -12,7 +12,7 @@ use plotters::prelude::*;
 use super::axis::{Scale, extent, label, log_label, padded};
 use super::downsample::Segments;
 use super::font::{FAMILY, ensure_registered};
-use super::options::PlotOptions;
+use super::options::{PlotOptions, PlotReport};
 use crate::error::{Error, Result};
 
 /// Line colours (the "tab10" palette).
@@ -88,6 +88,29 @@ pub(crate) struct Figure {
     /// (rows, columns) of the panel grid.
     pub grid: (usize, usize),
     pub panels: Vec<Panel>,
+}
+
+/// Renders `panels` on a `grid` under `title` to the PNG at `path`; the report lists every note.
+///
+/// # Errors
+/// As [`render`].
+pub(crate) fn draw_figure(
+    path: &Path,
+    opts: &PlotOptions,
+    title: String,
+    grid: (usize, usize),
+    panels: Vec<Panel>,
+) -> Result<PlotReport> {
+    let mut fig = Figure {
+        title,
+        grid,
+        panels,
+    };
+    let notes = render(path, opts, &mut fig)?;
+    Ok(PlotReport {
+        path: path.to_path_buf(),
+        notes,
+    })
 }
 
 /// Checks the options, renders the figure and writes the PNG. Returns every note printed.

@@ -2,17 +2,15 @@
 
 use std::path::Path;
 
-use std::collections::HashMap;
-
-use super::angle::wrapped;
-use super::axis::{Scale, extent};
-use super::configuration::{Orbit, Plane, plot_configuration};
+use super::columns::{Columns, is_constant};
+use super::configuration::{Orbit, plot_configuration};
 use super::constraint::plot_constraint_residual;
 use super::energy::plot_energy_error;
 use super::momentum::plot_momentum_drift;
 use super::multipliers::plot_multipliers;
 use super::options::{PhaseCurve, PlotOptions, PlotReport, Series};
 use super::phase::plot_phase_portrait;
+use super::plane::plane_of;
 use super::time_series::plot_time_series;
 use crate::error::{Error, Result};
 use crate::table::Table;
@@ -61,10 +59,10 @@ pub fn plot_run(
     if let Some((plane, orbits)) = plane_of(&columns, &coordinates, opts) {
         let orbits: Vec<Orbit<'_>> = orbits
             .iter()
-            .map(|(name, x, y)| Orbit {
-                name,
-                x: columns.get(x),
-                y: columns.get(y),
+            .map(|o| Orbit {
+                name: &o.legend,
+                x: columns.get(&o.x),
+                y: columns.get(&o.y),
             })
             .collect();
         reports.push(plot_configuration(
@@ -120,40 +118,6 @@ fn series<'a>(table: &'a Table, prefix: &'a str) -> Vec<Series<'a>> {
             values: &c.values,
         })
         .collect()
-}
-
-/// The table's columns, with angle coordinates replaced by their wrapped values.
-struct Columns<'a> {
-    table: &'a Table,
-    wrapped: HashMap<String, Vec<f64>>,
-}
-
-impl<'a> Columns<'a> {
-    fn new(table: &'a Table, opts: &PlotOptions) -> Self {
-        let wrapped = table
-            .columns_with_prefix("q_")
-            .filter(|c| opts.is_angle(&c.name))
-            .map(|c| (c.name.clone(), wrapped(&c.values)))
-            .collect();
-        Self { table, wrapped }
-    }
-
-    /// The values of column `name` (wrapped if it is an angle); empty if absent.
-    fn get(&self, name: &str) -> &[f64] {
-        match self.wrapped.get(name) {
-            Some(v) => v,
-            None => self.table.values(name).unwrap_or(&[]),
-        }
-    }
-
-    /// Coordinate names having both a `q_` and a `p_` column, in order.
-    fn coordinates(&self) -> Vec<&'a str> {
-        self.table
-            .columns_with_prefix("q_")
-            .map(|q| &q.name[2..])
-            .filter(|name| self.table.values(&format!("p_{name}")).is_some())
-            .collect()
-    }
 }
 
 /// Phase portrait of the coordinates that move (constant ones are skipped, and said).
@@ -219,85 +183,4 @@ fn time_series(
         })
         .collect();
     plot_time_series(dir.join(TIME_SERIES_PNG), t, &q, &p, opts)
-}
-
-/// True when every finite value equals the first (or there are none).
-fn is_constant(values: &[f64]) -> bool {
-    let mut finite = values.iter().filter(|v| v.is_finite());
-    match finite.next() {
-        Some(first) => finite.all(|v| v == first),
-        None => true,
-    }
-}
-
-/// The plane of the configuration plot and its orbits `(legend, x column, y column)`, when the
-/// coordinate names say where the points are:
-///
-/// * N-body (`x1 y1 z1 x2 …`): one orbit per body, in the plane of the two axes along which the
-///   bodies spread most (so a planar problem is seen face on);
-/// * coordinates `x` and `y` (Kepler, a Cartesian pendulum): the path in the x–y plane;
-/// * exactly two other coordinates: the path in their plane (angles wrapped, axes not equal).
-fn plane_of(
-    columns: &Columns<'_>,
-    coordinates: &[&str],
-    opts: &PlotOptions,
-) -> Option<(Plane, Vec<(String, String, String)>)> {
-    let has = |name: &str| coordinates.contains(&name);
-    let bodies: Vec<String> = coordinates
-        .iter()
-        .filter_map(|c| c.strip_prefix('x'))
-        .filter(|k| !k.is_empty() && k.chars().all(|ch| ch.is_ascii_digit()))
-        .filter(|k| has(&format!("y{k}")))
-        .map(str::to_owned)
-        .collect();
-    let plane = |x: &str, y: &str, equal: bool| Plane {
-        x_label: x.to_owned(),
-        y_label: y.to_owned(),
-        equal_axes: equal,
-        wrapped: (opts.is_angle(x), opts.is_angle(y)),
-    };
-    if !bodies.is_empty() {
-        let spread = |axis: char| -> f64 {
-            bodies
-                .iter()
-                .map(|k| range_of(columns.get(&format!("q_{axis}{k}"))))
-                .sum()
-        };
-        let mut axes: Vec<char> = ['x', 'y', 'z']
-            .into_iter()
-            .filter(|a| bodies.iter().all(|k| has(&format!("{a}{k}"))))
-            .collect();
-        axes.sort_by(|a, b| spread(*b).total_cmp(&spread(*a)));
-        let (a, b) = (axes[0].min(axes[1]), axes[0].max(axes[1]));
-        let orbits = bodies
-            .iter()
-            .map(|k| {
-                (
-                    format!("body {k}"),
-                    format!("q_{a}{k}"),
-                    format!("q_{b}{k}"),
-                )
-            })
-            .collect();
-        return Some((plane(&a.to_string(), &b.to_string(), true), orbits));
-    }
-    let pair = if has("x") && has("y") {
-        Some(("x", "y"))
-    } else if let [a, b] = coordinates {
-        Some((*a, *b))
-    } else {
-        None
-    }?;
-    let equal = !opts.is_angle(pair.0) && !opts.is_angle(pair.1);
-    let orbit = (
-        String::new(),
-        format!("q_{}", pair.0),
-        format!("q_{}", pair.1),
-    );
-    Some((plane(pair.0, pair.1, equal), vec![orbit]))
-}
-
-/// The spread `max − min` of the finite values (0 if none).
-fn range_of(values: &[f64]) -> f64 {
-    extent(values.iter().copied(), Scale::Linear).map_or(0.0, |(lo, hi)| hi - lo)
 }

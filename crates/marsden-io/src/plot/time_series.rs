@@ -5,7 +5,7 @@ use std::path::Path;
 use super::angle::split_at_wraps;
 use super::options::{PlotOptions, PlotReport, Series};
 use super::prepare::{check_lengths, time_line};
-use super::render::{Figure, Panel, render};
+use super::render::{Panel, draw_figure};
 use crate::error::Result;
 
 /// At most this many coordinates get a line in each panel (the first ones).
@@ -36,16 +36,13 @@ pub fn plot_time_series(
         panel("Positions", "q", t, q, opts),
         panel("Momenta", "p", t, p, opts),
     ];
-    let mut fig = Figure {
-        title: "Coordinates and momenta against time".to_owned(),
-        grid: (2, 1),
+    draw_figure(
+        path,
+        opts,
+        "Coordinates and momenta against time".to_owned(),
+        (2, 1),
         panels,
-    };
-    let notes = render(path, opts, &mut fig)?;
-    Ok(PlotReport {
-        path: path.to_path_buf(),
-        notes,
-    })
+    )
 }
 
 fn panel(

@@ -53,18 +53,26 @@ pub fn redraw(dir: &Path) -> Result<Vec<PlotReport>, Error> {
         .map_err(|e| Error::failed(Diagnostic::new(format!("cannot draw the plots: {e}"))))
 }
 
-/// The columns whose extremes the sketch keeps: the monitored quantities, where a spike is news.
+/// The columns whose extremes the sketch keeps: the monitored quantities, where a spike is
+/// news, and the first coordinates and momenta, whose envelope the time series shows.
 fn monitored(names: &[String]) -> Vec<&str> {
-    names
-        .iter()
-        .map(String::as_str)
-        .filter(|n| {
-            *n == "energy"
-                || *n == "constraint_residual"
-                || n.starts_with("J_")
-                || n.starts_with("lambda_")
-        })
-        .collect()
+    const COORDINATES: usize = 4;
+    let watched = |n: &&str| {
+        *n == "energy"
+            || *n == "constraint_residual"
+            || n.starts_with("J_")
+            || n.starts_with("lambda_")
+    };
+    let prefixed = |prefix: &'static str| {
+        names
+            .iter()
+            .map(String::as_str)
+            .filter(move |n| n.starts_with(prefix))
+            .take(COORDINATES)
+    };
+    let mut columns: Vec<&str> = names.iter().map(String::as_str).filter(watched).collect();
+    columns.extend(prefixed("q_").chain(prefixed("p_")));
+    columns
 }
 
 fn options(sketch: &Thinned, angles: Vec<String>) -> PlotOptions {
