@@ -166,21 +166,21 @@ fn time_series(
     coordinates: &[&str],
     opts: &PlotOptions,
 ) -> Result<PlotReport> {
-    let q_names: Vec<String> = coordinates.iter().map(|n| format!("q_{n}")).collect();
-    let p_names: Vec<String> = coordinates.iter().map(|n| format!("p_{n}")).collect();
-    let q: Vec<Series<'_>> = q_names
-        .iter()
-        .map(|n| Series {
-            name: n,
-            values: columns.get(n),
-        })
-        .collect();
-    let p: Vec<Series<'_>> = p_names
-        .iter()
-        .map(|n| Series {
-            name: n,
-            values: columns.get(n),
-        })
-        .collect();
+    let names = |prefix: &str| -> Vec<String> {
+        coordinates.iter().map(|n| format!("{prefix}{n}")).collect()
+    };
+    let (q_names, p_names) = (names("q_"), names("p_"));
+    let (q, p) = (named(&q_names, columns), named(&p_names, columns));
     plot_time_series(dir.join(TIME_SERIES_PNG), t, &q, &p, opts)
+}
+
+/// The columns called `names`, as series.
+fn named<'a>(names: &'a [String], columns: &'a Columns<'_>) -> Vec<Series<'a>> {
+    names
+        .iter()
+        .map(|n| Series {
+            name: n,
+            values: columns.get(n),
+        })
+        .collect()
 }
