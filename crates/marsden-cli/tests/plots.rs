@@ -76,3 +76,15 @@ fn a_trajectory_near_the_largest_float_plots_in_bounded_time() {
     assert!(status.success(), "{status}");
     assert!(out.join("summary.json").is_file());
 }
+
+/// `marsden plot` on a sweep's directory draws the sweep plot (it once failed with "a table
+/// needs at least one column").
+#[test]
+fn plot_on_a_sweep_folder_draws_the_sweep() {
+    let run = run_ok("pendulum_sweep.toml", &[]);
+    assert!(run.out.join("sweep.csv").is_file());
+    let out = marsden_in(run.tmp.path(), &["plot", run.out.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(run.out.join("sweep.png").is_file());
+}

@@ -24,7 +24,7 @@ pub mod sink;
 pub mod table;
 pub mod thin;
 
-pub use csv::{CsvWriter, read_csv, read_csv_from, read_csv_thinned, write_csv};
+pub use csv::{CsvWriter, read_csv, read_csv_from, read_csv_numeric, read_csv_thinned, write_csv};
 pub use error::{Error, Result};
 pub use layout::{Group, GroupKind, Layout};
 pub use npy::{

@@ -14,10 +14,12 @@
 //! them together), so a run killed abruptly leaves complete rows, barring a kill inside one
 //! `write` system call.
 
+mod loose;
 mod number;
 mod reader;
 mod writer;
 
+pub use loose::read_csv_numeric;
 pub use number::{format_f64, parse_f64};
 pub use reader::{read_csv, read_csv_from, read_csv_thinned};
 pub use writer::{CsvWriter, write_csv};

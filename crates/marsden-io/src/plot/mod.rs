@@ -2,6 +2,7 @@
 //!
 //! * [`plot_phase_portrait`] — `p_i` against `q_i`, one panel per coordinate (first few).
 //! * [`plot_time_series`] — `q_i(t)` and `p_i(t)`.
+//! * [`plot_sweep`] — per-member quantities of a sweep against the swept value.
 //! * [`plot_configuration`] — paths in a plane with equal axes (orbits, N-body bodies).
 //! * [`plot_energy_error`] — relative energy error against time (linear, scientific ticks).
 //! * [`plot_momentum_drift`] — `J(t) − J(t₀)` per momentum map, with legend.
@@ -32,6 +33,7 @@ mod plane;
 mod prepare;
 mod render;
 mod run;
+mod sweep;
 mod time_series;
 
 pub use configuration::{Orbit, Plane, plot_configuration};
@@ -46,4 +48,5 @@ pub use run::{
     CONFIGURATION_PNG, CONSTRAINT_RESIDUAL_PNG, ENERGY_ERROR_PNG, MOMENTUM_DRIFT_PNG,
     MULTIPLIERS_PNG, PHASE_PORTRAIT_PNG, TIME_SERIES_PNG, plot_run,
 };
+pub use sweep::plot_sweep;
 pub use time_series::plot_time_series;

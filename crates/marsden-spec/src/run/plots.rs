@@ -3,9 +3,11 @@
 
 use std::path::Path;
 
+use marsden_io::plot::plot_sweep;
 use marsden_io::thin::DEFAULT_BUDGET;
 use marsden_io::{
-    Layout, PlotOptions, PlotReport, Thinned, plot_run, read_csv_thinned, read_npy_dir_thinned,
+    Layout, PlotOptions, PlotReport, Series, Thinned, plot_run, read_csv_numeric, read_csv_thinned,
+    read_npy_dir_thinned,
 };
 
 use super::output::{self, SUMMARY_JSON, TRAJECTORY_CSV, layout_from_columns};
@@ -43,14 +45,54 @@ pub fn draw(spec: &RunSpec, layout: &Layout) -> marsden_io::Result<Vec<String>> 
         .collect())
 }
 
-/// Reads the run in `dir` (a finished or failed one) and draws every plot its columns allow.
+/// Reads the run in `dir` (a finished or failed one) and draws every plot its columns allow;
+/// a sweep's directory (`sweep.csv`) gets its sweep plot.
 ///
 /// # Errors
 /// Bad input if `dir` holds no readable run; failed if a plot cannot be drawn.
 pub fn redraw(dir: &Path) -> Result<Vec<PlotReport>, Error> {
+    if !dir.join(TRAJECTORY_CSV).exists() && dir.join(SWEEP_CSV).exists() {
+        return draw_sweep(dir).map(|r| vec![r]);
+    }
     let (sketch, angles) = read_run(dir)?;
     plot_run(&sketch.table, dir, &options(&sketch, angles))
         .map_err(|e| Error::failed(Diagnostic::new(format!("cannot draw the plots: {e}"))))
+}
+
+/// File name of a sweep's table.
+const SWEEP_CSV: &str = "sweep.csv";
+/// File name of a sweep's plot.
+pub const SWEEP_PNG: &str = "sweep.png";
+/// Columns of `sweep.csv` that are bookkeeping, not results.
+const BOOKKEEPING: [&str; 3] = ["member", "steps", "steps_requested"];
+
+/// Draws `sweep.png` from the `sweep.csv` in `dir`: each per-member result against the swept
+/// value (the column after `member`).
+///
+/// # Errors
+/// Bad input if `sweep.csv` cannot be read or has no swept column; failed if the plot cannot
+/// be drawn.
+pub fn draw_sweep(dir: &Path) -> Result<PlotReport, Error> {
+    let bad = |message: String| Error::bad_input(Diagnostic::new(message));
+    let path = dir.join(SWEEP_CSV);
+    let table = read_csv_numeric(&path).map_err(|e| bad(e.to_string()))?;
+    let mut columns = table.columns().iter().filter(|c| c.name != "member");
+    let Some(x) = columns.next() else {
+        return Err(bad(format!("{} has no swept column", path.display())));
+    };
+    let quantities: Vec<Series<'_>> = columns
+        .filter(|c| !BOOKKEEPING.contains(&c.name.as_str()))
+        .map(|c| Series {
+            name: &c.name,
+            values: &c.values,
+        })
+        .collect();
+    let x = Series {
+        name: &x.name,
+        values: &x.values,
+    };
+    plot_sweep(dir.join(SWEEP_PNG), x, &quantities, &PlotOptions::default())
+        .map_err(|e| Error::failed(Diagnostic::new(format!("cannot draw the sweep plot: {e}"))))
 }
 
 /// The columns whose extremes the sketch keeps: the monitored quantities, where a spike is
