@@ -46,7 +46,7 @@ impl<D: SensitiveStep + Clone> Checkpoints<D> {
         let mut stored = Vec::with_capacity(grid.steps / every + 1);
         let mut state = start;
         for k in 0..grid.steps {
-            if k % every == 0 {
+            if k.is_multiple_of(every) {
                 stored.push((state.clone(), stepper.clone()));
             }
             stepper.step(&mut state, grid.h)?;

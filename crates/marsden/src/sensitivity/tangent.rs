@@ -93,7 +93,7 @@ pub fn tangent<D: SensitiveStep + ?Sized>(
         .map(|k| f64::from(u8::from(k / columns == k % columns)))
         .collect();
     let (mut step, mut next) = (vec![0.0; m * columns], vec![0.0; m * columns]);
-    let keep = |k: usize| options.every > 0 && (k % options.every == 0 || k == grid.steps);
+    let keep = |k: usize| options.every > 0 && (k.is_multiple_of(options.every) || k == grid.steps);
     let mut samples = Vec::new();
     if keep(0) {
         samples.push(TangentSample {

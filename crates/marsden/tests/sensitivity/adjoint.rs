@@ -10,7 +10,7 @@ use marsden::{Integrator, Midpoint, Rule, State, TimeGrid};
 
 /// The loss cotangent of sample k: ℓ_k = Σ_i w_{ik} x_i²/2 on every 7th step (∇ℓ_k = w ∘ x_k).
 fn cotangent(k: usize, x: &State, out: &mut [f64]) {
-    if k % 7 == 0 {
+    if k.is_multiple_of(7) {
         let n = x.q.len();
         for (i, o) in out.iter_mut().enumerate() {
             let w = 1.0 + 0.1 * (i as f64) + 0.01 * ((k / 7) % 5) as f64;

@@ -137,7 +137,7 @@ fn adjoint_parameter_gradient_equals_forward() {
     let make =
         || ParametricIntegrator::new(&Midpoint, DampedPendulumLc, &[1.3, 0.2], tight()).unwrap();
     let loss = |k: usize, x: &State, out: &mut [f64]| {
-        if k % 10 == 0 {
+        if k.is_multiple_of(10) {
             out[0] += x.q[0];
         }
     };
