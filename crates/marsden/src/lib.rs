@@ -35,6 +35,7 @@
 //! | symmetry | [`symmetry`] | group actions, generators and lifts, `J_L`, `J_H`, `J^±_{L_d}`, symmetry checks |
 //! | analysis | [`analysis`] | energy error and drift, Noether and force balances, energy balance, constraint residuals; symplecticity certificate |
 //! | studies | [`studies`] | ensembles in parallel, empirical orders of convergence |
+//! | sensitivity | [`sensitivity`] | tangent sensitivities `∂(q, p)/∂(q₀, p₀, θ)` along a run; adjoint gradients with checkpoints |
 //!
 //! ## Conventions
 //!
@@ -89,6 +90,7 @@ pub mod mechanics;
 pub mod numerics;
 pub mod run;
 pub mod scalar;
+pub mod sensitivity;
 pub mod separable;
 pub mod special;
 pub mod studies;

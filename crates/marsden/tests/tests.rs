@@ -22,5 +22,7 @@ mod reference;
 mod rules;
 /// Problems, runs, observers, ensembles, input files and bad input.
 mod run;
+/// Derivatives through the simulation: tangent maps, finite differences of whole runs, adjoints.
+mod sensitivity;
 /// Group actions, momentum maps and Noether (continuous, discrete, with forces).
 mod symmetry;

@@ -35,21 +35,25 @@ use crate::numerics::ad::{self, HessianParts};
 use crate::numerics::dense::Lu;
 
 /// Derivative blocks of the step equations, read from one full Hessian evaluation.
+///
+/// The action has `dof = n + P` coordinates: `n` free ones, then `P` frozen ones (parameters,
+/// whose offsets are zero; [`frozen_step_jacobian`]).
 struct Blocks<'a> {
     parts: &'a HessianParts,
-    n: usize,
+    /// Coordinates of the action (free and frozen).
+    dof: usize,
     s: usize,
     forced: bool,
 }
 
 impl Blocks<'_> {
     fn width(&self) -> usize {
-        (self.s + 1) * self.n
+        (self.s + 1) * self.dof
     }
 
     /// `∂(∂L_d/∂Q_i + F_i)_a / ∂x_c` for control point `i ∈ 0..=s`, component `a`.
     fn d_equation(&self, i: usize, a: usize, c: usize) -> f64 {
-        let (n, w) = (self.n, self.width());
+        let (n, w) = (self.dof, self.width());
         let hess = |row: usize| self.parts.hess[row * w + c];
         let l = if i == 0 {
             hess(a) - (1..=self.s).map(|j| hess(j * n + a)).sum::<f64>()
@@ -78,23 +82,58 @@ pub fn step_jacobian<A: DiscreteAction, F: DiscreteForce>(
     offsets: &[f64],
     jac: &mut [f64],
 ) -> Result<(), Error> {
-    let n = action.dof();
+    frozen_step_jacobian(action, force, (t0, h), (q0, &[]), offsets, jac)
+}
+
+/// The step Jacobian with frozen coordinates: `action` and `force` have `n + P` coordinates,
+/// the first `n` stepped, the last `P` parameters `θ` held fixed (offsets zero). Writes
+/// `∂(q_{k+1}, p_{k+1})/∂(q_k, p_k, θ)` (row-major 2n × (2n + P)) into `jac`, from the free
+/// offsets `offsets = (Δ₁ … Δ_s)` (length `s·n`).
+///
+/// The parameter columns are the `∂/∂x₀` columns of the frozen coordinates: with the offsets of
+/// `θ` zero, `θ` enters the step equations exactly as `q_k` does, `∂R/∂θ = ∂R/∂x₀[θ]`, and the
+/// implicit function theorem of the module documentation gives `dz/dθ = −(∂R/∂z)⁻¹ ∂R/∂θ`.
+/// With `P = 0` this is [`step_jacobian`].
+pub fn frozen_step_jacobian<A: DiscreteAction, F: DiscreteForce>(
+    action: &A,
+    force: &F,
+    (t0, h): (f64, f64),
+    (q0, theta): (&[f64], &[f64]),
+    offsets: &[f64],
+    jac: &mut [f64],
+) -> Result<(), Error> {
+    let (n, np) = (q0.len(), theta.len());
+    let dof = action.dof();
     let s = action.internal_stages() + 1;
-    let (sn, m) = (s * n, 2 * n);
+    let (sn, m, cols) = (s * n, 2 * n, 2 * n + np);
+    Error::check_len("q (free coordinates)", q0, dof.saturating_sub(np))?;
     Error::check_len("offsets", offsets, sn)?;
-    let x: Vec<f64> = q0.iter().chain(offsets).copied().collect();
+    Error::check_len("jacobian", jac, m * cols)?;
+    let x: Vec<f64> = q0
+        .iter()
+        .chain(theta)
+        .copied()
+        .chain((0..s).flat_map(|j| {
+            offsets[j * n..(j + 1) * n]
+                .iter()
+                .copied()
+                .chain(std::iter::repeat_n(0.0, np))
+        }))
+        .collect();
     let f = ActionAndForces::new(action, force, (t0, h));
     let mut parts = HessianParts::default();
     ad::partial_hessian(&f, &x, 0..x.len(), 0..x.len(), &mut parts);
     let b = Blocks {
         parts: &parts,
-        n,
+        dof,
         s,
         forced: force.is_active(),
     };
-    // Equations R_r, r = i·n + a for control points i < s; unknowns z = x[n..].
+    // Free row r = i·n + a (control point i, component a) sits at i·dof + a in x.
+    let at = |r: usize| (r / n) * dof + r % n;
+    // Equations R_r, r = i·n + a for control points i < s; unknowns z = the free offsets.
     let a_mat: Vec<f64> = (0..sn * sn)
-        .map(|k| b.d_equation(k / sn / n, (k / sn) % n, n + k % sn))
+        .map(|k| b.d_equation(k / sn / n, (k / sn) % n, dof + at(k % sn)))
         .collect();
     let mut lu = Lu::new();
     lu.factor(&a_mat, sn).map_err(|e| {
@@ -107,29 +146,35 @@ pub fn step_jacobian<A: DiscreteAction, F: DiscreteForce>(
             },
         })
     })?;
-    // dz = −A⁻¹ [∂R/∂q | ∂R/∂p], column by column (sn × 2n, stored column-major in `dz`).
-    let (mut dz, mut col, mut scratch) = (vec![0.0; sn * m], vec![0.0; sn], Vec::with_capacity(sn));
-    for c in 0..m {
+    // The x-column of input column c: q_k (c < n), none for p_k, θ (c ≥ 2n).
+    let x_col = |c: usize| match c {
+        c if c < n => Some(c),
+        c if c >= m => Some(n + c - m),
+        _ => None,
+    };
+    // dz = −A⁻¹ [∂R/∂q | ∂R/∂p | ∂R/∂θ], column by column (sn × cols, column-major in `dz`).
+    let (mut dz, mut col, mut scratch) =
+        (vec![0.0; sn * cols], vec![0.0; sn], Vec::with_capacity(sn));
+    for c in 0..cols {
         for (r, x) in col.iter_mut().enumerate() {
             let (i, a) = (r / n, r % n);
-            *x = -if c < n {
-                b.d_equation(i, a, c)
-            } else {
-                f64::from(u8::from(i == 0 && a == c - n))
+            *x = -match x_col(c) {
+                Some(xc) => b.d_equation(i, a, xc),
+                None => f64::from(u8::from(i == 0 && a == c - n)),
             };
         }
         lu.solve(&mut col, &mut scratch);
         dz[c * sn..(c + 1) * sn].copy_from_slice(&col);
     }
     for a in 0..n {
-        for c in 0..m {
+        for c in 0..cols {
             let delta_s = dz[c * sn + (s - 1) * n + a];
-            jac[a * m + c] = f64::from(u8::from(a == c)) + delta_s;
-            let direct = if c < n { b.d_equation(s, a, c) } else { 0.0 };
+            jac[a * cols + c] = f64::from(u8::from(a == c)) + delta_s;
+            let direct = x_col(c).map_or(0.0, |xc| b.d_equation(s, a, xc));
             let through: f64 = (0..sn)
-                .map(|r| b.d_equation(s, a, n + r) * dz[c * sn + r])
+                .map(|r| b.d_equation(s, a, dof + at(r)) * dz[c * sn + r])
                 .sum();
-            jac[(n + a) * m + c] = direct + through;
+            jac[(n + a) * cols + c] = direct + through;
         }
     }
     Ok(())

@@ -1,0 +1,107 @@
+//! Adjoint (reverse) gradients of a loss summed over the states of a run.
+//!
+//! For `Λ = Σ_k ℓ_k(x_k)`, `x_k = (q_k, p_k)`, `x_{k+1} = F(x_k; θ)`, the discrete adjoint
+//! ([GW08] §3; for variational integrators the adjoint of the discrete Hamiltonian map is again
+//! a symplectic map, [Sanz-Serna 2016] §3) is
+//!
+//! ```text
+//!     λ_K = ∇ℓ_K(x_K),     λ_k = DF_x(x_k)ᵀ λ_{k+1} + ∇ℓ_k(x_k),     g_θ = Σ_k DF_θ(x_k)ᵀ λ_{k+1},
+//!     dΛ/dx₀ = λ₀,          dΛ/dθ = g_θ,
+//! ```
+//!
+//! the transposed step Jacobians applied backwards: one vector–Jacobian product per step,
+//! whatever the number of inputs (the tangent run, [`super::tangent`], costs `2n + P` columns
+//! per step). The reverse sweep needs the states backwards; [`super::checkpoints`] stores every
+//! `m`-th one and recomputes the segment in between, so memory is `O(K/m + m)`.
+//!
+//! [GW08]: Griewank & Walther, *Evaluating Derivatives*, 2nd ed. (2008).
+//! [Sanz-Serna 2016]: J. M. Sanz-Serna, *Symplectic Runge–Kutta schemes for adjoint equations,
+//! automatic differentiation, optimal control and more*, SIAM Review 58 (2016).
+
+use super::checkpoints::{Checkpoints, Segment};
+use super::options::{AdjointOptions, check_cotangent};
+use super::step::SensitiveStep;
+use crate::error::Error;
+use crate::mechanics::State;
+use crate::run::TimeGrid;
+
+/// The gradient of a loss over a run, and what the reverse sweep kept in memory.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Gradient {
+    /// Degrees of freedom `n`.
+    pub n: usize,
+    /// The state the run reached.
+    pub state: State,
+    /// `dΛ/d(q₀, p₀, θ)` (length `2n + P`).
+    pub gradient: Vec<f64>,
+    /// Checkpoints stored by the forward sweep.
+    pub checkpoints: usize,
+    /// Steps per recomputed segment (the states and Jacobians held at once).
+    pub segment: usize,
+}
+
+/// `λ ← DF_xᵀ λ`, `g ← g + DF_θᵀ λ` for one step Jacobian `[DF_x | DF_θ]` (2n × columns);
+/// `tmp` has length 2n.
+pub(super) fn pull_back(jac: &[f64], m: usize, lambda: &mut [f64], g: &mut [f64], tmp: &mut [f64]) {
+    let columns = m + g.len();
+    for (c, t) in tmp.iter_mut().enumerate() {
+        *t = (0..m).map(|r| jac[r * columns + c] * lambda[r]).sum();
+    }
+    for (p, gp) in g.iter_mut().enumerate() {
+        *gp += (0..m)
+            .map(|r| jac[r * columns + m + p] * lambda[r])
+            .sum::<f64>();
+    }
+    lambda.copy_from_slice(tmp);
+}
+
+/// The gradient of `Λ = Σ_k ℓ_k(q_k, p_k)` over the run of `stepper` from `start` on `grid`
+/// with respect to `(q₀, p₀, θ)`.
+///
+/// `loss(k, x_k, out)` adds `∂ℓ_k/∂(q_k, p_k)` (the cotangent of sample `k`, `q` then `p`) into
+/// `out` (length 2n, zero on entry); it is called once for every `k = 0 … K`, backwards, and
+/// leaves `out` alone where the loss has no term.
+pub fn adjoint<D, L>(
+    stepper: &mut D,
+    start: State,
+    grid: &TimeGrid,
+    mut loss: L,
+    options: &AdjointOptions,
+) -> Result<Gradient, Error>
+where
+    D: SensitiveStep + Clone,
+    L: FnMut(usize, &State, &mut [f64]),
+{
+    let n = stepper.dof();
+    let m = 2 * n;
+    Error::check_len("q0", &start.q, n)?;
+    Error::check_len("p0", &start.p, n)?;
+    let every = options.spacing(grid.steps);
+    let (checkpoints, state) = Checkpoints::record(stepper, start.clone(), grid, every)?;
+    let (mut lambda, mut g) = (vec![0.0; m], vec![0.0; stepper.parameters()]);
+    let (mut tmp, mut cot) = (vec![0.0; m], vec![0.0; m]);
+    let mut add = |k: usize, x: &State, lambda: &mut [f64]| -> Result<(), Error> {
+        cot.fill(0.0);
+        loss(k, x, &mut cot);
+        check_cotangent(&cot, m)?;
+        lambda.iter_mut().zip(&cot).for_each(|(l, c)| *l += c);
+        Ok(())
+    };
+    let mut segment = Segment::default();
+    for c in (0..checkpoints.len()).rev() {
+        checkpoints.recompute(c, grid, &mut segment)?;
+        for (i, jac) in segment.jacobians.iter().enumerate().rev() {
+            add(segment.first + i + 1, &segment.states[i + 1], &mut lambda)?;
+            pull_back(jac, m, &mut lambda, &mut g, &mut tmp);
+        }
+    }
+    add(0, &start, &mut lambda)?;
+    lambda.extend_from_slice(&g);
+    Ok(Gradient {
+        n,
+        state,
+        gradient: lambda,
+        checkpoints: checkpoints.len(),
+        segment: every.min(grid.steps),
+    })
+}

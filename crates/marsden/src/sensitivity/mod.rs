@@ -1,0 +1,35 @@
+//! Derivatives through the simulation: tangent (forward) sensitivities of the discrete
+//! Hamiltonian map along a run, and adjoint (reverse) gradients of a loss over its samples.
+//!
+//! The step `F̃_{L_d}: (q_k, p_k) ↦ (q_{k+1}, p_{k+1})` of a variational integrator is the
+//! solution of its step equations `R(z; q_k, p_k, θ) = 0` ([MW01] §1.5); its derivative is
+//! taken by the implicit function theorem at the converged step,
+//! `dz = −(∂R/∂z)⁻¹ ∂R/∂(q_k, p_k, θ)`, with every block a second derivative of the discrete
+//! action from one hyper-dual evaluation
+//! ([`crate::analysis::certificate::variational::frozen_step_jacobian`]) — never by
+//! differentiating Newton's iterations, so the derivative is that of the exact discrete map
+//! whatever the solver's path or iteration count. Rules (midpoint, trapezoid, α, Galerkin,
+//! compositions) and discrete forces (Lagrange–d'Alembert) enter only through the action and
+//! the forces, so all of them are covered.
+//!
+//! - [`step`]: what a stepper offers ([`SensitiveStep`]): one step with its Jacobian.
+//! - [`tangent`]: `S_k = ∂(q_k, p_k)/∂(q₀, p₀, θ)` forward along a run ([`Tangent`]).
+//! - [`adjoint`]: `dΛ/d(q₀, p₀, θ)` of `Λ = Σ_k ℓ_k(q_k, p_k)`, backwards ([`Gradient`]),
+//!   over [`checkpoints`] so memory stays bounded.
+//! - [`parametric`]: named parameters of the Lagrangian and the forces, held as coordinates
+//!   that do not move ([`ParametricIntegrator`]).
+//!
+//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+
+pub mod adjoint;
+pub mod checkpoints;
+pub mod options;
+pub mod parametric;
+pub mod step;
+pub mod tangent;
+
+pub use adjoint::{Gradient, adjoint};
+pub use options::{AdjointOptions, TangentOptions};
+pub use parametric::{ParametricIntegrator, ParametricModel};
+pub use step::SensitiveStep;
+pub use tangent::{Tangent, TangentSample, tangent};

@@ -1,0 +1,126 @@
+//! Tangent (forward) sensitivities: the Jacobian of the state along a run.
+//!
+//! With `x_k = (q_k, p_k)` and the step `x_{k+1} = F(x_k; θ)`, the sensitivity
+//! `S_k = ∂x_k/∂(x₀, θ)` (2n × (2n + P)) obeys the variational equation of the discrete map
+//! ([MW01] §1.5; [HLW06] §VI.2)
+//!
+//! ```text
+//!     S₀ = [I | 0],      S_{k+1} = DF_x(x_k) S_k + [0 | DF_θ(x_k)],
+//! ```
+//!
+//! each `DF` exact by the implicit function theorem on the converged step
+//! ([`crate::analysis::certificate::variational`]), not by differentiating Newton's iterations.
+//! For a conservative run the `(q₀, p₀)` block is symplectic, `Sᵀ J S = J`, because each factor
+//! is ([`crate::analysis::certificate`]).
+//!
+//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
+
+use super::options::TangentOptions;
+use super::step::SensitiveStep;
+use crate::error::Error;
+use crate::mechanics::State;
+use crate::run::TimeGrid;
+
+/// The sensitivities of a run: the final state and `∂(q, p)/∂(q₀, p₀, θ)` at the final and the
+/// kept states.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tangent {
+    /// Degrees of freedom `n`.
+    pub n: usize,
+    /// Columns `2n + P`: `q₀`, `p₀`, then the parameters.
+    pub columns: usize,
+    /// The state the run reached.
+    pub state: State,
+    /// `∂(q_K, p_K)/∂(q₀, p₀, θ)`, row-major `2n × columns` (rows `q`, then `p`).
+    pub jacobian: Vec<f64>,
+    /// The kept states and their Jacobians ([`TangentOptions::every`]).
+    pub samples: Vec<TangentSample>,
+}
+
+/// A kept state of a tangent run and its sensitivity.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TangentSample {
+    /// Step index `k`.
+    pub step: usize,
+    /// The state `x_k`.
+    pub state: State,
+    /// `∂(q_k, p_k)/∂(q₀, p₀, θ)`, row-major `2n × columns`.
+    pub jacobian: Vec<f64>,
+}
+
+impl Tangent {
+    /// Entry `∂x_row/∂column` of the final Jacobian.
+    pub fn get(&self, row: usize, column: usize) -> f64 {
+        self.jacobian[row * self.columns + column]
+    }
+
+    /// The `(q₀, p₀)` block of the final Jacobian (row-major 2n × 2n).
+    pub fn state_block(&self) -> Vec<f64> {
+        let m = 2 * self.n;
+        (0..m * m)
+            .map(|k| self.jacobian[(k / m) * self.columns + k % m])
+            .collect()
+    }
+}
+
+/// `S ← DF_x S + [0 | DF_θ]`: `step` is `[DF_x | DF_θ]` (2n × columns), `s` is 2n × columns,
+/// `out` receives the product.
+pub(super) fn propagate(step: &[f64], s: &[f64], m: usize, columns: usize, out: &mut [f64]) {
+    for r in 0..m {
+        let row = &step[r * columns..(r + 1) * columns];
+        for c in 0..columns {
+            let through: f64 = (0..m).map(|l| row[l] * s[l * columns + c]).sum();
+            out[r * columns + c] = through + if c >= m { row[c] } else { 0.0 };
+        }
+    }
+}
+
+/// Runs `stepper` from `start` over `grid` and propagates the sensitivities with it.
+///
+/// On a failed step the error names the step ([`crate::error::StepFailure`]).
+pub fn tangent<D: SensitiveStep + ?Sized>(
+    stepper: &mut D,
+    start: State,
+    grid: &TimeGrid,
+    options: &TangentOptions,
+) -> Result<Tangent, Error> {
+    let n = stepper.dof();
+    let (m, columns) = (2 * n, 2 * n + stepper.parameters());
+    Error::check_len("q0", &start.q, n)?;
+    Error::check_len("p0", &start.p, n)?;
+    let mut s: Vec<f64> = (0..m * columns)
+        .map(|k| f64::from(u8::from(k / columns == k % columns)))
+        .collect();
+    let (mut step, mut next) = (vec![0.0; m * columns], vec![0.0; m * columns]);
+    let keep = |k: usize| options.every > 0 && (k.is_multiple_of(options.every) || k == grid.steps);
+    let mut samples = Vec::new();
+    if keep(0) {
+        samples.push(TangentSample {
+            step: 0,
+            state: start.clone(),
+            jacobian: s.clone(),
+        });
+    }
+    let mut state = start;
+    for k in 0..grid.steps {
+        stepper.step_with_sensitivity(&mut state, grid.h, &mut step)?;
+        state.t = grid.time(k + 1);
+        propagate(&step, &s, m, columns, &mut next);
+        std::mem::swap(&mut s, &mut next);
+        if keep(k + 1) {
+            samples.push(TangentSample {
+                step: k + 1,
+                state: state.clone(),
+                jacobian: s.clone(),
+            });
+        }
+    }
+    Ok(Tangent {
+        n,
+        columns,
+        state,
+        jacobian: s,
+        samples,
+    })
+}

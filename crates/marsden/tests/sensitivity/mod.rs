@@ -1,0 +1,8 @@
+//! Derivatives through the simulation: tangent maps against closed forms (R1, R12), symplecticity
+//! of the tangent map, finite differences of whole runs, and adjoint gradients against tangents.
+
+mod adjoint;
+mod common;
+mod finite_differences;
+mod parameters;
+mod tangent;

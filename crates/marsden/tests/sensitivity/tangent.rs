@@ -1,0 +1,117 @@
+//! Tangent maps against closed forms and structure: the midpoint oscillator's one-step matrix
+//! (R1), the damped oscillator's (R12, discrete Lagrange–d'Alembert), and the symplecticity of
+//! the `(q₀, p₀)` block over 10⁴ steps (Kepler, double pendulum; R17's certificate over a run).
+
+use super::common::{integrator, state};
+use crate::common::{assert_close, tight};
+use marsden::analysis::certificate::symplectic_defect;
+use marsden::discrete::rules::Galerkin;
+use marsden::sensitivity::{TangentOptions, tangent};
+use marsden::systems::{DampedOscillator, DoublePendulum, HarmonicOscillator, Kepler};
+use marsden::{Integrator, Midpoint, Rule, TimeGrid, Trapezoid};
+
+/// R1: the tangent map of one midpoint step of `q̈ = −q` with h = 0.1 is the Cayley matrix
+/// [[399, 40], [−40, 399]]/401, and of ten steps its tenth power.
+#[test]
+fn r1_tangent_map_is_the_cayley_matrix_to_1e14() {
+    let grid = TimeGrid::new(0.0, 0.1, 1).unwrap();
+    let mut vi = integrator(Midpoint.discretize(HarmonicOscillator::default()));
+    let t = tangent(
+        &mut vi,
+        state(&[0.3], &[-0.7]),
+        &grid,
+        &TangentOptions::default(),
+    )
+    .unwrap();
+    let exact = [399.0 / 401.0, 40.0 / 401.0, -40.0 / 401.0, 399.0 / 401.0];
+    for (k, e) in exact.iter().enumerate() {
+        assert_close(
+            t.jacobian[k],
+            *e,
+            1e-14,
+            &format!("M[{}][{}]", k / 2, k % 2),
+        );
+    }
+    // Ten steps: M¹⁰ (rotation by 10θ with cos θ = 399/401).
+    let grid = TimeGrid::new(0.0, 0.1, 10).unwrap();
+    let mut vi = integrator(Midpoint.discretize(HarmonicOscillator::default()));
+    let t = tangent(
+        &mut vi,
+        state(&[1.0], &[0.0]),
+        &grid,
+        &TangentOptions { every: 5 },
+    )
+    .unwrap();
+    let theta = (399.0f64 / 401.0).acos() * 10.0;
+    let (c, s) = (theta.cos(), theta.sin());
+    for (k, e) in [c, s, -s, c].iter().enumerate() {
+        assert_close(
+            t.jacobian[k],
+            *e,
+            1e-14,
+            &format!("M¹⁰[{}][{}]", k / 2, k % 2),
+        );
+    }
+    assert_eq!(
+        t.samples.iter().map(|s| s.step).collect::<Vec<_>>(),
+        [0, 5, 10]
+    );
+}
+
+/// R12: the damped oscillator (m = k = 1, c = 0.1) with midpoint L_d and midpoint forces has the
+/// one-step matrix [[401, 40], [−40, 397]]/403; the forced tangent map reproduces it.
+#[test]
+fn r12_forced_tangent_map_is_401_40_minus40_397_over_403() {
+    let osc = DampedOscillator::default();
+    let mut vi = Integrator::new(Midpoint.discretize(osc))
+        .with_force(Midpoint.discretize_force(osc, 1))
+        .with_options(tight())
+        .unwrap();
+    let grid = TimeGrid::new(0.0, 0.1, 1).unwrap();
+    let t = tangent(
+        &mut vi,
+        state(&[0.4], &[0.2]),
+        &grid,
+        &TangentOptions::default(),
+    )
+    .unwrap();
+    let exact = [401.0, 40.0, -40.0, 397.0];
+    for (k, e) in exact.iter().enumerate() {
+        assert_close(
+            t.jacobian[k],
+            e / 403.0,
+            1e-14,
+            &format!("M[{}][{}]", k / 2, k % 2),
+        );
+    }
+}
+
+/// The `(q₀, p₀)` block `M` of a conservative run of 10⁴ steps satisfies `MᵀJM = J` to 1e-10
+/// relative to `‖M‖²` (the product of 10⁴ symplectic step Jacobians, R17).
+#[test]
+fn tangent_map_of_10k_steps_is_symplectic_kepler_and_double_pendulum() {
+    let (q, p) = Kepler::pericentre(0.6);
+    let grid = TimeGrid::new(0.0, 0.01, 10_000).unwrap();
+    let mut vi = integrator(Trapezoid.discretize(Kepler::default()));
+    let t = tangent(&mut vi, state(&q, &p), &grid, &TangentOptions::default()).unwrap();
+    let (abs, rel) = symplectic_defect(&t.state_block(), 2);
+    println!("kepler / trapezoid, 10⁴ steps: |MᵀJM − J| = {abs:.2e}, relative {rel:.2e}");
+    assert!(rel <= 1e-10, "kepler: relative defect {rel:e}");
+
+    let grid = TimeGrid::new(0.0, 0.01, 10_000).unwrap();
+    let mut vi = integrator(
+        Galerkin::gauss(2)
+            .unwrap()
+            .discretize(DoublePendulum::default()),
+    );
+    let t = tangent(
+        &mut vi,
+        state(&[1.0, -0.5], &[0.3, 0.2]),
+        &grid,
+        &TangentOptions::default(),
+    )
+    .unwrap();
+    let (abs, rel) = symplectic_defect(&t.state_block(), 2);
+    println!("double pendulum / gauss-2, 10⁴ steps: |MᵀJM − J| = {abs:.2e}, relative {rel:.2e}");
+    assert!(rel <= 1e-10, "double pendulum: relative defect {rel:e}");
+}
