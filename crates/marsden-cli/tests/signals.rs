@@ -45,7 +45,10 @@ fn stopped_by(signal: &str) {
     let steps = summary["steps"].as_u64().unwrap();
     assert!(steps > 0 && steps < 1_000_000_000, "{steps}");
     let t = summary["final_state"]["t"].as_f64().unwrap();
-    assert!((t - steps as f64 * 0.01).abs() < 1e-6 * t.max(1.0), "{t} after {steps}");
+    assert!(
+        (t - steps as f64 * 0.01).abs() < 1e-6 * t.max(1.0),
+        "{t} after {steps}"
+    );
 }
 
 #[test]

@@ -102,7 +102,9 @@ pub fn read_bounded(path: &Path, what: &str) -> Result<String, String> {
     }
     String::from_utf8(bytes).map_err(|e| {
         let at = e.utf8_error().valid_up_to();
-        cannot(&format!("it is not UTF-8 text (invalid byte at offset {at})"))
+        cannot(&format!(
+            "it is not UTF-8 text (invalid byte at offset {at})"
+        ))
     })
 }
 

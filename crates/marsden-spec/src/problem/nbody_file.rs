@@ -38,9 +38,7 @@ fn check_count(text: &str) -> Result<(), String> {
         return Ok(()); // the loader names the mistake
     };
     if n > MAX_BODIES as u64 {
-        return Err(format!(
-            "{n} bodies is more than the limit of {MAX_BODIES}"
-        ));
+        return Err(format!("{n} bodies is more than the limit of {MAX_BODIES}"));
     }
     let given = lines.count() as u64;
     if n > given {

@@ -170,9 +170,7 @@ pub fn lock(dir: &Path) -> Result<DirLock, String> {
             "another run is writing into {} (it holds {LOCK})",
             dir.display()
         )),
-        Err(std::fs::TryLockError::Error(e)) => {
-            Err(format!("cannot lock {}: {e}", path.display()))
-        }
+        Err(std::fs::TryLockError::Error(e)) => Err(format!("cannot lock {}: {e}", path.display())),
     }
 }
 

@@ -24,14 +24,27 @@ fn terms_with_infinite_derivative_times_zero_do_not_make_nan() {
         for extra in ["0*sqrt(t)", "0*t^2.5"] {
             let l = format!("{plain} + {extra}");
             let s = run(&l, method);
-            assert_eq!(s.status, RunStatus::Completed, "{l} with {method}: {:?}", s.error);
-            assert_eq!(s.final_state.q, reference.final_state.q, "{l} with {method}");
+            assert_eq!(
+                s.status,
+                RunStatus::Completed,
+                "{l} with {method}: {:?}",
+                s.error
+            );
+            assert_eq!(
+                s.final_state.q, reference.final_state.q,
+                "{l} with {method}"
+            );
         }
         // t^2.5 itself changes the energy but not the motion (no x in it): its derivatives
         // at t = 0 vanish.
         let l = format!("{plain} + t^2.5");
         let s = run(&l, method);
-        assert_eq!(s.status, RunStatus::Completed, "{l} with {method}: {:?}", s.error);
+        assert_eq!(
+            s.status,
+            RunStatus::Completed,
+            "{l} with {method}: {:?}",
+            s.error
+        );
         let dq = (s.final_state.q[0] - reference.final_state.q[0]).abs();
         assert!(dq < 1e-12, "{l} with {method}: Δq = {dq:e}");
     }

@@ -35,11 +35,17 @@ fn expression() -> impl Strategy<Value = String> {
     ];
     leaf.prop_recursive(4, 16, 2, |inner| {
         prop_oneof![
-            (inner.clone(), inner.clone(), prop::sample::select(vec!["+", "-", "*", "/", "^"]))
+            (
+                inner.clone(),
+                inner.clone(),
+                prop::sample::select(vec!["+", "-", "*", "/", "^"])
+            )
                 .prop_map(|(a, b, op)| format!("({a}) {op} ({b})")),
             (
                 inner,
-                prop::sample::select(vec!["sin", "cos", "exp", "log", "sqrt", "abs", "tanh", "atan"])
+                prop::sample::select(vec![
+                    "sin", "cos", "exp", "log", "sqrt", "abs", "tanh", "atan"
+                ])
             )
                 .prop_map(|(a, f)| format!("{f}({a})")),
         ]

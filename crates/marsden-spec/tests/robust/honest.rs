@@ -35,7 +35,10 @@ fn step_count_beyond_the_limit_is_refused_not_saturated() {
     let shown = refused(&free("q = [0]\nv = [1]", "h = 0.05\nt_end = 1e300"));
     assert!(shown.contains("more than the limit"), "{shown}");
     assert!(!shown.contains("18446744073709551615"), "{shown}");
-    let shown = refused(&free("q = [0]\nv = [1]", "h = 0.05\nsteps = 9000000000000000000"));
+    let shown = refused(&free(
+        "q = [0]\nv = [1]",
+        "h = 0.05\nsteps = 9000000000000000000",
+    ));
     assert!(shown.contains("more than the limit"), "{shown}");
 }
 

@@ -40,11 +40,18 @@ fn nbody_count_beyond_the_limit_or_the_lines_is_refused_before_allocating() {
     let dir = tempfile::tempdir().unwrap();
     let body = "1 0 0 0 0 0 0\n";
     let problem = nbody_problem(dir.path(), &format!("1000000000000\n{body}"));
-    let shown = load(&problem, &Overrides::default()).unwrap_err().to_string();
+    let shown = load(&problem, &Overrides::default())
+        .unwrap_err()
+        .to_string();
     assert!(shown.contains("more than the limit"), "{shown}");
     let problem = nbody_problem(dir.path(), &format!("5000\n{body}"));
-    let shown = load(&problem, &Overrides::default()).unwrap_err().to_string();
-    assert!(shown.contains("says 5000 bodies, but 1 line follow"), "{shown}");
+    let shown = load(&problem, &Overrides::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        shown.contains("says 5000 bodies, but 1 line follow"),
+        "{shown}"
+    );
 }
 
 #[test]
@@ -90,7 +97,12 @@ fn long_line_in_a_diagnostic_shows_a_short_window() {
         .unwrap_err()
         .to_string();
     assert!(shown.contains("has 200000 values"), "{shown}");
-    assert!(shown.len() < 600, "{} bytes:\n{}", shown.len(), &shown[..600]);
+    assert!(
+        shown.len() < 600,
+        "{} bytes:\n{}",
+        shown.len(),
+        &shown[..600]
+    );
 }
 
 #[test]
@@ -101,8 +113,11 @@ fn flat_sum_of_hundreds_of_terms_runs() {
         .join(" - ");
     let text = FREE.replace("0.5*x_dot^2", &format!("0.5*x_dot^2 - {terms}"));
     let spec = RunSpec::from_toml_str(&text, "p.toml").unwrap();
-    let outcome =
-        marsden_spec::execute(&spec, marsden_spec::Store::Memory, &marsden_spec::Controls::none())
-            .unwrap();
+    let outcome = marsden_spec::execute(
+        &spec,
+        marsden_spec::Store::Memory,
+        &marsden_spec::Controls::none(),
+    )
+    .unwrap();
     assert_eq!(outcome.summary.status, marsden_spec::RunStatus::Completed);
 }
