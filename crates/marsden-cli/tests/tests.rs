@@ -26,3 +26,5 @@ mod plots;
 mod run;
 // `marsden run` on a file with [sweep]: the table, sweep.csv, shards, threads, failing members.
 mod sweep;
+// SIGTERM and SIGINT: an interrupted summary with the last state.
+mod signals;

@@ -74,10 +74,24 @@ pub enum ErrorKind {
         /// Whether the extra input starts an operand (so an operator is probably missing).
         missing_operator: bool,
     },
-    /// Parentheses, unary minus or operator chains nested deeper than the parser allows.
+    /// Parentheses, calls, powers or unary minus nested deeper than the parser allows.
     #[error("expression is nested too deeply (more than {limit} levels)")]
     TooDeep {
         /// The nesting limit.
+        limit: usize,
+    },
+    /// Operator chains and nesting together make the tree taller than the parser allows.
+    #[error("expression is too large: its operations are chained more than {limit} deep")]
+    TooTall {
+        /// The height limit.
+        limit: usize,
+    },
+    /// A text longer than the parser accepts (checked before anything else).
+    #[error("expression is {length} bytes long, more than the limit of {limit}")]
+    TooLong {
+        /// The length of the text.
+        length: usize,
+        /// The limit.
         limit: usize,
     },
     /// An opening parenthesis is never closed.
@@ -267,22 +281,55 @@ impl ExprError {
         i
     }
 
-    /// The source line containing the span start, and the caret line under it.
+    /// The source line containing the span start, and the caret line under it; a line longer
+    /// than [`LINE_LIMIT`] characters is cut to a window of [`WINDOW`] characters on either
+    /// side of the span start, the cuts marked `…`.
     fn snippet(&self) -> (String, String) {
+        let text = &self.0.text;
         let start = self.clamped(self.0.span.start);
         let end = self.clamped(self.0.span.end.max(start));
-        let line_start = self.0.text[..start].rfind('\n').map_or(0, |i| i + 1);
-        let line_end = self.0.text[start..]
-            .find('\n')
-            .map_or(self.0.text.len(), |i| start + i);
-        let line = &self.0.text[line_start..line_end];
-        let pad: String = self.0.text[line_start..start]
+        let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
+        let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
+        let (mut from, mut to) = (line_start, line_end);
+        let (mut head, mut tail) = ("", "");
+        if text[line_start..line_end].chars().count() > LINE_LIMIT {
+            from = back(text, start, WINDOW).max(line_start);
+            to = forward(text, start, WINDOW).min(line_end);
+            head = if from > line_start { "…" } else { "" };
+            tail = if to < line_end { "…" } else { "" };
+        }
+        let line = format!("{head}{}{tail}", &text[from..to]);
+        let pad: String = head
             .chars()
+            .chain(text[from..start].chars())
             .map(|c| if c == '\t' { '\t' } else { ' ' })
             .collect();
-        let width = self.0.text[start..end.min(line_end)].chars().count().max(1);
-        (line.to_owned(), format!("{pad}{}", "^".repeat(width)))
+        let width = text[start..end.min(to)].chars().count().max(1);
+        (line, format!("{pad}{}", "^".repeat(width)))
     }
+}
+
+/// Lines longer than this (in characters) are shown as a window around the error.
+const LINE_LIMIT: usize = 120;
+
+/// Characters shown on either side of the error in a long line.
+const WINDOW: usize = 50;
+
+/// The byte offset `n` characters before `at` (or 0).
+fn back(text: &str, at: usize, n: usize) -> usize {
+    text[..at]
+        .char_indices()
+        .rev()
+        .nth(n.saturating_sub(1))
+        .map_or(0, |(i, _)| i)
+}
+
+/// The byte offset `n` characters after `at` (or the end).
+fn forward(text: &str, at: usize, n: usize) -> usize {
+    text[at..]
+        .char_indices()
+        .nth(n)
+        .map_or(text.len(), |(i, _)| at + i)
 }
 
 impl fmt::Display for ExprError {

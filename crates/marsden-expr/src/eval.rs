@@ -129,7 +129,7 @@ fn run<S: Scalar>(code: &Code, inputs: &[S], stack: &mut impl Stack<S>) -> S {
                 sp += 1;
                 acc = inputs[i] * inputs[i];
             }
-            Op::Powf(e) => acc = acc.powf(e),
+            Op::Powf(e) => acc = crate::functions::powf(acc, e),
             Op::Powd => {
                 sp -= 1;
                 acc = powd(stack.get(sp), acc);

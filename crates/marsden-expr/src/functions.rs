@@ -216,6 +216,19 @@ pub(crate) fn abs<S: Scalar>(x: S) -> S {
     if x < 0.0 { -x } else { x }
 }
 
+/// `x^e` for a constant exponent. At `x = 0` with `e > 2` the value and the first and second
+/// derivatives all vanish (`d^k x^e/dx^k = e(e−1)…(e−k+1)·x^(e−k) → 0` for `k < e`), which is
+/// returned exactly: num-dual's `powf` forms them from `x^(e−3)`, infinite at 0 for `e < 3`,
+/// and would give `∞·0 = NaN` (so `t^2.5` at `t = 0` would poison a whole Lagrangian).
+#[inline(always)]
+pub(crate) fn powf<S: Scalar>(x: S, e: f64) -> S {
+    if e > 2.0 && x == 0.0 {
+        x * 0.0
+    } else {
+        x.powf(e)
+    }
+}
+
 /// `x^y` for a variable exponent: num-dual's `powd` (`powf` at `f64`, `exp(y ln x)` for duals).
 #[inline(always)]
 pub(crate) fn powd<S: Scalar>(x: S, y: S) -> S {

@@ -97,6 +97,9 @@ pub(crate) fn mul(a: Node, b: Node) -> Node {
         (Const(x), Const(y)) => Const(x * y),
         (Const(c), x) => mul(x, Const(c)),
         (x, Const(1.0)) => x,
+        // `0·e = 0` even where `e` (or an AD derivative of it, such as that of `√t` at
+        // `t = 0`) is infinite: the term does not affect the motion.
+        (_, Const(0.0)) => Const(0.0),
         (x, Const(-1.0)) => neg(x),
         (Bin(Arith::Mul, x, c1), Const(c2)) if c1.as_const().is_some() => {
             mul(*x, mul(*c1, Const(c2)))

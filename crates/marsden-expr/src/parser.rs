@@ -7,11 +7,30 @@ use crate::ast::{Ast, AstKind, BinOp};
 use crate::error::{ErrorKind, ExprError, Span};
 use crate::lexer::{Tok, Token, tokenize};
 
-/// Maximum nesting of parentheses / unary operators and height of the tree.
+/// Maximum nesting of parentheses, calls, powers and unary operators.
 pub(crate) const MAX_DEPTH: usize = 256;
+
+/// Maximum height of the tree: nesting plus the length of operator chains such as a flat sum
+/// `a + b + c + …` (each term one level), bounded so that the recursive passes over the tree
+/// (lowering, differentiation, code generation) stay well within a thread's stack.
+pub(crate) const MAX_HEIGHT: usize = 2048;
+
+/// Maximum length of an expression, in bytes.
+pub(crate) const MAX_LENGTH: usize = 64 * 1024;
 
 /// Parse a whole expression.
 pub(crate) fn parse(text: &str) -> Result<Ast, ExprError> {
+    if text.len() > MAX_LENGTH {
+        let kind = ErrorKind::TooLong {
+            length: text.len(),
+            limit: MAX_LENGTH,
+        };
+        let mut end = MAX_LENGTH;
+        while !text.is_char_boundary(end) {
+            end -= 1;
+        }
+        return Err(ExprError::new(kind, text, Span::new(end, text.len())));
+    }
     let tokens = tokenize(text)?;
     let mut parser = Parser {
         text,
@@ -60,11 +79,11 @@ impl Parser<'_> {
         }
     }
 
-    /// Build a node, enforcing the depth limit.
+    /// Build a node, enforcing the height limit.
     fn node(&self, kind: AstKind, span: Span) -> Result<Ast, ExprError> {
         let depth = 1 + kind.max_child_depth();
-        if depth > MAX_DEPTH {
-            return Err(self.error(ErrorKind::TooDeep { limit: MAX_DEPTH }, span));
+        if depth > MAX_HEIGHT {
+            return Err(self.error(ErrorKind::TooTall { limit: MAX_HEIGHT }, span));
         }
         Ok(Ast { kind, span, depth })
     }

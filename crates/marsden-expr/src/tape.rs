@@ -133,7 +133,7 @@ impl Tape {
                 Instr::Square(a) => r(a) * r(a),
                 Instr::Call(f, a) => f.apply(r(a)),
                 Instr::Powi(a, n) => r(a).powi(n),
-                Instr::Powf(a, e) => r(a).powf(e),
+                Instr::Powf(a, e) => crate::functions::powf(r(a), e),
                 Instr::Powd(a, b) => powd(r(a), r(b)),
                 Instr::Atan2(a, b) => atan2(r(a), r(b)),
             };

@@ -281,13 +281,42 @@ fn nesting_limit() {
         error(&deep).kind(),
         ErrorKind::TooDeep { limit: 256 }
     ));
-    let long_chain = vec!["theta"; 400].join("+");
+    let too_long_chain = vec!["theta"; 3000].join("+");
     assert!(matches!(
-        error(&long_chain).kind(),
-        ErrorKind::TooDeep { .. }
+        error(&too_long_chain).kind(),
+        ErrorKind::TooTall { limit: 2048 }
     ));
     let minus = format!("{}theta", "-".repeat(300));
     assert!(matches!(error(&minus).kind(), ErrorKind::TooDeep { .. }));
+}
+
+/// A flat sum counts its terms as one level of nesting each only toward the height limit:
+/// generated Lagrangians with hundreds of terms parse, evaluate and differentiate.
+#[test]
+fn flat_sum_of_many_terms_is_not_too_deep() {
+    let sum = vec!["theta*theta_dot"; 1500].join(" + ");
+    let p = Program::compile(&sum, &pendulum()).unwrap();
+    assert_eq!(p.eval(&[2.0, 0.5]), 1500.0);
+}
+
+#[test]
+fn over_long_expression_is_refused_before_parsing_with_a_short_snippet() {
+    let long = "theta + ".repeat(10_000) + "theta";
+    let err = error(&long);
+    assert!(matches!(err.kind(), ErrorKind::TooLong { .. }), "{err}");
+    assert!(err.to_string().len() < 400, "{err}");
+}
+
+#[test]
+fn caret_in_a_long_line_shows_a_window() {
+    let long = "theta + ".repeat(500) + "* theta";
+    let err = error(&long);
+    let shown = err.to_string();
+    assert!(shown.len() < 400, "{shown}");
+    let lines: Vec<&str> = shown.lines().collect();
+    let caret = lines[2].chars().position(|c| c == '^').unwrap();
+    assert_eq!(lines[1].chars().nth(caret), Some('*'), "{shown}");
+    assert!(lines[1].starts_with("  …"), "{shown}");
 }
 
 #[test]

@@ -1,6 +1,7 @@
 //! The problem file's text, and locations in it (from the byte spans `toml` reports).
 
 use std::fmt;
+use std::io::Read as _;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
@@ -66,6 +67,55 @@ impl SourceFile {
     }
 }
 
+/// Largest problem file read, in bytes (a problem file is a few kilobytes; an N-body file of
+/// 10⁵ bodies a few megabytes).
+pub const MAX_FILE_BYTES: u64 = 16 * 1024 * 1024;
+
+/// Reads the text of `path` if it is a regular file of at most [`MAX_FILE_BYTES`] bytes in
+/// UTF-8 (never more is read; a device such as `/dev/zero` is refused without reading).
+///
+/// # Errors
+/// A message naming `what` and the path: not a regular file, too large, not UTF-8 (with the
+/// byte offset of the first bad byte), or the I/O error.
+pub fn read_bounded(path: &Path, what: &str) -> Result<String, String> {
+    let cannot = |e: &dyn fmt::Display| format!("cannot read the {what} {}: {e}", path.display());
+    let file = std::fs::File::open(path).map_err(|e| cannot(&e))?;
+    let meta = file.metadata().map_err(|e| cannot(&e))?;
+    if !meta.is_file() {
+        return Err(cannot(&"it is not a regular file"));
+    }
+    let too_large = |n: u64| {
+        format!(
+            "the {what} {} is {n} bytes, more than the limit of {MAX_FILE_BYTES} bytes",
+            path.display()
+        )
+    };
+    if meta.len() > MAX_FILE_BYTES {
+        return Err(too_large(meta.len()));
+    }
+    let mut bytes = Vec::new();
+    file.take(MAX_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| cannot(&e))?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(too_large(bytes.len() as u64));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        let at = e.utf8_error().valid_up_to();
+        cannot(&format!(
+            "it is not UTF-8 text (invalid byte at offset {at})"
+        ))
+    })
+}
+
+/// `text` cut to at most `limit` characters, the cut marked `…` (messages quote values).
+pub fn shorten(text: &str, limit: usize) -> String {
+    match text.char_indices().nth(limit) {
+        Some((i, _)) => format!("{}…", &text[..i]),
+        None => text.to_owned(),
+    }
+}
+
 fn floor_char_boundary(text: &str, offset: usize) -> usize {
     let mut i = offset.min(text.len());
     while !text.is_char_boundary(i) {
@@ -105,24 +155,52 @@ pub struct Location {
     pub width: usize,
 }
 
+/// Lines longer than this (in characters) are shown as a window around the column.
+const LINE_LIMIT: usize = 120;
+
+/// Characters shown on either side of the column in a long line.
+const WINDOW: usize = 50;
+
+impl Location {
+    /// The line to show and the characters before the caret: the whole line, or a window of
+    /// [`WINDOW`] characters on either side of the column with the cuts marked `…`.
+    fn window(&self) -> (String, String) {
+        let chars: Vec<char> = self.source_line.chars().collect();
+        let column = (self.column - 1).min(chars.len());
+        let (from, to) = if chars.len() > LINE_LIMIT {
+            (
+                column.saturating_sub(WINDOW),
+                (column + WINDOW).min(chars.len()),
+            )
+        } else {
+            (0, chars.len())
+        };
+        let head = if from > 0 { "…" } else { "" };
+        let tail = if to < chars.len() { "…" } else { "" };
+        let shown: String = chars[from..to].iter().collect();
+        let pad = head
+            .chars()
+            .chain(chars[from..column].iter().copied())
+            .map(|c| if c == '\t' { '\t' } else { ' ' })
+            .collect();
+        (format!("{head}{shown}{tail}"), pad)
+    }
+}
+
 impl fmt::Display for Location {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let number = self.line.to_string();
         let gutter = " ".repeat(number.len());
-        let pad: String = self
-            .source_line
-            .chars()
-            .take(self.column - 1)
-            .map(|c| if c == '\t' { '\t' } else { ' ' })
-            .collect();
+        let (line, pad) = self.window();
+        let width = self.width.min(WINDOW + 1);
         write!(
             f,
             "{gutter}--> {}:{}:{}\n{gutter} |\n{number} | {}\n{gutter} | {pad}{}",
             self.path.display(),
             self.line,
             self.column,
-            self.source_line,
-            "^".repeat(self.width)
+            line,
+            "^".repeat(width)
         )
     }
 }

@@ -12,6 +12,8 @@ mod memory;
 mod structure;
 // The controls of a run: the progress callback and the stop flag.
 mod controls;
+// Hostile inputs: limits, honest reports, safe outputs.
+mod robust;
 
 use std::path::{Path, PathBuf};
 

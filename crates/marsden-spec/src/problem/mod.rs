@@ -10,6 +10,7 @@
 //! notebook cell), [`member`] (one member of a sweep).
 
 pub mod check;
+pub mod grid;
 pub mod method;
 pub mod nbody_file;
 pub mod parameters;
@@ -38,12 +39,7 @@ use check::Checker;
 /// # Errors
 /// A diagnostic for the first mistake found (the command exits with status 2).
 pub fn load(path: &Path, overrides: &Overrides) -> Result<RunSpec, Diagnostic> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        Diagnostic::new(format!(
-            "cannot read the problem file {}: {e}",
-            path.display()
-        ))
-    })?;
+    let text = crate::source::read_bounded(path, "problem file").map_err(Diagnostic::new)?;
     validate(SourceFile::new(path, text), overrides)
 }
 

@@ -24,6 +24,32 @@ pub struct BodiesFile {
     pub path: PathBuf,
 }
 
+/// Most bodies an N-body file may hold.
+pub const MAX_BODIES: usize = 100_000;
+
+/// Checks the body count `N` on the first line before anything is allocated for it: at most
+/// [`MAX_BODIES`], and no more than the lines that follow.
+fn check_count(text: &str) -> Result<(), String> {
+    let mut lines = (text.lines().map(str::trim)).filter(|l| !l.is_empty() && !l.starts_with('#'));
+    let Some(first) = lines.next() else {
+        return Ok(());
+    };
+    let Ok(n) = first.parse::<u64>() else {
+        return Ok(()); // the loader names the mistake
+    };
+    if n > MAX_BODIES as u64 {
+        return Err(format!("{n} bodies is more than the limit of {MAX_BODIES}"));
+    }
+    let given = lines.count() as u64;
+    if n > given {
+        return Err(format!(
+            "the first line says {n} bodies, but {given} line{} follow",
+            if given == 1 { "" } else { "s" }
+        ));
+    }
+    Ok(())
+}
+
 /// Reads `[initial] file` if it is given.
 ///
 /// # Errors
@@ -38,12 +64,13 @@ pub fn read(
     let span = file.span();
     let base = ck.source.path().parent().map(PathBuf::from);
     let path = base.unwrap_or_default().join(file.get_ref());
-    let text = std::fs::read_to_string(&path).map_err(|e| {
-        ck.error(
-            Some(span.clone()),
-            format!("cannot read the N-body file {}: {e}", path.display()),
-        )
-        .help("the path is relative to the problem file's directory")
+    let text = crate::source::read_bounded(&path, "N-body file").map_err(|m| {
+        ck.error(Some(span.clone()), m)
+            .help("the path is relative to the problem file's directory")
+    })?;
+    check_count(&text).map_err(|m| {
+        ck.error(Some(span.clone()), format!("in {}: {m}", path.display()))
+            .note("format: first line N, then one line `m x y z vx vy vz` per body")
     })?;
     let data = parse_file(&text).map_err(|e| {
         ck.error(Some(span.clone()), format!("in {}: {e}", path.display()))

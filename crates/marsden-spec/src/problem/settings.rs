@@ -7,6 +7,7 @@ use marsden::{NewtonOptions, TimeGrid};
 use toml::Spanned;
 
 use super::check::Checker;
+use super::grid::{check_grid, check_steps, steps_until};
 use super::method::{METHOD_NAMES, Method};
 use super::nbody_file::BodiesFile;
 use super::raw::{RawInitial, RawIntegrator, RawOutput, SpannedList};
@@ -170,6 +171,11 @@ pub fn integrator(
     let (steps, t_end) = steps(ck, raw, t0, h, overrides.steps)?;
     let grid =
         TimeGrid::new(t0, h, steps).map_err(|e| ck.error(Some(raw.span()), e.to_string()))?;
+    check_grid(&grid).map_err(|m| {
+        let at = table.h.as_ref().map_or(raw.span(), Spanned::span);
+        ck.error(Some(at), m)
+            .help("shorten the run, or shift t0 (a Lagrangian without t does not depend on it)")
+    })?;
     let mut newton = NewtonOptions::default();
     if let Some(tol) = &table.tolerance {
         newton.residual_tolerance = positive(ck, "tolerance", tol)?;
@@ -234,8 +240,9 @@ fn steps(
         return usize::try_from(n)
             .ok()
             .filter(|n| *n >= 1)
-            .map(|n| (n, None))
-            .ok_or_else(|| Diagnostic::new(format!("--steps must be at least 1, got {n}")));
+            .ok_or_else(|| Diagnostic::new(format!("--steps must be at least 1, got {n}")))
+            .and_then(|n| check_steps(n).map_err(|m| Diagnostic::new(format!("--steps: {m}"))))
+            .map(|n| (n, None));
     }
     match (&table.steps, &table.t_end) {
         (Some(_), Some(t_end)) => Err(ck.error(
@@ -246,12 +253,15 @@ fn steps(
             Some(raw.span()),
             "[integrator] needs the length of the run: `steps = ...` or `t_end = ...`",
         )),
-        (Some(n), None) => Ok((count(ck, "steps", n)?, None)),
+        (Some(n), None) => {
+            let steps = count(ck, "steps", n)?;
+            check_steps(steps).map_err(|m| ck.error(Some(n.span()), m))?;
+            Ok((steps, None))
+        }
         (None, Some(t_end)) => {
             let end = ck.finite("t_end", t_end)?;
-            let grid = TimeGrid::until(t0, end, h)
-                .map_err(|e| ck.error(Some(t_end.span()), e.to_string()))?;
-            Ok((grid.steps, Some(end)))
+            let steps = steps_until(t0, end, h).map_err(|m| ck.error(Some(t_end.span()), m))?;
+            Ok((steps, Some(end)))
         }
     }
 }
@@ -277,6 +287,25 @@ fn count(ck: &Checker<'_>, what: &str, v: &Spanned<i64>) -> Result<usize, Diagno
         })
 }
 
+/// `name` as one directory inside `out/`: path separators and control characters become
+/// `_`, and a name of dots only (`.`, `..`) or none becomes `run`, so `name = "../x"` or an
+/// absolute path cannot steer the default output directory elsewhere.
+pub fn directory_name(name: &str) -> String {
+    let clean: String = name
+        .chars()
+        .map(|c| match c {
+            '/' | '\\' => '_',
+            c if c.is_control() => '_',
+            c => c,
+        })
+        .collect();
+    if clean.chars().all(|c| c == '.') {
+        "run".to_owned()
+    } else {
+        clean
+    }
+}
+
 /// Validates `[output]` with the overrides; `name` gives the default directory `out/<name>`.
 pub fn output(
     ck: &Checker<'_>,
@@ -293,7 +322,7 @@ pub fn output(
             return Err(ck.error(Some(d.span()), "`dir` is empty"));
         }
         (None, Some(d)) => PathBuf::from(d.get_ref()),
-        (None, None) => PathBuf::from("out").join(name),
+        (None, None) => PathBuf::from("out").join(directory_name(name)),
     };
     let format = match table.and_then(|t| t.format.as_ref()) {
         None => Format::Csv,

@@ -226,6 +226,9 @@ fn values(ck: &Checker<'_>, raw: &Spanned<RawSweep>) -> Result<Vec<f64>, Diagnos
     }
 }
 
+/// Most members a sweep may have (checked before their values are allocated).
+pub const MAX_MEMBERS: usize = 10_000_000;
+
 /// `count` values from `start` to `stop`, both included (`count = 1`: `start` alone).
 fn range_values(ck: &Checker<'_>, raw: &Spanned<RawRange>) -> Result<Vec<f64>, Diagnostic> {
     let r = raw.get_ref();
@@ -250,6 +253,12 @@ fn range_values(ck: &Checker<'_>, raw: &Spanned<RawRange>) -> Result<Vec<f64>, D
                 "the range is empty: count = {}, it must be at least 1",
                 count_value.get_ref()
             ),
+        ));
+    }
+    if count > MAX_MEMBERS {
+        return Err(ck.error(
+            Some(count_value.span()),
+            format!("count = {count} is more than the limit of {MAX_MEMBERS:.0e} sweep members"),
         ));
     }
     if start > stop || (start == stop && count > 1) {

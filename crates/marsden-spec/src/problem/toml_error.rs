@@ -21,7 +21,7 @@ pub fn diagnose(source: &SourceFile, error: &toml::de::Error) -> Diagnostic {
         }
         None => Diagnostic::new(format!(
             "the problem file is not valid: {}",
-            error.message().trim_end()
+            crate::source::shorten(error.message().trim_end(), 300)
         ))
         .at(location),
     }

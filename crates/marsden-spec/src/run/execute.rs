@@ -64,10 +64,18 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
             dir.display()
         )))
     };
-    if store.files() {
-        std::fs::create_dir_all(&dir).map_err(|e| io("create the output directory", &e))?;
-        output::clear_previous(&dir).map_err(|e| io("clear the previous results in", &e))?;
-    }
+    // Held until the summary is written: a second run into `dir` is refused meanwhile.
+    let _lock = match store.files() {
+        true => {
+            std::fs::create_dir_all(&dir).map_err(|e| io("create the output directory", &e))?;
+            let held = output::lock(&dir).map_err(|m| {
+                Error::bad_input(Diagnostic::new(m).help("give this run another `--out` directory"))
+            })?;
+            output::clear_previous(&dir).map_err(|e| io("clear the previous results in", &e))?;
+            Some(held)
+        }
+        false => None,
+    };
     let layout = output::layout(&spec.system).map_err(|e| io("lay out the columns of", &e))?;
     let mut files = match store.files() {
         true => Some(

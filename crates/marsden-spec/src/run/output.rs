@@ -113,6 +113,67 @@ pub fn clear_previous(dir: &Path) -> std::io::Result<()> {
     Ok(())
 }
 
+/// Writes `bytes` to `path` through a temporary file beside it, synced and then renamed: the
+/// file is whole or absent, never truncated (the temporary one is removed on failure).
+///
+/// # Errors
+/// The I/O error.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    use std::io::Write as _;
+    let mut name = path.file_name().unwrap_or_default().to_owned();
+    name.push(".partial");
+    let temporary = path.with_file_name(name);
+    let written = std::fs::File::create(&temporary).and_then(|mut f| {
+        f.write_all(bytes)?;
+        f.sync_all()
+    });
+    let result = written.and_then(|()| std::fs::rename(&temporary, path));
+    if result.is_err() {
+        let _ = std::fs::remove_file(&temporary);
+    }
+    result
+}
+
+/// The lock file of an output directory.
+pub const LOCK: &str = ".marsden.lock";
+
+/// An exclusive lock on an output directory, held while a run writes into it (released when
+/// dropped, which removes the lock file, or when the process ends, however it ends).
+#[derive(Debug)]
+pub struct DirLock {
+    _file: std::fs::File,
+    path: std::path::PathBuf,
+}
+
+impl Drop for DirLock {
+    fn drop(&mut self) {
+        // Removed while still held, so no other run can have locked this file meanwhile.
+        let _ = std::fs::remove_file(&self.path);
+    }
+}
+
+/// Locks `dir` (which must exist) for one run.
+///
+/// # Errors
+/// A message if another run holds the lock, or the lock file cannot be opened.
+pub fn lock(dir: &Path) -> Result<DirLock, String> {
+    let path = dir.join(LOCK);
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&path)
+        .map_err(|e| format!("cannot open the lock file {}: {e}", path.display()))?;
+    match file.try_lock() {
+        Ok(()) => Ok(DirLock { _file: file, path }),
+        Err(std::fs::TryLockError::WouldBlock) => Err(format!(
+            "another run is writing into {} (it holds {LOCK})",
+            dir.display()
+        )),
+        Err(std::fs::TryLockError::Error(e)) => Err(format!("cannot lock {}: {e}", path.display())),
+    }
+}
+
 /// Opens the streaming writer of `format` in `dir` (which must exist).
 ///
 /// # Errors

@@ -113,8 +113,9 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap>(
         .io_error
         .as_ref()
         .map(|e| format!("writing the trajectory failed: {e}"));
+    let energy = non_finite_energy(&observer.diagnostics, observer.rows());
     Ok(RunRecord {
-        error: error.or(io),
+        error: error.or(io).or(energy),
         interrupted: observer.interrupted,
         steps: trajectory.steps,
         final_state: final_state(&trajectory),
@@ -122,6 +123,18 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap>(
         wall_seconds,
         rows: observer.rows(),
         diagnostics: observer.diagnostics,
+    })
+}
+
+/// A failure if any stored energy was not finite: a run whose energies are NaN or infinite
+/// preserved nothing that can be reported, even if every step converged.
+fn non_finite_energy(diagnostics: &Diagnostics, rows: u64) -> Option<String> {
+    let bad = diagnostics.energy.report().failures;
+    (bad > 0).then(|| {
+        format!(
+            "the energy ⟨p, q̇⟩ − L is not finite at {bad} of the {rows} stored states: the \
+             Lagrangian or its derivatives are not finite along the trajectory"
+        )
     })
 }
 

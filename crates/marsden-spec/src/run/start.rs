@@ -46,6 +46,9 @@ impl WithLagrangian for Prepare<'_> {
         let start = problem.start();
         let v = problem.initial_velocity().to_vec();
         let energy = mechanics::energy(lagrangian, start.t, &start.q, &v);
+        if !energy.is_finite() {
+            return Err(non_finite_energy(spec, energy));
+        }
         let mut warnings = non_symmetries(lagrangian, spec, (start.t, &start.q, &v));
         warnings.extend(constraint_non_symmetries(spec, (start.t, &start.q, &v)));
         Ok(Start {
@@ -101,6 +104,17 @@ pub fn constrained_problem<L: Lagrangian, C: Constraint>(
     Problem::new(lagrangian, initial, spec.integrator.grid)
         .and_then(|p| p.with_constraint(constraint))
         .map_err(|e| start_error(spec, &e))
+}
+
+/// A Lagrangian (or its momenta) that is not finite at the initial state: every energy after
+/// it would be too, and the run could report nothing true about it.
+fn non_finite_energy(spec: &RunSpec, energy: f64) -> Diagnostic {
+    Diagnostic::new(format!(
+        "the energy ⟨p, q̇⟩ − L at the initial state is {energy}: the Lagrangian or its \
+         derivatives are not finite there"
+    ))
+    .at(spec.source.locate_opt(spec.spans.initial_data.clone()))
+    .help("start where L is defined (no log of a negative number, no two bodies at one point)")
 }
 
 /// The core's error about the initial state, pointed at the file.

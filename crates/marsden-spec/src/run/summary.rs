@@ -103,8 +103,10 @@ pub struct EnergySummary {
     pub final_rel_error: f64,
     /// Least-squares slope of `E_k − E_0` against time.
     pub drift_per_unit_time: f64,
-    /// Samples used (the stored states).
+    /// Samples used (the stored states with a finite energy).
     pub samples: usize,
+    /// Stored states whose energy was not finite (the run is then reported as failed).
+    pub non_finite: usize,
 }
 
 /// `momenta { name: { … } }`.
@@ -237,6 +239,7 @@ impl Summary {
                 final_rel_error: d.energy.report().final_rel_error,
                 drift_per_unit_time: d.energy.report().drift_per_unit_time,
                 samples: d.energy.report().samples,
+                non_finite: d.energy.report().failures,
             },
             momenta,
             constraints: ConstraintSummary {
@@ -267,14 +270,15 @@ impl Summary {
         }
     }
 
-    /// Writes `summary.json` into `dir`.
+    /// Writes `summary.json` into `dir`: to a temporary name first, then renamed, so the file
+    /// is either whole or absent (a full disk leaves no truncated summary).
     ///
     /// # Errors
     /// The I/O error, as text naming the file.
     pub fn write(&self, dir: &Path) -> Result<(), String> {
         let path = dir.join(SUMMARY_JSON);
         let text = self.to_json()?;
-        std::fs::write(&path, text + "\n")
+        super::output::write_atomically(&path, (text + "\n").as_bytes())
             .map_err(|e| format!("cannot write {}: {e}", path.display()))
     }
 
