@@ -11,6 +11,8 @@ mod util;
 // `marsden run` on malformed or impossible problem files: exit status 2, the message, the
 // caret, "did you mean" (the fixtures in tests/fixtures/bad/); failing runs: status 1.
 mod bad_input;
+// Forced and time-dependent runs: the discrete energy balance instead of an energy error.
+mod balance;
 // `check`, `systems`, `plot` and usage errors.
 mod commands;
 // Constrained runs: orders, multipliers, projected starts, refusals, `order` with constraints.

@@ -114,6 +114,23 @@ impl SystemSpec {
     pub fn dof(&self) -> usize {
         self.coordinates.len()
     }
+
+    /// Why the energy is not conserved, if it is not: forces act, or the Lagrangian depends on
+    /// `t` (its input slot `2n` is read). The catalog Lagrangians are autonomous.
+    pub fn energy_not_conserved(&self) -> Option<&'static str> {
+        use marsden::Force as _;
+        if self.force.is_active() {
+            return Some("forces act");
+        }
+        match &self.lagrangian {
+            LagrangianSpec::Expression(l)
+                if l.program().inputs_used().contains(&(2 * self.dof())) =>
+            {
+                Some("the Lagrangian depends on t")
+            }
+            _ => None,
+        }
+    }
 }
 
 /// How the initial state was given.

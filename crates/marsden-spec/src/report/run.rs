@@ -74,18 +74,7 @@ pub fn render(outcome: &Outcome) -> String {
             s.newton.iterations_max, s.newton.tolerance
         ),
     );
-    let e = &s.energy;
-    line(
-        &mut out,
-        "energy",
-        format!(
-            "E0 = {}, max |ΔE/E0| = {}, final {}, drift {} per unit time",
-            e.initial,
-            sci(e.max_rel_error),
-            sci(e.final_rel_error),
-            sci(e.drift_per_unit_time)
-        ),
-    );
+    energy_lines(&mut out, s);
     for (name, m) in &s.momenta {
         line(
             &mut out,
@@ -130,6 +119,53 @@ pub fn render(outcome: &Outcome) -> String {
         ),
     }
     out
+}
+
+/// The energy line: its error where energy is conserved, otherwise the discrete energy balance
+/// (or, without one, why there is no error to report).
+fn energy_lines(out: &mut String, s: &crate::run::Summary) {
+    let e = &s.energy;
+    let over = match e.samples {
+        n if n < s.steps + 1 => format!(" (over {n} stored samples)"),
+        _ => String::new(),
+    };
+    match (s.energy_not_conserved, &s.energy_balance) {
+        (None, _) => line(
+            out,
+            "energy",
+            format!(
+                "E0 = {}, max |ΔE/E0| = {}, final {}, drift {} per unit time{over}",
+                e.initial,
+                sci(e.max_rel_error),
+                sci(e.final_rel_error),
+                sci(e.drift_per_unit_time)
+            ),
+        ),
+        (Some(why), Some(b)) => line(
+            out,
+            "energy",
+            format!(
+                "balance ({why}): E0 = {}, E_N − E0 = {}, work {}, unaccounted {} (max {} per step)",
+                e.initial,
+                sci(b.energy_change),
+                sci(b.total_work),
+                sci(b.total_defect),
+                sci(b.max_defect)
+            ),
+        ),
+        (Some(why), None) => line(
+            out,
+            "energy",
+            format!(
+                "not conserved ({why}): E0 = {}; no energy error to report{}",
+                e.initial,
+                match why {
+                    "forces act" => ", and no balance for a method with internal stages",
+                    _ => "",
+                }
+            ),
+        ),
+    }
 }
 
 fn line(out: &mut String, label: &str, text: String) {

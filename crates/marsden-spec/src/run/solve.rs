@@ -10,6 +10,7 @@ use marsden::{
 };
 use marsden_io::RowSink;
 
+use super::balance::{BalanceSummary, Balanced};
 use super::controls::Controls;
 use super::diagnostics::Diagnostics;
 use super::observer::StreamObserver;
@@ -39,6 +40,8 @@ pub struct RunRecord {
     pub diagnostics: Diagnostics,
     /// Rows written.
     pub rows: u64,
+    /// The discrete energy balance of a forced run with a two-point rule (`None` otherwise).
+    pub balance: Option<BalanceSummary>,
 }
 
 /// Solves `problem` with `method` (dispatch on the rule type: one monomorphised run per rule).
@@ -59,6 +62,45 @@ pub fn solve<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
         type Output = Result<Trajectory, Box<RunFailure>>;
         fn call<R: Rule>(self, rule: &R) -> Self::Output {
             self.problem.solve_with(rule, self.options, self.observer)
+        }
+    }
+    method.dispatch(Solve {
+        problem,
+        options,
+        observer,
+    })
+}
+
+/// [`solve`], and for an active force and a two-point rule the discrete energy balance of every
+/// step ([`Balanced`]) on the way.
+pub fn solve_balanced<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
+    problem: &Problem<L, F, C>,
+    method: &Method,
+    options: &SolveOptions,
+    observer: &mut O,
+) -> (Result<Trajectory, Box<RunFailure>>, Option<BalanceSummary>) {
+    struct Solve<'a, L, F, C, O: ?Sized> {
+        problem: &'a Problem<L, F, C>,
+        options: &'a SolveOptions,
+        observer: &'a mut O,
+    }
+    impl<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized> WithRule
+        for Solve<'_, L, F, C, O>
+    {
+        type Output = (Result<Trajectory, Box<RunFailure>>, Option<BalanceSummary>);
+        fn call<R: Rule>(self, rule: &R) -> Self::Output {
+            use marsden::discrete::DiscreteAction as _;
+            let (problem, options) = (self.problem, self.options);
+            let l = problem.lagrangian();
+            let two_point = rule.discretize(l).internal_stages() == 0;
+            if !problem.force().is_active() || !two_point {
+                return (problem.solve_with(rule, options, self.observer), None);
+            }
+            let force = rule.discretize_force(problem.force(), l.dof());
+            let h = problem.grid().h;
+            let mut balanced = Balanced::new(l, force, h, self.observer);
+            let result = problem.solve_with(rule, options, &mut balanced);
+            (result, Some(balanced.summary))
         }
     }
     method.dispatch(Solve {
@@ -101,7 +143,8 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap>(
     let sink = (destination.sink, destination.with_velocity);
     let mut observer = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), controls);
     let clock = Instant::now();
-    let result = solve(&problem, &spec.integrator.method, &options, &mut observer);
+    let (result, balance) =
+        solve_balanced(&problem, &spec.integrator.method, &options, &mut observer);
     let wall_seconds = clock.elapsed().as_secs_f64();
     let (trajectory, error) = match result {
         Ok(t) => (t, None),
@@ -122,6 +165,7 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap>(
         wall_seconds,
         rows: observer.rows(),
         diagnostics: observer.diagnostics,
+        balance,
     })
 }
 
