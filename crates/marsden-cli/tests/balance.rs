@@ -87,3 +87,16 @@ fn conservative_runs_keep_their_energy_error() {
     assert!(s["energy_balance"].is_null());
     assert!(number(&s, "energy.max_abs_error") <= 1e-13);
 }
+
+/// The energy plot of a forced run shows the balance, not an energy error.
+#[test]
+fn forced_runs_plot_the_energy_balance() {
+    let file = crate::util::repo_root().join("examples/damped_oscillator.toml");
+    let run = crate::util::marsden("run", &file, &["--steps", "200"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.out.join("energy_balance.png").is_file());
+    assert!(!run.out.join("energy_error.png").exists());
+    let files = run.summary()["output"]["files"].to_string();
+    assert!(files.contains("energy_balance.png"), "{files}");
+    assert!(!files.contains("energy_error.png"), "{files}");
+}

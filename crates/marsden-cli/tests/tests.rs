@@ -19,6 +19,8 @@ mod commands;
 mod constraints;
 // Every file in examples/ runs with reduced steps, as README.md quotes them.
 mod examples;
+// `[analysis] every_step`: maxima over every step, or the number of samples said.
+mod monitor;
 // `marsden order`: the table, the fitted orders, the CSV, the refused requests.
 mod order;
 // `marsden run`: reference values read back from the trajectory, summary.json's fields, the

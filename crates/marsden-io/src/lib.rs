@@ -26,8 +26,8 @@ pub use error::{Error, Result};
 pub use layout::{Group, GroupKind, Layout};
 pub use npy::{NpyArray, NpyDirWriter, NpyShape, NpyWriter, read_npy, read_npy_dir, write_npy_dir};
 pub use plot::{
-    PhaseCurve, PlotOptions, PlotReport, Series, plot_constraint_residual, plot_energy_error,
-    plot_momentum_drift, plot_phase_portrait, plot_run,
+    PhaseCurve, PlotOptions, PlotReport, Series, plot_constraint_residual, plot_energy_balance,
+    plot_energy_error, plot_momentum_drift, plot_phase_portrait, plot_run,
 };
 pub use sink::RowSink;
 pub use table::{Column, Table, check_column_name};

@@ -180,6 +180,11 @@ fn validate_raw(
         output,
         spans,
         sweep,
+        analysis: spec::AnalysisSpec {
+            every_step: (raw.analysis.as_ref())
+                .and_then(|a| a.get_ref().every_step.as_ref())
+                .is_some_and(|e| *e.get_ref()),
+        },
     })
 }
 

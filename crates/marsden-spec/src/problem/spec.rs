@@ -44,6 +44,16 @@ pub struct RunSpec {
     /// `[sweep]`: the ensemble to run instead of a single run (`None` for a plain file and
     /// for each member of a sweep).
     pub sweep: Option<super::SweepSpec>,
+    /// `[analysis]`.
+    pub analysis: AnalysisSpec,
+}
+
+/// `[analysis]`, validated.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct AnalysisSpec {
+    /// Monitor every step, not only the stored rows (the summary's maxima are then over every
+    /// step).
+    pub every_step: bool,
 }
 
 /// Where the values that only the core can judge were written.

@@ -75,12 +75,13 @@ pub fn render(outcome: &Outcome) -> String {
         ),
     );
     energy_lines(&mut out, s);
+    let over = over_samples(s);
     for (name, m) in &s.momenta {
         line(
             &mut out,
             "momentum",
             format!(
-                "{name}: J0 = {}, max |ΔJ| = {}",
+                "{name}: J0 = {}, max |ΔJ| = {}{over}",
                 m.initial,
                 sci(m.max_abs_drift)
             ),
@@ -91,7 +92,7 @@ pub fn render(outcome: &Outcome) -> String {
             &mut out,
             "constraints",
             format!(
-                "max |φ(q)| = {} ({} constraint(s))",
+                "max |φ(q)| = {} ({} constraint(s)){over}",
                 sci(r),
                 s.constraints.count
             ),
@@ -125,10 +126,7 @@ pub fn render(outcome: &Outcome) -> String {
 /// (or, without one, why there is no error to report).
 fn energy_lines(out: &mut String, s: &crate::run::Summary) {
     let e = &s.energy;
-    let over = match e.samples {
-        n if n < s.steps + 1 => format!(" (over {n} stored samples)"),
-        _ => String::new(),
-    };
+    let over = over_samples(s);
     match (s.energy_not_conserved, &s.energy_balance) {
         (None, _) => line(
             out,
@@ -165,6 +163,14 @@ fn energy_lines(out: &mut String, s: &crate::run::Summary) {
                 }
             ),
         ),
+    }
+}
+
+/// ` (over N stored samples)` when the maxima did not see every step, else nothing.
+fn over_samples(s: &crate::run::Summary) -> String {
+    match s.energy.samples {
+        n if n < s.steps + 1 => format!(" (over {n} stored samples)"),
+        _ => String::new(),
     }
 }
 

@@ -16,6 +16,9 @@ use marsden::discrete::DiscreteForce;
 use marsden::{Lagrangian, Observer, StepView, mechanics};
 use serde::Serialize;
 
+/// File name of the energy-balance plot, drawn instead of the energy-error plot.
+pub const ENERGY_BALANCE_PNG: &str = "energy_balance.png";
+
 /// `energy_balance { … }` of `summary.json`.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
 pub struct BalanceSummary {
@@ -45,6 +48,50 @@ impl BalanceSummary {
     }
 }
 
+/// The balance at the stored steps, for the plot: `t`, `E − E₀` and the accumulated work,
+/// in bounded memory (past [`BalanceSeries::CAP`] points every other one is dropped and the
+/// stride doubles).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct BalanceSeries {
+    /// Times.
+    pub t: Vec<f64>,
+    /// `E(t) − E₀`.
+    pub change: Vec<f64>,
+    /// `Σ W_k` up to `t`.
+    pub work: Vec<f64>,
+    stride: usize,
+    total: usize,
+}
+
+impl BalanceSeries {
+    /// Most points kept.
+    pub const CAP: usize = 8192;
+
+    fn new(every: usize, total: usize) -> Self {
+        Self {
+            stride: every.max(1),
+            total,
+            ..Self::default()
+        }
+    }
+
+    fn push(&mut self, step: usize, t: f64, s: &BalanceSummary) {
+        if !step.is_multiple_of(self.stride) && step != self.total {
+            return;
+        }
+        self.t.push(t);
+        self.change.push(s.energy_change);
+        self.work.push(s.total_work);
+        if self.t.len() > Self::CAP {
+            for v in [&mut self.t, &mut self.change, &mut self.work] {
+                let kept: Vec<f64> = v.iter().step_by(2).copied().collect();
+                *v = kept;
+            }
+            self.stride *= 2;
+        }
+    }
+}
+
 /// An observer that accumulates the energy balance of every step and hands every step on to
 /// the run's own observer (which keeps its own sampling).
 pub struct Balanced<'o, L, F, O: ?Sized> {
@@ -59,12 +106,19 @@ pub struct Balanced<'o, L, F, O: ?Sized> {
     f: Vec<f64>,
     /// The balance so far.
     pub summary: BalanceSummary,
+    /// The balance at the stored steps.
+    pub series: BalanceSeries,
 }
 
 impl<'o, L: Lagrangian, F: DiscreteForce, O: Observer + ?Sized> Balanced<'o, L, F, O> {
     /// The balance of a run of `lagrangian` with the two-point discrete force `force` and step
-    /// `h`, around `inner`.
-    pub fn new(lagrangian: &'o L, force: F, h: f64, inner: &'o mut O) -> Self {
+    /// `h`, around `inner`; the series keeps every `every`-th of `total` steps.
+    pub fn new(
+        lagrangian: &'o L,
+        (force, h): (F, f64),
+        (every, total): (usize, usize),
+        inner: &'o mut O,
+    ) -> Self {
         let n = lagrangian.dof();
         Self {
             lagrangian,
@@ -76,6 +130,7 @@ impl<'o, L: Lagrangian, F: DiscreteForce, O: Observer + ?Sized> Balanced<'o, L, 
             delta: vec![0.0; n],
             f: vec![0.0; 2 * n],
             summary: BalanceSummary::default(),
+            series: BalanceSeries::new(every, total),
         }
     }
 
@@ -116,6 +171,7 @@ impl<L: Lagrangian, F: DiscreteForce, O: Observer + ?Sized> Observer for Balance
     fn start(&mut self, initial: &StepView<'_>) {
         let e = self.energy(initial.t, initial.q, initial.p);
         self.remember(initial.t, initial.q, e);
+        self.series.push(0, initial.t, &self.summary);
         self.inner.start(initial);
     }
 
@@ -124,10 +180,35 @@ impl<L: Lagrangian, F: DiscreteForce, O: Observer + ?Sized> Observer for Balance
         let work = self.work(view.q);
         self.summary.push(e - self.previous.2, work);
         self.remember(view.t, view.q, e);
+        self.series.push(view.step, view.t, &self.summary);
         self.inner.observe(view)
     }
 
     fn every_step(&self) -> bool {
         true
     }
+}
+
+/// Replaces the energy-error plot of a forced run in `dir` by the energy balance of `series`
+/// ([`ENERGY_BALANCE_PNG`]); updates the list of `written` files.
+///
+/// # Errors
+/// The plot cannot be written, as text.
+pub fn draw(
+    dir: &std::path::Path,
+    series: &BalanceSeries,
+    written: &mut Vec<String>,
+) -> Result<(), String> {
+    let error_png = marsden_io::plot::ENERGY_ERROR_PNG;
+    if written.iter().any(|f| f == error_png) {
+        std::fs::remove_file(dir.join(error_png))
+            .map_err(|e| format!("cannot remove {error_png}: {e}"))?;
+        written.retain(|f| f != error_png);
+    }
+    let opts = marsden_io::PlotOptions::default();
+    let path = dir.join(ENERGY_BALANCE_PNG);
+    marsden_io::plot_energy_balance(&path, &series.t, (&series.change, &series.work), &opts)
+        .map_err(|e| e.to_string())?;
+    written.push(ENERGY_BALANCE_PNG.to_owned());
+    Ok(())
 }

@@ -10,7 +10,7 @@ use marsden::{
 };
 use marsden_io::RowSink;
 
-use super::balance::{BalanceSummary, Balanced};
+use super::balance::{BalanceSeries, BalanceSummary, Balanced};
 use super::controls::Controls;
 use super::diagnostics::Diagnostics;
 use super::observer::StreamObserver;
@@ -42,6 +42,8 @@ pub struct RunRecord {
     pub rows: u64,
     /// The discrete energy balance of a forced run with a two-point rule (`None` otherwise).
     pub balance: Option<BalanceSummary>,
+    /// The same at the stored steps, for the plot.
+    pub balance_series: Option<BalanceSeries>,
 }
 
 /// Solves `problem` with `method` (dispatch on the rule type: one monomorphised run per rule).
@@ -72,22 +74,23 @@ pub fn solve<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
 }
 
 /// [`solve`], and for an active force and a two-point rule the discrete energy balance of every
-/// step ([`Balanced`]) on the way.
+/// step ([`Balanced`]) on the way (its series keeps every `every`-th step).
 pub fn solve_balanced<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
     problem: &Problem<L, F, C>,
-    method: &Method,
+    (method, every): (&Method, usize),
     options: &SolveOptions,
     observer: &mut O,
-) -> (Result<Trajectory, Box<RunFailure>>, Option<BalanceSummary>) {
+) -> Balance {
     struct Solve<'a, L, F, C, O: ?Sized> {
         problem: &'a Problem<L, F, C>,
         options: &'a SolveOptions,
         observer: &'a mut O,
+        every: usize,
     }
     impl<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized> WithRule
         for Solve<'_, L, F, C, O>
     {
-        type Output = (Result<Trajectory, Box<RunFailure>>, Option<BalanceSummary>);
+        type Output = Balance;
         fn call<R: Rule>(self, rule: &R) -> Self::Output {
             use marsden::discrete::DiscreteAction as _;
             let (problem, options) = (self.problem, self.options);
@@ -98,17 +101,25 @@ pub fn solve_balanced<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Siz
             }
             let force = rule.discretize_force(problem.force(), l.dof());
             let h = problem.grid().h;
-            let mut balanced = Balanced::new(l, force, h, self.observer);
+            let total = problem.grid().steps;
+            let mut balanced = Balanced::new(l, (force, h), (self.every, total), self.observer);
             let result = problem.solve_with(rule, options, &mut balanced);
-            (result, Some(balanced.summary))
+            (result, Some((balanced.summary, balanced.series)))
         }
     }
     method.dispatch(Solve {
         problem,
         options,
         observer,
+        every,
     })
 }
+
+/// A run's result and, for a forced run with a two-point rule, its energy balance.
+pub type Balance = (
+    Result<Trajectory, Box<RunFailure>>,
+    Option<(BalanceSummary, BalanceSeries)>,
+);
 
 /// Where the rows of a run go: a sink, and whether each row carries the velocities too (for
 /// the in-memory [`Samples`](super::samples::Samples)).
@@ -141,10 +152,12 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap>(
     };
     let parts = (lagrangian, constraint, maps);
     let sink = (destination.sink, destination.with_velocity);
-    let mut observer = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), controls);
+    let mut observer = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), controls)
+        .monitoring_every_step(spec.analysis.every_step);
     let clock = Instant::now();
-    let (result, balance) =
-        solve_balanced(&problem, &spec.integrator.method, &options, &mut observer);
+    let method = (&spec.integrator.method, spec.output.every);
+    let (result, balance) = solve_balanced(&problem, method, &options, &mut observer);
+    let (balance, balance_series) = balance.unzip();
     let wall_seconds = clock.elapsed().as_secs_f64();
     let (trajectory, error) = match result {
         Ok(t) => (t, None),
@@ -166,6 +179,7 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap>(
         rows: observer.rows(),
         diagnostics: observer.diagnostics,
         balance,
+        balance_series,
     })
 }
 
