@@ -19,6 +19,8 @@ mod commands;
 mod constraints;
 // Every file in examples/ runs with reduced steps, as README.md quotes them.
 mod examples;
+// `[system] hamiltonian`: the same map as the Lagrangian, refusals.
+mod hamiltonian;
 // `[analysis] every_step`: maxima over every step, or the number of samples said.
 mod monitor;
 // `marsden order`: the table, the fitted orders, the CSV, the refused requests.

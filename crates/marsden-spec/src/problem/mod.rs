@@ -10,6 +10,7 @@
 //! notebook cell), [`member`] (one member of a sweep).
 
 pub mod check;
+pub mod hamiltonian;
 pub mod method;
 pub mod nbody_file;
 pub mod parameters;
@@ -165,7 +166,7 @@ fn validate_raw(
     };
     let system_table = raw.system.as_ref().map(|s| s.get_ref());
     let lagrangian_span = system_table
-        .and_then(|s| s.lagrangian.as_ref().or(s.builtin.as_ref()))
+        .and_then(|s| (s.lagrangian.as_ref().or(s.builtin.as_ref())).or(s.hamiltonian.as_ref()))
         .map(|v| v.span());
     let spans = SpecSpans {
         lagrangian: lagrangian_span,
@@ -196,7 +197,7 @@ fn run_name(raw: &raw::RawProblem, system: &SystemSpec, path: &Path) -> String {
     }
     match &system.lagrangian {
         LagrangianSpec::Builtin { builtin, .. } => builtin.name().to_owned(),
-        LagrangianSpec::Expression(_) => path
+        LagrangianSpec::Expression(_) | LagrangianSpec::Hamiltonian(_) => path
             .file_stem()
             .map_or("run".to_owned(), |s| s.to_string_lossy().into_owned()),
     }

@@ -10,7 +10,9 @@ use marsden::{Initial, NewtonOptions, TimeGrid};
 
 use super::method::Method;
 use crate::catalog::{Builtin, BuiltinSystem, WithLagrangian};
-use crate::model::{ExprConstraint, ExprForce, ExprLagrangian, Symmetry};
+use crate::model::{
+    ExprConstraint, ExprForce, ExprLagrangian, HamiltonianExprLagrangian, Symmetry,
+};
 use crate::source::SourceFile;
 
 /// Command-line overrides of the file's values (`marsden run --steps --h --out`).
@@ -77,6 +79,8 @@ pub enum LagrangianSpec {
     },
     /// `lagrangian = "…"`.
     Expression(ExprLagrangian),
+    /// `hamiltonian = "…"`, run through its Lagrangian `L = ⟨p, v⟩ − H` at `∂H/∂p = v`.
+    Hamiltonian(HamiltonianExprLagrangian),
 }
 
 impl LagrangianSpec {
@@ -85,6 +89,7 @@ impl LagrangianSpec {
         match self {
             LagrangianSpec::Builtin { system, .. } => system.dispatch(f),
             LagrangianSpec::Expression(l) => f.call(l),
+            LagrangianSpec::Hamiltonian(l) => f.call(l),
         }
     }
 
@@ -95,6 +100,9 @@ impl LagrangianSpec {
                 format!("builtin {}: L = {}", builtin.name(), builtin.formula())
             }
             LagrangianSpec::Expression(l) => format!("L = {}", l.program().text()),
+            LagrangianSpec::Hamiltonian(l) => {
+                format!("H = {}", l.hamiltonian.program().text())
+            }
         }
     }
 }

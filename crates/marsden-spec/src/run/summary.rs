@@ -228,6 +228,7 @@ impl Summary {
             system: match &spec.system.lagrangian {
                 LagrangianSpec::Builtin { builtin, .. } => format!("builtin {}", builtin.name()),
                 LagrangianSpec::Expression(_) => "expression".to_owned(),
+                LagrangianSpec::Hamiltonian(_) => "hamiltonian".to_owned(),
             },
             coordinates: spec.system.coordinates.clone(),
             method: integrator.method.to_string(),
