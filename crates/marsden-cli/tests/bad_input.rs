@@ -182,13 +182,6 @@ fn the_core_objections_point_at_the_file() {
         ],
     );
     assert_rejected(
-        "hamiltonian.toml",
-        &[
-            "`hamiltonian` problems are not supported yet",
-            "write the Lagrangian instead",
-        ],
-    );
-    assert_rejected(
         "missing_integrator.toml",
         &["the problem file has no [integrator] table"],
     );

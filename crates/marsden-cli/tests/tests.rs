@@ -11,12 +11,18 @@ mod util;
 // `marsden run` on malformed or impossible problem files: exit status 2, the message, the
 // caret, "did you mean" (the fixtures in tests/fixtures/bad/); failing runs: status 1.
 mod bad_input;
+// Forced and time-dependent runs: the discrete energy balance instead of an energy error.
+mod balance;
 // `check`, `systems`, `plot` and usage errors.
 mod commands;
 // Constrained runs: orders, multipliers, projected starts, refusals, `order` with constraints.
 mod constraints;
 // Every file in examples/ runs with reduced steps, as README.md quotes them.
 mod examples;
+// `[system] hamiltonian`: the same map as the Lagrangian, refusals.
+mod hamiltonian;
+// `[analysis] every_step`: maxima over every step, or the number of samples said.
+mod monitor;
 // `marsden order`: the table, the fitted orders, the CSV, the refused requests.
 mod order;
 // Plots: which pictures a run gets, angles wrapped and recorded, hostile ranges.

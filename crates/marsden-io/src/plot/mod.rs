@@ -38,7 +38,7 @@ mod time_series;
 
 pub use configuration::{Orbit, Plane, plot_configuration};
 pub use constraint::plot_constraint_residual;
-pub use energy::plot_energy_error;
+pub use energy::{plot_energy_balance, plot_energy_error};
 pub use font::FAMILY as FONT_FAMILY;
 pub use momentum::plot_momentum_drift;
 pub use multipliers::plot_multipliers;

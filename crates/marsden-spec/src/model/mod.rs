@@ -9,12 +9,14 @@
 
 pub mod constraint;
 pub mod force;
+pub mod hamiltonian;
 pub mod inputs;
 pub mod lagrangian;
 pub mod symmetry;
 
 pub use constraint::ExprConstraint;
 pub use force::ExprForce;
+pub use hamiltonian::{ExprHamiltonian, HamiltonianExprLagrangian};
 pub use lagrangian::ExprLagrangian;
 pub use symmetry::{MomentumMap, Symmetry};
 

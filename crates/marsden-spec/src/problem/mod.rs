@@ -11,6 +11,7 @@
 
 pub mod check;
 pub mod grid;
+pub mod hamiltonian;
 pub mod method;
 pub mod nbody_file;
 pub mod parameters;
@@ -167,7 +168,7 @@ fn validate_raw(
     };
     let system_table = raw.system.as_ref().map(|s| s.get_ref());
     let lagrangian_span = system_table
-        .and_then(|s| s.lagrangian.as_ref().or(s.builtin.as_ref()))
+        .and_then(|s| (s.lagrangian.as_ref().or(s.builtin.as_ref())).or(s.hamiltonian.as_ref()))
         .map(|v| v.span());
     let spans = SpecSpans {
         lagrangian: lagrangian_span,
@@ -182,6 +183,11 @@ fn validate_raw(
         output,
         spans,
         sweep,
+        analysis: spec::AnalysisSpec {
+            every_step: (raw.analysis.as_ref())
+                .and_then(|a| a.get_ref().every_step.as_ref())
+                .is_some_and(|e| *e.get_ref()),
+        },
     })
 }
 
@@ -193,7 +199,7 @@ fn run_name(raw: &raw::RawProblem, system: &SystemSpec, path: &Path) -> String {
     }
     match &system.lagrangian {
         LagrangianSpec::Builtin { builtin, .. } => builtin.name().to_owned(),
-        LagrangianSpec::Expression(_) => path
+        LagrangianSpec::Expression(_) | LagrangianSpec::Hamiltonian(_) => path
             .file_stem()
             .map_or("run".to_owned(), |s| s.to_string_lossy().into_owned()),
     }

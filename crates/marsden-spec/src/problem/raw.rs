@@ -63,6 +63,8 @@ pub struct RawProblem {
     pub output: Option<Spanned<RawOutput>>,
     /// `[sweep]`: one parameter or initial value over a list of values (an ensemble of runs).
     pub sweep: Option<Spanned<RawSweep>>,
+    /// `[analysis]`: what is monitored besides the stored rows.
+    pub analysis: Option<Spanned<RawAnalysis>>,
 }
 
 /// `[sweep]`: what is swept (`parameter` or `initial`) and over what (`values` or `range`).
@@ -309,4 +311,13 @@ steps = 10
         let err = parse("[output]\nplot = true\n").unwrap_err();
         assert!(err.message().contains("unknown field `plot`"), "{err}");
     }
+}
+
+/// `[analysis]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawAnalysis {
+    /// Monitor energy, momentum maps and constraint residuals at every step, not only at the
+    /// stored rows (default false).
+    pub every_step: Option<Spanned<bool>>,
 }

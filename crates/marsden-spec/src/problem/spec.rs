@@ -10,7 +10,9 @@ use marsden::{Initial, NewtonOptions, TimeGrid};
 
 use super::method::Method;
 use crate::catalog::{Builtin, BuiltinSystem, WithLagrangian};
-use crate::model::{ExprConstraint, ExprForce, ExprLagrangian, Symmetry};
+use crate::model::{
+    ExprConstraint, ExprForce, ExprLagrangian, HamiltonianExprLagrangian, Symmetry,
+};
 use crate::source::SourceFile;
 
 /// Command-line overrides of the file's values (`marsden run --steps --h --out`).
@@ -44,6 +46,16 @@ pub struct RunSpec {
     /// `[sweep]`: the ensemble to run instead of a single run (`None` for a plain file and
     /// for each member of a sweep).
     pub sweep: Option<super::SweepSpec>,
+    /// `[analysis]`.
+    pub analysis: AnalysisSpec,
+}
+
+/// `[analysis]`, validated.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct AnalysisSpec {
+    /// Monitor every step, not only the stored rows (the summary's maxima are then over every
+    /// step).
+    pub every_step: bool,
 }
 
 /// Where the values that only the core can judge were written.
@@ -67,6 +79,8 @@ pub enum LagrangianSpec {
     },
     /// `lagrangian = "…"`.
     Expression(ExprLagrangian),
+    /// `hamiltonian = "…"`, run through its Lagrangian `L = ⟨p, v⟩ − H` at `∂H/∂p = v`.
+    Hamiltonian(HamiltonianExprLagrangian),
 }
 
 impl LagrangianSpec {
@@ -75,6 +89,7 @@ impl LagrangianSpec {
         match self {
             LagrangianSpec::Builtin { system, .. } => system.dispatch(f),
             LagrangianSpec::Expression(l) => f.call(l),
+            LagrangianSpec::Hamiltonian(l) => f.call(l),
         }
     }
 
@@ -85,6 +100,9 @@ impl LagrangianSpec {
                 format!("builtin {}: L = {}", builtin.name(), builtin.formula())
             }
             LagrangianSpec::Expression(l) => format!("L = {}", l.program().text()),
+            LagrangianSpec::Hamiltonian(l) => {
+                format!("H = {}", l.hamiltonian.program().text())
+            }
         }
     }
 }
@@ -113,6 +131,23 @@ impl SystemSpec {
     /// Degrees of freedom.
     pub fn dof(&self) -> usize {
         self.coordinates.len()
+    }
+
+    /// Why the energy is not conserved, if it is not: forces act, or the Lagrangian depends on
+    /// `t` (its input slot `2n` is read). The catalog Lagrangians are autonomous.
+    pub fn energy_not_conserved(&self) -> Option<&'static str> {
+        use marsden::Force as _;
+        if self.force.is_active() {
+            return Some("forces act");
+        }
+        match &self.lagrangian {
+            LagrangianSpec::Expression(l)
+                if l.program().inputs_used().contains(&(2 * self.dof())) =>
+            {
+                Some("the Lagrangian depends on t")
+            }
+            _ => None,
+        }
     }
 }
 

@@ -78,10 +78,13 @@ pub fn system(
         ));
     };
     let system = raw.get_ref();
-    if let Some(h) = &system.hamiltonian {
-        return Err(ck
-            .error(Some(h.span()), "`hamiltonian` problems are not supported yet")
-            .help("write the Lagrangian instead: `lagrangian = \"...\"` with `<coordinate>_dot` velocities"));
+    if let Some(h) = &system.hamiltonian
+        && (system.lagrangian.is_some() || system.builtin.is_some())
+    {
+        return Err(ck.error(
+            Some(h.span()),
+            "give either `hamiltonian` or `lagrangian`/`builtin`, not both",
+        ));
     }
     let mut params = Parameters::read(ck, system)?;
     if let Some(bodies) = bodies {
@@ -95,14 +98,17 @@ pub fn system(
                 "give either `lagrangian` or `builtin`, not both",
             ));
         }
-        (None, None) => {
-            return Err(ck
-                .error(
-                    Some(raw.span()),
-                    "[system] needs a `lagrangian` or a `builtin`",
-                )
-                .help("e.g. `builtin = \"pendulum\"`; `marsden systems` lists the builtins"));
-        }
+        (None, None) => match &system.hamiltonian {
+            Some(h) => super::hamiltonian::expression(ck, h, system, &params)?,
+            None => {
+                return Err(ck
+                    .error(
+                        Some(raw.span()),
+                        "[system] needs a `lagrangian` or a `builtin`",
+                    )
+                    .help("e.g. `builtin = \"pendulum\"`; `marsden systems` lists the builtins"));
+            }
+        },
         (None, Some(b)) => builtin(ck, b, system, &params, &parsed.names())?,
         (Some(l), None) => expression(ck, l, system, &params)?,
     };
@@ -153,7 +159,7 @@ fn file_masses(
     Ok(())
 }
 
-type Resolved = (
+pub(super) type Resolved = (
     LagrangianSpec,
     Vec<String>,
     Vec<(String, f64)>,
@@ -221,7 +227,7 @@ fn expression(
 }
 
 /// A symbol table of `inputs` (slots in order) and the parameters as constants.
-fn symbols(
+pub(super) fn symbols(
     ck: &Checker<'_>,
     inputs: Vec<String>,
     constants: &[(String, f64)],

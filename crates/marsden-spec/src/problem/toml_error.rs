@@ -52,6 +52,8 @@ fn table_of(valid: &[&str]) -> &'static str {
         "[output]"
     } else if has("values") {
         "[sweep]"
+    } else if has("every_step") {
+        "[analysis]"
     } else if has("stop") {
         "[sweep] range"
     } else if has("system") {

@@ -71,6 +71,18 @@ fn system(out: &mut Lines, spec: &RunSpec) {
                 format!("{} ({} instructions)", program.text(), program.op_count()),
             );
         }
+        LagrangianSpec::Hamiltonian(l) => {
+            let program = l.hamiltonian.program();
+            out.line("system", format!("{}: expression Hamiltonian", spec.name));
+            out.line(
+                "hamiltonian",
+                format!(
+                    "{} ({} instructions), run as L = ⟨p, v⟩ − H at ∂H/∂p = v",
+                    program.text(),
+                    program.op_count()
+                ),
+            );
+        }
     }
     out.line("coordinates", s.coordinates.join(", "));
     let mut params: Vec<String> = s

@@ -74,24 +74,14 @@ pub fn render(outcome: &Outcome) -> String {
             s.newton.iterations_max, s.newton.tolerance
         ),
     );
-    let e = &s.energy;
-    line(
-        &mut out,
-        "energy",
-        format!(
-            "E0 = {}, max |ΔE/E0| = {}, final {}, drift {} per unit time",
-            e.initial,
-            sci(e.max_rel_error),
-            sci(e.final_rel_error),
-            sci(e.drift_per_unit_time)
-        ),
-    );
+    energy_lines(&mut out, s);
+    let over = over_samples(s);
     for (name, m) in &s.momenta {
         line(
             &mut out,
             "momentum",
             format!(
-                "{name}: J0 = {}, max |ΔJ| = {}",
+                "{name}: J0 = {}, max |ΔJ| = {}{over}",
                 m.initial,
                 sci(m.max_abs_drift)
             ),
@@ -102,7 +92,7 @@ pub fn render(outcome: &Outcome) -> String {
             &mut out,
             "constraints",
             format!(
-                "max |φ(q)| = {} ({} constraint(s))",
+                "max |φ(q)| = {} ({} constraint(s)){over}",
                 sci(r),
                 s.constraints.count
             ),
@@ -130,6 +120,58 @@ pub fn render(outcome: &Outcome) -> String {
         ),
     }
     out
+}
+
+/// The energy line: its error where energy is conserved, otherwise the discrete energy balance
+/// (or, without one, why there is no error to report).
+fn energy_lines(out: &mut String, s: &crate::run::Summary) {
+    let e = &s.energy;
+    let over = over_samples(s);
+    match (s.energy_not_conserved, &s.energy_balance) {
+        (None, _) => line(
+            out,
+            "energy",
+            format!(
+                "E0 = {}, max |ΔE/E0| = {}, final {}, drift {} per unit time{over}",
+                e.initial,
+                sci(e.max_rel_error),
+                sci(e.final_rel_error),
+                sci(e.drift_per_unit_time)
+            ),
+        ),
+        (Some(why), Some(b)) => line(
+            out,
+            "energy",
+            format!(
+                "balance ({why}): E0 = {}, E_N − E0 = {}, work {}, unaccounted {} (max {} per step)",
+                e.initial,
+                sci(b.energy_change),
+                sci(b.total_work),
+                sci(b.total_defect),
+                sci(b.max_defect)
+            ),
+        ),
+        (Some(why), None) => line(
+            out,
+            "energy",
+            format!(
+                "not conserved ({why}): E0 = {}; no energy error to report{}",
+                e.initial,
+                match why {
+                    "forces act" => ", and no balance for a method with internal stages",
+                    _ => "",
+                }
+            ),
+        ),
+    }
+}
+
+/// ` (over N stored samples)` when the maxima did not see every step, else nothing.
+fn over_samples(s: &crate::run::Summary) -> String {
+    match s.energy.samples {
+        n if n < s.steps + 1 => format!(" (over {n} stored samples)"),
+        _ => String::new(),
+    }
 }
 
 fn line(out: &mut String, label: &str, text: String) {

@@ -8,7 +8,7 @@ use super::controls::Controls;
 use super::samples::{NullSink, Samples, Tee};
 use super::solve::{Destination, Runner};
 use super::summary::Summary;
-use super::{output, plots, start};
+use super::{balance, output, plots, start};
 use crate::error::{Diagnostic, Error};
 use crate::problem::RunSpec;
 
@@ -133,6 +133,11 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
             match plots::draw(spec, &layout) {
                 Ok(pngs) => written.extend(pngs),
                 Err(e) => warnings.push(format!("plots were not drawn: {e}")),
+            }
+            if let Some(series) = &record.balance_series
+                && let Err(e) = balance::draw(&dir, series, &mut written)
+            {
+                warnings.push(format!("the energy balance was not drawn: {e}"));
             }
         }
     }

@@ -7,6 +7,7 @@
 //! | caller's hold | [`controls`] | [`Progress`] callback and stop flag ([`Controls`]) |
 //! | initial state | [`start`] | `p` from `v` (or back), projection, regularity, symmetry warnings |
 //! | generic runner | [`solve`] | `Problem` from any `Lagrangian`, `Force`, `Constraint`; the method's rule |
+//! | forced runs | [`balance`] | the discrete energy balance of every step (R12) |
 //! | per sample | [`observer`] | one row `t, q, p, energy, J…, residual`, [`diagnostics`] |
 //! | where rows go | [`output`], [`samples`] | columns and writers of the files; in-memory [`Samples`] |
 //! | afterwards | [`summary`], [`plots`] | `summary.json`; the PNG plots (also `marsden plot`) |
@@ -15,6 +16,7 @@
 //! Catalog systems and expressions reach the generic runner through
 //! [`crate::catalog::WithLagrangian`]: one monomorphised run per Lagrangian type and rule.
 
+pub mod balance;
 pub mod controls;
 pub mod diagnostics;
 pub mod execute;

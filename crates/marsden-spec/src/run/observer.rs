@@ -45,6 +45,8 @@ pub struct StreamObserver<'a, 's, L, C, M> {
     pub io_error: Option<marsden_io::Error>,
     /// Whether the run was stopped through [`Controls::stop`].
     pub interrupted: bool,
+    /// Feed the diagnostics from every step, not only the stored rows (`[analysis] every_step`).
+    monitor_every_step: bool,
 }
 
 /// Where a sample comes from.
@@ -89,6 +91,37 @@ impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's
             diagnostics: Diagnostics::new(maps.len(), constraint.count() > 0),
             io_error: None,
             interrupted: false,
+            monitor_every_step: false,
+        }
+    }
+
+    /// Feeds the diagnostics from every step (the summary's maxima are then over every step),
+    /// at the price of the energy and the monitored quantities at each step.
+    pub fn monitoring_every_step(mut self, on: bool) -> Self {
+        self.monitor_every_step = on;
+        self
+    }
+
+    /// Feeds the diagnostics with a step that is not stored (no row is written).
+    fn monitor(&mut self, s: Sample<'_>) {
+        let energy =
+            mechanics::energy_from_momentum(self.lagrangian, s.t, s.q, s.p, &mut self.velocity)
+                .unwrap_or(f64::NAN);
+        self.diagnostics.energy.push(s.t, energy);
+        for (map, stats) in self.maps.iter().zip(&mut self.diagnostics.maps) {
+            stats.push(map.value(s.q, s.p, &mut self.scratch));
+        }
+        if self.constraint.count() > 0 {
+            let r = self.residual(s.q);
+            self.diagnostics.push_residual(r);
+            let rate = match energy.is_finite() {
+                true => residuals_at(self.constraint, s.q, &self.velocity).1,
+                false => f64::NAN,
+            };
+            self.diagnostics.push_velocity_residual(rate);
+        }
+        if !energy.is_finite() {
+            self.velocity.fill(0.0);
         }
     }
 
@@ -239,11 +272,20 @@ impl<L: Lagrangian, C: Constraint, M: MomentumMap> Observer for StreamObserver<'
             }
             return flow;
         }
+        if self.monitor_every_step {
+            let s = Sample {
+                step: view.step,
+                t: view.t,
+                q: view.q,
+                p: view.p,
+            };
+            self.monitor(s);
+        }
         ControlFlow::Continue(())
     }
 
     fn every_step(&self) -> bool {
-        false
+        self.monitor_every_step
     }
 
     /// The sampling stride, and every [`CHECK_EVERY`]-th step when controls are watched.

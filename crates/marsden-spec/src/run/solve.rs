@@ -10,6 +10,7 @@ use marsden::{
 };
 use marsden_io::RowSink;
 
+use super::balance::{BalanceSeries, BalanceSummary, Balanced};
 use super::controls::Controls;
 use super::diagnostics::Diagnostics;
 use super::observer::StreamObserver;
@@ -39,6 +40,10 @@ pub struct RunRecord {
     pub diagnostics: Diagnostics,
     /// Rows written.
     pub rows: u64,
+    /// The discrete energy balance of a forced run with a two-point rule (`None` otherwise).
+    pub balance: Option<BalanceSummary>,
+    /// The same at the stored steps, for the plot.
+    pub balance_series: Option<BalanceSeries>,
 }
 
 /// Solves `problem` with `method` (dispatch on the rule type: one monomorphised run per rule).
@@ -67,6 +72,54 @@ pub fn solve<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
         observer,
     })
 }
+
+/// [`solve`], and for an active force and a two-point rule the discrete energy balance of every
+/// step ([`Balanced`]) on the way (its series keeps every `every`-th step).
+pub fn solve_balanced<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
+    problem: &Problem<L, F, C>,
+    (method, every): (&Method, usize),
+    options: &SolveOptions,
+    observer: &mut O,
+) -> Balance {
+    struct Solve<'a, L, F, C, O: ?Sized> {
+        problem: &'a Problem<L, F, C>,
+        options: &'a SolveOptions,
+        observer: &'a mut O,
+        every: usize,
+    }
+    impl<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized> WithRule
+        for Solve<'_, L, F, C, O>
+    {
+        type Output = Balance;
+        fn call<R: Rule>(self, rule: &R) -> Self::Output {
+            use marsden::discrete::DiscreteAction as _;
+            let (problem, options) = (self.problem, self.options);
+            let l = problem.lagrangian();
+            let two_point = rule.discretize(l).internal_stages() == 0;
+            if !problem.force().is_active() || !two_point {
+                return (problem.solve_with(rule, options, self.observer), None);
+            }
+            let force = rule.discretize_force(problem.force(), l.dof());
+            let h = problem.grid().h;
+            let total = problem.grid().steps;
+            let mut balanced = Balanced::new(l, (force, h), (self.every, total), self.observer);
+            let result = problem.solve_with(rule, options, &mut balanced);
+            (result, Some((balanced.summary, balanced.series)))
+        }
+    }
+    method.dispatch(Solve {
+        problem,
+        options,
+        observer,
+        every,
+    })
+}
+
+/// A run's result and, for a forced run with a two-point rule, its energy balance.
+pub type Balance = (
+    Result<Trajectory, Box<RunFailure>>,
+    Option<(BalanceSummary, BalanceSeries)>,
+);
 
 /// Where the rows of a run go: a sink, and whether each row carries the velocities too (for
 /// the in-memory [`Samples`](super::samples::Samples)).
@@ -99,9 +152,12 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap>(
     };
     let parts = (lagrangian, constraint, maps);
     let sink = (destination.sink, destination.with_velocity);
-    let mut observer = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), controls);
+    let mut observer = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), controls)
+        .monitoring_every_step(spec.analysis.every_step);
     let clock = Instant::now();
-    let result = solve(&problem, &spec.integrator.method, &options, &mut observer);
+    let method = (&spec.integrator.method, spec.output.every);
+    let (result, balance) = solve_balanced(&problem, method, &options, &mut observer);
+    let (balance, balance_series) = balance.unzip();
     let wall_seconds = clock.elapsed().as_secs_f64();
     let (trajectory, error) = match result {
         Ok(t) => (t, None),
@@ -123,6 +179,8 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap>(
         wall_seconds,
         rows: observer.rows(),
         diagnostics: observer.diagnostics,
+        balance,
+        balance_series,
     })
 }
 

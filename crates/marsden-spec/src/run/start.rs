@@ -121,6 +121,13 @@ fn non_finite_energy(spec: &RunSpec, energy: f64) -> Diagnostic {
 pub fn start_error(spec: &RunSpec, e: &marsden::Error) -> Diagnostic {
     let source: &SourceFile = &spec.source;
     match e {
+        marsden::Error::Setup(SetupError::SingularLagrangian { .. })
+            if matches!(spec.system.lagrangian, crate::problem::LagrangianSpec::Hamiltonian(_)) =>
+        {
+            Diagnostic::new(format!("the Hamiltonian is not regular at the initial state ({e})"))
+                .at(source.locate_opt(spec.spans.lagrangian.clone()))
+                .help("∂²H/∂p² must be invertible for the run to go through L = ⟨p, v⟩ − H, e.g. H = p²/2m + V(q)")
+        }
         marsden::Error::Setup(SetupError::SingularLagrangian { .. }) => Diagnostic::new(e.to_string())
             .at(source.locate_opt(spec.spans.lagrangian.clone()))
             .help("∂²L/∂q̇² must be invertible: every velocity must appear in L, quadratically for a mechanical system"),

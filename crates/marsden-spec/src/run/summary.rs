@@ -7,6 +7,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
+use super::balance::BalanceSummary;
 use super::output::SUMMARY_JSON;
 use super::solve::RunRecord;
 use crate::problem::{LagrangianSpec, RunSpec};
@@ -88,6 +89,13 @@ pub struct Summary {
     pub output: OutputSummary,
     /// Where the results come from.
     pub provenance: Provenance,
+    /// Why the energy is not conserved (`"forces act"`, `"the Lagrangian depends on t"`), or
+    /// null; when not null, `energy`'s errors are null (there is no error to measure) and
+    /// `energy_balance` accounts for the change.
+    pub energy_not_conserved: Option<&'static str>,
+    /// The discrete energy balance of a forced run with a two-point method, over every step
+    /// (null otherwise).
+    pub energy_balance: Option<BalanceSummary>,
 }
 
 /// `energy { … }`.
@@ -215,6 +223,9 @@ impl Summary {
             })
             .collect();
         let integrator = &spec.integrator;
+        let not_conserved = spec.system.energy_not_conserved();
+        // An energy error only where energy is conserved.
+        let error = |x: f64| if not_conserved.is_some() { f64::NAN } else { x };
         Summary {
             status: RunStatus::of(record),
             error: record.error.clone(),
@@ -222,6 +233,7 @@ impl Summary {
             system: match &spec.system.lagrangian {
                 LagrangianSpec::Builtin { builtin, .. } => format!("builtin {}", builtin.name()),
                 LagrangianSpec::Expression(_) => "expression".to_owned(),
+                LagrangianSpec::Hamiltonian(_) => "hamiltonian".to_owned(),
             },
             coordinates: spec.system.coordinates.clone(),
             method: integrator.method.to_string(),
@@ -234,10 +246,10 @@ impl Summary {
             wall_seconds: record.wall_seconds,
             energy: EnergySummary {
                 initial: d.energy.report().initial,
-                max_abs_error: d.energy.report().max_abs_error,
-                max_rel_error: d.energy.report().max_rel_error,
-                final_rel_error: d.energy.report().final_rel_error,
-                drift_per_unit_time: d.energy.report().drift_per_unit_time,
+                max_abs_error: error(d.energy.report().max_abs_error),
+                max_rel_error: error(d.energy.report().max_rel_error),
+                final_rel_error: error(d.energy.report().final_rel_error),
+                drift_per_unit_time: error(d.energy.report().drift_per_unit_time),
                 samples: d.energy.report().samples,
                 non_finite: d.energy.report().failures,
             },
@@ -267,6 +279,8 @@ impl Summary {
                 problem_file: spec.source.path().display().to_string(),
                 problem_sha256: spec.source.sha256().to_owned(),
             },
+            energy_not_conserved: not_conserved,
+            energy_balance: record.balance,
         }
     }
 

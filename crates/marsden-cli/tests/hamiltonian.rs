@@ -1,0 +1,72 @@
+//! End-to-end: `[system] hamiltonian = "…"` runs through `L = ⟨p, v⟩ − H` (every method), and
+//! the misuses are refused with a pointed message.
+
+use crate::util::{assert_rejected, number, run_ok};
+
+fn final_state(s: &serde_json::Value) -> Vec<f64> {
+    let part = |k: &str| -> Vec<f64> {
+        s["final_state"][k]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    [part("q"), part("p")].concat()
+}
+
+/// The pendulum given by `H = ½p² − w2 cos θ` and by `L = ½θ̇² + w2 cos θ` is the same
+/// problem: the discrete Hamiltonian map of the same `L_d` ([MW01] Thm 2.6.2), so the gauss-2
+/// runs end in the same state to 1e-12 after 2000 steps.
+#[test]
+fn pendulum_hamiltonian_and_lagrangian_give_the_same_map_gauss2() {
+    let h = run_ok("pendulum_h_gauss-2.toml", &[]).summary();
+    let l = run_ok("pendulum_l_gauss-2.toml", &[]).summary();
+    assert_eq!(h["status"], "completed");
+    assert_eq!(h["system"], "hamiltonian");
+    for (a, b) in final_state(&h).iter().zip(final_state(&l)) {
+        assert!((a - b).abs() <= 1e-12, "final state {a} against {b}");
+    }
+}
+
+/// Midpoint on the Hamiltonian completes, its energy error bounded (symplectic: no drift over
+/// 2000 steps of h = 0.05) and equal to the Lagrangian run's.
+#[test]
+fn pendulum_hamiltonian_midpoint_keeps_the_energy_bounded() {
+    let run = run_ok("pendulum_h_midpoint.toml", &[]);
+    let h = run.summary();
+    let l = run_ok("pendulum_l_midpoint.toml", &[]).summary();
+    assert_eq!(h["status"], "completed");
+    let (eh, el) = (
+        number(&h, "energy.max_rel_error"),
+        number(&l, "energy.max_rel_error"),
+    );
+    assert!(eh < 5e-3, "max |ΔE/E0| = {eh:e}");
+    assert!(
+        (eh - el).abs() <= 1e-9,
+        "{eh:e} against the Lagrangian's {el:e}"
+    );
+    // E = H at the initial state: ½·0² − cos 1.5.
+    assert!((number(&h, "energy.initial") + 1.5_f64.cos()).abs() <= 1e-14);
+}
+
+#[test]
+fn a_hamiltonian_not_regular_in_p_is_refused() {
+    assert_rejected(
+        "hamiltonian_not_regular.toml",
+        &["the Hamiltonian is not regular", "∂²H/∂p²"],
+    );
+    assert_rejected(
+        "hamiltonian_without_momenta.toml",
+        &["the Hamiltonian is not regular", "p_<coordinate>", "^"],
+    );
+}
+
+#[test]
+fn a_hamiltonian_uses_momenta_not_velocities_and_comes_alone() {
+    assert_rejected("hamiltonian_velocity_name.toml", &["theta_dot", "p_theta"]);
+    assert_rejected(
+        "hamiltonian_and_lagrangian.toml",
+        &["give either `hamiltonian` or `lagrangian`/`builtin`, not both"],
+    );
+}

@@ -1,0 +1,57 @@
+//! `[system] hamiltonian = "…"`: `H(t, q, p)` written with the coordinates, their momenta
+//! `p_<coordinate>` and `t`, compiled and turned into the Lagrangian the run uses
+//! ([`crate::model::hamiltonian`]).
+
+use toml::Spanned;
+
+use super::check::Checker;
+use super::parameters::{self, Parameters};
+use super::raw::RawSystem;
+use super::spec::LagrangianSpec;
+use super::system::{Resolved, symbols};
+use crate::error::Diagnostic;
+use crate::model::ExprHamiltonian;
+use crate::model::hamiltonian::cotangent_inputs;
+use marsden::hamiltonian::HamiltonianLagrangian;
+use marsden_expr::Program;
+
+/// Validates and compiles `hamiltonian = "…"` (with `coordinates` and number parameters).
+pub fn expression(
+    ck: &Checker<'_>,
+    text: &Spanned<String>,
+    system: &RawSystem,
+    params: &Parameters,
+) -> Result<Resolved, Diagnostic> {
+    let Some(list) = &system.coordinates else {
+        return Err(ck
+            .error(
+                Some(text.span()),
+                "a `hamiltonian` needs `coordinates` in [system]",
+            )
+            .help("e.g. `coordinates = [\"theta\"]`; momenta are then named `p_theta`"));
+    };
+    let coordinates = parameters::check_coordinates(ck, list)?;
+    params.numbers_only(ck, "an expression Hamiltonian")?;
+    let constants: Vec<(String, f64)> = params
+        .numbers
+        .iter()
+        .map(|w| (w.name.clone(), w.value))
+        .collect();
+    let expr = ck.parse_expr("[system] hamiltonian", text)?;
+    let symbols = symbols(ck, cotangent_inputs(&coordinates), &constants, params)?;
+    let program: Program = expr
+        .compile(&symbols)
+        .map_err(|e| ck.expr_error("[system] hamiltonian", text, &e))?;
+    let n = coordinates.len();
+    let reads_momenta = (n..2 * n).all(|slot| program.inputs_used().contains(&slot));
+    if !reads_momenta {
+        return Err(ck
+            .error(
+                Some(text.span()),
+                "the Hamiltonian is not regular: some momentum `p_<coordinate>` does not appear in it",
+            )
+            .help("∂²H/∂p² must be invertible for the run to go through L = ⟨p, v⟩ − H"));
+    }
+    let h = HamiltonianLagrangian::new(ExprHamiltonian::new(program, n));
+    Ok((LagrangianSpec::Hamiltonian(h), coordinates, constants, None))
+}

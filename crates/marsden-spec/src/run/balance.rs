@@ -1,0 +1,214 @@
+//! The discrete energy balance of a forced run, step by step while it runs: what `summary.json`
+//! reports as `energy_balance` instead of an "energy error" (energy is not conserved there).
+//!
+//! With the step's own discrete forces `f_d^±` (the rule's discretisation of the file's
+//! forces) and the mean velocity `v̄_k = (q_{k+1} − q_k)/h`, the discrete work of step `k` is
+//! `W_k = ⟨f_d⁻ + f_d⁺, v̄_k⟩` and its defect `D_k = E_{k+1} − E_k − W_k`; the defect vanishes
+//! to round-off for a quadratic potential with the midpoint rule (R12) and is `O(h³)` per step
+//! otherwise. This is the core's [`marsden::analysis::diagnostics::EnergyBalance`] (which needs
+//! the whole trajectory in memory), computed in bounded memory as an [`Observer`] wrapped
+//! around the run's own observer; it applies to two-point rules (forces on `q_k` and `q_{k+1}`
+//! only), the others report no balance.
+
+use std::ops::ControlFlow;
+
+use marsden::discrete::DiscreteForce;
+use marsden::{Lagrangian, Observer, StepView, mechanics};
+use serde::Serialize;
+
+/// File name of the energy-balance plot, drawn instead of the energy-error plot.
+pub const ENERGY_BALANCE_PNG: &str = "energy_balance.png";
+
+/// `energy_balance { … }` of `summary.json`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct BalanceSummary {
+    /// `Σ_k W_k`, the discrete work of the forces over the run.
+    pub total_work: f64,
+    /// `max_k |D_k|`.
+    pub max_defect: f64,
+    /// `Σ_k D_k = E_N − E_0 − Σ_k W_k`, the energy change the work does not account for.
+    pub total_defect: f64,
+    /// `E_N − E_0`.
+    pub energy_change: f64,
+    /// Steps in the balance (every step of the run).
+    pub steps: usize,
+}
+
+impl BalanceSummary {
+    fn push(&mut self, delta_energy: f64, work: f64) {
+        let defect = delta_energy - work;
+        self.steps += 1;
+        self.total_work += work;
+        self.total_defect += defect;
+        self.energy_change += delta_energy;
+        // NaN sticks: a broken step does not report a perfect balance.
+        if defect.abs() > self.max_defect || defect.is_nan() {
+            self.max_defect = defect.abs();
+        }
+    }
+}
+
+/// The balance at the stored steps, for the plot: `t`, `E − E₀` and the accumulated work,
+/// in bounded memory (past [`BalanceSeries::CAP`] points every other one is dropped and the
+/// stride doubles).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct BalanceSeries {
+    /// Times.
+    pub t: Vec<f64>,
+    /// `E(t) − E₀`.
+    pub change: Vec<f64>,
+    /// `Σ W_k` up to `t`.
+    pub work: Vec<f64>,
+    stride: usize,
+    total: usize,
+}
+
+impl BalanceSeries {
+    /// Most points kept.
+    pub const CAP: usize = 8192;
+
+    fn new(every: usize, total: usize) -> Self {
+        Self {
+            stride: every.max(1),
+            total,
+            ..Self::default()
+        }
+    }
+
+    fn push(&mut self, step: usize, t: f64, s: &BalanceSummary) {
+        if !step.is_multiple_of(self.stride) && step != self.total {
+            return;
+        }
+        self.t.push(t);
+        self.change.push(s.energy_change);
+        self.work.push(s.total_work);
+        if self.t.len() > Self::CAP {
+            for v in [&mut self.t, &mut self.change, &mut self.work] {
+                let kept: Vec<f64> = v.iter().step_by(2).copied().collect();
+                *v = kept;
+            }
+            self.stride *= 2;
+        }
+    }
+}
+
+/// An observer that accumulates the energy balance of every step and hands every step on to
+/// the run's own observer (which keeps its own sampling).
+pub struct Balanced<'o, L, F, O: ?Sized> {
+    lagrangian: &'o L,
+    force: F,
+    h: f64,
+    inner: &'o mut O,
+    /// State of the previous step: `t_k`, `q_k`, `E_k`.
+    previous: (f64, Vec<f64>, f64),
+    velocity: Vec<f64>,
+    delta: Vec<f64>,
+    f: Vec<f64>,
+    /// The balance so far.
+    pub summary: BalanceSummary,
+    /// The balance at the stored steps.
+    pub series: BalanceSeries,
+}
+
+impl<'o, L: Lagrangian, F: DiscreteForce, O: Observer + ?Sized> Balanced<'o, L, F, O> {
+    /// The balance of a run of `lagrangian` with the two-point discrete force `force` and step
+    /// `h`, around `inner`; the series keeps every `every`-th of `total` steps.
+    pub fn new(
+        lagrangian: &'o L,
+        (force, h): (F, f64),
+        (every, total): (usize, usize),
+        inner: &'o mut O,
+    ) -> Self {
+        let n = lagrangian.dof();
+        Self {
+            lagrangian,
+            force,
+            h,
+            inner,
+            previous: (0.0, vec![0.0; n], f64::NAN),
+            velocity: vec![0.0; n],
+            delta: vec![0.0; n],
+            f: vec![0.0; 2 * n],
+            summary: BalanceSummary::default(),
+            series: BalanceSeries::new(every, total),
+        }
+    }
+
+    fn energy(&mut self, t: f64, q: &[f64], p: &[f64]) -> f64 {
+        match mechanics::energy_from_momentum(self.lagrangian, t, q, p, &mut self.velocity) {
+            Ok(e) => e,
+            Err(_) => {
+                // A failed inverse Legendre transform leaves a poor guess behind.
+                self.velocity.fill(0.0);
+                f64::NAN
+            }
+        }
+    }
+
+    /// `W_k = ⟨f_d⁻ + f_d⁺, (q_{k+1} − q_k)/h⟩` of the step from the previous state to `q1`.
+    fn work(&mut self, q1: &[f64]) -> f64 {
+        let (t0, q0, _) = &self.previous;
+        let n = q0.len();
+        self.delta
+            .iter_mut()
+            .zip(q1.iter().zip(q0))
+            .for_each(|(d, (a, b))| *d = a - b);
+        self.force
+            .discrete_force(*t0, self.h, q0, &self.delta, &mut self.f);
+        (0..n)
+            .map(|a| (self.f[a] + self.f[n + a]) * self.delta[a] / self.h)
+            .sum()
+    }
+
+    fn remember(&mut self, t: f64, q: &[f64], e: f64) {
+        self.previous.0 = t;
+        self.previous.1.copy_from_slice(q);
+        self.previous.2 = e;
+    }
+}
+
+impl<L: Lagrangian, F: DiscreteForce, O: Observer + ?Sized> Observer for Balanced<'_, L, F, O> {
+    fn start(&mut self, initial: &StepView<'_>) {
+        let e = self.energy(initial.t, initial.q, initial.p);
+        self.remember(initial.t, initial.q, e);
+        self.series.push(0, initial.t, &self.summary);
+        self.inner.start(initial);
+    }
+
+    fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()> {
+        let e = self.energy(view.t, view.q, view.p);
+        let work = self.work(view.q);
+        self.summary.push(e - self.previous.2, work);
+        self.remember(view.t, view.q, e);
+        self.series.push(view.step, view.t, &self.summary);
+        self.inner.observe(view)
+    }
+
+    fn every_step(&self) -> bool {
+        true
+    }
+}
+
+/// Replaces the energy-error plot of a forced run in `dir` by the energy balance of `series`
+/// ([`ENERGY_BALANCE_PNG`]); updates the list of `written` files.
+///
+/// # Errors
+/// The plot cannot be written, as text.
+pub fn draw(
+    dir: &std::path::Path,
+    series: &BalanceSeries,
+    written: &mut Vec<String>,
+) -> Result<(), String> {
+    let error_png = marsden_io::plot::ENERGY_ERROR_PNG;
+    if written.iter().any(|f| f == error_png) {
+        std::fs::remove_file(dir.join(error_png))
+            .map_err(|e| format!("cannot remove {error_png}: {e}"))?;
+        written.retain(|f| f != error_png);
+    }
+    let opts = marsden_io::PlotOptions::default();
+    let path = dir.join(ENERGY_BALANCE_PNG);
+    marsden_io::plot_energy_balance(&path, &series.t, (&series.change, &series.work), &opts)
+        .map_err(|e| e.to_string())?;
+    written.push(ENERGY_BALANCE_PNG.to_owned());
+    Ok(())
+}
