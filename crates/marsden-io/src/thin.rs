@@ -112,17 +112,30 @@ impl Thinner {
 
     /// Takes one row (whose length must be the number of columns).
     fn push(&mut self, row: &[f64]) {
-        let kept = Kept {
-            index: self.read,
-            values: row.to_vec(),
-        };
+        let index = self.read;
         self.read += 1;
-        self.current.rows.push(kept.clone());
+        self.current.rows.push(Kept {
+            index,
+            values: row.to_vec(),
+        });
         // Reduce in batches: the kept set of a bucket is at most 2 + 2·(monitored) rows.
         if self.current.rows.len() > 4 * (2 + self.monitored.len()) {
             self.current = select(std::mem::take(&mut self.current), &self.monitored);
         }
-        self.last = Some(kept);
+        // The last row reuses its buffer: one copy per row, not two.
+        match &mut self.last {
+            Some(last) => {
+                last.index = index;
+                last.values.clear();
+                last.values.extend_from_slice(row);
+            }
+            None => {
+                self.last = Some(Kept {
+                    index,
+                    values: row.to_vec(),
+                })
+            }
+        }
         if self.read.is_multiple_of(self.size) {
             let full = select(std::mem::take(&mut self.current), &self.monitored);
             self.buckets.push(full);
