@@ -27,6 +27,9 @@ mod monitor;
 mod order;
 // Plots: which pictures a run gets, angles wrapped and recorded, hostile ranges.
 mod plots;
+// Sweeps that keep what users need: grids, final states, momentum maps, the energy balance of
+// forced members, `.npy` tables, the sweep plot.
+mod sweep_results;
 // `marsden run`: reference values read back from the trajectory, summary.json's fields, the
 // expression path against the Rust path, the output formats.
 mod run;

@@ -71,10 +71,10 @@ fn check<'py>(py: Python<'py>, text: &str, origin: &str) -> PyResult<Bound<'py, 
     d.set_item("steps", spec.integrator.grid.steps)?;
     d.set_item("every", spec.output.every)?;
     d.set_item("lagrangian", spec.system.lagrangian.describe())?;
-    let sweep = spec
-        .sweep
-        .as_ref()
-        .map(|s| (s.target.label(), s.values.clone()));
+    let sweep = spec.sweep.as_ref().map(|s| {
+        let members: Vec<Vec<f64>> = (0..s.count()).map(|k| s.values_of(k)).collect();
+        (s.label(), members)
+    });
     d.set_item("sweep", sweep)?;
     Ok(d)
 }

@@ -103,7 +103,7 @@ fn sweep_members_run_without_writing() {
     let spec = marsden_spec::load(&fixture, &overrides).unwrap();
     let sweep = spec.sweep.clone().unwrap();
     let rows = sweep::run_members(&spec, &sweep, &overrides, &SweepOptions::default()).unwrap();
-    assert_eq!(rows.len(), sweep.values.len());
+    assert_eq!(rows.len(), sweep.count());
     assert!(rows.iter().all(|r| r.status == RunStatus::Completed));
     assert!(!dir.path().join("sweep").exists());
 }

@@ -83,45 +83,54 @@ fn run_sweep(args: &RunArgs, spec: &RunSpec, sweep: &SweepSpec) -> Result<Status
         stop: stop_on_ctrl_c(),
     };
     let outcome = sweep::execute(spec, sweep, &args.file.overrides(), &options)?;
+    let plural = |n: usize| if n == 1 { "" } else { "s" };
     if !args.quiet {
         println!(
             "{}: sweep of {} over {} member{} ({} run here), {}",
             spec.name,
             outcome.label,
             outcome.total,
-            if outcome.total == 1 { "" } else { "s" },
-            outcome.rows.len(),
+            plural(outcome.total),
+            outcome.members_run,
             spec.integrator.method
         );
-        print!("{}", sweep_table::render(&outcome.label, &outcome.rows));
+        print!("{}", sweep_table::render(&outcome.columns, &outcome.rows));
+        if outcome.hidden() > 0 {
+            println!(
+                "… {} more row{} in {}",
+                outcome.hidden(),
+                plural(outcome.hidden()),
+                outcome.files[0]
+            );
+        }
         println!(
             "wrote {} in {}",
             outcome.files.join(", "),
             outcome.dir.display()
         );
     }
-    let interrupted = outcome
-        .rows
-        .iter()
-        .any(|r| r.status == RunStatus::Interrupted);
-    match outcome.failed() {
-        0 => Ok(Status::Completed),
-        n if interrupted => {
+    for w in &outcome.warnings {
+        eprintln!("warning: {w}");
+    }
+    let table = outcome.dir.join(&outcome.files[0]);
+    match (outcome.not_completed(), outcome.interrupted) {
+        (0, _) => Ok(Status::Completed),
+        (n, 1..) => {
             eprintln!(
                 "error: the sweep was interrupted: {n} of {} member{} did not complete (rows \
                  with status \"interrupted\" or \"failed\" in {})",
-                outcome.rows.len(),
-                if outcome.rows.len() == 1 { "" } else { "s" },
-                outcome.dir.join(&outcome.files[0]).display()
+                outcome.members_run,
+                plural(outcome.members_run),
+                table.display()
             );
             Ok(Status::Failed)
         }
-        n => {
+        (n, 0) => {
             eprintln!(
                 "error: {n} of {} member{} failed (rows with status \"failed\" in {})",
-                outcome.rows.len(),
-                if outcome.rows.len() == 1 { "" } else { "s" },
-                outcome.dir.join(&outcome.files[0]).display()
+                outcome.members_run,
+                plural(outcome.members_run),
+                table.display()
             );
             Ok(Status::Failed)
         }

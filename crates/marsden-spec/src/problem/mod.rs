@@ -29,7 +29,7 @@ pub use spec::{
     Format, InitialData, InitialSpec, IntegratorSpec, LagrangianSpec, OutputSpec, Overrides,
     RunSpec, SpecSpans, SystemSpec,
 };
-pub use sweep::{SweepSpec, SweepTarget};
+pub use sweep::{SweepAxis, SweepSpec, SweepTarget};
 
 use crate::error::Diagnostic;
 use crate::source::SourceFile;
@@ -107,9 +107,9 @@ pub fn member(base: &RunSpec, overrides: &Overrides, k: usize) -> Result<RunSpec
     let source = base.source.clone();
     let mut raw = raw::parse(source.text()).map_err(|e| toml_error::diagnose(&source, &e))?;
     if let Some(sweep) = &base.sweep
-        && let Some(value) = sweep.values.get(k)
+        && k < sweep.count()
     {
-        sweep::apply(&mut raw, sweep, *value);
+        sweep::apply_member(&mut raw, sweep, k);
     }
     validate_raw(source, &raw, overrides, false)
 }

@@ -79,6 +79,8 @@ pub struct RawSweep {
     pub values: Option<SpannedList<f64>>,
     /// The values, evenly spaced from `start` to `stop` (both included).
     pub range: Option<Spanned<RawRange>>,
+    /// `[sweep.and]`: a further axis; the members are every combination (a grid).
+    pub and: Option<Box<Spanned<RawSweep>>>,
 }
 
 /// `range = { start = 0.1, stop = 1.0, count = 10 }`.

@@ -1,5 +1,5 @@
 //! `[sweep]`: an ensemble of runs of one problem file, one member per value of a parameter or
-//! of an initial value.
+//! of an initial value, or per point of a grid of several.
 //!
 //! ```toml
 //! [sweep]
@@ -7,10 +7,15 @@
 //! values = [0.5, 1.0, 2.0]                         # the members' values, in order
 //! # initial = "q[0]"                               # instead of `parameter`: q[i], v[i] or p[i]
 //! # range = { start = 0.1, stop = 1.0, count = 10 } # instead of `values`: evenly spaced, both ends
+//!
+//! # [sweep.and]                                    # optional: a second axis (and `[sweep.and.and]` …)
+//! # initial = "q[0]"                               # members: every (l, q[0]) pair, q[0] fastest
+//! # values = [0.1, 0.2]
 //! ```
 //!
-//! Member `k` is the problem file with the swept value replaced by `values[k]`, validated like
-//! any file ([`member`]): a value the problem cannot take fails that member only.
+//! Member `k` is the problem file with the swept values replaced by member `k`'s
+//! ([`SweepSpec::values_of`]), validated like any file ([`member`]): a value the problem cannot
+//! take fails that member only.
 
 use std::ops::Range;
 
@@ -63,30 +68,99 @@ impl SweepTarget {
     }
 }
 
-/// A validated `[sweep]`.
+/// One axis of a sweep: what is varied and over which values.
 #[derive(Debug, Clone, PartialEq)]
-pub struct SweepSpec {
+pub struct SweepAxis {
     /// What is varied.
     pub target: SweepTarget,
-    /// The value of each member, in member order (at least one, all finite).
+    /// The values along this axis, in order (at least one, all finite).
     pub values: Vec<f64>,
     /// Where the target is written.
     pub span: Range<usize>,
 }
 
-/// Validates `[sweep]` against the system and initial state of the file.
+/// A validated `[sweep]`: one axis, or several (`[sweep.and]`) whose members are every
+/// combination of their values, the last axis varying fastest.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepSpec {
+    /// The axes, in the file's order (at least one).
+    pub axes: Vec<SweepAxis>,
+}
+
+impl SweepSpec {
+    /// Number of members: the product of the axes' lengths.
+    pub fn count(&self) -> usize {
+        self.axes.iter().map(|a| a.values.len()).product()
+    }
+
+    /// The swept values of member `k` (`k < count()`), one per axis: the digits of `k` in the
+    /// mixed radix of the axes' lengths, the last axis the fastest.
+    pub fn values_of(&self, k: usize) -> Vec<f64> {
+        let mut rest = k;
+        let mut values = vec![0.0; self.axes.len()];
+        for (slot, axis) in values.iter_mut().zip(&self.axes).rev() {
+            let n = axis.values.len();
+            *slot = axis.values[rest % n];
+            rest /= n;
+        }
+        values
+    }
+
+    /// The column names of the swept values (`l`, `q[0]`), one per axis.
+    pub fn labels(&self) -> Vec<String> {
+        self.axes.iter().map(|a| a.target.label()).collect()
+    }
+
+    /// The swept values' names joined for a title: `l` or `l × q[0]`.
+    pub fn label(&self) -> String {
+        self.labels().join(" × ")
+    }
+}
+
+/// Validates `[sweep]` (and its `[sweep.and]` axes) against the system and initial state of
+/// the file.
 ///
 /// # Errors
 /// An unknown parameter (the valid ones are listed), an initial value the file does not give,
-/// an empty or reversed range, a list with no or non-finite values.
+/// an empty or reversed range, a list with no or non-finite values, a value swept twice, more
+/// than [`MAX_MEMBERS`] members in all.
 pub fn sweep(
     ck: &Checker<'_>,
     raw: Option<&Spanned<RawSweep>>,
-    (system, initial, from_file): (&SystemSpec, &InitialSpec, bool),
+    context: (&SystemSpec, &InitialSpec, bool),
 ) -> Result<Option<SweepSpec>, Diagnostic> {
-    let Some(raw) = raw else {
-        return Ok(None);
-    };
+    let mut axes: Vec<SweepAxis> = Vec::new();
+    let mut next = raw;
+    let mut members: usize = 1;
+    while let Some(raw) = next {
+        let axis = axis(ck, raw, context)?;
+        if axes.iter().any(|a| a.target == axis.target) {
+            let msg = format!("`{}` is swept twice", axis.target.label());
+            return Err(ck
+                .error(Some(axis.span.clone()), msg)
+                .help("each axis of a grid varies a different value"));
+        }
+        members = members
+            .checked_mul(axis.values.len())
+            .filter(|&m| m <= MAX_MEMBERS)
+            .ok_or_else(|| {
+                ck.error(
+                    Some(raw.span()),
+                    format!("the grid has more than the limit of {MAX_MEMBERS:.0e} sweep members"),
+                )
+            })?;
+        axes.push(axis);
+        next = raw.get_ref().and.as_deref();
+    }
+    Ok((!axes.is_empty()).then_some(SweepSpec { axes }))
+}
+
+/// One axis: its target and values.
+fn axis(
+    ck: &Checker<'_>,
+    raw: &Spanned<RawSweep>,
+    (system, initial, from_file): (&SystemSpec, &InitialSpec, bool),
+) -> Result<SweepAxis, Diagnostic> {
     let table = raw.get_ref();
     let (target, span) = match (&table.parameter, &table.initial) {
         (Some(_), Some(i)) => {
@@ -102,11 +176,11 @@ pub fn sweep(
         (None, Some(text)) => (initial_value(ck, text, initial, from_file)?, text.span()),
     };
     let values = values(ck, raw)?;
-    Ok(Some(SweepSpec {
+    Ok(SweepAxis {
         target,
         values,
         span,
-    }))
+    })
 }
 
 fn parameter(
@@ -280,11 +354,18 @@ fn range_values(ck: &Checker<'_>, raw: &Spanned<RawRange>) -> Result<Vec<f64>, D
     Ok(values)
 }
 
+/// Writes member `k`'s value of every axis into the raw file at the swept places.
+pub fn apply_member(raw: &mut RawProblem, sweep: &SweepSpec, k: usize) {
+    for (axis, value) in sweep.axes.iter().zip(sweep.values_of(k)) {
+        apply(raw, axis, value);
+    }
+}
+
 /// Writes `value` into the raw file at the swept place (the span of the `[sweep]` target when
 /// the value was not written, e.g. a builtin's default parameter).
-pub fn apply(raw: &mut RawProblem, sweep: &SweepSpec, value: f64) {
-    let span = sweep.span.clone();
-    match &sweep.target {
+fn apply(raw: &mut RawProblem, axis: &SweepAxis, value: f64) {
+    let span = axis.span.clone();
+    match &axis.target {
         SweepTarget::Parameter(name) => {
             let Some(system) = raw.system.as_mut() else {
                 return;

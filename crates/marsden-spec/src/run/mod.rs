@@ -11,7 +11,7 @@
 //! | per sample | [`observer`] | one row `t, q, p, energy, J…, residual`, [`diagnostics`] |
 //! | where rows go | [`output`], [`samples`] | columns and writers of the files; in-memory [`Samples`] |
 //! | afterwards | [`summary`], [`plots`] | `summary.json`; the PNG plots (also `marsden plot`) |
-//! | sweeps | [`sweep`], [`shard`], [`sweep_table`] | members in parallel ([`marsden::studies::ensemble`]), one row each |
+//! | sweeps | [`sweep`], [`shard`], [`sweep_table`], [`sweep_writer`] | members in parallel ([`marsden::studies::ensemble`]), one row each, streamed to the table |
 //!
 //! Catalog systems and expressions reach the generic runner through
 //! [`crate::catalog::WithLagrangian`]: one monomorphised run per Lagrangian type and rule.
@@ -30,6 +30,7 @@ pub mod start;
 pub mod summary;
 pub mod sweep;
 pub mod sweep_table;
+pub mod sweep_writer;
 
 pub use controls::{CHECK_EVERY, Controls, Progress};
 pub use execute::{Outcome, Store, execute};

@@ -51,7 +51,8 @@ pub fn draw(spec: &RunSpec, layout: &Layout) -> marsden_io::Result<Vec<String>> 
 /// # Errors
 /// Bad input if `dir` holds no readable run; failed if a plot cannot be drawn.
 pub fn redraw(dir: &Path) -> Result<Vec<PlotReport>, Error> {
-    if !dir.join(TRAJECTORY_CSV).exists() && dir.join(SWEEP_CSV).exists() {
+    let sweep_table = dir.join(SWEEP_CSV).exists() || dir.join(SWEEP_NPY).exists();
+    if !dir.join(TRAJECTORY_CSV).exists() && sweep_table {
         return draw_sweep(dir).map(|r| vec![r]);
     }
     let (sketch, angles) = read_run(dir)?;
@@ -61,27 +62,50 @@ pub fn redraw(dir: &Path) -> Result<Vec<PlotReport>, Error> {
 
 /// File name of a sweep's table.
 const SWEEP_CSV: &str = "sweep.csv";
+/// File name of a sweep's table written with `format = "npy"`.
+const SWEEP_NPY: &str = "sweep.npy";
 /// File name of a sweep's plot.
 pub const SWEEP_PNG: &str = "sweep.png";
-/// Columns of `sweep.csv` that are bookkeeping, not results.
-const BOOKKEEPING: [&str; 3] = ["member", "steps", "steps_requested"];
+/// Columns of a sweep's table that are bookkeeping, not results.
+const BOOKKEEPING: [&str; 4] = ["member", "steps", "steps_requested", "status"];
 
-/// Draws `sweep.png` from the `sweep.csv` in `dir`: each per-member result against the swept
-/// value (the column after `member`).
+/// Draws `sweep.png` from the sweep table in `dir` (`sweep.csv`, or `sweep.npy` with the
+/// column names of `summary.json`): each per-member result against the first swept value.
 ///
 /// # Errors
-/// Bad input if `sweep.csv` cannot be read or has no swept column; failed if the plot cannot
+/// Bad input if the table cannot be read or has no swept column; failed if the plot cannot
 /// be drawn.
 pub fn draw_sweep(dir: &Path) -> Result<PlotReport, Error> {
     let bad = |message: String| Error::bad_input(Diagnostic::new(message));
-    let path = dir.join(SWEEP_CSV);
-    let table = read_csv_numeric(&path).map_err(|e| bad(e.to_string()))?;
+    let summary: Option<serde_json::Value> = std::fs::read_to_string(dir.join(SUMMARY_JSON))
+        .ok()
+        .and_then(|text| serde_json::from_str(&text).ok());
+    let names = |key: &str| -> Vec<String> {
+        summary
+            .as_ref()
+            .and_then(|j| j[key].as_array().cloned())
+            .unwrap_or_default()
+            .iter()
+            .filter_map(|c| c.as_str().map(str::to_owned))
+            .collect()
+    };
+    let table = if dir.join(SWEEP_CSV).exists() {
+        let path = dir.join(SWEEP_CSV);
+        read_csv_numeric(&path).map_err(|e| bad(e.to_string()))?
+    } else {
+        sweep_npy(dir, names("columns")).map_err(bad)?
+    };
+    let swept = names("swept_columns");
+    let is_swept = |name: &str| swept.iter().any(|s| s == name);
     let mut columns = table.columns().iter().filter(|c| c.name != "member");
     let Some(x) = columns.next() else {
-        return Err(bad(format!("{} has no swept column", path.display())));
+        return Err(bad(format!(
+            "the sweep table in {} has no swept column",
+            dir.display()
+        )));
     };
     let quantities: Vec<Series<'_>> = columns
-        .filter(|c| !BOOKKEEPING.contains(&c.name.as_str()))
+        .filter(|c| !BOOKKEEPING.contains(&c.name.as_str()) && !is_swept(&c.name))
         .map(|c| Series {
             name: &c.name,
             values: &c.values,
@@ -93,6 +117,39 @@ pub fn draw_sweep(dir: &Path) -> Result<PlotReport, Error> {
     };
     plot_sweep(dir.join(SWEEP_PNG), x, &quantities, &PlotOptions::default())
         .map_err(|e| Error::failed(Diagnostic::new(format!("cannot draw the sweep plot: {e}"))))
+}
+
+/// `sweep.npy` as a table, its columns named by `names` (from `summary.json`).
+fn sweep_npy(dir: &Path, names: Vec<String>) -> Result<marsden_io::Table, String> {
+    let path = dir.join(SWEEP_NPY);
+    let array = marsden_io::read_npy(&path).map_err(|e| e.to_string())?;
+    let width = match array.shape[..] {
+        [_, w] => w as usize,
+        _ => {
+            return Err(format!(
+                "{} is not a table (shape {:?})",
+                path.display(),
+                array.shape
+            ));
+        }
+    };
+    if names.len() != width {
+        return Err(format!(
+            "{} has {width} columns but {SUMMARY_JSON} names {}",
+            path.display(),
+            names.len()
+        ));
+    }
+    let rows = array.data.len() / width.max(1);
+    let columns = names
+        .into_iter()
+        .enumerate()
+        .map(|(j, name)| {
+            let values = (0..rows).map(|i| array.data[i * width + j]).collect();
+            marsden_io::Column::new(name, values)
+        })
+        .collect();
+    marsden_io::Table::new(columns).map_err(|e| e.to_string())
 }
 
 /// The columns whose extremes the sketch keeps: the monitored quantities, where a spike is

@@ -30,7 +30,12 @@ impl Shard {
 
     /// The member indices of this shard among `total` members, in order.
     pub fn members(self, total: usize) -> Vec<usize> {
-        (self.index..total).step_by(self.count).collect()
+        self.iter(total).collect()
+    }
+
+    /// The members of this shard, in order, without collecting them.
+    pub fn iter(self, total: usize) -> impl Iterator<Item = usize> {
+        (self.index..total).step_by(self.count)
     }
 
     /// The file-name suffix of this shard (`""` for the whole sweep, `.shard-1-of-3`).

@@ -34,6 +34,15 @@ impl RunStatus {
         }
     }
 
+    /// A number for numeric tables (a sweep's `.npy`): 0 completed, 1 failed, 2 interrupted.
+    pub fn code(self) -> u8 {
+        match self {
+            RunStatus::Completed => 0,
+            RunStatus::Failed => 1,
+            RunStatus::Interrupted => 2,
+        }
+    }
+
     /// The status of `record`: a failure first, then a stop.
     pub fn of(record: &RunRecord) -> Self {
         match (&record.error, record.interrupted) {

@@ -1,12 +1,14 @@
 //! `marsden run` on a file with `[sweep]`: every member (or those of one `--shard`) run in
-//! parallel with [`marsden::studies::ensemble`], one summary row each, on stdout and in `sweep.csv`.
+//! parallel with [`marsden::studies::ensemble`], one summary row each, streamed to `sweep.csv`
+//! (or `sweep.npy`) chunk by chunk so memory does not grow with the number of members, and
+//! shown on stdout (the first rows and the first failures).
 //!
-//! A member is the problem file with the swept value replaced ([`crate::problem::member`]),
+//! A member is the problem file with the swept values replaced ([`crate::problem::member`]),
 //! checked and run like a single file but without writing its trajectory: the rows of the
 //! [`StreamObserver`](super::observer::StreamObserver) (every `[output] every`-th step) only
-//! feed the energy diagnostics. A member that cannot start or fails is a row with status
-//! `failed` and its message; the others run on. Rows are in member order whatever the number
-//! of threads.
+//! feed the diagnostics. A member that cannot start or fails is a row with status `failed`
+//! and its message; the others run on. Rows are in member order whatever the number of
+//! threads.
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -20,7 +22,8 @@ use super::samples::NullSink;
 use super::shard::Shard;
 use super::solve::{Destination, RunRecord, Runner};
 use super::summary::RunStatus;
-use super::sweep_table::{self, SweepRow};
+use super::sweep_table::{SweepColumns, SweepRow};
+use super::sweep_writer::SweepWriter;
 use crate::error::{Diagnostic, Error};
 use crate::problem::{self, Overrides, RunSpec, SweepSpec};
 
@@ -30,25 +33,44 @@ pub const NOT_RUN: &str = "not run: the sweep was interrupted";
 /// What `marsden run` did with a sweep.
 #[derive(Debug, Clone)]
 pub struct SweepOutcome {
-    /// One row per member run, in member order.
+    /// The rows to show, in member order: the first [`SHOWN`] members' and up to [`SHOWN`]
+    /// more that did not complete (the table file has every row).
     pub rows: Vec<SweepRow>,
-    /// The name of the swept value.
+    /// The table's columns.
+    pub columns: SweepColumns,
+    /// The names of the swept values, joined (`l` or `l × q[0]`).
     pub label: String,
-    /// Where `sweep.csv` (or `sweep.shard-i-of-n.csv`) and the summary are.
+    /// Where the table and the summary are.
     pub dir: PathBuf,
     /// The files written in `dir`.
     pub files: Vec<String>,
     /// Members in the whole sweep.
     pub total: usize,
+    /// Members run here (this shard's).
+    pub members_run: usize,
+    /// Members that failed.
+    pub failed: usize,
+    /// Members interrupted or not run because the sweep was stopped.
+    pub interrupted: usize,
+    /// Problems that did not stop the sweep (a plot not drawn).
+    pub warnings: Vec<String>,
 }
+
+/// Rows shown on the console: the first ones, and as many of the failures after them.
+pub const SHOWN: usize = 20;
+
+/// Members run between two writes of the table.
+const CHUNK: usize = 4096;
 
 impl SweepOutcome {
     /// Number of members that did not complete (failed or interrupted).
-    pub fn failed(&self) -> usize {
-        self.rows
-            .iter()
-            .filter(|r| r.status != RunStatus::Completed)
-            .count()
+    pub fn not_completed(&self) -> usize {
+        self.failed + self.interrupted
+    }
+
+    /// Rows in the table file but not in [`Self::rows`].
+    pub fn hidden(&self) -> usize {
+        self.members_run - self.rows.len()
     }
 }
 
@@ -63,7 +85,9 @@ pub struct SweepOptions {
     pub stop: Option<Arc<AtomicBool>>,
 }
 
-/// Runs the members of `base`'s sweep selected by `options.shard` and writes the table.
+/// Runs the members of `base`'s sweep selected by `options.shard` and writes the table
+/// (streamed, [`CHUNK`] members at a time), its summary and, with `[output] plots` on the
+/// whole sweep, `sweep.png`.
 ///
 /// # Errors
 /// Bad input if the thread pool or the output directory cannot be made; failed if the table
@@ -74,7 +98,7 @@ pub fn execute(
     overrides: &Overrides,
     options: &SweepOptions,
 ) -> Result<SweepOutcome, Error> {
-    let rows = run_members(base, sweep, overrides, options)?;
+    let pool = pool(options.threads)?;
     let dir = base.output.dir.clone();
     std::fs::create_dir_all(&dir).map_err(|e| {
         Diagnostic::new(format!(
@@ -82,33 +106,95 @@ pub fn execute(
             dir.display()
         ))
     })?;
-    let label = sweep.target.label();
-    let files = sweep_table::write(&dir, options.shard, &label, &rows, sweep.values.len())
-        .map_err(|e| Error::failed(Diagnostic::new(e)))?;
+    let columns = SweepColumns::of(base, sweep);
+    let failed = |e: String| Error::failed(Diagnostic::new(e));
+    let mut writer = SweepWriter::create(&dir, options.shard, columns.clone(), base.output.format)
+        .map_err(failed)?;
+    let mut shown = Vec::new();
+    let mut members = options.shard.iter(sweep.count());
+    loop {
+        let chunk: Vec<usize> = members.by_ref().take(CHUNK).collect();
+        if chunk.is_empty() {
+            break;
+        }
+        for row in run_rows(base, sweep, overrides, &chunk, options, pool.as_ref()) {
+            writer.push(&row).map_err(failed)?;
+            keep(&mut shown, row);
+        }
+    }
+    let (members_run, failed_count, interrupted) = writer.counts();
+    let mut files = writer
+        .finish(sweep.count(), base.integrator.grid.steps)
+        .map_err(failed)?;
+    let mut warnings = Vec::new();
+    if base.output.plots && options.shard == Shard::ALL && members_run > 0 {
+        match super::plots::draw_sweep(&dir) {
+            Ok(report) => files.extend(
+                report
+                    .path
+                    .file_name()
+                    .map(|f| f.to_string_lossy().into_owned()),
+            ),
+            Err(e) => warnings.push(format!("the sweep plot was not drawn: {e}")),
+        }
+    }
     Ok(SweepOutcome {
-        rows,
-        label,
+        rows: shown,
+        columns,
+        label: sweep.label(),
         dir,
         files,
-        total: sweep.values.len(),
+        total: sweep.count(),
+        members_run,
+        failed: failed_count,
+        interrupted,
+        warnings,
     })
 }
 
-/// Runs the members of `base`'s sweep selected by `options.shard` in parallel and returns
-/// their rows, in member order (nothing is written).
-///
-/// # Errors
-/// Bad input if the thread pool cannot be made. Failing members are rows, not errors.
-pub fn run_members(
+/// Keeps `row` for the console if it is among the first [`SHOWN`], or among the first
+/// [`SHOWN`] after them that did not complete.
+fn keep(shown: &mut Vec<SweepRow>, row: SweepRow) {
+    let later_failures = shown.iter().skip(SHOWN).count();
+    if shown.len() < SHOWN || (row.status != RunStatus::Completed && later_failures < SHOWN) {
+        shown.push(row);
+    }
+}
+
+/// A pool of `threads` workers (`None`: rayon's global pool, one worker per core).
+fn pool(threads: Option<usize>) -> Result<Option<rayon::ThreadPool>, Error> {
+    threads
+        .map(|n| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|e| {
+                    Diagnostic::new(format!("cannot start {n} worker threads: {e}")).into()
+                })
+        })
+        .transpose()
+}
+
+/// Runs `f` in `pool` (or the global pool).
+fn in_pool<T: Send>(pool: Option<&rayon::ThreadPool>, f: impl FnOnce() -> T + Send) -> T {
+    match pool {
+        None => f(),
+        Some(p) => p.install(f),
+    }
+}
+
+/// Runs the members `ks` of `base`'s sweep in parallel; their rows in the order of `ks`.
+fn run_rows(
     base: &RunSpec,
     sweep: &SweepSpec,
     overrides: &Overrides,
+    ks: &[usize],
     options: &SweepOptions,
-) -> Result<Vec<SweepRow>, Error> {
-    let members = options.shard.members(sweep.values.len());
+    pool: Option<&rayon::ThreadPool>,
+) -> Vec<SweepRow> {
     let stop = &options.stop;
-    let run_all = || {
-        ensemble::run(&members, |_, &k| {
+    let results = in_pool(pool, || {
+        ensemble::run(ks, |_, &k| {
             let controls = Controls {
                 progress: None,
                 stop: stop.clone(),
@@ -120,27 +206,44 @@ pub fn run_members(
                     .map_err(|d| d.message),
             }
         })
-    };
-    let results = match options.threads {
-        None => run_all(),
-        Some(n) => rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .map_err(|e| Diagnostic::new(format!("cannot start {n} worker threads: {e}")))?
-            .install(run_all),
-    };
+    });
     let steps = base.integrator.grid.steps;
-    Ok(results
+    let conserved = base.system.energy_not_conserved().is_none();
+    results
         .into_iter()
         .map(|m| {
-            let k = members[m.index];
+            let k = ks[m.index];
+            let values = sweep.values_of(k);
             match m.result {
-                Ok(Some(record)) => SweepRow::new(k, sweep.values[k], steps, Ok(record)),
-                Ok(None) => SweepRow::not_run(k, sweep.values[k], steps, NOT_RUN),
-                Err(message) => SweepRow::new(k, sweep.values[k], steps, Err(message)),
+                Ok(Some(record)) => SweepRow::new(k, values, (steps, conserved), Ok(record)),
+                Ok(None) => SweepRow::not_run(k, values, steps, NOT_RUN),
+                Err(message) => SweepRow::new(k, values, (steps, conserved), Err(message)),
             }
         })
-        .collect())
+        .collect()
+}
+
+/// Runs the members of `base`'s sweep selected by `options.shard` in parallel and returns
+/// their rows, in member order (nothing is written; every row is held in memory).
+///
+/// # Errors
+/// Bad input if the thread pool cannot be made. Failing members are rows, not errors.
+pub fn run_members(
+    base: &RunSpec,
+    sweep: &SweepSpec,
+    overrides: &Overrides,
+    options: &SweepOptions,
+) -> Result<Vec<SweepRow>, Error> {
+    let pool = pool(options.threads)?;
+    let members = options.shard.members(sweep.count());
+    Ok(run_rows(
+        base,
+        sweep,
+        overrides,
+        &members,
+        options,
+        pool.as_ref(),
+    ))
 }
 
 /// Runs every member of `base`'s sweep in parallel and keeps each one's samples in memory
@@ -158,9 +261,10 @@ pub fn member_outcomes(
     overrides: &Overrides,
     options: &SweepOptions,
 ) -> Result<Vec<Result<Option<Outcome>, Error>>, Error> {
-    let members = options.shard.members(sweep.values.len());
+    let pool = pool(options.threads)?;
+    let members = options.shard.members(sweep.count());
     let stop = &options.stop;
-    let run_all = || {
+    let results = in_pool(pool.as_ref(), || {
         ensemble::run(&members, |_, &k| {
             let controls = Controls {
                 progress: None,
@@ -171,15 +275,7 @@ pub fn member_outcomes(
                 false => member_outcome(base, overrides, k, &controls).map(Some),
             }
         })
-    };
-    let results = match options.threads {
-        None => run_all(),
-        Some(n) => rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .map_err(|e| Diagnostic::new(format!("cannot start {n} worker threads: {e}")))?
-            .install(run_all),
-    };
+    });
     Ok(results.into_iter().map(|m| m.result).collect())
 }
 

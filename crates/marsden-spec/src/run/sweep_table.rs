@@ -1,40 +1,114 @@
-//! The summary table of a sweep: one row per member — its global index, the swept value, the
-//! final time, the steps taken, the energy error and drift, the status and the error message —
-//! rendered for stdout and written as CSV (`sweep.csv`, or `sweep.shard-i-of-n.csv` for a
-//! shard) next to a small `summary.json` (`summary.shard-i-of-n.json`).
+//! The summary table of a sweep: one row per member — its global index, the swept values, the
+//! final time, the steps taken, what the run preserved (energy error and drift, or the energy
+//! balance of a forced or time-dependent system), each momentum map's initial value and
+//! drift, the final state, the status and the error message.
 //!
-//! CSV columns: `member,<swept>,t_final,steps,steps_requested,energy_max_rel_error,`
-//! `energy_final_rel_error,energy_rel_drift,status,error` (the error quoted, empty when the
-//! member completed). Numbers are written with Rust's shortest round-trip formatting.
+//! The columns are fixed by the base problem ([`SweepColumns`]): `member,<swept>…,t_final,`
+//! `steps,steps_requested,` then either `energy_max_rel_error,energy_final_rel_error,`
+//! `energy_rel_drift` (energy conserved) or `balance_total_work,balance_max_defect,`
+//! `balance_total_defect` (forces act or `L` depends on `t`: an energy error would mislead),
+//! then `J_<name>,J_<name>_drift` per symmetry, `q_<name>…`, `p_<name>…` (the final state),
+//! and `status,error` (CSV) or a numeric `status` (`.npy`, [`RunStatus::code`]).
 
 use std::fmt::Write as _;
-use std::path::Path;
 
-use serde_json::json;
-
-use super::shard::Shard;
+use super::balance::BalanceSummary;
+use super::diagnostics::MapStats;
 use super::solve::RunRecord;
 use super::summary::RunStatus;
+use crate::model::MomentumMap as _;
+use crate::problem::{RunSpec, SweepSpec};
+
+/// The columns of a sweep's table, fixed by the base problem.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepColumns {
+    /// The swept values' names (`l`, `q[0]`), one per axis.
+    pub swept: Vec<String>,
+    /// Coordinate names.
+    pub coordinates: Vec<String>,
+    /// Symmetry names.
+    pub symmetries: Vec<String>,
+    /// Whether energy is conserved (energy-error columns) or not (energy-balance columns).
+    pub energy_conserved: bool,
+}
+
+impl SweepColumns {
+    /// The columns of `base`'s sweep.
+    pub fn of(base: &RunSpec, sweep: &SweepSpec) -> Self {
+        Self {
+            swept: sweep.labels(),
+            coordinates: base.system.coordinates.clone(),
+            symmetries: base
+                .system
+                .symmetries
+                .iter()
+                .map(|s| s.name().to_string())
+                .collect(),
+            energy_conserved: base.system.energy_not_conserved().is_none(),
+        }
+    }
+
+    /// The names of the numeric columns, in order (everything but `status` and `error`).
+    pub fn numeric_names(&self) -> Vec<String> {
+        let mut names = vec!["member".to_owned()];
+        names.extend(self.swept.iter().cloned());
+        names.extend(["t_final", "steps", "steps_requested"].map(str::to_owned));
+        let preserved = if self.energy_conserved {
+            ENERGY_COLUMNS
+        } else {
+            BALANCE_COLUMNS
+        };
+        names.extend(preserved.map(str::to_owned));
+        for s in &self.symmetries {
+            names.push(format!("J_{s}"));
+            names.push(format!("J_{s}_drift"));
+        }
+        names.extend(self.coordinates.iter().map(|c| format!("q_{c}")));
+        names.extend(self.coordinates.iter().map(|c| format!("p_{c}")));
+        names
+    }
+}
+
+/// What a conservative member's row says it preserved.
+const ENERGY_COLUMNS: [&str; 3] = [
+    "energy_max_rel_error",
+    "energy_final_rel_error",
+    "energy_rel_drift",
+];
+/// What a forced or time-dependent member's row says instead.
+const BALANCE_COLUMNS: [&str; 3] = [
+    "balance_total_work",
+    "balance_max_defect",
+    "balance_total_defect",
+];
 
 /// One member's line of the table.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SweepRow {
-    /// Global member index (the position of its value in the sweep).
+    /// Global member index (its position in the sweep).
     pub member: usize,
-    /// The swept value.
-    pub value: f64,
+    /// The swept values, one per axis.
+    pub values: Vec<f64>,
     /// Time of the last good state (NaN if the member could not start).
     pub t_final: f64,
     /// Steps completed.
     pub steps: usize,
     /// Steps requested.
     pub steps_requested: usize,
-    /// `max |E − E₀| / |E₀|` over the sampled rows (NaN if none).
+    /// `max |E − E₀| / |E₀|` over the sampled rows (NaN if none, or energy not conserved).
     pub energy_max_rel_error: f64,
-    /// `(E_N − E₀)/|E₀|` at the last sampled row.
+    /// `(E_N − E₀)/|E₀|` at the last sampled row (NaN likewise).
     pub energy_final_rel_error: f64,
-    /// Least-squares slope of the relative energy error per unit time.
+    /// Least-squares slope of the relative energy error per unit time (NaN likewise).
     pub energy_rel_drift: f64,
+    /// The discrete energy balance of a forced member (`None`: not computed).
+    pub balance: Option<BalanceSummary>,
+    /// Each momentum map's initial value and drift, in the file's order.
+    pub maps: Vec<MapStats>,
+    /// Final positions (empty if the member could not start).
+    pub q: Vec<f64>,
+    /// Final momenta (empty likewise).
+    pub p: Vec<f64>,
     /// Why the member did not complete (`None`: completed, or interrupted while running).
     pub error: Option<String>,
     /// How the member ended.
@@ -42,40 +116,49 @@ pub struct SweepRow {
 }
 
 impl SweepRow {
-    /// The row of member `member` with `value` from its run (or the reason it could not run).
+    /// The row of member `member` with swept `values` from its run (or the reason it could not
+    /// run); energy errors are NaN when `energy_conserved` is false.
     pub fn new(
         member: usize,
-        value: f64,
-        steps_requested: usize,
+        values: Vec<f64>,
+        (steps_requested, energy_conserved): (usize, bool),
         result: Result<RunRecord, String>,
     ) -> Self {
         match result {
             Ok(record) => {
                 let energy = record.diagnostics.energy.report();
-                let seen = energy.samples > 0;
+                let seen = energy.samples > 0 && energy_conserved;
                 let or_nan = |x: f64| if seen { x } else { f64::NAN };
                 Self {
                     member,
-                    value,
+                    values,
                     t_final: record.final_state.t,
                     steps: record.steps,
                     steps_requested,
                     energy_max_rel_error: or_nan(energy.max_rel_error),
                     energy_final_rel_error: or_nan(energy.final_rel_error),
                     energy_rel_drift: or_nan(energy.rel_drift_per_unit_time),
+                    balance: record.balance.clone(),
                     status: RunStatus::of(&record),
+                    maps: record.diagnostics.maps,
+                    q: record.final_state.q,
+                    p: record.final_state.p,
                     error: record.error,
                 }
             }
             Err(message) => Self {
                 member,
-                value,
+                values,
                 t_final: f64::NAN,
                 steps: 0,
                 steps_requested,
                 energy_max_rel_error: f64::NAN,
                 energy_final_rel_error: f64::NAN,
                 energy_rel_drift: f64::NAN,
+                balance: None,
+                maps: Vec::new(),
+                q: Vec::new(),
+                p: Vec::new(),
                 error: Some(message),
                 status: RunStatus::Failed,
             },
@@ -83,33 +166,98 @@ impl SweepRow {
     }
 
     /// The row of a member that was not run because the sweep was stopped.
-    pub fn not_run(member: usize, value: f64, steps_requested: usize, message: &str) -> Self {
+    pub fn not_run(member: usize, values: Vec<f64>, steps_requested: usize, message: &str) -> Self {
         Self {
             status: RunStatus::Interrupted,
-            ..Self::new(member, value, steps_requested, Err(message.to_owned()))
+            ..Self::new(
+                member,
+                values,
+                (steps_requested, true),
+                Err(message.to_owned()),
+            )
+        }
+    }
+
+    /// The numeric columns of [`SweepColumns::numeric_names`], NaN where a value is missing.
+    pub fn numeric(&self, columns: &SweepColumns) -> Vec<f64> {
+        let mut row = vec![self.member as f64];
+        row.extend(&self.values);
+        row.extend([self.t_final, self.steps as f64, self.steps_requested as f64]);
+        if columns.energy_conserved {
+            row.extend([
+                self.energy_max_rel_error,
+                self.energy_final_rel_error,
+                self.energy_rel_drift,
+            ]);
+        } else {
+            let b = self.balance.as_ref();
+            let or_nan = |f: fn(&BalanceSummary) -> f64| b.map_or(f64::NAN, f);
+            row.extend([
+                or_nan(|b| b.total_work),
+                or_nan(|b| b.max_defect),
+                or_nan(|b| b.total_defect),
+            ]);
+        }
+        for i in 0..columns.symmetries.len() {
+            match self.maps.get(i).filter(|m| m.samples > 0) {
+                Some(m) => row.extend([m.initial, m.max_abs_drift]),
+                None => row.extend([f64::NAN, f64::NAN]),
+            }
+        }
+        let n = columns.coordinates.len();
+        for v in [&self.q, &self.p] {
+            match v.len() == n {
+                true => row.extend(v.iter()),
+                false => row.extend(std::iter::repeat_n(f64::NAN, n)),
+            }
+        }
+        row
+    }
+
+    /// What the row says was preserved, for the console: the worst energy error, or the
+    /// worst balance defect.
+    fn preserved(&self, energy_conserved: bool) -> f64 {
+        match (energy_conserved, &self.balance) {
+            (true, _) => self.energy_max_rel_error,
+            (false, Some(b)) => b.max_defect,
+            (false, None) => f64::NAN,
         }
     }
 }
 
 /// The table for stdout: a header and one aligned line per row (failed rows end with their
 /// message).
-pub fn render(label: &str, rows: &[SweepRow]) -> String {
+pub fn render(columns: &SweepColumns, rows: &[SweepRow]) -> String {
     let mut out = String::new();
+    let _ = write!(out, "{:>6}", "member");
+    for label in &columns.swept {
+        let _ = write!(out, "  {label:>12}");
+    }
+    let preserved = match columns.energy_conserved {
+        true => ("max|dE/E|", "drift/t"),
+        false => ("max defect", "work"),
+    };
     let _ = writeln!(
         out,
-        "{:>6}  {:>12}  {:>12}  {:>9}  {:>12}  {:>12}  status",
-        "member", label, "t_final", "steps", "max|dE/E|", "drift/t"
+        "  {:>12}  {:>9}  {:>12}  {:>12}  status",
+        "t_final", "steps", preserved.0, preserved.1
     );
     for r in rows {
+        let _ = write!(out, "{:>6}", r.member);
+        for v in &r.values {
+            let _ = write!(out, "  {v:>12.6e}");
+        }
+        let second = match columns.energy_conserved {
+            true => r.energy_rel_drift,
+            false => r.balance.as_ref().map_or(f64::NAN, |b| b.total_work),
+        };
         let _ = write!(
             out,
-            "{:>6}  {:>12.6e}  {:>12.6e}  {:>9}  {:>12.3e}  {:>12.3e}  {}",
-            r.member,
-            r.value,
+            "  {:>12.6e}  {:>9}  {:>12.3e}  {:>12.3e}  {}",
             r.t_final,
             r.steps,
-            r.energy_max_rel_error,
-            r.energy_rel_drift,
+            r.preserved(columns.energy_conserved),
+            second,
             r.status.name()
         );
         match &r.error {
@@ -122,31 +270,32 @@ pub fn render(label: &str, rows: &[SweepRow]) -> String {
     out
 }
 
-/// The CSV text of the table.
-pub fn csv(label: &str, rows: &[SweepRow]) -> String {
-    let mut out = format!(
-        "member,{},t_final,steps,steps_requested,energy_max_rel_error,energy_final_rel_error,\
-         energy_rel_drift,status,error\n",
-        quote(label)
-    );
-    for r in rows {
-        let error = r.error.as_deref().map(quote).unwrap_or_default();
-        let _ = writeln!(
-            out,
-            "{},{:?},{:?},{},{},{:?},{:?},{:?},{},{}",
-            r.member,
-            r.value,
-            r.t_final,
-            r.steps,
-            r.steps_requested,
-            r.energy_max_rel_error,
-            r.energy_final_rel_error,
-            r.energy_rel_drift,
-            r.status.name(),
-            error
-        );
+/// The CSV header line (with its line break).
+pub fn csv_header(columns: &SweepColumns) -> String {
+    let names: Vec<String> = columns.numeric_names().iter().map(|n| quote(n)).collect();
+    format!("{},status,error\n", names.join(","))
+}
+
+/// One CSV line (with its line break): the numbers in Rust's shortest round-trip form, the
+/// status, the error quoted (empty when the member completed).
+pub fn csv_line(columns: &SweepColumns, row: &SweepRow) -> String {
+    let mut out = String::new();
+    for (i, x) in row.numeric(columns).iter().enumerate() {
+        let _ = match i {
+            0 => write!(out, "{}", row.member),
+            _ if is_count(columns, i) => write!(out, ",{x}"),
+            _ => write!(out, ",{x:?}"),
+        };
     }
+    let error = row.error.as_deref().map(quote).unwrap_or_default();
+    let _ = writeln!(out, ",{},{error}", row.status.name());
     out
+}
+
+/// Whether numeric column `i` is a count (`steps`, `steps_requested`), written as an integer.
+fn is_count(columns: &SweepColumns, i: usize) -> bool {
+    let steps = 1 + columns.swept.len() + 1;
+    i == steps || i == steps + 1
 }
 
 /// A CSV field in quotes when it needs them (comma, quote or line break inside).
@@ -158,59 +307,41 @@ fn quote(field: &str) -> String {
     }
 }
 
-/// Writes the CSV and the summary of `rows` (a shard's or the whole sweep's) into `dir`;
-/// returns the file names.
-///
-/// # Errors
-/// The file that could not be written, with the reason.
-pub fn write(
-    dir: &Path,
-    shard: Shard,
-    label: &str,
-    rows: &[SweepRow],
-    total: usize,
-) -> Result<Vec<String>, String> {
-    let suffix = shard.suffix();
-    let csv_name = format!("sweep{suffix}.csv");
-    let json_name = format!("summary{suffix}.json");
-    let save = |name: &str, text: String| {
-        let path = dir.join(name);
-        std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))
-    };
-    save(&csv_name, csv(label, rows))?;
-    let text = serde_json::to_string_pretty(&summary(shard, label, rows, total))
-        .map_err(|e| e.to_string())?;
-    save(&json_name, text + "\n")?;
-    Ok(vec![csv_name, json_name])
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
 
-/// `summary.json` of a sweep: counts, the worst energy error, the CSV's name.
-fn summary(shard: Shard, label: &str, rows: &[SweepRow], total: usize) -> serde_json::Value {
-    let failed = rows
-        .iter()
-        .filter(|r| r.status == RunStatus::Failed)
-        .count();
-    let interrupted = rows.iter().any(|r| r.status == RunStatus::Interrupted);
-    let worst = rows
-        .iter()
-        .map(|r| r.energy_max_rel_error)
-        .filter(|x| x.is_finite())
-        .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))));
-    let steps = rows.first().map_or(0, |r| r.steps_requested);
-    json!({
-        "kind": "sweep",
-        "status": match (failed, interrupted) {
-            (0, false) => "completed",
-            (0, true) => "interrupted",
-            _ => "failed",
-        },
-        "swept": label,
-        "members": total,
-        "shard": { "index": shard.index, "count": shard.count },
-        "members_run": rows.len(),
-        "failed": failed,
-        "steps": steps,
-        "energy": { "max_rel_error": worst },
-        "table": format!("sweep{}.csv", shard.suffix()),
-    })
+    fn columns(energy_conserved: bool) -> SweepColumns {
+        SweepColumns {
+            swept: vec!["l".into(), "q[0]".into()],
+            coordinates: vec!["x".into()],
+            symmetries: vec!["rot".into()],
+            energy_conserved,
+        }
+    }
+
+    #[test]
+    fn a_failed_row_has_every_column_and_its_message() {
+        let cols = columns(true);
+        let row = SweepRow::new(3, vec![0.5, 0.1], (10, true), Err("bad, \"x\"".into()));
+        let numeric = row.numeric(&cols);
+        assert_eq!(numeric.len(), cols.numeric_names().len());
+        assert_eq!(numeric[..3], [3.0, 0.5, 0.1]);
+        assert!(numeric[6..].iter().all(|x| x.is_nan()));
+        let line = csv_line(&cols, &row);
+        assert!(line.starts_with("3,0.5,0.1,NaN,0,10,NaN"), "{line}");
+        assert!(line.ends_with(",failed,\"bad, \"\"x\"\"\"\n"), "{line}");
+        assert_eq!(
+            csv_header(&cols),
+            "member,l,q[0],t_final,steps,steps_requested,energy_max_rel_error,\
+             energy_final_rel_error,energy_rel_drift,J_rot,J_rot_drift,q_x,p_x,status,error\n"
+        );
+    }
+
+    #[test]
+    fn a_forced_sweep_reports_the_balance_not_an_energy_error() {
+        let names = columns(false).numeric_names();
+        assert!(names.contains(&"balance_max_defect".to_owned()));
+        assert!(!names.iter().any(|n| n.starts_with("energy")));
+    }
 }
