@@ -99,4 +99,17 @@ fn forced_runs_plot_the_energy_balance() {
     let files = run.summary()["output"]["files"].to_string();
     assert!(files.contains("energy_balance.png"), "{files}");
     assert!(!files.contains("energy_error.png"), "{files}");
+    // `marsden plot` on the folder redraws the rest and still draws no energy error.
+    let before = std::fs::read(run.out.join("energy_balance.png")).unwrap();
+    let plot = crate::util::marsden_in(&run.out, &["plot", "."]);
+    assert!(
+        plot.status.success(),
+        "{}",
+        String::from_utf8_lossy(&plot.stderr)
+    );
+    assert!(!run.out.join("energy_error.png").exists());
+    assert_eq!(
+        std::fs::read(run.out.join("energy_balance.png")).unwrap(),
+        before
+    );
 }

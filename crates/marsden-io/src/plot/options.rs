@@ -19,6 +19,11 @@ pub struct PlotOptions {
     pub angles: Vec<String>,
     /// A remark printed on every plot, e.g. how the rows of a long run were chosen.
     pub note: Option<String>,
+    /// Whether the `energy` column is a conserved quantity whose relative error is worth a
+    /// plot. False for forced or time-dependent runs: their energy changes by the work done,
+    /// and an "energy error" would mislead (their balance is drawn by
+    /// [`plot_energy_balance`](crate::plot_energy_balance) from the work).
+    pub energy_conserved: bool,
 }
 
 impl PlotOptions {
@@ -38,6 +43,7 @@ impl Default for PlotOptions {
             max_phase_panels: 4,
             angles: Vec::new(),
             note: None,
+            energy_conserved: true,
         }
     }
 }

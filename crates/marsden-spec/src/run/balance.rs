@@ -189,8 +189,8 @@ impl<L: Lagrangian, F: DiscreteForce, O: Observer + ?Sized> Observer for Balance
     }
 }
 
-/// Replaces the energy-error plot of a forced run in `dir` by the energy balance of `series`
-/// ([`ENERGY_BALANCE_PNG`]); updates the list of `written` files.
+/// Draws the energy balance of a forced run's `series` in `dir` ([`ENERGY_BALANCE_PNG`]; such a
+/// run gets no energy-error plot); adds it to the list of `written` files.
 ///
 /// # Errors
 /// The plot cannot be written, as text.
@@ -199,12 +199,6 @@ pub fn draw(
     series: &BalanceSeries,
     written: &mut Vec<String>,
 ) -> Result<(), String> {
-    let error_png = marsden_io::plot::ENERGY_ERROR_PNG;
-    if written.iter().any(|f| f == error_png) {
-        std::fs::remove_file(dir.join(error_png))
-            .map_err(|e| format!("cannot remove {error_png}: {e}"))?;
-        written.retain(|f| f != error_png);
-    }
     let opts = marsden_io::PlotOptions::default();
     let path = dir.join(ENERGY_BALANCE_PNG);
     marsden_io::plot_energy_balance(&path, &series.t, (&series.change, &series.work), &opts)

@@ -33,11 +33,9 @@ pub fn draw(spec: &RunSpec, layout: &Layout) -> marsden_io::Result<Vec<String>> 
         }
         Format::Npy => read_npy_dir_thinned(dir, layout, &monitored, DEFAULT_BUDGET)?,
     };
-    let reports = plot_run(
-        &sketch.table,
-        dir,
-        &options(&sketch, spec.output.angles.clone()),
-    )?;
+    let conserved = spec.system.energy_not_conserved().is_none();
+    let opts = options(&sketch, spec.output.angles.clone(), conserved);
+    let reports = plot_run(&sketch.table, dir, &opts)?;
     Ok(reports
         .iter()
         .filter_map(|r| r.path.file_name())
@@ -55,8 +53,8 @@ pub fn redraw(dir: &Path) -> Result<Vec<PlotReport>, Error> {
     if !dir.join(TRAJECTORY_CSV).exists() && sweep_table {
         return draw_sweep(dir).map(|r| vec![r]);
     }
-    let (sketch, angles) = read_run(dir)?;
-    plot_run(&sketch.table, dir, &options(&sketch, angles))
+    let (sketch, angles, conserved) = read_run(dir)?;
+    plot_run(&sketch.table, dir, &options(&sketch, angles, conserved))
         .map_err(|e| Error::failed(Diagnostic::new(format!("cannot draw the plots: {e}"))))
 }
 
@@ -174,17 +172,20 @@ fn monitored(names: &[String]) -> Vec<&str> {
     columns
 }
 
-fn options(sketch: &Thinned, angles: Vec<String>) -> PlotOptions {
+fn options(sketch: &Thinned, angles: Vec<String>, energy_conserved: bool) -> PlotOptions {
     PlotOptions {
         angles,
         note: sketch.note(),
+        energy_conserved,
         ..PlotOptions::default()
     }
 }
 
 /// The trajectory of a run directory as a bounded sketch (`trajectory.csv`, or the `.npy`
-/// files named by `summary.json`), and the angles the summary declares.
-fn read_run(dir: &Path) -> Result<(Thinned, Vec<String>), Error> {
+/// files named by `summary.json`), the angles the summary declares, and whether it says the
+/// energy is conserved (not when `energy_not_conserved` names a reason: a forced run's
+/// `energy_balance.png`, drawn by the run from the work, is kept as it is).
+fn read_run(dir: &Path) -> Result<(Thinned, Vec<String>, bool), Error> {
     let bad = |message: String| Error::bad_input(Diagnostic::new(message));
     let summary = dir.join(SUMMARY_JSON);
     let json: Option<serde_json::Value> = std::fs::read_to_string(&summary)
@@ -203,12 +204,15 @@ fn read_run(dir: &Path) -> Result<(Thinned, Vec<String>), Error> {
         .as_ref()
         .map(|j| strings(&j["output"]["angles"]))
         .unwrap_or_default();
+    let conserved = json
+        .as_ref()
+        .is_none_or(|j| j["energy_not_conserved"].is_null());
     let csv = dir.join(TRAJECTORY_CSV);
     if csv.exists() {
         let names = csv_header(&csv).map_err(|e| bad(e.to_string()))?;
         let sketch = read_csv_thinned(&csv, &monitored(&names), DEFAULT_BUDGET)
             .map_err(|e| bad(e.to_string()))?;
-        return Ok((sketch, angles));
+        return Ok((sketch, angles, conserved));
     }
     let json = match json {
         Some(json) => json,
@@ -228,7 +232,7 @@ fn read_run(dir: &Path) -> Result<(Thinned, Vec<String>), Error> {
         .map_err(|e| bad(format!("{}: output.columns: {e}", summary.display())))?;
     let sketch = read_npy_dir_thinned(dir, &layout, &monitored(&columns), DEFAULT_BUDGET)
         .map_err(|e| bad(e.to_string()))?;
-    Ok((sketch, angles))
+    Ok((sketch, angles, conserved))
 }
 
 /// The column names on the first line of a CSV file.
