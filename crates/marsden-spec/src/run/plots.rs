@@ -103,9 +103,8 @@ pub fn draw_sweep(dir: &Path) -> Result<PlotReport, Error> {
         )));
     };
     // Every member ending at the same time is bookkeeping too (no member failed early).
-    let same_end = |c: &marsden_io::Column| {
-        c.name == "t_final" && c.values.windows(2).all(|w| w[0] == w[1])
-    };
+    let same_end =
+        |c: &marsden_io::Column| c.name == "t_final" && c.values.windows(2).all(|w| w[0] == w[1]);
     let quantities: Vec<Series<'_>> = columns
         .filter(|c| !BOOKKEEPING.contains(&c.name.as_str()) && !is_swept(&c.name) && !same_end(c))
         .map(|c| Series {

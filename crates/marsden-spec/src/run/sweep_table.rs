@@ -138,7 +138,7 @@ impl SweepRow {
                     energy_max_rel_error: or_nan(energy.max_rel_error),
                     energy_final_rel_error: or_nan(energy.final_rel_error),
                     energy_rel_drift: or_nan(energy.rel_drift_per_unit_time),
-                    balance: record.balance.clone(),
+                    balance: record.balance,
                     status: RunStatus::of(&record),
                     maps: record.diagnostics.maps,
                     q: record.final_state.q,
