@@ -163,6 +163,11 @@ pub(crate) fn pow(a: Node, b: Node) -> Node {
         }),
         (_, Const(0.0)) => Const(1.0),
         (x, Const(1.0)) => x,
+        // (a²)ᵉ = |a|²ᵉ for real a: the same value, and derivatives without the 0·∞ that
+        // (a²)ᵉ's chain rule forms at a = 0 (`(x^2)^1.5` is |x|³, twice differentiable there).
+        (Node::Powi(a, 2), Const(e)) if integer_exponent(e).is_none() => {
+            pow(unary(Unary::Abs, *a), Const(2.0 * e))
+        }
         (x, Const(0.5)) => unary(Unary::Sqrt, x),
         (x, Const(e)) => match integer_exponent(e) {
             Some(n) => Node::Powi(Box::new(x), n),
@@ -208,6 +213,20 @@ mod tests {
         assert_eq!(add(x(), neg(y())), bin(Arith::Sub, x(), y()));
         assert_eq!(neg(neg(x())), x());
         assert_eq!(neg(mul(x(), Const(3.0))), bin(Arith::Mul, x(), Const(-3.0)));
+    }
+
+    #[test]
+    fn a_power_of_a_square_is_a_power_of_the_absolute_value() {
+        let square = || pow(x(), Const(2.0));
+        let abs_x = || unary(Unary::Abs, x());
+        assert_eq!(pow(square(), Const(1.5)), Node::Powi(Box::new(abs_x()), 3));
+        assert_eq!(pow(square(), Const(0.5)), abs_x());
+        assert_eq!(
+            pow(square(), Const(1.25)),
+            Node::Powf(Box::new(abs_x()), 2.5)
+        );
+        // An integer power of a square stays a power of x.
+        assert_eq!(pow(square(), Const(2.0)), Node::Powi(Box::new(square()), 2));
     }
 
     #[test]

@@ -49,18 +49,25 @@ pub struct Thinned {
     pub table: Table,
     /// Number of rows read.
     pub rows_read: u64,
+    /// Why rows at the end were left out (the `.npy` files of a run cut short end at
+    /// different rows), or `None`.
+    pub cut: Option<String>,
 }
 
 impl Thinned {
     /// A one-line note saying how the rows were chosen, or `None` if every row was kept.
     pub fn note(&self) -> Option<String> {
         let kept = self.table.n_rows() as u64;
-        (kept < self.rows_read).then(|| {
+        let thinned = (kept < self.rows_read).then(|| {
             format!(
                 "drawn from {kept} of {} rows: first, last, and each stretch's extremes",
                 self.rows_read
             )
-        })
+        });
+        match (thinned, &self.cut) {
+            (Some(a), Some(b)) => Some(format!("{a}; {b}")),
+            (a, b) => a.or_else(|| b.clone()),
+        }
     }
 }
 
@@ -182,6 +189,7 @@ impl Thinner {
         Ok(Thinned {
             table: Table::new(columns)?,
             rows_read: self.read,
+            cut: None,
         })
     }
 }

@@ -8,7 +8,7 @@ use std::path::Path;
 
 use marsden_io::{
     Column, Error, Group, Layout, NpyDirWriter, NpyShape, NpyWriter, RowSink, Table, read_npy,
-    read_npy_dir, write_npy_dir,
+    read_npy_dir, read_npy_dir_thinned, write_npy_dir,
 };
 use proptest::prelude::*;
 
@@ -201,6 +201,38 @@ fn a_run_that_stops_early_leaves_loadable_files() {
     single.write_row(&[1.0]).unwrap();
     drop(single);
     assert_eq!(npyz_read(&dir.path().join("d.npy")).3, [1.0]);
+}
+
+/// A run killed part-way (its writer never finished) leaves files that end at different rows:
+/// the strict reader refuses them, the plots' reader draws the rows they all hold and says how
+/// many were left out.
+#[test]
+fn a_killed_run_is_drawn_from_the_rows_every_file_holds() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut w = NpyDirWriter::create(dir.path(), &layout()).unwrap();
+    for i in 0..13_000 {
+        w.write_row(&row(i)).unwrap();
+    }
+    std::mem::forget(w); // killed: no finish, no drop
+    let t_rows = npyz_read(&dir.path().join("t.npy")).1[0];
+    let q_rows = npyz_read(&dir.path().join("q.npy")).1[0];
+    assert!(t_rows < q_rows, "t {t_rows}, q {q_rows}");
+    assert!(matches!(
+        read_npy_dir(dir.path(), &layout()),
+        Err(Error::Npy { .. })
+    ));
+    let sketch = read_npy_dir_thinned(dir.path(), &layout(), &["energy"], 1000).unwrap();
+    assert_eq!(sketch.rows_read, t_rows);
+    let last = sketch.table.n_rows() - 1;
+    assert_eq!(
+        sketch.table.row(last).unwrap(),
+        row(t_rows as u32 - 1).to_vec()
+    );
+    let note = sketch.note().unwrap();
+    assert!(
+        note.contains(&format!("{} left out", q_rows - t_rows)),
+        "{note}"
+    );
 }
 
 #[test]

@@ -154,14 +154,19 @@ pub fn write_npy_dir(dir: impl AsRef<Path>, layout: &Layout, table: &Table) -> R
 /// An I/O error naming the file, or [`Error::Npy`] if a file's shape does not fit the layout
 /// or the files disagree on the number of rows.
 pub fn read_npy_dir(dir: impl AsRef<Path>, layout: &Layout) -> Result<Table> {
-    stream_npy_dir(dir.as_ref(), layout, Collector::new(owned_names(layout)))?.into_table()
+    let collector = Collector::new(owned_names(layout));
+    stream_npy_dir(dir.as_ref(), layout, collector, false)?
+        .0
+        .into_table()
 }
 
 /// Reads a run's `.npy` files into a bounded [`Thinned`] sketch for plots (see [`Thinner`]),
 /// keeping the extremes of the `monitored` columns; memory does not grow with the rows.
+/// Files of a run cut short (killed) may end at different rows: the rows all files hold are
+/// read and [`Thinned::cut`] says so.
 ///
 /// # Errors
-/// As [`read_npy_dir`].
+/// As [`read_npy_dir`], except for files that disagree on the number of rows.
 pub fn read_npy_dir_thinned(
     dir: impl AsRef<Path>,
     layout: &Layout,
@@ -169,31 +174,50 @@ pub fn read_npy_dir_thinned(
     budget: usize,
 ) -> Result<Thinned> {
     let thinner = Thinner::new(owned_names(layout), monitored, budget);
-    stream_npy_dir(dir.as_ref(), layout, thinner)?.finish_table()
+    let (thinner, cut) = stream_npy_dir(dir.as_ref(), layout, thinner, true)?;
+    let mut sketch = thinner.finish_table()?;
+    sketch.cut = cut;
+    Ok(sketch)
 }
 
 /// Streams the rows of the group files of `layout` in `dir` into `sink`, all files in step.
-fn stream_npy_dir<S: RowSink>(dir: &Path, layout: &Layout, mut sink: S) -> Result<S> {
+/// Files that disagree on the number of rows are an error, or with `shortest` the rows they
+/// all hold are read and the second value says how many were left out.
+fn stream_npy_dir<S: RowSink>(
+    dir: &Path,
+    layout: &Layout,
+    mut sink: S,
+    shortest: bool,
+) -> Result<(S, Option<String>)> {
     let mut files = Vec::with_capacity(layout.groups().len());
-    let mut rows: Option<(u64, PathBuf)> = None;
+    let mut counts: Vec<(u64, PathBuf)> = Vec::with_capacity(layout.groups().len());
     for g in layout.groups() {
         let path = file_of(dir, &g.name);
         let file = NpyValues::open(&path)?;
         let n = rows_of(&path, g, &file.shape)?;
-        match &rows {
-            Some((first, first_path)) if *first != n => {
-                return Err(Error::Npy {
-                    path,
-                    message: format!("{n} rows but {} has {first}", first_path.display()),
-                });
-            }
-            Some(_) => {}
-            None => rows = Some((n, path.clone())),
+        if let Some((first, first_path)) = counts.first()
+            && *first != n
+            && !shortest
+        {
+            return Err(Error::Npy {
+                path,
+                message: format!("{n} rows but {} has {first}", first_path.display()),
+            });
         }
+        counts.push((n, path));
         files.push(file);
     }
+    let rows = counts.iter().map(|c| c.0).min().unwrap_or(0);
+    let most = counts.iter().map(|c| c.0).max().unwrap_or(0);
+    let cut = (most > rows).then(|| {
+        format!(
+            "the files end at different rows (a run cut short): the {rows} rows all hold are \
+             drawn, {} left out",
+            most - rows
+        )
+    });
     let mut row = Vec::with_capacity(layout.width());
-    for _ in 0..rows.map_or(0, |r| r.0) {
+    for _ in 0..rows {
         row.clear();
         for (g, file) in layout.groups().iter().zip(&mut files) {
             for _ in 0..g.width() {
@@ -202,7 +226,7 @@ fn stream_npy_dir<S: RowSink>(dir: &Path, layout: &Layout, mut sink: S) -> Resul
         }
         sink.write_row(&row)?;
     }
-    Ok(sink)
+    Ok((sink, cut))
 }
 
 /// Number of rows of a group file of shape `shape`, checked against the group's kind and width.

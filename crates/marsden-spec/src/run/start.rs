@@ -135,13 +135,41 @@ pub fn start_error(spec: &RunSpec, e: &marsden::Error) -> Diagnostic {
             .at(source.locate_opt(spec.spans.initial_data.clone()))
             .help("give the initial velocities `v` instead of the momenta `p`"),
         marsden::Error::Setup(SetupError::InitialPositionOffConstraint { .. })
-        | marsden::Error::Setup(SetupError::InitialVelocityNotTangent { .. }) => Diagnostic::new(e.to_string())
+        | marsden::Error::Setup(SetupError::InitialVelocityNotTangent { .. }) => Diagnostic::new(off_manifold(e))
             .at(source.locate_opt(spec.spans.initial_data.clone()))
             .help(
                 "set `project = true` in [initial] to project the data onto the constraint \
                  manifold (φ(q) = 0, then Dφ(q)·v = 0 by RATTLE's projection)",
             ),
         _ => Diagnostic::new(format!("cannot set up the problem: {e}")),
+    }
+}
+
+/// The core's message about a start off the constraint manifold, in the file's terms (the
+/// core's names a library function the file cannot call; the help says `project = true`).
+fn off_manifold(e: &marsden::Error) -> String {
+    match e {
+        marsden::Error::Setup(SetupError::InitialPositionOffConstraint {
+            index,
+            residual,
+            tolerance,
+            ..
+        }) => format!(
+            "the initial positions q0 violate constraint {index}: |φ_{index}(q0)| = \
+             {residual:.3e} > tolerance {tolerance:.1e}"
+        ),
+        marsden::Error::Setup(SetupError::InitialVelocityNotTangent {
+            what,
+            index,
+            residual,
+            tolerance,
+            ..
+        }) => format!(
+            "the initial {what} is not tangent to the constraint manifold: the velocity \
+             constraint {index} has residual (Dφ(q0)·v0)_{index} = {residual:.3e} > tolerance \
+             {tolerance:.1e}"
+        ),
+        other => other.to_string(),
     }
 }
 
