@@ -158,7 +158,16 @@ impl Drop for DirLock {
 /// # Errors
 /// A message if another run holds the lock, or the lock file cannot be opened.
 pub fn lock(dir: &Path) -> Result<DirLock, String> {
-    let path = dir.join(LOCK);
+    lock_named(dir, LOCK)
+}
+
+/// Locks `dir` under the lock file `name` (a sweep's shard locks its own files only, so the
+/// shards of one sweep may write into one directory at once).
+///
+/// # Errors
+/// As [`lock`].
+pub fn lock_named(dir: &Path, name: &str) -> Result<DirLock, String> {
+    let path = dir.join(name);
     let file = std::fs::OpenOptions::new()
         .create(true)
         .truncate(false)
@@ -168,7 +177,7 @@ pub fn lock(dir: &Path) -> Result<DirLock, String> {
     match file.try_lock() {
         Ok(()) => Ok(DirLock { _file: file, path }),
         Err(std::fs::TryLockError::WouldBlock) => Err(format!(
-            "another run is writing into {} (it holds {LOCK})",
+            "another run is writing into {} (it holds {name})",
             dir.display()
         )),
         Err(std::fs::TryLockError::Error(e)) => Err(format!("cannot lock {}: {e}", path.display())),

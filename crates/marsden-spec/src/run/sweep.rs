@@ -106,6 +106,11 @@ pub fn execute(
             dir.display()
         ))
     })?;
+    // Held until the summary is written: the same sweep (or shard) into `dir` is refused.
+    let lock_name = format!(".marsden{}.lock", options.shard.suffix());
+    let _lock = super::output::lock_named(&dir, &lock_name).map_err(|m| {
+        Error::bad_input(Diagnostic::new(m).help("give this sweep another `--out` directory"))
+    })?;
     let columns = SweepColumns::of(base, sweep);
     let failed = |e: String| Error::failed(Diagnostic::new(e));
     let mut writer = SweepWriter::create(&dir, options.shard, columns.clone(), base.output.format)

@@ -51,3 +51,35 @@ fn second_run_into_a_locked_directory_is_refused() {
     names.sort();
     assert_eq!(names, [output::SUMMARY_JSON, output::TRAJECTORY_CSV]);
 }
+
+/// A sweep locks its own files: the same sweep into a locked directory is refused and writes
+/// nothing; another shard of it may write beside it.
+#[test]
+fn a_sweep_into_a_locked_directory_is_refused() {
+    use marsden_spec::run::shard::Shard;
+    use marsden_spec::run::sweep::{self, SweepOptions};
+    let dir = tempfile::tempdir().unwrap();
+    let overrides = Overrides {
+        out: Some(dir.path().to_owned()),
+        ..Overrides::default()
+    };
+    let text = named("s") + "[sweep]\ninitial = \"v[0]\"\nvalues = [1.0, 2.0]\n";
+    let spec = from_toml_str(&text, "p.toml", &overrides).unwrap();
+    let sweep_spec = spec.sweep.clone().unwrap();
+    let held = output::lock_named(dir.path(), ".marsden.lock").unwrap();
+    let whole = SweepOptions::default();
+    let err = sweep::execute(&spec, &sweep_spec, &overrides, &whole).unwrap_err();
+    assert_eq!(err.kind, ErrorKind::BadInput);
+    assert!(err.to_string().contains("another run is writing"), "{err}");
+    assert!(!dir.path().join("sweep.csv").exists());
+    let shard = SweepOptions {
+        shard: Shard { index: 1, count: 2 },
+        ..SweepOptions::default()
+    };
+    let outcome = sweep::execute(&spec, &sweep_spec, &overrides, &shard).unwrap();
+    assert_eq!(outcome.members_run, 1);
+    drop(held);
+    let outcome = sweep::execute(&spec, &sweep_spec, &overrides, &whole).unwrap();
+    assert_eq!(outcome.members_run, 2);
+    assert!(!dir.path().join(".marsden.lock").exists());
+}
