@@ -13,6 +13,7 @@ pub mod check;
 pub mod grid;
 pub mod hamiltonian;
 pub mod method;
+pub mod named_symmetry;
 pub mod nbody_file;
 pub mod parameters;
 pub mod raw;
@@ -186,6 +187,9 @@ fn validate_raw(
         analysis: spec::AnalysisSpec {
             every_step: (raw.analysis.as_ref())
                 .and_then(|a| a.get_ref().every_step.as_ref())
+                .is_some_and(|e| *e.get_ref()),
+            certify: (raw.analysis.as_ref())
+                .and_then(|a| a.get_ref().certify.as_ref())
                 .is_some_and(|e| *e.get_ref()),
         },
     })

@@ -17,9 +17,11 @@
 //! [`crate::catalog::WithLagrangian`]: one monomorphised run per Lagrangian type and rule.
 
 pub mod balance;
+pub mod certify;
 pub mod controls;
 pub mod diagnostics;
 pub mod execute;
+pub mod noether_balance;
 pub mod observer;
 pub mod output;
 pub mod plots;
