@@ -14,6 +14,8 @@ mod structure;
 mod controls;
 // Hostile inputs: limits, honest reports, safe outputs.
 mod robust;
+// Certificates and symmetries: named symmetries, certify = true, the forced Noether balance.
+mod certify;
 
 use std::path::{Path, PathBuf};
 

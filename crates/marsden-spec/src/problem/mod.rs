@@ -3,7 +3,7 @@
 //! 1. [`raw`]: the TOML as written — serde structs with `deny_unknown_fields`, every value
 //!    with its span; `toml`'s errors are reworded by [`toml_error`].
 //! 2. [`spec`]: the validated [`RunSpec`] — every check made here ([`system`], [`parameters`],
-//!    [`settings`], helpers in [`check`]), each failure a [`Diagnostic`] pointing at the
+//!    [`settings`], [`named_symmetry`], helpers in [`check`]), each failure a [`Diagnostic`] pointing at the
 //!    value at fault. Building and running the problem is [`crate::run`]'s job.
 //!
 //! Entry points: [`load`] (a file on disk), [`from_toml_str`] (text from anywhere, e.g. a
@@ -13,6 +13,7 @@ pub mod check;
 pub mod grid;
 pub mod hamiltonian;
 pub mod method;
+pub mod named_symmetry;
 pub mod nbody_file;
 pub mod parameters;
 pub mod raw;
@@ -186,6 +187,9 @@ fn validate_raw(
         analysis: spec::AnalysisSpec {
             every_step: (raw.analysis.as_ref())
                 .and_then(|a| a.get_ref().every_step.as_ref())
+                .is_some_and(|e| *e.get_ref()),
+            certify: (raw.analysis.as_ref())
+                .and_then(|a| a.get_ref().certify.as_ref())
                 .is_some_and(|e| *e.get_ref()),
         },
     })

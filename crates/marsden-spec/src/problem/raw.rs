@@ -15,7 +15,7 @@
 //! constraints = ["x^2 + y^2 - l^2"]                          # optional
 //! [[system.symmetry]]                                        # optional, repeatable
 //! name = "Lz"
-//! generator = ["-y", "x"]
+//! generator = ["-y", "x"]                                  # or rotation = "z" (translation = "x")
 //! [initial]
 //! q = [1.5]
 //! v = [0.0]                  # or p = [...]
@@ -127,6 +127,11 @@ pub struct RawSymmetry {
     pub name: Option<Spanned<String>>,
     /// The infinitesimal generator `ξ_Q(q)`, one expression per coordinate.
     pub generator: Option<SpannedList<String>>,
+    /// A named translation instead of `generator`: `"x"`, `"y"` or `"z"`
+    /// ([`super::named_symmetry`]).
+    pub translation: Option<Spanned<String>>,
+    /// A named rotation about an axis instead of `generator`: `"x"`, `"y"` or `"z"`.
+    pub rotation: Option<Spanned<String>>,
 }
 
 /// `[initial]`.
@@ -322,4 +327,7 @@ pub struct RawAnalysis {
     /// Monitor energy, momentum maps and constraint residuals at every step, not only at the
     /// stored rows (default false).
     pub every_step: Option<Spanned<bool>>,
+    /// Certificates: the symplecticity defect of the step map at the start and the end, and
+    /// the equivariance defect of `L_d` for each symmetry (default false).
+    pub certify: Option<Spanned<bool>>,
 }

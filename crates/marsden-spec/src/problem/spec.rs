@@ -56,6 +56,9 @@ pub struct AnalysisSpec {
     /// Monitor every step, not only the stored rows (the summary's maxima are then over every
     /// step).
     pub every_step: bool,
+    /// Certificates after the run: the symplecticity defect of the step map at the start and
+    /// the end, the equivariance defect of `L_d` for each symmetry.
+    pub certify: bool,
 }
 
 /// Where the values that only the core can judge were written.

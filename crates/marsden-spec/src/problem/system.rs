@@ -333,24 +333,34 @@ fn compile_symmetries(
         .enumerate()
     {
         let s = raw.get_ref();
-        let Some(name) = &s.name else {
-            return Err(ck.error(
-                Some(raw.span()),
-                format!("symmetry #{} has no `name`", k + 1),
-            ));
+        let named = super::named_symmetry::expand(ck, raw, coordinates)?;
+        let (label, span) = match (&s.name, &named) {
+            (Some(name), _) => (name.get_ref(), name.span()),
+            (None, Some(n)) => (&n.default_name, n.span.clone()),
+            (None, None) => {
+                return Err(ck.error(
+                    Some(raw.span()),
+                    format!("symmetry #{} has no `name`", k + 1),
+                ));
+            }
         };
-        let label = name.get_ref();
         if !marsden_expr::is_identifier(label) || out.iter().any(|o| o.name() == label) {
             let msg = format!(
                 "symmetry name `{label}` must be unique and made of letters, digits and '_' (its column is J_{label})"
             );
-            return Err(ck.error(Some(name.span()), msg));
+            return Err(ck.error(Some(span), msg));
+        }
+        if let Some(n) = &named {
+            out.push(n.compile(ck, label.clone(), symbols)?);
+            continue;
         }
         let Some(list) = &s.generator else {
-            return Err(ck.error(
-                Some(raw.span()),
-                format!("symmetry `{label}` has no `generator`"),
-            ));
+            return Err(ck
+                .error(
+                    Some(raw.span()),
+                    format!("symmetry `{label}` has no `generator`"),
+                )
+                .help("give `generator = [...]`, or name it: `translation = \"x\"`, `rotation = \"z\"`"));
         };
         ck.one_per_coordinate(&format!("the generator of `{label}`"), list, coordinates)?;
         let context = format!("symmetry `{label}` generator");

@@ -87,6 +87,20 @@ pub fn render(outcome: &Outcome) -> String {
             ),
         );
     }
+    for (name, b) in &s.noether_balance {
+        line(
+            &mut out,
+            "noether",
+            format!(
+                "{name} balance (forces act): J_N − J0 = {}, impulse {}, unaccounted {} (max {} per step)",
+                sci(b.momentum_change),
+                sci(b.total_impulse),
+                sci(b.total_defect),
+                sci(b.max_defect)
+            ),
+        );
+    }
+    certificate_lines(&mut out, s);
     if let Some(r) = s.constraints.max_residual {
         line(
             &mut out,
@@ -163,6 +177,34 @@ fn energy_lines(out: &mut String, s: &crate::run::Summary) {
                 }
             ),
         ),
+    }
+}
+
+/// The certificate lines (`[analysis] certify = true`): symplecticity, then equivariance.
+fn certificate_lines(out: &mut String, s: &crate::run::Summary) {
+    let Some(c) = &s.certificate else { return };
+    let y = &c.symplecticity;
+    let defect = |x: Option<f64>| x.map_or("n/a".to_owned(), sci);
+    let note = y.note.as_ref().map_or(String::new(), |n| format!(" ({n})"));
+    line(
+        out,
+        "certificate",
+        format!(
+            "symplecticity defect ‖DFᵀJDF − J‖/‖DF‖² = {} (first step), {} (from the final state){note}",
+            defect(y.start),
+            defect(y.end)
+        ),
+    );
+    for (name, e) in &c.equivariance {
+        line(
+            out,
+            "certificate",
+            format!(
+                "{name}: equivariance defect of L_d {} (relative {})",
+                sci(e.max_abs_defect),
+                sci(e.max_rel_defect)
+            ),
+        );
     }
 }
 

@@ -8,6 +8,8 @@
 //! | initial state | [`start`] | `p` from `v` (or back), projection, regularity, symmetry warnings |
 //! | generic runner | [`solve`] | `Problem` from any `Lagrangian`, `Force`, `Constraint`; the method's rule |
 //! | forced runs | [`balance`] | the discrete energy balance of every step (R12) |
+//! | forced runs | [`noether_balance`] | the forced Noether balance of every symmetry (MW01 §3.2) |
+//! | on request | [`certify`] | symplecticity defect of the step map, equivariance defect of `L_d` |
 //! | per sample | [`observer`] | one row `t, q, p, energy, J…, residual`, [`diagnostics`] |
 //! | where rows go | [`output`], [`samples`] | columns and writers of the files; in-memory [`Samples`] |
 //! | afterwards | [`summary`], [`plots`] | `summary.json`; the PNG plots (also `marsden plot`) |
@@ -17,9 +19,11 @@
 //! [`crate::catalog::WithLagrangian`]: one monomorphised run per Lagrangian type and rule.
 
 pub mod balance;
+pub mod certify;
 pub mod controls;
 pub mod diagnostics;
 pub mod execute;
+pub mod noether_balance;
 pub mod observer;
 pub mod output;
 pub mod plots;

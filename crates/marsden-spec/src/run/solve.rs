@@ -11,8 +11,10 @@ use marsden::{
 use marsden_io::RowSink;
 
 use super::balance::{BalanceSeries, BalanceSummary, Balanced};
+use super::certify::{Certificate, Ends, certify};
 use super::controls::Controls;
 use super::diagnostics::Diagnostics;
+use super::noether_balance::{NoetherBalance, NoetherBalanced};
 use super::observer::StreamObserver;
 use super::start;
 use super::summary::FinalState;
@@ -20,6 +22,7 @@ use crate::catalog::WithLagrangian;
 use crate::error::Diagnostic;
 use crate::model::MomentumMap;
 use crate::problem::{Method, RunSpec};
+use marsden::symmetry::GroupAction;
 
 /// What a run did, before it is written up.
 #[derive(Debug, Clone)]
@@ -44,6 +47,10 @@ pub struct RunRecord {
     pub balance: Option<BalanceSummary>,
     /// The same at the stored steps, for the plot.
     pub balance_series: Option<BalanceSeries>,
+    /// The forced Noether balance of each symmetry, with the energy balance (empty otherwise).
+    pub noether_balance: Vec<(String, NoetherBalance)>,
+    /// The certificates (`[analysis] certify = true`).
+    pub certificate: Option<Certificate>,
 }
 
 /// Solves `problem` with `method` (dispatch on the rule type: one monomorphised run per rule).
@@ -74,21 +81,28 @@ pub fn solve<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
 }
 
 /// [`solve`], and for an active force and a two-point rule the discrete energy balance of every
-/// step ([`Balanced`]) on the way (its series keeps every `every`-th step).
-pub fn solve_balanced<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
-    problem: &Problem<L, F, C>,
+/// step ([`Balanced`]) and the forced Noether balance of every symmetry in `maps`
+/// ([`NoetherBalanced`]) on the way (the energy series keeps every `every`-th step).
+pub fn solve_balanced<L: Lagrangian, F: Force, C: Constraint, M, O: Observer + ?Sized>(
+    (problem, maps): (&Problem<L, F, C>, &[M]),
     (method, every): (&Method, usize),
     options: &SolveOptions,
     observer: &mut O,
-) -> Balance {
-    struct Solve<'a, L, F, C, O: ?Sized> {
+) -> Balance
+where
+    M: MomentumMap + GroupAction,
+{
+    struct Solve<'a, L, F, C, M, O: ?Sized> {
         problem: &'a Problem<L, F, C>,
+        maps: &'a [M],
         options: &'a SolveOptions,
         observer: &'a mut O,
         every: usize,
     }
-    impl<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized> WithRule
-        for Solve<'_, L, F, C, O>
+    impl<L: Lagrangian, F: Force, C: Constraint, M, O: Observer + ?Sized> WithRule
+        for Solve<'_, L, F, C, M, O>
+    where
+        M: MomentumMap + GroupAction,
     {
         type Output = Balance;
         fn call<R: Rule>(self, rule: &R) -> Self::Output {
@@ -100,25 +114,36 @@ pub fn solve_balanced<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Siz
                 return (problem.solve_with(rule, options, self.observer), None);
             }
             let force = rule.discretize_force(problem.force(), l.dof());
+            let noether_force = rule.discretize_force(problem.force(), l.dof());
             let h = problem.grid().h;
             let total = problem.grid().steps;
-            let mut balanced = Balanced::new(l, (force, h), (self.every, total), self.observer);
+            let names = self
+                .maps
+                .iter()
+                .map(|m| MomentumMap::name(m).to_owned())
+                .collect();
+            let mut noether =
+                NoetherBalanced::new((names, self.maps), (&noether_force, h), self.observer);
+            let mut balanced = Balanced::new(l, (force, h), (self.every, total), &mut noether);
             let result = problem.solve_with(rule, options, &mut balanced);
-            (result, Some((balanced.summary, balanced.series)))
+            let (summary, series) = (balanced.summary, balanced.series);
+            (result, Some((summary, series, noether.balances())))
         }
     }
     method.dispatch(Solve {
         problem,
+        maps,
         options,
         observer,
         every,
     })
 }
 
-/// A run's result and, for a forced run with a two-point rule, its energy balance.
+/// A run's result and, for a forced run with a two-point rule, its energy balance and the
+/// forced Noether balance of each symmetry.
 pub type Balance = (
     Result<Trajectory, Box<RunFailure>>,
-    Option<(BalanceSummary, BalanceSeries)>,
+    Option<(BalanceSummary, BalanceSeries, Vec<(String, NoetherBalance)>)>,
 );
 
 /// Where the rows of a run go: a sink, and whether each row carries the velocities too (for
@@ -135,7 +160,7 @@ pub struct Destination<'s> {
 /// # Errors
 /// Only if the core rejects the initial state (already checked by [`start::prepare`]); a
 /// failing run is a [`RunRecord`] with an error message, not an `Err`.
-pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap>(
+pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap + GroupAction>(
     (lagrangian, force, constraint, maps): (&L, &F, &C, &[M]),
     spec: &RunSpec,
     destination: Destination<'_>,
@@ -156,8 +181,11 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap>(
         .monitoring_every_step(spec.analysis.every_step);
     let clock = Instant::now();
     let method = (&spec.integrator.method, spec.output.every);
-    let (result, balance) = solve_balanced(&problem, method, &options, &mut observer);
-    let (balance, balance_series) = balance.unzip();
+    let (result, balance) = solve_balanced((&problem, maps), method, &options, &mut observer);
+    let (balance, balance_series, noether_balance) = match balance {
+        Some((b, series, noether)) => (Some(b), Some(series), noether),
+        None => (None, None, Vec::new()),
+    };
     let wall_seconds = clock.elapsed().as_secs_f64();
     let (trajectory, error) = match result {
         Ok(t) => (t, None),
@@ -181,6 +209,8 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap>(
         diagnostics: observer.diagnostics,
         balance,
         balance_series,
+        noether_balance,
+        certificate: None,
     })
 }
 
@@ -236,6 +266,44 @@ impl WithLagrangian for Runner<'_> {
     fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output {
         let s = &self.spec.system;
         let parts = (lagrangian, &s.force, &s.constraint, s.symmetries.as_slice());
-        run_problem(parts, self.spec, self.destination, self.controls)
+        let mut record = run_problem(parts, self.spec, self.destination, self.controls)?;
+        if self.spec.analysis.certify {
+            record.certificate = Some(certificate(self.spec, lagrangian, &record)?);
+        }
+        Ok(record)
     }
+}
+
+/// The certificates of `record`, a run of `spec` with `lagrangian` (from its initial state and
+/// its last good state).
+fn certificate<L: Lagrangian>(
+    spec: &RunSpec,
+    lagrangian: &L,
+    record: &RunRecord,
+) -> Result<Certificate, Diagnostic> {
+    let s = &spec.system;
+    let problem = start::constrained_problem(spec, lagrangian, &s.constraint)?;
+    let f = &record.final_state;
+    let end = marsden::State {
+        t: f.t,
+        q: f.q.clone(),
+        p: f.p.clone(),
+    };
+    let ends = Ends {
+        start: problem.start(),
+        v0: problem.initial_velocity(),
+        end: &end,
+    };
+    let names: Vec<String> = s
+        .symmetries
+        .iter()
+        .map(|m| MomentumMap::name(m).to_owned())
+        .collect();
+    let i = &spec.integrator;
+    Ok(certify(
+        (lagrangian, &s.force, &s.constraint),
+        (&names, &s.symmetries),
+        (&i.method, i.newton, i.grid.h),
+        &ends,
+    ))
 }

@@ -8,6 +8,8 @@ use std::path::Path;
 use serde::Serialize;
 
 use super::balance::BalanceSummary;
+use super::certify::Certificate;
+use super::noether_balance::NoetherBalance;
 use super::output::SUMMARY_JSON;
 use super::solve::RunRecord;
 use crate::problem::{LagrangianSpec, RunSpec};
@@ -105,6 +107,13 @@ pub struct Summary {
     /// The discrete energy balance of a forced run with a two-point method, over every step
     /// (null otherwise).
     pub energy_balance: Option<BalanceSummary>,
+    /// The forced Noether balance of every declared symmetry of a forced run with a two-point
+    /// method, over every step (absent otherwise).
+    #[serde(skip_serializing_if = "Vec::is_empty", serialize_with = "as_object")]
+    pub noether_balance: Vec<(String, NoetherBalance)>,
+    /// Certificates, with `[analysis] certify = true` (absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub certificate: Option<Certificate>,
 }
 
 /// `energy { … }`.
@@ -208,6 +217,14 @@ fn as_map<S: serde::Serializer>(
     serializer.collect_map(pairs.iter().map(|(k, v)| (k, v)))
 }
 
+/// Serialises `(key, value)` pairs as a JSON object, keeping their order.
+pub(super) fn as_object<S: serde::Serializer, V: Serialize>(
+    pairs: &[(String, V)],
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    serializer.collect_map(pairs.iter().map(|(k, v)| (k, v)))
+}
+
 impl Summary {
     /// The summary of `record`, a run of `spec`.
     pub fn new(
@@ -290,6 +307,8 @@ impl Summary {
             },
             energy_not_conserved: not_conserved,
             energy_balance: record.balance,
+            noether_balance: record.noether_balance.clone(),
+            certificate: record.certificate.clone(),
         }
     }
 
