@@ -15,7 +15,7 @@ pub mod lagrangian;
 pub mod symmetry;
 
 pub use constraint::ExprConstraint;
-pub use force::ExprForce;
+pub use force::{ExprForce, ForceInputs, LagrangianForce};
 pub use hamiltonian::{ExprHamiltonian, HamiltonianExprLagrangian};
 pub use lagrangian::ExprLagrangian;
 pub use symmetry::{MomentumMap, Symmetry};

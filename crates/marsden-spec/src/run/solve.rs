@@ -3,10 +3,11 @@
 
 use std::time::Instant;
 
+use marsden::discrete::exact::ExactDiscreteLagrangian;
 use marsden::discrete::rules::WithRule;
 use marsden::{
-    Constraint, Force, Lagrangian, Observer, Problem, Rule, RunFailure, SolveOptions, Statistics,
-    Trajectory,
+    Constraint, Force, Integrator, Lagrangian, Observer, Problem, Rule, RunFailure, SolveOptions,
+    Statistics, Trajectory, simulate,
 };
 use marsden_io::RowSink;
 
@@ -46,7 +47,8 @@ pub struct RunRecord {
     pub balance_series: Option<BalanceSeries>,
 }
 
-/// Solves `problem` with `method` (dispatch on the rule type: one monomorphised run per rule).
+/// Solves `problem` with `method` (dispatch on the rule type: one monomorphised run per rule;
+/// `exact` steps `L_d^E` by shooting).
 pub fn solve<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
     problem: &Problem<L, F, C>,
     method: &Method,
@@ -66,11 +68,36 @@ pub fn solve<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
             self.problem.solve_with(rule, self.options, self.observer)
         }
     }
-    method.dispatch(Solve {
-        problem,
-        options,
-        observer,
-    })
+    match method.rule() {
+        Some(rule) => rule.dispatch(Solve {
+            problem,
+            options,
+            observer,
+        }),
+        None => solve_exact(problem, options, observer),
+    }
+}
+
+/// `method = "exact"`: the integrator steps `L_d^E` of the problem's Lagrangian by shooting
+/// (forces and constraints were refused when the file was read).
+fn solve_exact<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
+    problem: &Problem<L, F, C>,
+    options: &SolveOptions,
+    observer: &mut O,
+) -> Result<Trajectory, Box<RunFailure>> {
+    let l = problem.lagrangian();
+    let failure = |error| {
+        let trajectory = Trajectory::new(l.dof(), 0, problem.grid().h);
+        Box::new(RunFailure { error, trajectory })
+    };
+    let exact = ExactDiscreteLagrangian::new(l);
+    let mut integrator = Integrator::new(exact)
+        .with_options(options.newton)
+        .map_err(failure)?
+        .with_compensated_summation(options.compensated);
+    integrator.set_velocity_hint(problem.initial_velocity());
+    let (start, grid) = (problem.start().clone(), problem.grid());
+    simulate(&mut integrator, start, grid, &options.run, observer).into_result()
 }
 
 /// [`solve`], and for an active force and a two-point rule the discrete energy balance of every
@@ -107,12 +134,15 @@ pub fn solve_balanced<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Siz
             (result, Some((balanced.summary, balanced.series)))
         }
     }
-    method.dispatch(Solve {
-        problem,
-        options,
-        observer,
-        every,
-    })
+    match method.rule() {
+        Some(rule) => rule.dispatch(Solve {
+            problem,
+            options,
+            observer,
+            every,
+        }),
+        None => (solve_exact(problem, options, observer), None),
+    }
 }
 
 /// A run's result and, for a forced run with a two-point rule, its energy balance.
@@ -235,7 +265,8 @@ impl WithLagrangian for Runner<'_> {
     type Output = Result<RunRecord, Diagnostic>;
     fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output {
         let s = &self.spec.system;
-        let parts = (lagrangian, &s.force, &s.constraint, s.symmetries.as_slice());
+        let force = s.force.on(lagrangian);
+        let parts = (lagrangian, &force, &s.constraint, s.symmetries.as_slice());
         run_problem(parts, self.spec, self.destination, self.controls)
     }
 }
