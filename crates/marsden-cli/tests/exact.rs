@@ -7,7 +7,11 @@ use crate::util::{assert_close, assert_rejected, marsden, number, repo_root};
 /// follows the exact flow, `(q, p)(500) = (cos 500, −sin 500)` to 1e-12 after 1000 steps.
 #[test]
 fn r3_exact_method_reproduces_the_exact_flow_of_the_oscillator() {
-    let run = marsden("run", &repo_root().join("examples/exact_oscillator.toml"), &[]);
+    let run = marsden(
+        "run",
+        &repo_root().join("examples/exact_oscillator.toml"),
+        &[],
+    );
     assert_eq!(run.code, 0, "{}", run.stderr);
     let s = run.summary();
     assert_eq!(s["status"], "completed");
@@ -20,17 +24,29 @@ fn r3_exact_method_reproduces_the_exact_flow_of_the_oscillator() {
     assert_close(p, -500.0_f64.sin(), 1e-12, "p(500)");
     // The exact flow conserves the energy ½(q² + p²) = ½ at every stored row.
     assert!(number(&s, "energy.max_rel_error") <= 1e-12);
-    assert!(run.stdout.contains("exact (the exact flow, by shooting)"), "{}", run.stdout);
+    assert!(
+        run.stdout.contains("exact (the exact flow, by shooting)"),
+        "{}",
+        run.stdout
+    );
 }
 
 #[test]
 fn exact_is_refused_with_constraints_and_forces() {
     assert_rejected(
         "exact_with_constraints.toml",
-        &["the method `exact` cannot be used with constraints", "shoots", "^"],
+        &[
+            "the method `exact` cannot be used with constraints",
+            "shoots",
+            "^",
+        ],
     );
     assert_rejected(
         "exact_with_forces.toml",
-        &["the method `exact` cannot be used with forces", "f_d^±", "^"],
+        &[
+            "the method `exact` cannot be used with forces",
+            "f_d^±",
+            "^",
+        ],
     );
 }

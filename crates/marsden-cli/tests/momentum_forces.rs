@@ -20,9 +20,11 @@ fn momentum_damping_equals_velocity_damping_r12_oscillator() {
             assert_close(*x, *y, 1e-14, name);
         }
     }
-    // The damping acted: the amplitude decayed (E ∝ exp(−c t / m), t = 30).
+    // The damping acted: the amplitude A(t) = A₀ exp(−c t / 2m), A₀ = √(1 + m v₀²/k) ≈ 1.06,
+    // is 0.13 over the last 10 rows (t ≥ 28).
     let x = column(&tp, "q_x");
-    assert!(x.iter().rev().take(50).all(|x| x.abs() < 0.2), "{:?}", &x[x.len() - 5..]);
+    let tail = &x[x.len() - 10..];
+    assert!(tail.iter().all(|x| x.abs() < 0.15), "{tail:?}");
 }
 
 #[test]
@@ -37,6 +39,10 @@ fn a_force_reads_momenta_of_existing_coordinates_only() {
 fn forces_use_velocities_or_momenta_not_both() {
     assert_rejected(
         "force_velocity_and_momentum.toml",
-        &["both the velocity `y_dot` and the momentum `p_x`", "forces[1]", "^"],
+        &[
+            "both the velocity `y_dot` and the momentum `p_x`",
+            "forces[1]",
+            "^",
+        ],
     );
 }

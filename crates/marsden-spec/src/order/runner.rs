@@ -136,14 +136,14 @@ where
         ))));
     };
     rule.dispatch(Measure {
-            problem,
-            grid: (plan.t_end, &steps),
-            reference: (q, p),
-            options,
-        })
-        .map_err(|e| {
-            Error::bad_input(Diagnostic::new(format!(
-                "cannot set up the runs of {method}: {e}"
-            )))
-        })
+        problem,
+        grid: (plan.t_end, &steps),
+        reference: (q, p),
+        options,
+    })
+    .map_err(|e| {
+        Error::bad_input(Diagnostic::new(format!(
+            "cannot set up the runs of {method}: {e}"
+        )))
+    })
 }

@@ -117,7 +117,9 @@ impl fmt::Display for Method {
 
 /// `order 2`, or for `exact` what it is instead.
 pub fn order_text(order: Option<u32>) -> String {
-    order.map_or("the exact flow, by shooting".to_owned(), |p| format!("order {p}"))
+    order.map_or("the exact flow, by shooting".to_owned(), |p| {
+        format!("order {p}")
+    })
 }
 
 /// Why a method name was rejected.

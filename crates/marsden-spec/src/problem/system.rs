@@ -10,8 +10,8 @@ use super::raw::{RawSymmetry, RawSystem, SpannedList};
 use super::spec::{LagrangianSpec, SystemSpec};
 use crate::catalog::{Builtin, MASSES};
 use crate::error::Diagnostic;
-use crate::model::slots::{tangent_inputs, velocity_name};
 use crate::model::hamiltonian::cotangent_inputs;
+use crate::model::slots::{tangent_inputs, velocity_name};
 use crate::model::{
     ExprConstraint, ExprForce, ExprLagrangian, ForceInputs, MomentumMap as _, Symmetry,
 };
