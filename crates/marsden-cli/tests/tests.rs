@@ -17,10 +17,14 @@ mod balance;
 mod commands;
 // Constrained runs: orders, multipliers, projected starts, refusals, `order` with constraints.
 mod constraints;
+// `method = "exact"`: R3 through the problem file, refusals.
+mod exact;
 // Every file in examples/ runs with reduced steps, as README.md quotes them.
 mod examples;
 // `[system] hamiltonian`: the same map as the Lagrangian, refusals.
 mod hamiltonian;
+// Forces written in the momenta: f_L = f_H ∘ FL, refusals.
+mod momentum_forces;
 // `[analysis] every_step`: maxima over every step, or the number of samples said.
 mod monitor;
 // `marsden order`: the table, the fitted orders, the CSV, the refused requests.

@@ -10,6 +10,8 @@ mod load;
 mod memory;
 // Expression Lagrangians recognised as separable: fast paths against the general path.
 mod structure;
+// A discrete Lagrangian written as an expression against the midpoint rule.
+mod discrete;
 // The controls of a run: the progress callback and the stop flag.
 mod controls;
 // Hostile inputs: limits, honest reports, safe outputs.

@@ -8,6 +8,7 @@
 //! does no string work and no allocation.
 
 pub mod constraint;
+pub mod discrete_lagrangian;
 pub mod force;
 pub mod hamiltonian;
 pub mod inputs;
@@ -15,7 +16,8 @@ pub mod lagrangian;
 pub mod symmetry;
 
 pub use constraint::ExprConstraint;
-pub use force::ExprForce;
+pub use discrete_lagrangian::ExprDiscreteLagrangian;
+pub use force::{ExprForce, ForceInputs, LagrangianForce};
 pub use hamiltonian::{ExprHamiltonian, HamiltonianExprLagrangian};
 pub use lagrangian::ExprLagrangian;
 pub use symmetry::{MomentumMap, Symmetry};

@@ -66,6 +66,12 @@ pub fn plan(spec: &RunSpec, request: &Request) -> Result<Plan, Diagnostic> {
         None => vec![spec.integrator.method.clone()],
         Some(list) => methods(list)?,
     };
+    if methods.contains(&Method::Exact) {
+        return Err(Diagnostic::new(
+            "`exact` has no order to measure: it is the exact flow (by shooting), the reference",
+        )
+        .help("study a rule, e.g. `--methods midpoint,gauss-2`"));
+    }
     let grid = spec.integrator.grid;
     let t0 = grid.t0;
     let t_end = match request.t_end {

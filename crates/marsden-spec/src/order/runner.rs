@@ -66,7 +66,7 @@ impl WithLagrangian for Study<'_> {
     fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output {
         let system = &self.spec.system;
         let problem = start::constrained_problem(self.spec, lagrangian, &system.constraint)?
-            .with_force(&system.force);
+            .with_force(system.force.on(lagrangian));
         let options = options(self.spec);
         let failed = |e: marsden::Error| {
             Error::failed(Diagnostic::new(format!(
@@ -130,16 +130,20 @@ where
         }
     }
     let steps = plan.steps();
-    method
-        .dispatch(Measure {
-            problem,
-            grid: (plan.t_end, &steps),
-            reference: (q, p),
-            options,
-        })
-        .map_err(|e| {
-            Error::bad_input(Diagnostic::new(format!(
-                "cannot set up the runs of {method}: {e}"
-            )))
-        })
+    let Some(rule) = method.rule() else {
+        return Err(Error::bad_input(Diagnostic::new(format!(
+            "`{method}` has no order to measure"
+        ))));
+    };
+    rule.dispatch(Measure {
+        problem,
+        grid: (plan.t_end, &steps),
+        reference: (q, p),
+        options,
+    })
+    .map_err(|e| {
+        Error::bad_input(Diagnostic::new(format!(
+            "cannot set up the runs of {method}: {e}"
+        )))
+    })
 }

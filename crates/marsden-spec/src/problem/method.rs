@@ -2,25 +2,43 @@
 //!
 //! The names are the core's ([`marsden::discrete::rules::Method`]): `midpoint`, `trapezoid`,
 //! `alpha-<a>`, `symmetrized-<a>`, `gauss-<s>`, `lobatto-<s>`, `galerkin-<s>-<family>-<r>` and
-//! compositions `<scheme>(<base>)`. This module adds the file-level error with a suggestion.
+//! compositions `<scheme>(<base>)`; and `exact`, the exact discrete Lagrangian
+//! `L_d^E(q₀, q₁) = ∫₀ʰ L dt` along the Euler–Lagrange solution from `q₀` to `q₁`, computed by
+//! shooting ([`marsden::discrete::exact`], [MW01] §1.6): its discrete Hamiltonian map is the
+//! exact flow, so it serves as a reference for small unforced, unconstrained problems. This
+//! module adds the file-level error with a suggestion.
+//!
+//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 use marsden::error::InputError;
 use std::fmt;
 
-use marsden::discrete::rules::{METHOD_GRAMMAR, Method as CoreMethod, WithRule};
+use marsden::discrete::rules::{METHOD_GRAMMAR, Method as CoreMethod};
 
 use marsden_expr::closest;
 
 /// A variational integrator's rule, by the name a problem file uses.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Method(pub CoreMethod);
+pub enum Method {
+    /// A quadrature rule of the core.
+    Rule(CoreMethod),
+    /// `exact`: `L_d^E` by shooting.
+    Exact,
+}
+
+/// The name of [`Method::Exact`].
+pub const EXACT: &str = "exact";
 
 /// The names accepted, for error messages and `--help`.
 pub const METHOD_NAMES: &str = METHOD_GRAMMAR;
 
+/// The names accepted besides the core's rules, for error messages.
+pub const EXACT_NOTE: &str = "or `exact` (the exact discrete Lagrangian by shooting)";
+
 /// Typical names, for "did you mean" suggestions.
-const KNOWN: [&str; 10] = [
+const KNOWN: [&str; 11] = [
     "midpoint",
+    "exact",
     "trapezoid",
     "alpha-0.5",
     "symmetrized-0.5",
@@ -35,14 +53,17 @@ const KNOWN: [&str; 10] = [
 impl Method {
     /// The midpoint rule (the default).
     pub fn midpoint() -> Self {
-        Self(CoreMethod::Single(
+        Self::Rule(CoreMethod::Single(
             marsden::discrete::rules::BaseMethod::Midpoint,
         ))
     }
 
     /// Parses a method name; the error says what is wrong and may suggest a name.
     pub fn parse(name: &str) -> Result<Method, MethodError> {
-        CoreMethod::parse(name).map(Method).map_err(|e| {
+        if name == EXACT {
+            return Ok(Method::Exact);
+        }
+        CoreMethod::parse(name).map(Method::Rule).map_err(|e| {
             let message = match e {
                 marsden::Error::Input(InputError::UnknownMethod { reason, .. }) => {
                     format!("unknown method `{name}`: {reason}")
@@ -56,21 +77,49 @@ impl Method {
         })
     }
 
-    /// The classical order of the integrator.
-    pub fn order(&self) -> u32 {
-        self.0.order()
+    /// The classical order of the integrator (`None` for `exact`: no truncation error).
+    pub fn order(&self) -> Option<u32> {
+        match self {
+            Method::Rule(m) => Some(m.order()),
+            Method::Exact => None,
+        }
     }
 
-    /// Calls `visitor` with the concrete rule.
-    pub fn dispatch<V: WithRule>(&self, visitor: V) -> V::Output {
-        self.0.dispatch(visitor)
+    /// The core's rule (`None` for `exact`).
+    pub fn rule(&self) -> Option<&CoreMethod> {
+        match self {
+            Method::Rule(m) => Some(m),
+            Method::Exact => None,
+        }
+    }
+
+    /// Why the method cannot be used with holonomic constraints, if it cannot.
+    pub fn constraint_refusal(&self) -> Option<String> {
+        match self {
+            Method::Rule(m) => m.constraint_refusal(),
+            Method::Exact => Some(
+                "`exact` shoots the unconstrained Euler–Lagrange equations: the core has no \
+                 exact discrete Lagrangian on a constraint manifold"
+                    .to_owned(),
+            ),
+        }
     }
 }
 
 impl fmt::Display for Method {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0.name())
+        match self {
+            Method::Rule(m) => f.write_str(&m.name()),
+            Method::Exact => f.write_str(EXACT),
+        }
     }
+}
+
+/// `order 2`, or for `exact` what it is instead.
+pub fn order_text(order: Option<u32>) -> String {
+    order.map_or("the exact flow, by shooting".to_owned(), |p| {
+        format!("order {p}")
+    })
 }
 
 /// Why a method name was rejected.
@@ -100,8 +149,11 @@ mod tests {
             let m = Method::parse(name).unwrap();
             assert_eq!(m.to_string(), name);
         }
-        assert_eq!(Method::parse("alpha-0.25").unwrap().order(), 1);
-        assert_eq!(Method::parse("gauss-3").unwrap().order(), 6);
+        assert_eq!(Method::parse("alpha-0.25").unwrap().order(), Some(1));
+        assert_eq!(Method::parse("gauss-3").unwrap().order(), Some(6));
+        assert_eq!(Method::parse("exact").unwrap(), Method::Exact);
+        assert_eq!(Method::Exact.to_string(), "exact");
+        assert_eq!(Method::Exact.order(), None);
     }
 
     #[test]

@@ -137,7 +137,7 @@ fn validate_raw(
     }
     let integrator = settings::integrator(&ck, raw.integrator.as_ref(), initial.t0, overrides)?;
     if !system.constraint.components().is_empty()
-        && let Some(reason) = integrator.method.0.constraint_refusal()
+        && let Some(reason) = integrator.method.constraint_refusal()
     {
         let span = (raw.integrator.as_ref())
             .and_then(|i| i.get_ref().method.as_ref())
@@ -151,6 +151,18 @@ fn validate_raw(
                 ),
             )
             .note(reason));
+    }
+    if integrator.method == Method::Exact && system.force.is_active() {
+        let span = (raw.integrator.as_ref())
+            .and_then(|i| i.get_ref().method.as_ref())
+            .map(|m| m.span());
+        return Err(ck
+            .error(span, "the method `exact` cannot be used with forces")
+            .note(
+                "the core computes the exact discrete Lagrangian of the unforced L by shooting; \
+                 it has no exact discrete forces f_d^±",
+            )
+            .help("remove `forces`, or choose a rule, e.g. `method = \"gauss-3\"`"));
     }
     let name = run_name(raw, &system, source.path());
     let output = settings::output(

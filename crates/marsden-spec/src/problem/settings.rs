@@ -8,7 +8,7 @@ use toml::Spanned;
 
 use super::check::Checker;
 use super::grid::{check_grid, check_steps, steps_until};
-use super::method::{METHOD_NAMES, Method};
+use super::method::{EXACT_NOTE, METHOD_NAMES, Method};
 use super::nbody_file::BodiesFile;
 use super::raw::{RawInitial, RawIntegrator, RawOutput, SpannedList};
 use super::spec::{Format, InitialData, InitialSpec, IntegratorSpec, OutputSpec, Overrides};
@@ -202,7 +202,7 @@ fn method(ck: &Checker<'_>, raw: Option<&Spanned<String>>) -> Result<Method, Dia
     Method::parse(name.get_ref()).map_err(|e| {
         ck.error(Some(name.span()), e.message)
             .suggest(e.suggestion.as_deref())
-            .note(format!("methods: {METHOD_NAMES}"))
+            .note(format!("methods: {METHOD_NAMES}, {EXACT_NOTE}"))
     })
 }
 

@@ -139,7 +139,6 @@ impl SystemSpec {
     /// Why the energy is not conserved, if it is not: forces act, or the Lagrangian depends on
     /// `t` (its input slot `2n` is read). The catalog Lagrangians are autonomous.
     pub fn energy_not_conserved(&self) -> Option<&'static str> {
-        use marsden::Force as _;
         if self.force.is_active() {
             return Some("forces act");
         }

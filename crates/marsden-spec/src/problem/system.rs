@@ -10,8 +10,11 @@ use super::raw::{RawSymmetry, RawSystem, SpannedList};
 use super::spec::{LagrangianSpec, SystemSpec};
 use crate::catalog::{Builtin, MASSES};
 use crate::error::Diagnostic;
+use crate::model::hamiltonian::cotangent_inputs;
 use crate::model::slots::{tangent_inputs, velocity_name};
-use crate::model::{ExprConstraint, ExprForce, ExprLagrangian, MomentumMap as _, Symmetry};
+use crate::model::{
+    ExprConstraint, ExprForce, ExprLagrangian, ForceInputs, MomentumMap as _, Symmetry,
+};
 use marsden_expr::closest;
 use marsden_expr::{Expr, Program, Symbols};
 
@@ -114,7 +117,8 @@ pub fn system(
     };
     let tangent = symbols(ck, tangent_inputs(&coordinates), &constants, &params)?;
     let positions = symbols(ck, coordinates.clone(), &constants, &params)?;
-    let force = forces(ck, system, &parsed, &coordinates, &tangent)?;
+    let cotangent = || symbols(ck, cotangent_inputs(&coordinates), &constants, &params);
+    let force = forces(ck, system, &parsed, &coordinates, (&tangent, &cotangent))?;
     let constraint = constraints(ck, system, &parsed, &coordinates, &positions)?;
     let symmetries = compile_symmetries(ck, system, &parsed, &coordinates, &positions)?;
     Ok(SystemSpec {
@@ -253,14 +257,59 @@ fn forces(
     system: &RawSystem,
     parsed: &Parsed,
     coordinates: &[String],
-    symbols: &Symbols,
+    (tangent, cotangent): (&Symbols, &dyn Fn() -> Result<Symbols, Diagnostic>),
 ) -> Result<ExprForce, Diagnostic> {
     let Some(list) = &system.forces else {
         return Ok(ExprForce::none());
     };
     ck.one_per_coordinate("`forces`", list, coordinates)?;
-    let set = ck.compile_all("[system] forces", list, &parsed.forces, symbols)?;
-    Ok(ExprForce::new(set))
+    let what = "[system] forces";
+    match force_inputs(ck, (list, &parsed.forces), coordinates, tangent)? {
+        ForceInputs::Velocities => {
+            let set = ck.compile_all(what, list, &parsed.forces, tangent)?;
+            Ok(ExprForce::new(set))
+        }
+        ForceInputs::Momenta => {
+            let set = ck.compile_all(what, list, &parsed.forces, &cotangent()?)?;
+            Ok(ExprForce::with_inputs(set, ForceInputs::Momenta))
+        }
+    }
+}
+
+/// Whether the forces are written in the momenta (`f_H`, some name `p_…` that is not a
+/// coordinate, velocity or parameter) or in the velocities (`f_L`); both at once is refused
+/// at the second kind's first use.
+fn force_inputs(
+    ck: &Checker<'_>,
+    (list, parsed): (&SpannedList<String>, &[Expr]),
+    coordinates: &[String],
+    tangent: &Symbols,
+) -> Result<ForceInputs, Diagnostic> {
+    let known: Vec<&str> = tangent.names().collect();
+    let velocities: Vec<String> = coordinates.iter().map(|c| velocity_name(c)).collect();
+    let (mut momentum, mut velocity) = (None, None);
+    for (i, expr) in parsed.iter().enumerate() {
+        for id in expr.identifiers() {
+            if id.name.starts_with("p_") && !known.contains(&id.name) {
+                momentum.get_or_insert((i, id.name, id.span));
+            } else if velocities.iter().any(|v| v == id.name) {
+                velocity.get_or_insert((i, id.name, id.span));
+            }
+        }
+    }
+    match (momentum, velocity) {
+        (None, _) => Ok(ForceInputs::Velocities),
+        (Some(_), None) => Ok(ForceInputs::Momenta),
+        (Some((_, p, _)), Some((i, v, span))) => {
+            let msg = format!(
+                "the forces use both the velocity `{v}` and the momentum `{p}`: write them all in \
+                 velocities (f_L) or all in momenta (f_H, run as f_H ∘ FL)"
+            );
+            let e = parsed[i].error_at(span, msg, None);
+            let value = &list.get_ref()[i];
+            Err(ck.expr_error(&format!("[system] forces[{i}]"), value, &e))
+        }
+    }
 }
 
 fn constraints(

@@ -14,6 +14,7 @@ use std::fmt::Write as _;
 use marsden_expr::ProgramSet;
 
 use crate::model::MomentumMap as _;
+use crate::problem::method::order_text;
 use crate::problem::{InitialData, LagrangianSpec, RunSpec};
 use crate::run::output;
 use crate::run::start::Start;
@@ -132,11 +133,11 @@ fn integrator(out: &mut Lines, spec: &RunSpec) {
         Some(t_end) => format!("t_end = {t_end} → {} steps", g.steps),
         None => format!("{} steps", g.steps),
     };
-    let (method, order) = (&i.method, i.method.order());
+    let (method, order) = (&i.method, order_text(i.method.order()));
     let span = format!("t = {} → {}", g.t0, g.t_end());
     out.line(
         "integrator",
-        format!("{method} (order {order}), h = {}, {length}, {span}", g.h),
+        format!("{method} ({order}), h = {}, {length}, {span}", g.h),
     );
 
     let (tol, max) = (i.newton.residual_tolerance, i.newton.max_iterations);

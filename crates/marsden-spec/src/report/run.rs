@@ -21,12 +21,12 @@ pub fn render(outcome: &Outcome) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "{}: {}, {}, {} (order {}), h = {}",
+        "{}: {}, {}, {} ({}), h = {}",
         s.name,
         s.system,
         count_coordinates(&s.coordinates),
         s.method,
-        s.order,
+        crate::problem::method::order_text(s.order),
         s.h
     );
     let per_step = if s.steps > 0 {

@@ -92,7 +92,20 @@ pub fn certify<L: Lagrangian, F: Force, C: Constraint, G: GroupAction>(
     (method, newton, h): (&Method, NewtonOptions, f64),
     ends: &Ends<'_>,
 ) -> Certificate {
-    method.dispatch(Certify {
+    let Some(rule) = method.rule() else {
+        return Certificate {
+            symplecticity: Symplecticity {
+                start: None,
+                end: None,
+                start_absolute: None,
+                end_absolute: None,
+                expected_symplectic: !force.is_active(),
+                note: Some("not available for method = \"exact\" (no step Jacobian)".to_owned()),
+            },
+            equivariance: Vec::new(),
+        };
+    };
+    rule.dispatch(Certify {
         lagrangian,
         force,
         constrained: constraint.count() > 0,

@@ -3,10 +3,11 @@
 
 use std::time::Instant;
 
+use marsden::discrete::exact::ExactDiscreteLagrangian;
 use marsden::discrete::rules::WithRule;
 use marsden::{
-    Constraint, Force, Lagrangian, Observer, Problem, Rule, RunFailure, SolveOptions, Statistics,
-    Trajectory,
+    Constraint, Force, Integrator, Lagrangian, Observer, Problem, Rule, RunFailure, SolveOptions,
+    Statistics, Trajectory, simulate,
 };
 use marsden_io::RowSink;
 
@@ -53,7 +54,8 @@ pub struct RunRecord {
     pub certificate: Option<Certificate>,
 }
 
-/// Solves `problem` with `method` (dispatch on the rule type: one monomorphised run per rule).
+/// Solves `problem` with `method` (dispatch on the rule type: one monomorphised run per rule;
+/// `exact` steps `L_d^E` by shooting).
 pub fn solve<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
     problem: &Problem<L, F, C>,
     method: &Method,
@@ -73,11 +75,36 @@ pub fn solve<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
             self.problem.solve_with(rule, self.options, self.observer)
         }
     }
-    method.dispatch(Solve {
-        problem,
-        options,
-        observer,
-    })
+    match method.rule() {
+        Some(rule) => rule.dispatch(Solve {
+            problem,
+            options,
+            observer,
+        }),
+        None => solve_exact(problem, options, observer),
+    }
+}
+
+/// `method = "exact"`: the integrator steps `L_d^E` of the problem's Lagrangian by shooting
+/// (forces and constraints were refused when the file was read).
+fn solve_exact<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
+    problem: &Problem<L, F, C>,
+    options: &SolveOptions,
+    observer: &mut O,
+) -> Result<Trajectory, Box<RunFailure>> {
+    let l = problem.lagrangian();
+    let failure = |error| {
+        let trajectory = Trajectory::new(l.dof(), 0, problem.grid().h);
+        Box::new(RunFailure { error, trajectory })
+    };
+    let exact = ExactDiscreteLagrangian::new(l);
+    let mut integrator = Integrator::new(exact)
+        .with_options(options.newton)
+        .map_err(failure)?
+        .with_compensated_summation(options.compensated);
+    integrator.set_velocity_hint(problem.initial_velocity());
+    let (start, grid) = (problem.start().clone(), problem.grid());
+    simulate(&mut integrator, start, grid, &options.run, observer).into_result()
 }
 
 /// [`solve`], and for an active force and a two-point rule the discrete energy balance of every
@@ -130,13 +157,16 @@ where
             (result, Some((summary, series, noether.balances())))
         }
     }
-    method.dispatch(Solve {
-        problem,
-        maps,
-        options,
-        observer,
-        every,
-    })
+    match method.rule() {
+        Some(rule) => rule.dispatch(Solve {
+            problem,
+            maps,
+            options,
+            observer,
+            every,
+        }),
+        None => (solve_exact(problem, options, observer), None),
+    }
 }
 
 /// A run's result and, for a forced run with a two-point rule, its energy balance and the
@@ -265,10 +295,11 @@ impl WithLagrangian for Runner<'_> {
     type Output = Result<RunRecord, Diagnostic>;
     fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output {
         let s = &self.spec.system;
-        let parts = (lagrangian, &s.force, &s.constraint, s.symmetries.as_slice());
+        let force = s.force.on(lagrangian);
+        let parts = (lagrangian, &force, &s.constraint, s.symmetries.as_slice());
         let mut record = run_problem(parts, self.spec, self.destination, self.controls)?;
         if self.spec.analysis.certify {
-            record.certificate = Some(certificate(self.spec, lagrangian, &record)?);
+            record.certificate = Some(certificate(self.spec, (lagrangian, &force), &record)?);
         }
         Ok(record)
     }
@@ -276,9 +307,9 @@ impl WithLagrangian for Runner<'_> {
 
 /// The certificates of `record`, a run of `spec` with `lagrangian` (from its initial state and
 /// its last good state).
-fn certificate<L: Lagrangian>(
+fn certificate<L: Lagrangian, F: Force>(
     spec: &RunSpec,
-    lagrangian: &L,
+    (lagrangian, force): (&L, &F),
     record: &RunRecord,
 ) -> Result<Certificate, Diagnostic> {
     let s = &spec.system;
@@ -301,7 +332,7 @@ fn certificate<L: Lagrangian>(
         .collect();
     let i = &spec.integrator;
     Ok(certify(
-        (lagrangian, &s.force, &s.constraint),
+        (lagrangian, force, &s.constraint),
         (&names, &s.symmetries),
         (&i.method, i.newton, i.grid.h),
         &ends,

@@ -71,8 +71,8 @@ pub struct Summary {
     /// Method name as in the problem file.
     pub method: String,
     /// Order of the method, which a constrained run keeps (the Gauss rules, which would not,
-    /// are refused with constraints).
-    pub order: u32,
+    /// are refused with constraints); `null` for `exact` (no truncation error).
+    pub order: Option<u32>,
     /// Time step.
     pub h: f64,
     /// Steps completed.
