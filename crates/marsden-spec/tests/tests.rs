@@ -14,6 +14,8 @@ mod structure;
 mod controls;
 // Hostile inputs: limits, honest reports, safe outputs.
 mod robust;
+// `[sensitivity]`: Jacobians of the run against closed forms and finite differences.
+mod sensitivity;
 
 use std::path::{Path, PathBuf};
 

@@ -12,12 +12,14 @@ pub mod force;
 pub mod hamiltonian;
 pub mod inputs;
 pub mod lagrangian;
+pub mod parametric;
 pub mod symmetry;
 
 pub use constraint::ExprConstraint;
 pub use force::ExprForce;
 pub use hamiltonian::{ExprHamiltonian, HamiltonianExprLagrangian};
 pub use lagrangian::ExprLagrangian;
+pub use parametric::{ExprParametric, ParametricTexts};
 pub use symmetry::{MomentumMap, Symmetry};
 
 /// Names and slots of the inputs of a Lagrangian or force expression.

@@ -9,6 +9,7 @@ use serde::Serialize;
 
 use super::balance::BalanceSummary;
 use super::output::SUMMARY_JSON;
+use super::sensitivity::SensitivitySummary;
 use super::solve::RunRecord;
 use crate::problem::{LagrangianSpec, RunSpec};
 
@@ -96,6 +97,10 @@ pub struct Summary {
     /// The discrete energy balance of a forced run with a two-point method, over every step
     /// (null otherwise).
     pub energy_balance: Option<BalanceSummary>,
+    /// `[sensitivity]`: the Jacobian of the final `(q, p)` with respect to the initial state
+    /// and the named parameters (absent without `[sensitivity]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sensitivity: Option<SensitivitySummary>,
 }
 
 /// `energy { … }`.
@@ -281,6 +286,7 @@ impl Summary {
             },
             energy_not_conserved: not_conserved,
             energy_balance: record.balance,
+            sensitivity: None,
         }
     }
 
