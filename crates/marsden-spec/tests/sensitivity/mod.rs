@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use marsden_spec::{Controls, Outcome, RunSpec, RunStatus, Store, execute, from_toml_str};
+use marsden_spec::{Controls, Outcome, RunSpec, RunStatus, Store, execute};
 
 /// Runs `text` into `out` (files and memory), checking that it completed.
 fn run(text: &str, out: &Path) -> Outcome {
@@ -12,7 +12,7 @@ fn run(text: &str, out: &Path) -> Outcome {
         "{text}\n[output]\ndir = \"{}\"\nplots = false\n",
         out.display()
     );
-    let spec = from_toml_str(&text, "sensitivity.toml").unwrap_or_else(|d| panic!("{d}"));
+    let spec = RunSpec::from_toml_str(&text, "sensitivity.toml").unwrap_or_else(|d| panic!("{d}"));
     let controls = Controls::default();
     let outcome = execute(&spec, Store::FilesAndMemory, &controls).unwrap();
     assert_eq!(outcome.summary.status, RunStatus::Completed);
@@ -120,7 +120,7 @@ fn csv_output_flattens_the_jacobians_with_a_header() {
         "{text}\n[output]\ndir = \"{}\"\nplots = false\nformat = \"csv\"\nevery = 50\n",
         dir.path().display()
     );
-    let spec: RunSpec = from_toml_str(&spec_text, "csv.toml").unwrap();
+    let spec = RunSpec::from_toml_str(&spec_text, "csv.toml").unwrap();
     let outcome = execute(&spec, Store::Files, &Controls::default()).unwrap();
     assert_eq!(outcome.summary.status, RunStatus::Completed);
     let table = marsden_io::read_csv(dir.path().join("sensitivity.csv")).unwrap();
@@ -233,7 +233,7 @@ parameters = ["c"]
 }
 
 fn refusal(text: &str) -> String {
-    match from_toml_str(text, "refused.toml") {
+    match RunSpec::from_toml_str(text, "refused.toml") {
         Ok(_) => panic!("accepted:\n{text}"),
         Err(d) => d.to_string(),
     }
