@@ -18,6 +18,8 @@ mod controls;
 mod robust;
 // Certificates and symmetries: named symmetries, certify = true, the forced Noether balance.
 mod certify;
+// `[sensitivity]`: Jacobians of the run against closed forms and finite differences.
+mod sensitivity;
 
 use std::path::{Path, PathBuf};
 

@@ -52,6 +52,9 @@ pub fn run(args: &RunArgs) -> Result<Status, CliError> {
     }
     if !args.quiet {
         print!("{}", report::run::render(&outcome));
+        if let Some(sensitivity) = &outcome.summary.sensitivity {
+            println!("{}", marsden_spec::run::sensitivity::describe(sensitivity));
+        }
     }
     let s = &outcome.summary;
     let dir = spec.output.dir.display();

@@ -20,6 +20,13 @@ pub enum NpyShape {
         /// Values per row.
         columns: usize,
     },
+    /// A 3-D array `(rows, r, c)`: each row is one `r × c` matrix, row-major.
+    Stack {
+        /// Rows of each matrix.
+        rows: usize,
+        /// Columns of each matrix.
+        columns: usize,
+    },
 }
 
 impl NpyShape {
@@ -28,6 +35,7 @@ impl NpyShape {
         match self {
             Self::Vector => 1,
             Self::Matrix { columns } => columns,
+            Self::Stack { rows, columns } => rows * columns,
         }
     }
 
@@ -35,6 +43,10 @@ impl NpyShape {
         match self {
             Self::Vector => vec![rows],
             Self::Matrix { columns } => vec![rows, columns as u64],
+            Self::Stack {
+                rows: r,
+                columns: c,
+            } => vec![rows, r as u64, c as u64],
         }
     }
 }

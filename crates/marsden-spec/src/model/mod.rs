@@ -13,6 +13,7 @@ pub mod force;
 pub mod hamiltonian;
 pub mod inputs;
 pub mod lagrangian;
+pub mod parametric;
 pub mod symmetry;
 
 pub use constraint::ExprConstraint;
@@ -20,6 +21,7 @@ pub use discrete_lagrangian::ExprDiscreteLagrangian;
 pub use force::{ExprForce, ForceInputs, LagrangianForce};
 pub use hamiltonian::{ExprHamiltonian, HamiltonianExprLagrangian};
 pub use lagrangian::ExprLagrangian;
+pub use parametric::{ExprParametric, ParametricTexts};
 pub use symmetry::{MomentumMap, Symmetry};
 
 /// Names and slots of the inputs of a Lagrangian or force expression.

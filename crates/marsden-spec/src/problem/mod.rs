@@ -17,6 +17,7 @@ pub mod named_symmetry;
 pub mod nbody_file;
 pub mod parameters;
 pub mod raw;
+pub mod sensitivity;
 pub mod settings;
 pub mod spec;
 pub mod sweep;
@@ -26,6 +27,7 @@ pub mod toml_error;
 use std::path::{Path, PathBuf};
 
 pub use method::Method;
+pub use sensitivity::SensitivitySpec;
 pub use spec::{
     Format, InitialData, InitialSpec, IntegratorSpec, LagrangianSpec, OutputSpec, Overrides,
     RunSpec, SpecSpans, SystemSpec,
@@ -179,6 +181,7 @@ fn validate_raw(
         }
         false => None,
     };
+    let sensitivity = sensitivity::sensitivity(&ck, raw.sensitivity.as_ref(), &system)?;
     let system_table = raw.system.as_ref().map(|s| s.get_ref());
     let lagrangian_span = system_table
         .and_then(|s| (s.lagrangian.as_ref().or(s.builtin.as_ref())).or(s.hamiltonian.as_ref()))
@@ -196,6 +199,7 @@ fn validate_raw(
         output,
         spans,
         sweep,
+        sensitivity,
         analysis: spec::AnalysisSpec {
             every_step: (raw.analysis.as_ref())
                 .and_then(|a| a.get_ref().every_step.as_ref())

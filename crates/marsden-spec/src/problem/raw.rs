@@ -34,6 +34,9 @@
 //! format = "csv"
 //! every = 1
 //! plots = true
+//! [sensitivity]              # optional: ∂(q, p)/∂(q₀, p₀, parameters) along the run
+//! initial = true
+//! parameters = ["l"]
 //! [sweep]                    # optional: an ensemble of runs
 //! parameter = "l"            # or initial = "q[0]"
 //! values = [0.5, 1.0]        # or range = { start = 0.1, stop = 1.0, count = 10 }
@@ -65,6 +68,9 @@ pub struct RawProblem {
     pub sweep: Option<Spanned<RawSweep>>,
     /// `[analysis]`: what is monitored besides the stored rows.
     pub analysis: Option<Spanned<RawAnalysis>>,
+    /// `[sensitivity]`: the Jacobian of the run with respect to its initial state and
+    /// parameters.
+    pub sensitivity: Option<Spanned<RawSensitivity>>,
 }
 
 /// `[sweep]`: what is swept (`parameter` or `initial`) and over what (`values` or `range`).
@@ -330,4 +336,14 @@ pub struct RawAnalysis {
     /// Certificates: the symplecticity defect of the step map at the start and the end, and
     /// the equivariance defect of `L_d` for each symmetry (default false).
     pub certify: Option<Spanned<bool>>,
+}
+
+/// `[sensitivity]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSensitivity {
+    /// Differentiate with respect to the initial state `(q₀, p₀)` (default false).
+    pub initial: Option<Spanned<bool>>,
+    /// Differentiate with respect to these scalar parameters.
+    pub parameters: Option<SpannedList<String>>,
 }

@@ -48,6 +48,8 @@ pub struct RunSpec {
     pub sweep: Option<super::SweepSpec>,
     /// `[analysis]`.
     pub analysis: AnalysisSpec,
+    /// `[sensitivity]`: the derivatives computed beside the run (`None`: none).
+    pub sensitivity: Option<super::SensitivitySpec>,
 }
 
 /// `[analysis]`, validated.

@@ -6,9 +6,11 @@ use std::path::PathBuf;
 
 use super::controls::Controls;
 use super::samples::{NullSink, Samples, Tee};
+use super::sensitivity::SensitivitySummary;
+use super::solve::RunRecord;
 use super::solve::{Destination, Runner};
 use super::summary::Summary;
-use super::{balance, output, plots, start};
+use super::{balance, output, plots, sensitivity, start};
 use crate::error::{Diagnostic, Error};
 use crate::problem::RunSpec;
 
@@ -119,7 +121,7 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
         controls,
     }
     .run()?;
-    let mut warnings = start.warnings;
+    let mut warnings = start.warnings.clone();
     let mut written = Vec::new();
     if let Some(sink) = files.as_mut() {
         if let Err(e) = sink.finish() {
@@ -146,7 +148,12 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
         .into_iter()
         .map(str::to_owned)
         .collect();
+    let sensitivity = derivatives(spec, &record, &start, store.files().then_some(&dir));
+    if let Some((_, Some(file))) = &sensitivity {
+        written.push(file.clone());
+    }
     let mut summary = Summary::new(spec, &record, columns, written);
+    summary.sensitivity = sensitivity.map(|(s, _)| s);
     if !store.files() {
         summary.output.format = "memory";
     }
@@ -161,4 +168,40 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
         samples,
         warnings,
     })
+}
+
+/// `[sensitivity]`: the tangent run beside a completed run, its file written into `dir`;
+/// `None` without `[sensitivity]`. A failure is reported in the summary's block.
+fn derivatives(
+    spec: &RunSpec,
+    record: &RunRecord,
+    start: &start::Start,
+    dir: Option<&PathBuf>,
+) -> Option<(SensitivitySummary, Option<String>)> {
+    let asked = spec.sensitivity.as_ref()?;
+    let failed = |error: String| SensitivitySummary {
+        rows: Vec::new(),
+        columns: Vec::new(),
+        final_jacobian: Vec::new(),
+        samples: 0,
+        error: Some(error),
+    };
+    if record.error.is_some() || record.interrupted {
+        return Some((failed("the run did not complete".to_owned()), None));
+    }
+    let found = match sensitivity::compute(spec, asked, start) {
+        Ok(found) => found,
+        Err(e) => return Some((failed(e), None)),
+    };
+    let Some(dir) = dir else {
+        return Some((found.summary, None));
+    };
+    match sensitivity::write(dir, spec.output.format, &found) {
+        Ok(file) => Some((found.summary, Some(file))),
+        Err(e) => {
+            let mut summary = found.summary;
+            summary.error = Some(format!("writing the sensitivities failed: {e}"));
+            Some((summary, None))
+        }
+    }
 }

@@ -13,6 +13,7 @@
 //! | per sample | [`observer`] | one row `t, q, p, energy, J…, residual`, [`diagnostics`] |
 //! | where rows go | [`output`], [`samples`] | columns and writers of the files; in-memory [`Samples`] |
 //! | afterwards | [`summary`], [`plots`] | `summary.json`; the PNG plots (also `marsden plot`) |
+//! | derivatives | [`sensitivity`] | `[sensitivity]`: the tangent run's Jacobians, `sensitivity.npy` |
 //! | sweeps | [`sweep`], [`shard`], [`sweep_table`], [`sweep_writer`] | members in parallel ([`marsden::studies::ensemble`]), one row each, streamed to the table |
 //!
 //! Catalog systems and expressions reach the generic runner through
@@ -28,6 +29,7 @@ pub mod observer;
 pub mod output;
 pub mod plots;
 pub mod samples;
+pub mod sensitivity;
 pub mod shard;
 pub mod solve;
 pub mod start;

@@ -81,7 +81,7 @@ pub fn layout_from_columns(names: &[String]) -> marsden_io::Result<Layout> {
 }
 
 /// Files a previous run may have left in an output directory (and nothing else).
-const RUN_FILES: [&str; 15] = [
+const RUN_FILES: [&str; 17] = [
     TRAJECTORY_CSV,
     SUMMARY_JSON,
     "t.npy",
@@ -97,6 +97,8 @@ const RUN_FILES: [&str; 15] = [
     marsden_io::plot::CONSTRAINT_RESIDUAL_PNG,
     marsden_io::plot::MULTIPLIERS_PNG,
     super::balance::ENERGY_BALANCE_PNG,
+    super::sensitivity::SENSITIVITY_NPY,
+    super::sensitivity::SENSITIVITY_CSV,
 ];
 
 /// Removes the files of a previous run from `dir`, so that a directory never mixes two runs

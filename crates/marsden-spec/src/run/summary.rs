@@ -11,6 +11,7 @@ use super::balance::BalanceSummary;
 use super::certify::Certificate;
 use super::noether_balance::NoetherBalance;
 use super::output::SUMMARY_JSON;
+use super::sensitivity::SensitivitySummary;
 use super::solve::RunRecord;
 use crate::problem::{LagrangianSpec, RunSpec};
 
@@ -114,6 +115,10 @@ pub struct Summary {
     /// Certificates, with `[analysis] certify = true` (absent otherwise).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub certificate: Option<Certificate>,
+    /// `[sensitivity]`: the Jacobian of the final `(q, p)` with respect to the initial state
+    /// and the named parameters (absent without `[sensitivity]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sensitivity: Option<SensitivitySummary>,
 }
 
 /// `energy { … }`.
@@ -309,6 +314,7 @@ impl Summary {
             energy_balance: record.balance,
             noether_balance: record.noether_balance.clone(),
             certificate: record.certificate.clone(),
+            sensitivity: None,
         }
     }
 

@@ -80,15 +80,22 @@ impl<D: SensitiveStep + Clone> Checkpoints<D> {
         let cols = 2 * stepper.dof() + stepper.parameters();
         let width = 2 * stepper.dof() * cols;
         segment.first = first;
-        segment.states.truncate(0);
-        segment.states.push(start.clone());
-        segment.jacobians.resize_with(last - first, Vec::new);
-        let mut state = start.clone();
-        for (i, jac) in segment.jacobians.iter_mut().enumerate() {
+        // The states' buffers are kept from segment to segment (`clone_from` reuses them).
+        let len = last - first;
+        segment.states.resize_with(len + 1, || State {
+            t: 0.0,
+            q: Vec::new(),
+            p: Vec::new(),
+        });
+        segment.jacobians.resize_with(len, Vec::new);
+        segment.states[0].clone_from(start);
+        for i in 0..len {
+            let (done, next) = segment.states.split_at_mut(i + 1);
+            let (state, jac) = (&mut next[0], &mut segment.jacobians[i]);
+            state.clone_from(&done[i]);
             jac.resize(width, 0.0);
-            stepper.step_with_sensitivity(&mut state, grid.h, jac)?;
+            stepper.step_with_sensitivity(state, grid.h, jac)?;
             state.t = grid.time(first + i + 1);
-            segment.states.push(state.clone());
         }
         Ok(())
     }

@@ -24,6 +24,8 @@
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
+use std::cell::RefCell;
+
 use super::DifferentiableStep;
 use crate::discrete::legendre::ActionAndForces;
 use crate::discrete::{DiscreteAction, DiscreteForce};
@@ -109,75 +111,100 @@ pub fn frozen_step_jacobian<A: DiscreteAction, F: DiscreteForce>(
     Error::check_len("q (free coordinates)", q0, dof.saturating_sub(np))?;
     Error::check_len("offsets", offsets, sn)?;
     Error::check_len("jacobian", jac, m * cols)?;
-    let x: Vec<f64> = q0
-        .iter()
-        .chain(theta)
-        .copied()
-        .chain((0..s).flat_map(|j| {
-            offsets[j * n..(j + 1) * n]
-                .iter()
-                .copied()
-                .chain(std::iter::repeat_n(0.0, np))
-        }))
-        .collect();
-    let f = ActionAndForces::new(action, force, (t0, h));
-    let mut parts = HessianParts::default();
-    ad::partial_hessian(&f, &x, 0..x.len(), 0..x.len(), &mut parts);
-    let b = Blocks {
-        parts: &parts,
-        dof,
-        s,
-        forced: force.is_active(),
-    };
-    // Free row r = i·n + a (control point i, component a) sits at i·dof + a in x.
-    let at = |r: usize| (r / n) * dof + r % n;
-    // Equations R_r, r = i·n + a for control points i < s; unknowns z = the free offsets.
-    let a_mat: Vec<f64> = (0..sn * sn)
-        .map(|k| b.d_equation(k / sn / n, (k / sn) % n, dof + at(k % sn)))
-        .collect();
-    let mut lu = Lu::new();
-    lu.factor(&a_mat, sn).map_err(|e| {
-        Error::Step(StepFailure {
-            step: 0,
-            t: t0,
-            cause: StepError::SingularJacobian {
-                iteration: 0,
-                pivot: e.pivot,
-            },
-        })
-    })?;
-    // The x-column of input column c: q_k (c < n), none for p_k, θ (c ≥ 2n).
-    let x_col = |c: usize| match c {
-        c if c < n => Some(c),
-        c if c >= m => Some(n + c - m),
-        _ => None,
-    };
-    // dz = −A⁻¹ [∂R/∂q | ∂R/∂p | ∂R/∂θ], column by column (sn × cols, column-major in `dz`).
-    let (mut dz, mut col, mut scratch) =
-        (vec![0.0; sn * cols], vec![0.0; sn], Vec::with_capacity(sn));
-    for c in 0..cols {
-        for (r, x) in col.iter_mut().enumerate() {
-            let (i, a) = (r / n, r % n);
-            *x = -match x_col(c) {
-                Some(xc) => b.d_equation(i, a, xc),
-                None => f64::from(u8::from(i == 0 && a == c - n)),
-            };
+    WORKSPACE.with_borrow_mut(|w| {
+        let Workspace {
+            x,
+            parts,
+            a_mat,
+            lu,
+            dz,
+            col,
+            scratch,
+        } = w;
+        x.clear();
+        x.extend(q0.iter().chain(theta));
+        for j in 0..s {
+            x.extend_from_slice(&offsets[j * n..(j + 1) * n]);
+            x.extend(std::iter::repeat_n(0.0, np));
         }
-        lu.solve(&mut col, &mut scratch);
-        dz[c * sn..(c + 1) * sn].copy_from_slice(&col);
-    }
-    for a in 0..n {
+        let f = ActionAndForces::new(action, force, (t0, h));
+        ad::partial_hessian(&f, x, 0..x.len(), 0..x.len(), parts);
+        let b = Blocks {
+            parts,
+            dof,
+            s,
+            forced: force.is_active(),
+        };
+        // Free row r = i·n + a (control point i, component a) sits at i·dof + a in x.
+        let at = |r: usize| (r / n) * dof + r % n;
+        // Equations R_r, r = i·n + a for control points i < s; unknowns z = the free offsets.
+        a_mat.clear();
+        a_mat
+            .extend((0..sn * sn).map(|k| b.d_equation(k / sn / n, (k / sn) % n, dof + at(k % sn))));
+        lu.factor(a_mat, sn).map_err(|e| {
+            Error::Step(StepFailure {
+                step: 0,
+                t: t0,
+                cause: StepError::SingularJacobian {
+                    iteration: 0,
+                    pivot: e.pivot,
+                },
+            })
+        })?;
+        // The x-column of input column c: q_k (c < n), none for p_k, θ (c ≥ 2n).
+        let x_col = |c: usize| match c {
+            c if c < n => Some(c),
+            c if c >= m => Some(n + c - m),
+            _ => None,
+        };
+        // dz = −A⁻¹ [∂R/∂q | ∂R/∂p | ∂R/∂θ], column by column (sn × cols, column-major).
+        dz.resize(sn * cols, 0.0);
+        col.resize(sn, 0.0);
         for c in 0..cols {
-            let delta_s = dz[c * sn + (s - 1) * n + a];
-            jac[a * cols + c] = f64::from(u8::from(a == c)) + delta_s;
-            let direct = x_col(c).map_or(0.0, |xc| b.d_equation(s, a, xc));
-            let through: f64 = (0..sn)
-                .map(|r| b.d_equation(s, a, dof + at(r)) * dz[c * sn + r])
-                .sum();
-            jac[(n + a) * cols + c] = direct + through;
+            for (r, x) in col.iter_mut().enumerate() {
+                let (i, a) = (r / n, r % n);
+                *x = -match x_col(c) {
+                    Some(xc) => b.d_equation(i, a, xc),
+                    None => f64::from(u8::from(i == 0 && a == c - n)),
+                };
+            }
+            lu.solve(col, scratch);
+            dz[c * sn..(c + 1) * sn].copy_from_slice(col);
         }
-    }
-    Ok(())
+        for a in 0..n {
+            for c in 0..cols {
+                let delta_s = dz[c * sn + (s - 1) * n + a];
+                jac[a * cols + c] = f64::from(u8::from(a == c)) + delta_s;
+                let direct = x_col(c).map_or(0.0, |xc| b.d_equation(s, a, xc));
+                let through: f64 = (0..sn)
+                    .map(|r| b.d_equation(s, a, dof + at(r)) * dz[c * sn + r])
+                    .sum();
+                jac[(n + a) * cols + c] = direct + through;
+            }
+        }
+        Ok(())
+    })
+}
+
+/// The buffers of [`frozen_step_jacobian`], kept per thread so that a run of step Jacobians
+/// (a tangent run, an adjoint's recomputed segment) allocates nothing after its first step.
+#[derive(Debug, Default)]
+struct Workspace {
+    /// `x = (q_k, θ, Δ₁, 0, …, Δ_s, 0)`.
+    x: Vec<f64>,
+    /// The hyper-dual Hessian and force Jacobian.
+    parts: HessianParts,
+    /// `∂R/∂z` and its factorisation.
+    a_mat: Vec<f64>,
+    lu: Lu,
+    /// `dz` (column-major), one right-hand side and the solver's scratch.
+    dz: Vec<f64>,
+    col: Vec<f64>,
+    scratch: Vec<f64>,
+}
+
+thread_local! {
+    static WORKSPACE: RefCell<Workspace> = RefCell::new(Workspace::default());
 }
 
 impl<A: DiscreteAction, F: DiscreteForce> DifferentiableStep for Integrator<A, F, Unconstrained> {

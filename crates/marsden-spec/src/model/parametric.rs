@@ -1,0 +1,176 @@
+//! [`ExprParametric`]: a problem file's Lagrangian and forces with some of its parameters read
+//! as inputs, for their sensitivities ([`marsden::sensitivity::ParametricModel`]).
+//!
+//! The run itself compiles every parameter as a constant. To differentiate with respect to a
+//! parameter `θ_j`, the same texts are compiled again with `θ_j` as an input slot after `t`,
+//! `[q₁ … qₙ, q̇₁ … q̇ₙ, t, θ₁ … θ_P]`; the other parameters stay constants. At `θ` equal to
+//! the file's values the model is the file's model, and the frozen-parameter step Jacobian of
+//! [`marsden::sensitivity::ParametricIntegrator`] gives `∂(q_{k+1}, p_{k+1})/∂θ` beside the
+//! state columns ([MW01] §1.5: the step is the solution of the discrete Euler–Lagrange
+//! equations; the implicit function theorem differentiates it).
+//!
+//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+
+use marsden::Scalar;
+use marsden::sensitivity::ParametricModel;
+use marsden_expr::{Expr, Program, Symbols};
+
+/// Inputs held on the stack up to this length (n ≤ 7 with two parameters); longer ones use
+/// the heap.
+const STACK: usize = 18;
+
+/// A Lagrangian and forces compiled over `[q, q̇, t, θ]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExprParametric {
+    dof: usize,
+    names: Vec<String>,
+    lagrangian: Program,
+    forces: Vec<Program>,
+}
+
+/// The texts of a model and the names they are compiled against.
+#[derive(Debug, Clone, Copy)]
+pub struct ParametricTexts<'a> {
+    /// The Lagrangian's text and the coordinate names it uses.
+    pub lagrangian: (&'a str, &'a [String]),
+    /// One force text per coordinate (empty: no force) and the coordinate names they use.
+    pub forces: (&'a [&'a str], &'a [String]),
+    /// Every scalar parameter with its value.
+    pub constants: &'a [(String, f64)],
+}
+
+impl ExprParametric {
+    /// Compiles `texts` with the parameters `names` as inputs (in that order) and every other
+    /// parameter as a constant.
+    ///
+    /// # Errors
+    /// A text that does not parse or compile (it compiled with the parameters as constants,
+    /// so this does not happen for a validated file).
+    pub fn compile(texts: ParametricTexts<'_>, names: &[String]) -> Result<Self, String> {
+        let (l_text, l_coordinates) = texts.lagrangian;
+        let l_symbols = symbols(l_coordinates, texts.constants, names)?;
+        let lagrangian = compile(l_text, &l_symbols)?;
+        let (f_texts, f_coordinates) = texts.forces;
+        let f_symbols = symbols(f_coordinates, texts.constants, names)?;
+        let forces = f_texts
+            .iter()
+            .map(|text| compile(text, &f_symbols))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Self {
+            dof: l_coordinates.len(),
+            names: names.to_vec(),
+            lagrangian,
+            forces,
+        })
+    }
+
+    /// Whether any force text reads parameter `name`.
+    pub fn force_uses(&self, name: &str) -> bool {
+        self.forces
+            .iter()
+            .any(|f| f.names().iter().any(|n| n == name))
+    }
+}
+
+/// `[q, q̇, t]` as inputs, `names` as inputs after them, the other parameters as constants.
+fn symbols(
+    coordinates: &[String],
+    constants: &[(String, f64)],
+    names: &[String],
+) -> Result<Symbols, String> {
+    let inputs = crate::model::slots::tangent_inputs(coordinates);
+    let first = inputs.len();
+    let mut symbols = Symbols::with_inputs(&inputs).map_err(|e| e.to_string())?;
+    for (j, name) in names.iter().enumerate() {
+        symbols
+            .add_input(name, first + j)
+            .map_err(|e| e.to_string())?;
+    }
+    for (name, value) in constants.iter().filter(|(c, _)| !names.contains(c)) {
+        symbols
+            .add_constant(name, *value)
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(symbols)
+}
+
+fn compile(text: &str, symbols: &Symbols) -> Result<Program, String> {
+    Expr::parse(text)
+        .and_then(|e| e.compile(symbols))
+        .map_err(|e| format!("`{text}`: {e}"))
+}
+
+/// Calls `body` with `[q, v, t, θ]`.
+fn with_parametric_inputs<S: Scalar, R>(
+    (q, v, t, theta): (&[S], &[S], S, &[S]),
+    body: impl FnOnce(&[S]) -> R,
+) -> R {
+    let n = q.len();
+    let len = 2 * n + 1 + theta.len();
+    let (mut stack, mut heap);
+    let x: &mut [S] = if len <= STACK {
+        stack = [t; STACK];
+        &mut stack[..len]
+    } else {
+        heap = vec![t; len];
+        &mut heap
+    };
+    x[..n].copy_from_slice(q);
+    x[n..2 * n].copy_from_slice(v);
+    x[2 * n] = t;
+    x[2 * n + 1..].copy_from_slice(theta);
+    body(x)
+}
+
+impl ParametricModel for ExprParametric {
+    fn dof(&self) -> usize {
+        self.dof
+    }
+
+    fn parameter_names(&self) -> Vec<String> {
+        self.names.clone()
+    }
+
+    fn lagrangian_with<S: Scalar>(&self, theta: &[S], t: S, q: &[S], v: &[S]) -> S {
+        with_parametric_inputs((q, v, t, theta), |x| self.lagrangian.eval(x))
+    }
+
+    fn force_with<S: Scalar>(&self, theta: &[S], t: S, q: &[S], v: &[S], out: &mut [S]) {
+        if self.forces.is_empty() {
+            out.iter_mut().for_each(|f| *f = S::from(0.0));
+            return;
+        }
+        with_parametric_inputs((q, v, t, theta), |x| {
+            for (f, program) in out.iter_mut().zip(&self.forces) {
+                *f = program.eval(x);
+            }
+        });
+    }
+
+    fn is_forced(&self) -> bool {
+        !self.forces.is_empty()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parameters_become_inputs_after_t() {
+        let coordinates = vec!["x".to_owned()];
+        let constants = vec![("k".to_owned(), 4.0), ("c".to_owned(), 0.5)];
+        let texts = ParametricTexts {
+            lagrangian: ("0.5*x_dot^2 - 0.5*k*x^2", &coordinates),
+            forces: (&["-c*x_dot"], &coordinates),
+            constants: &constants,
+        };
+        let model = ExprParametric::compile(texts, &["k".to_owned()]).unwrap();
+        // L(t, x = 1, v = 2; k = 9) = 2 − 4.5; the force keeps c = 0.5 as a constant.
+        assert_eq!(model.lagrangian_with(&[9.0], 0.0, &[1.0], &[2.0]), -2.5);
+        let mut f = [0.0];
+        model.force_with(&[9.0], 0.0, &[1.0], &[2.0], &mut f);
+        assert_eq!(f, [-1.0]);
+        assert!(!model.force_uses("k"));
+    }
+}

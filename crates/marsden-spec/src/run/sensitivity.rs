@@ -1,0 +1,251 @@
+//! `[sensitivity]` of a run: the Jacobian `∂(q_k, p_k)/∂(q₀, p₀, θ)` at the stored steps and
+//! at the end, by a tangent run beside the file's run ([`marsden::sensitivity::tangent`]).
+//!
+//! The tangent run takes the same steps from the same initial state on the same grid; it uses
+//! the general Newton path (the fast paths of separable Lagrangians keep no stage offsets to
+//! differentiate), so its states agree with the file's run to round-off, not bit for bit,
+//! and the run's own outputs are untouched. Each step's Jacobian comes from the implicit
+//! function theorem on the converged step ([MW01] §1.5), `S_{k+1} = DF_x S_k + [0 | DF_θ]`.
+//! With parameters, the step is that of [`ExprParametric`] (the file's texts with the named
+//! parameters as inputs) at the file's values.
+//!
+//! Files: `sensitivity.npy` of shape `[samples, 2n, columns]`, or `sensitivity.csv` (one row
+//! per stored step: `t`, then the entries row by row, named `q_x/q0_x`) with `format = "csv"`.
+//!
+//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+
+use std::path::Path;
+
+use marsden::discrete::rules::WithRule;
+use marsden::sensitivity::{ParametricIntegrator, Tangent, TangentOptions, tangent};
+use marsden::{Integrator, Lagrangian, Rule, State};
+use marsden_io::{CsvWriter, NpyShape, NpyWriter};
+use serde::Serialize;
+
+use super::start::Start;
+use crate::catalog::WithLagrangian;
+use crate::model::ExprParametric;
+use crate::problem::{Format, RunSpec, SensitivitySpec};
+
+/// `sensitivity.npy`.
+pub const SENSITIVITY_NPY: &str = "sensitivity.npy";
+/// `sensitivity.csv`.
+pub const SENSITIVITY_CSV: &str = "sensitivity.csv";
+
+/// The derivatives of a run, as `summary.json` gives them.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SensitivitySummary {
+    /// Row names: `q_<coordinate>` then `p_<coordinate>`.
+    pub rows: Vec<String>,
+    /// Column names: `q0_<coordinate>`, `p0_<coordinate>` (with `initial = true`), then the
+    /// parameters.
+    pub columns: Vec<String>,
+    /// `∂(q_K, p_K)/∂(columns)` at the final state, one list per row.
+    #[serde(rename = "final")]
+    pub final_jacobian: Vec<Vec<f64>>,
+    /// Stored Jacobians (the entries of the sensitivity file).
+    pub samples: usize,
+    /// Why the derivatives could not be computed (null when they were).
+    pub error: Option<String>,
+}
+
+/// The tangent run's Jacobians restricted to the asked columns.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sensitivities {
+    /// What the summary shows.
+    pub summary: SensitivitySummary,
+    /// `(t_k, J_k)` at the stored steps, `J_k` row-major `2n × columns`.
+    pub samples: Vec<(f64, Vec<f64>)>,
+}
+
+/// Runs the tangent run of `spec` from `start`.
+///
+/// # Errors
+/// The core's error (a step that failed, a rule whose step cannot be differentiated), as text.
+pub fn compute(
+    spec: &RunSpec,
+    asked: &SensitivitySpec,
+    start: &Start,
+) -> Result<Sensitivities, String> {
+    let state = State {
+        t: start.t,
+        q: start.q.clone(),
+        p: start.p.clone(),
+    };
+    let Some(rule) = spec.integrator.method.rule() else {
+        return Err("method = \"exact\" has no step Jacobian to propagate; choose a rule".into());
+    };
+    let run = match &asked.model {
+        Some(model) => rule.dispatch(WithParameters { spec, model, state }),
+        None => spec
+            .system
+            .lagrangian
+            .dispatch(InitialOnly { spec, rule, state }),
+    }
+    .map_err(|e| e.to_string())?;
+    Ok(select(spec, asked, &run))
+}
+
+/// The columns asked for, with their names.
+fn select(spec: &RunSpec, asked: &SensitivitySpec, run: &Tangent) -> Sensitivities {
+    let coordinates = &spec.system.coordinates;
+    let n = run.n;
+    let mut picked: Vec<usize> = Vec::new();
+    let mut columns = Vec::new();
+    if asked.initial {
+        picked.extend(0..2 * n);
+        columns.extend(coordinates.iter().map(|c| format!("q0_{c}")));
+        columns.extend(coordinates.iter().map(|c| format!("p0_{c}")));
+    }
+    picked.extend(2 * n..run.columns);
+    columns.extend(asked.parameters.iter().cloned());
+    let rows: Vec<String> = (coordinates.iter().map(|c| format!("q_{c}")))
+        .chain(coordinates.iter().map(|c| format!("p_{c}")))
+        .collect();
+    let pick = |jac: &[f64]| -> Vec<f64> {
+        (0..2 * n)
+            .flat_map(|r| picked.iter().map(move |&c| (r, c)))
+            .map(|(r, c)| jac[r * run.columns + c])
+            .collect()
+    };
+    let last = pick(&run.jacobian);
+    let samples: Vec<(f64, Vec<f64>)> = (run.samples.iter())
+        .map(|s| (s.state.t, pick(&s.jacobian)))
+        .collect();
+    let width = picked.len();
+    Sensitivities {
+        summary: SensitivitySummary {
+            rows,
+            columns,
+            final_jacobian: last.chunks(width.max(1)).map(<[f64]>::to_vec).collect(),
+            samples: samples.len(),
+            error: None,
+        },
+        samples,
+    }
+}
+
+fn options(spec: &RunSpec) -> TangentOptions {
+    TangentOptions {
+        every: spec.output.every.max(1),
+    }
+}
+
+/// The tangent run of the file's own Lagrangian and forces (`P = 0`).
+struct InitialOnly<'a> {
+    spec: &'a RunSpec,
+    rule: &'a marsden::discrete::rules::Method,
+    state: State,
+}
+
+impl WithLagrangian for InitialOnly<'_> {
+    type Output = Result<Tangent, marsden::Error>;
+    fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output {
+        struct Run<'a, L> {
+            spec: &'a RunSpec,
+            lagrangian: &'a L,
+            state: State,
+        }
+        impl<L: Lagrangian> WithRule for Run<'_, L> {
+            type Output = Result<Tangent, marsden::Error>;
+            fn call<R: Rule>(self, rule: &R) -> Self::Output {
+                let spec = self.spec;
+                let n = self.lagrangian.dof();
+                let force = spec.system.force.on(self.lagrangian);
+                let force = rule.discretize_force(&force, n);
+                let mut vi = Integrator::new(rule.discretize(self.lagrangian))
+                    .with_force(force)
+                    .with_options(spec.integrator.newton)?
+                    .with_fast_paths(false);
+                tangent(&mut vi, self.state, &spec.integrator.grid, &options(spec))
+            }
+        }
+        self.rule.dispatch(Run {
+            spec: self.spec,
+            lagrangian,
+            state: self.state,
+        })
+    }
+}
+
+/// The tangent run of the parametric model at the file's parameter values.
+struct WithParameters<'a> {
+    spec: &'a RunSpec,
+    model: &'a ExprParametric,
+    state: State,
+}
+
+impl WithRule for WithParameters<'_> {
+    type Output = Result<Tangent, marsden::Error>;
+    fn call<R: Rule>(self, rule: &R) -> Self::Output {
+        use marsden::sensitivity::ParametricModel as _;
+        let spec = self.spec;
+        let theta: Vec<f64> = (self.model.parameter_names().iter())
+            .map(|name| {
+                (spec.system.parameters.iter())
+                    .find(|(n, _)| n == name)
+                    .map_or(f64::NAN, |(_, v)| *v)
+            })
+            .collect();
+        let newton = spec.integrator.newton;
+        let mut vi = ParametricIntegrator::new(rule, self.model.clone(), &theta, newton)?;
+        tangent(&mut vi, self.state, &spec.integrator.grid, &options(spec))
+    }
+}
+
+/// Writes the stored Jacobians into `dir` in `format`; returns the file's name.
+///
+/// # Errors
+/// An I/O error, as text.
+pub fn write(dir: &Path, format: Format, found: &Sensitivities) -> Result<String, String> {
+    let width = found.summary.rows.len() * found.summary.columns.len();
+    match format {
+        Format::Npy => {
+            let shape = NpyShape::Stack {
+                rows: found.summary.rows.len(),
+                columns: found.summary.columns.len(),
+            };
+            let mut w = NpyWriter::create(dir.join(SENSITIVITY_NPY), shape).map_err(text)?;
+            for (_, jac) in &found.samples {
+                w.write_row(jac).map_err(text)?;
+            }
+            w.finish().map_err(text)?;
+            Ok(SENSITIVITY_NPY.to_owned())
+        }
+        Format::Csv => {
+            let mut header = vec!["t".to_owned()];
+            for r in &found.summary.rows {
+                header.extend(found.summary.columns.iter().map(|c| format!("{r}/{c}")));
+            }
+            let mut w = CsvWriter::create(dir.join(SENSITIVITY_CSV), &header).map_err(text)?;
+            let mut row = Vec::with_capacity(width + 1);
+            for (t, jac) in &found.samples {
+                row.clear();
+                row.push(*t);
+                row.extend_from_slice(jac);
+                w.write_row(&row).map_err(text)?;
+            }
+            w.finish().map_err(text)?;
+            Ok(SENSITIVITY_CSV.to_owned())
+        }
+    }
+}
+
+fn text(e: marsden_io::Error) -> String {
+    e.to_string()
+}
+
+/// The console line: what was computed, and the largest entry of the final Jacobian.
+pub fn describe(summary: &SensitivitySummary) -> String {
+    if let Some(e) = &summary.error {
+        return format!("sensitivity: not computed: {e}");
+    }
+    let largest = (summary.final_jacobian.iter().flatten()).fold(0.0_f64, |m, x| m.max(x.abs()));
+    format!(
+        "sensitivity: ∂(q, p)/∂({}), {}×{} at {} stored steps; final max |entry| {largest:.3e}",
+        summary.columns.join(", "),
+        summary.rows.len(),
+        summary.columns.len(),
+        summary.samples,
+    )
+}
