@@ -19,6 +19,18 @@ fn run(text: &str, out: &Path) -> Outcome {
     outcome
 }
 
+/// Runs `text` into `out` with `format = "npy"`: the Jacobians go to `sensitivity.npy`.
+fn run_npy(text: &str, out: &Path) -> Outcome {
+    let text = format!(
+        "{text}\n[output]\ndir = \"{}\"\nplots = false\nformat = \"npy\"\n",
+        out.display()
+    );
+    let spec = RunSpec::from_toml_str(&text, "sensitivity.toml").unwrap_or_else(|d| panic!("{d}"));
+    let outcome = execute(&spec, Store::FilesAndMemory, &Controls::default()).unwrap();
+    assert_eq!(outcome.summary.status, RunStatus::Completed);
+    outcome
+}
+
 /// `summary.json` as written, read back.
 fn summary_json(dir: &Path) -> serde_json::Value {
     let text = std::fs::read_to_string(dir.join("summary.json")).unwrap();
@@ -71,7 +83,7 @@ initial = true
 #[test]
 fn r1_final_jacobian_is_the_cayley_matrix_to_the_nth_power() {
     let dir = tempfile::tempdir().unwrap();
-    let outcome = run(OSCILLATOR, dir.path());
+    let outcome = run_npy(OSCILLATOR, dir.path());
     let json = summary_json(dir.path());
     let block = &json["sensitivity"];
     assert_eq!(names(&block["rows"]), ["q_x", "p_x"]);
