@@ -1,45 +1,7 @@
 //! End-to-end: `[sweep]` ensembles, `--shard i/n`, N-body initial data from a file, and the
 //! bad input around them.
 
-use crate::util::{assert_rejected_with, fixture, marsden, run_ok};
-
-/// The numeric columns of a sweep's summary CSV (those before `status`; `error` is last and
-/// may hold commas inside its quotes).
-struct SweepCsv {
-    header: Vec<String>,
-    rows: Vec<Vec<f64>>,
-}
-
-fn sweep_table(run: &crate::util::Run, file: &str) -> SweepCsv {
-    let path = run.out.join(file);
-    let text = std::fs::read_to_string(&path)
-        .unwrap_or_else(|e| panic!("no {}: {e}\n{}", path.display(), run.stderr));
-    let mut lines = text.lines();
-    let header: Vec<String> = lines
-        .next()
-        .unwrap()
-        .split(',')
-        .map(str::to_owned)
-        .collect();
-    let numeric = header.iter().position(|h| h == "status").unwrap();
-    let rows = lines
-        .map(|line| {
-            line.split(',')
-                .take(numeric)
-                .map(|x| x.parse::<f64>().unwrap())
-                .collect()
-        })
-        .collect();
-    SweepCsv {
-        header: header[..numeric].to_vec(),
-        rows,
-    }
-}
-
-fn column(table: &SweepCsv, name: &str) -> Vec<f64> {
-    let i = table.header.iter().position(|h| h == name).unwrap();
-    table.rows.iter().map(|r| r[i]).collect()
-}
+use crate::util::{SweepTable, assert_rejected_with, fixture, marsden, run_ok};
 
 /// Eight pendulums released at rest from q₀ = 0.2 … 1.6: one row each, in order, with the
 /// swept value; the midpoint rule's energy error is bounded and grows with the amplitude
@@ -47,17 +9,17 @@ fn column(table: &SweepCsv, name: &str) -> Vec<f64> {
 #[test]
 fn a_sweep_writes_one_row_per_member_in_order() {
     let run = run_ok("pendulum_sweep.toml", &["--threads", "2"]);
-    let table = sweep_table(&run, "sweep.csv");
-    let members = column(&table, "member");
+    let table = SweepTable::read(&run.out.join("sweep.csv"));
+    let members = table.column("member");
     assert_eq!(members, (0..8).map(f64::from).collect::<Vec<_>>());
-    let q0 = column(&table, "q[0]");
+    let q0 = table.column("q[0]");
     for (k, q) in q0.iter().enumerate() {
         let expected = 0.2 + 0.2 * k as f64;
         assert!((q - expected).abs() < 1e-12, "member {k}: q0 {q}");
     }
-    let steps = column(&table, "steps");
+    let steps = table.column("steps");
     assert!(steps.iter().all(|s| *s == 400.0), "{steps:?}");
-    let energy = column(&table, "energy_max_rel_error");
+    let energy = table.column("energy_max_rel_error");
     assert!(energy.iter().all(|e| *e > 0.0 && *e < 1e-2), "{energy:?}");
     assert!(energy[7] > energy[0], "{energy:?}");
     assert!(
@@ -76,16 +38,17 @@ fn threads_and_shards_give_the_same_rows() {
     let read =
         |run: &crate::util::Run, file: &str| std::fs::read_to_string(run.out.join(file)).unwrap();
     assert_eq!(read(&one, "sweep.csv"), read(&two, "sweep.csv"));
-    let whole = sweep_table(&one, "sweep.csv");
-    let energy = column(&whole, "energy_max_rel_error");
+    let whole = SweepTable::read(&one.out.join("sweep.csv"));
+    let energy = whole.column("energy_max_rel_error");
     let mut seen = 0;
     for i in 0..3 {
         let shard = format!("{i}/3");
         let part = run_ok("pendulum_sweep.toml", &["--shard", &shard]);
-        let table = sweep_table(&part, &format!("sweep.shard-{i}-of-3.csv"));
-        for (m, e) in column(&table, "member")
+        let table = SweepTable::read(&part.out.join(format!("sweep.shard-{i}-of-3.csv")));
+        for (m, e) in table
+            .column("member")
             .iter()
-            .zip(column(&table, "energy_max_rel_error"))
+            .zip(table.column("energy_max_rel_error"))
         {
             let k = *m as usize;
             assert_eq!(k % 3, i, "shard {shard} ran member {k}");

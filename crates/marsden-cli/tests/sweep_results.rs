@@ -2,51 +2,7 @@
 //! maps of every member, the energy balance (not an energy error) of forced members, the
 //! `.npy` table — and the sweep plot.
 
-use std::path::Path;
-
-use crate::util::marsden;
-
-/// A sweep's table read back: the numeric columns (before `status`).
-struct Swept {
-    header: Vec<String>,
-    rows: Vec<Vec<f64>>,
-}
-
-impl Swept {
-    fn read(path: &Path) -> Self {
-        let text =
-            std::fs::read_to_string(path).unwrap_or_else(|e| panic!("no {}: {e}", path.display()));
-        let mut lines = text.lines();
-        let header: Vec<String> = lines
-            .next()
-            .unwrap()
-            .split(',')
-            .map(str::to_owned)
-            .collect();
-        let numeric = header.iter().position(|h| h == "status").unwrap();
-        let rows = lines
-            .map(|l| {
-                l.split(',')
-                    .take(numeric)
-                    .map(|x| x.parse().unwrap())
-                    .collect()
-            })
-            .collect();
-        Self {
-            header: header[..numeric].to_vec(),
-            rows,
-        }
-    }
-
-    fn column(&self, name: &str) -> Vec<f64> {
-        let i = self
-            .header
-            .iter()
-            .position(|h| h == name)
-            .unwrap_or_else(|| panic!("no column {name} in {:?}", self.header));
-        self.rows.iter().map(|r| r[i]).collect()
-    }
-}
+use crate::util::{SweepTable, marsden};
 
 /// Writes `text` as a problem file in a fresh directory and runs it.
 fn run_text(text: &str, extra: &[&str]) -> (tempfile::TempDir, crate::util::Run) {
@@ -85,7 +41,7 @@ fn a_grid_of_two_axes_is_every_combination_with_its_final_state() {
     let (_d, run) = run_text(&grid, &["--threads", "2"]);
     assert_eq!(run.code, 0, "{}", run.stderr);
     assert!(run.stdout.contains("l × q[0]"), "{}", run.stdout);
-    let table = Swept::read(&run.out.join("sweep.csv"));
+    let table = SweepTable::read(&run.out.join("sweep.csv"));
     assert_eq!(table.column("l"), [0.5, 0.5, 1.0, 1.0, 2.0, 2.0]);
     assert_eq!(table.column("q[0]"), [0.2, 0.4, 0.2, 0.4, 0.2, 0.4]);
     let one_axis = format!(
@@ -94,7 +50,7 @@ fn a_grid_of_two_axes_is_every_combination_with_its_final_state() {
     );
     let (_e, line) = run_text(&one_axis, &[]);
     assert_eq!(line.code, 0, "{}", line.stderr);
-    let line = Swept::read(&line.out.join("sweep.csv"));
+    let line = SweepTable::read(&line.out.join("sweep.csv"));
     let grid_q: Vec<f64> = table
         .column("q_theta")
         .into_iter()
@@ -130,7 +86,7 @@ fn each_member_keeps_its_momentum_map() {
         + "\n[sweep]\ninitial = \"p[1]\"\nvalues = [1.6, 1.8, 2.0]\n";
     let (_d, run) = run_text(&text, &[]);
     assert_eq!(run.code, 0, "{}", run.stderr);
-    let table = Swept::read(&run.out.join("sweep.csv"));
+    let table = SweepTable::read(&run.out.join("sweep.csv"));
     for (j, py) in table.column("J_Lz").iter().zip([1.6, 1.8, 2.0]) {
         assert!((j - 0.4 * py).abs() <= 1e-15, "J_Lz {j} for p_y {py}");
     }
@@ -148,7 +104,7 @@ fn a_forced_sweep_reports_the_energy_balance() {
         + "\n[sweep]\nparameter = \"c\"\nvalues = [0.05, 0.1, 0.2]\n";
     let (_d, run) = run_text(&text, &[]);
     assert_eq!(run.code, 0, "{}", run.stderr);
-    let table = Swept::read(&run.out.join("sweep.csv"));
+    let table = SweepTable::read(&run.out.join("sweep.csv"));
     assert!(
         !table.header.iter().any(|h| h.starts_with("energy")),
         "{:?}",
@@ -194,7 +150,7 @@ fn an_npy_sweep_writes_the_same_table_and_plots() {
         .map(|c| c.as_str().unwrap())
         .collect();
     assert_eq!(array.shape, [3, names.len() as u64]);
-    let table = Swept::read(&a.out.join("sweep.csv"));
+    let table = SweepTable::read(&a.out.join("sweep.csv"));
     let width = names.len();
     for (j, name) in names.iter().enumerate().filter(|(_, n)| **n != "status") {
         let from_npy: Vec<u64> = (0..3)

@@ -144,3 +144,46 @@ pub fn assert_rejected_with(name: &str, extra: &[&str], fragments: &[&str]) -> R
     );
     run
 }
+
+/// A sweep's CSV table read back: the numeric columns (those before `status`; `error` is last
+/// and may hold commas inside its quotes).
+pub struct SweepTable {
+    pub header: Vec<String>,
+    pub rows: Vec<Vec<f64>>,
+}
+
+impl SweepTable {
+    pub fn read(path: &Path) -> Self {
+        let text =
+            std::fs::read_to_string(path).unwrap_or_else(|e| panic!("no {}: {e}", path.display()));
+        let mut lines = text.lines();
+        let header: Vec<String> = lines
+            .next()
+            .unwrap()
+            .split(',')
+            .map(str::to_owned)
+            .collect();
+        let numeric = header.iter().position(|h| h == "status").unwrap();
+        let rows = lines
+            .map(|l| {
+                l.split(',')
+                    .take(numeric)
+                    .map(|x| x.parse().unwrap())
+                    .collect()
+            })
+            .collect();
+        Self {
+            header: header[..numeric].to_vec(),
+            rows,
+        }
+    }
+
+    pub fn column(&self, name: &str) -> Vec<f64> {
+        let i = self
+            .header
+            .iter()
+            .position(|h| h == name)
+            .unwrap_or_else(|| panic!("no column {name} in {:?}", self.header));
+        self.rows.iter().map(|r| r[i]).collect()
+    }
+}
