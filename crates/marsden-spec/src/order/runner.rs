@@ -5,12 +5,11 @@
 //! A constrained problem's reference comes from constrained Lobatto IIIA–IIIB of order 8 at
 //! small steps ([`marsden::studies::order::constrained_reference`]), with its accuracy estimate.
 
-use marsden::discrete::rules::WithRule;
 use marsden::studies::order::{
     CONSTRAINED_REFERENCE_METHOD, OrderOptions, OrderStudy, constrained_reference, measure_order,
     reference_solution,
 };
-use marsden::{Constraint, Force, Lagrangian, NewtonOptions, Problem, Rule};
+use marsden::{Constraint, Force, Lagrangian, NewtonOptions, Problem};
 
 use super::Plan;
 use crate::catalog::WithLagrangian;
@@ -65,8 +64,11 @@ impl WithLagrangian for Study<'_> {
 
     fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output {
         let system = &self.spec.system;
+        // The force by reference: the same problem type as a run's, so the order study reuses
+        // the run's compiled integrators.
+        let force = system.force.on(lagrangian);
         let problem = start::constrained_problem(self.spec, lagrangian, &system.constraint)?
-            .with_force(system.force.on(lagrangian));
+            .with_force(&force);
         let options = options(self.spec);
         let failed = |e: marsden::Error| {
             Error::failed(Diagnostic::new(format!(
@@ -103,7 +105,7 @@ impl WithLagrangian for Study<'_> {
     }
 }
 
-/// One method's study (dispatch on the rule type).
+/// One method's study (the method itself is the rule, [`marsden::discrete::rules::chosen`]).
 fn study<L: Lagrangian, F: Force, C: Constraint>(
     problem: &Problem<L, F, C>,
     method: &Method,
@@ -114,34 +116,13 @@ fn study<L: Lagrangian, F: Force, C: Constraint>(
 where
     Problem<L, F, C>: Clone,
 {
-    struct Measure<'a, L, F, C> {
-        problem: &'a Problem<L, F, C>,
-        grid: (f64, &'a [usize]),
-        reference: (&'a [f64], &'a [f64]),
-        options: &'a OrderOptions,
-    }
-    impl<L: Lagrangian, F: Force, C: Constraint> WithRule for Measure<'_, L, F, C>
-    where
-        Problem<L, F, C>: Clone,
-    {
-        type Output = Result<OrderStudy, marsden::Error>;
-        fn call<R: Rule>(self, rule: &R) -> Self::Output {
-            measure_order(self.problem, rule, self.grid, self.reference, self.options)
-        }
-    }
     let steps = plan.steps();
     let Some(rule) = method.rule() else {
         return Err(Error::bad_input(Diagnostic::new(format!(
             "`{method}` has no order to measure"
         ))));
     };
-    rule.dispatch(Measure {
-        problem,
-        grid: (plan.t_end, &steps),
-        reference: (q, p),
-        options,
-    })
-    .map_err(|e| {
+    measure_order(problem, rule, (plan.t_end, &steps), (q, p), options).map_err(|e| {
         Error::bad_input(Diagnostic::new(format!(
             "cannot set up the runs of {method}: {e}"
         )))

@@ -25,11 +25,11 @@
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 use marsden::analysis::certificate::{DifferentiableStep, symplectic_defect};
-use marsden::discrete::rules::WithRule;
+use marsden::discrete::rules::Method as ChosenRule;
 use marsden::numerics::ad::{self, MultiFunction};
 use marsden::symmetry::GroupAction;
 use marsden::{
-    Constraint, DiscreteAction, Force, Integrator, Lagrangian, NewtonOptions, Rule, Scalar, State,
+    Constraint, DiscreteAction, Force, Lagrangian, NewtonOptions, Problem, Rule as _, Scalar, State,
     mechanics,
 };
 use serde::Serialize;
@@ -84,10 +84,13 @@ pub struct Ends<'a> {
     pub end: &'a State,
 }
 
-/// The certificate of a run of `lagrangian` with `force` and `constraint`, the file's `method`
-/// and step `h`, for the declared `symmetries` (named by `names`).
+/// The certificate of a run of `problem` (its Lagrangian, forces and constraints) with the
+/// file's `method` and step `h`, for the declared `symmetries` (named by `names`).
+///
+/// The step map is that of `problem`'s own integrator type, the one the run compiled, so a
+/// certificate adds no integrator code to the build.
 pub fn certify<L: Lagrangian, F: Force, C: Constraint, G: GroupAction>(
-    (lagrangian, force, constraint): (&L, &F, &C),
+    problem: &Problem<L, F, C>,
     (names, symmetries): (&[String], &[G]),
     (method, newton, h): (&Method, NewtonOptions, f64),
     ends: &Ends<'_>,
@@ -99,28 +102,25 @@ pub fn certify<L: Lagrangian, F: Force, C: Constraint, G: GroupAction>(
                 end: None,
                 start_absolute: None,
                 end_absolute: None,
-                expected_symplectic: !force.is_active(),
+                expected_symplectic: !problem.force().is_active(),
                 note: Some("not available for method = \"exact\" (no step Jacobian)".to_owned()),
             },
             equivariance: Vec::new(),
         };
     };
-    rule.dispatch(Certify {
-        lagrangian,
-        force,
-        constrained: constraint.count() > 0,
+    Certify {
+        problem,
         names,
         symmetries,
         newton,
         h,
         ends,
-    })
+    }
+    .call(rule)
 }
 
-struct Certify<'a, L, F, G> {
-    lagrangian: &'a L,
-    force: &'a F,
-    constrained: bool,
+struct Certify<'a, L, F, C, G> {
+    problem: &'a Problem<L, F, C>,
     names: &'a [String],
     symmetries: &'a [G],
     newton: NewtonOptions,
@@ -128,12 +128,10 @@ struct Certify<'a, L, F, G> {
     ends: &'a Ends<'a>,
 }
 
-impl<L: Lagrangian, F: Force, G: GroupAction> WithRule for Certify<'_, L, F, G> {
-    type Output = Certificate;
-
-    fn call<R: Rule>(self, rule: &R) -> Certificate {
+impl<L: Lagrangian, F: Force, C: Constraint, G: GroupAction> Certify<'_, L, F, C, G> {
+    fn call(self, rule: &ChosenRule) -> Certificate {
         let symplecticity = self.symplecticity(rule);
-        let action = rule.discretize(self.lagrangian);
+        let action = rule.discretize(self.problem.lagrangian());
         let samples = self.samples();
         let equivariance = self
             .names
@@ -146,31 +144,27 @@ impl<L: Lagrangian, F: Force, G: GroupAction> WithRule for Certify<'_, L, F, G> 
             equivariance,
         }
     }
-}
 
-impl<L: Lagrangian, F: Force, G: GroupAction> Certify<'_, L, F, G> {
-    fn symplecticity<R: Rule>(&self, rule: &R) -> Symplecticity {
-        let forced = self.force.is_active();
+    fn symplecticity(&self, rule: &ChosenRule) -> Symplecticity {
+        let forced = self.problem.force().is_active();
+        let constrained = self.problem.constraint().count() > 0;
         let mut out = Symplecticity {
             start: None,
             end: None,
             start_absolute: None,
             end_absolute: None,
-            expected_symplectic: !forced && !self.constrained,
+            expected_symplectic: !forced && !constrained,
             note: forced.then(|| "not expected symplectic (forced)".to_owned()),
         };
-        if self.constrained {
+        if constrained {
             out.note = Some(
                 "not available for constrained runs (the core certifies unconstrained steps)"
                     .to_owned(),
             );
             return out;
         }
-        let n = self.lagrangian.dof();
-        let built = Integrator::new(rule.discretize(self.lagrangian))
-            .with_force(rule.discretize_force(self.force, n))
-            .with_options(self.newton)
-            .map(|i| i.with_fast_paths(false));
+        let n = self.problem.lagrangian().dof();
+        let built = (self.problem.integrator(rule, self.newton)).map(|i| i.with_fast_paths(false));
         let mut integrator = match built {
             Ok(i) => i,
             Err(e) => {
@@ -208,7 +202,7 @@ impl<L: Lagrangian, F: Force, G: GroupAction> Certify<'_, L, F, G> {
     /// The velocity at `state` (inverse Legendre transform), if it can be found.
     fn velocity(&self, state: &State) -> Option<Vec<f64>> {
         let mut v = self.ends.v0.to_vec();
-        let (l, (t, q, p)) = (self.lagrangian, (state.t, &state.q, &state.p));
+        let (l, (t, q, p)) = (self.problem.lagrangian(), (state.t, &state.q, &state.p));
         mechanics::energy_from_momentum(l, t, q, p, &mut v)
             .ok()
             .map(|_| v)

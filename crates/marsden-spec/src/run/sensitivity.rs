@@ -16,13 +16,12 @@
 
 use std::path::Path;
 
-use marsden::discrete::rules::WithRule;
 use marsden::sensitivity::{ParametricIntegrator, Tangent, TangentOptions, tangent};
-use marsden::{Integrator, Lagrangian, Rule, State};
+use marsden::{Lagrangian, State};
 use marsden_io::{CsvWriter, NpyShape, NpyWriter};
 use serde::Serialize;
 
-use super::start::Start;
+use super::start::{self, Start};
 use crate::catalog::WithLagrangian;
 use crate::model::ExprParametric;
 use crate::problem::{Format, RunSpec, SensitivitySpec};
@@ -76,13 +75,11 @@ pub fn compute(
         return Err("method = \"exact\" has no step Jacobian to propagate; choose a rule".into());
     };
     let run = match &asked.model {
-        Some(model) => rule.dispatch(WithParameters { spec, model, state }),
-        None => spec
-            .system
-            .lagrangian
-            .dispatch(InitialOnly { spec, rule, state }),
-    }
-    .map_err(|e| e.to_string())?;
+        Some(model) => WithParameters { spec, model, state }
+            .call(rule)
+            .map_err(|e| e.to_string()),
+        None => (spec.system.lagrangian).dispatch(InitialOnly { spec, rule, state }),
+    }?;
     Ok(select(spec, asked, &run))
 }
 
@@ -131,7 +128,9 @@ fn options(spec: &RunSpec) -> TangentOptions {
     }
 }
 
-/// The tangent run of the file's own Lagrangian and forces (`P = 0`).
+/// The tangent run of the file's own Lagrangian and forces (`P = 0`), with the integrator type
+/// of the run itself (the same [`Problem`] type as [`super::solve::run_problem`] builds), so
+/// the tangent run adds no integrator code to the build.
 struct InitialOnly<'a> {
     spec: &'a RunSpec,
     rule: &'a marsden::discrete::rules::Method,
@@ -139,32 +138,20 @@ struct InitialOnly<'a> {
 }
 
 impl WithLagrangian for InitialOnly<'_> {
-    type Output = Result<Tangent, marsden::Error>;
+    type Output = Result<Tangent, String>;
     fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output {
-        struct Run<'a, L> {
-            spec: &'a RunSpec,
-            lagrangian: &'a L,
-            state: State,
-        }
-        impl<L: Lagrangian> WithRule for Run<'_, L> {
-            type Output = Result<Tangent, marsden::Error>;
-            fn call<R: Rule>(self, rule: &R) -> Self::Output {
-                let spec = self.spec;
-                let n = self.lagrangian.dof();
-                let force = spec.system.force.on(self.lagrangian);
-                let force = rule.discretize_force(&force, n);
-                let mut vi = Integrator::new(rule.discretize(self.lagrangian))
-                    .with_force(force)
-                    .with_options(spec.integrator.newton)?
-                    .with_fast_paths(false);
-                tangent(&mut vi, self.state, &spec.integrator.grid, &options(spec))
-            }
-        }
-        self.rule.dispatch(Run {
-            spec: self.spec,
-            lagrangian,
-            state: self.state,
-        })
+        let s = &self.spec.system;
+        let force = s.force.on(lagrangian);
+        let problem = start::constrained_problem(self.spec, lagrangian, &s.constraint)
+            .map_err(|d| d.to_string())?
+            .with_force(&force);
+        let spec = self.spec;
+        let run = || {
+            let integrator = problem.integrator(self.rule, spec.integrator.newton)?;
+            let mut vi = integrator.with_fast_paths(false);
+            tangent(&mut vi, self.state, &spec.integrator.grid, &options(spec))
+        };
+        run().map_err(|e: marsden::Error| e.to_string())
     }
 }
 
@@ -175,9 +162,8 @@ struct WithParameters<'a> {
     state: State,
 }
 
-impl WithRule for WithParameters<'_> {
-    type Output = Result<Tangent, marsden::Error>;
-    fn call<R: Rule>(self, rule: &R) -> Self::Output {
+impl WithParameters<'_> {
+    fn call(self, rule: &marsden::discrete::rules::Method) -> Result<Tangent, marsden::Error> {
         use marsden::sensitivity::ParametricModel as _;
         let spec = self.spec;
         let theta: Vec<f64> = (self.model.parameter_names().iter())

@@ -4,9 +4,8 @@
 use std::time::Instant;
 
 use marsden::discrete::exact::ExactDiscreteLagrangian;
-use marsden::discrete::rules::WithRule;
 use marsden::{
-    Constraint, Force, Integrator, Lagrangian, Observer, Problem, Rule, RunFailure, SolveOptions,
+    Constraint, Force, Integrator, Lagrangian, Observer, Problem, Rule as _, RunFailure, SolveOptions,
     Statistics, Trajectory, simulate,
 };
 use marsden_io::RowSink;
@@ -54,33 +53,17 @@ pub struct RunRecord {
     pub certificate: Option<Certificate>,
 }
 
-/// Solves `problem` with `method` (dispatch on the rule type: one monomorphised run per rule;
-/// `exact` steps `L_d^E` by shooting).
+/// Solves `problem` with `method`: the method itself is the rule (one compiled integrator per
+/// system for every rule, [`marsden::discrete::rules::chosen`]); `exact` steps `L_d^E` by
+/// shooting.
 pub fn solve<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
     problem: &Problem<L, F, C>,
     method: &Method,
     options: &SolveOptions,
     observer: &mut O,
 ) -> Result<Trajectory, Box<RunFailure>> {
-    struct Solve<'a, L, F, C, O: ?Sized> {
-        problem: &'a Problem<L, F, C>,
-        options: &'a SolveOptions,
-        observer: &'a mut O,
-    }
-    impl<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized> WithRule
-        for Solve<'_, L, F, C, O>
-    {
-        type Output = Result<Trajectory, Box<RunFailure>>;
-        fn call<R: Rule>(self, rule: &R) -> Self::Output {
-            self.problem.solve_with(rule, self.options, self.observer)
-        }
-    }
     match method.rule() {
-        Some(rule) => rule.dispatch(Solve {
-            problem,
-            options,
-            observer,
-        }),
+        Some(rule) => problem.solve_with(rule, options, observer),
         None => solve_exact(problem, options, observer),
     }
 }
@@ -119,54 +102,28 @@ pub fn solve_balanced<L: Lagrangian, F: Force, C: Constraint, M, O: Observer + ?
 where
     M: MomentumMap + GroupAction,
 {
-    struct Solve<'a, L, F, C, M, O: ?Sized> {
-        problem: &'a Problem<L, F, C>,
-        maps: &'a [M],
-        options: &'a SolveOptions,
-        observer: &'a mut O,
-        every: usize,
+    let Some(rule) = method.rule() else {
+        return (solve_exact(problem, options, observer), None);
+    };
+    use marsden::discrete::DiscreteAction as _;
+    let l = problem.lagrangian();
+    let two_point = rule.discretize(l).internal_stages() == 0;
+    if !problem.force().is_active() || !two_point {
+        return (problem.solve_with(rule, options, observer), None);
     }
-    impl<L: Lagrangian, F: Force, C: Constraint, M, O: Observer + ?Sized> WithRule
-        for Solve<'_, L, F, C, M, O>
-    where
-        M: MomentumMap + GroupAction,
-    {
-        type Output = Balance;
-        fn call<R: Rule>(self, rule: &R) -> Self::Output {
-            use marsden::discrete::DiscreteAction as _;
-            let (problem, options) = (self.problem, self.options);
-            let l = problem.lagrangian();
-            let two_point = rule.discretize(l).internal_stages() == 0;
-            if !problem.force().is_active() || !two_point {
-                return (problem.solve_with(rule, options, self.observer), None);
-            }
-            let force = rule.discretize_force(problem.force(), l.dof());
-            let noether_force = rule.discretize_force(problem.force(), l.dof());
-            let h = problem.grid().h;
-            let total = problem.grid().steps;
-            let names = self
-                .maps
-                .iter()
-                .map(|m| MomentumMap::name(m).to_owned())
-                .collect();
-            let mut noether =
-                NoetherBalanced::new((names, self.maps), (&noether_force, h), self.observer);
-            let mut balanced = Balanced::new(l, (force, h), (self.every, total), &mut noether);
-            let result = problem.solve_with(rule, options, &mut balanced);
-            let (summary, series) = (balanced.summary, balanced.series);
-            (result, Some((summary, series, noether.balances())))
-        }
-    }
-    match method.rule() {
-        Some(rule) => rule.dispatch(Solve {
-            problem,
-            maps,
-            options,
-            observer,
-            every,
-        }),
-        None => (solve_exact(problem, options, observer), None),
-    }
+    let force = rule.discretize_force(problem.force(), l.dof());
+    let noether_force = rule.discretize_force(problem.force(), l.dof());
+    let h = problem.grid().h;
+    let total = problem.grid().steps;
+    let names = maps
+        .iter()
+        .map(|m| MomentumMap::name(m).to_owned())
+        .collect();
+    let mut noether = NoetherBalanced::new((names, maps), (&noether_force, h), observer);
+    let mut balanced = Balanced::new(l, (force, h), (every, total), &mut noether);
+    let result = problem.solve_with(rule, options, &mut balanced);
+    let (summary, series) = (balanced.summary, balanced.series);
+    (result, Some((summary, series, noether.balances())))
 }
 
 /// A run's result and, for a forced run with a two-point rule, its energy balance and the
@@ -313,7 +270,7 @@ fn certificate<L: Lagrangian, F: Force>(
     record: &RunRecord,
 ) -> Result<Certificate, Diagnostic> {
     let s = &spec.system;
-    let problem = start::constrained_problem(spec, lagrangian, &s.constraint)?;
+    let problem = start::constrained_problem(spec, lagrangian, &s.constraint)?.with_force(force);
     let f = &record.final_state;
     let end = marsden::State {
         t: f.t,
@@ -332,7 +289,7 @@ fn certificate<L: Lagrangian, F: Force>(
         .collect();
     let i = &spec.integrator;
     Ok(certify(
-        (lagrangian, force, &s.constraint),
+        &problem,
         (&names, &s.symmetries),
         (&i.method, i.newton, i.grid.h),
         &ends,

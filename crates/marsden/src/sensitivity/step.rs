@@ -12,7 +12,8 @@ use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::error::{Error, InputError};
 use crate::hamiltonian::{Hamiltonian, HamiltonianIntegrator, HamiltonianMethod};
 use crate::integrator::{Integrator, StepReport};
-use crate::mechanics::{State, Unconstrained};
+use crate::holonomic::MomentumProjection;
+use crate::mechanics::{Constraint, State};
 
 /// A one-step map `(q_k, p_k; θ) ↦ (q_{k+1}, p_{k+1})` that reports its exact Jacobian.
 pub trait SensitiveStep {
@@ -46,7 +47,15 @@ pub(super) fn no_stage_offsets() -> Error {
     })
 }
 
-impl<A: DiscreteAction, F: DiscreteForce> SensitiveStep for Integrator<A, F, Unconstrained> {
+/// Every integrator type (a tangent run uses the very integrator type of the run); a step with
+/// active holonomic constraints is refused by [`DifferentiableStep::step_with_jacobian`].
+impl<A, F, C, P> SensitiveStep for Integrator<A, F, C, P>
+where
+    A: DiscreteAction,
+    F: DiscreteForce,
+    C: Constraint,
+    P: MomentumProjection,
+{
     fn dof(&self) -> usize {
         self.shape().n
     }

@@ -31,8 +31,10 @@ use crate::discrete::legendre::ActionAndForces;
 use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::error::Error;
 use crate::error::{StepError, StepFailure};
+use crate::error::InputError;
+use crate::holonomic::MomentumProjection;
 use crate::integrator::{Integrator, StepReport};
-use crate::mechanics::{State, Unconstrained};
+use crate::mechanics::{Constraint, State};
 use crate::numerics::ad::{self, HessianParts};
 use crate::numerics::dense::Lu;
 
@@ -207,7 +209,27 @@ thread_local! {
     static WORKSPACE: RefCell<Workspace> = RefCell::new(Workspace::default());
 }
 
-impl<A: DiscreteAction, F: DiscreteForce> DifferentiableStep for Integrator<A, F, Unconstrained> {
+/// The error of an integrator whose constraints are active: the implicit function theorem
+/// above differentiates the unconstrained step equations only.
+pub(crate) fn constrained_step(constraints: usize) -> Error {
+    Error::Input(InputError::InvalidOption {
+        name: "constraints",
+        value: constraints as f64,
+        reason: "the step Jacobian is available for unconstrained steps only (no holonomic \
+                 constraints)",
+    })
+}
+
+/// Every integrator type, so that a certificate or a tangent run can use the very integrator
+/// type of a run (one compiled integrator per rule and system); a step with active holonomic
+/// constraints is refused ([`constrained_step`]).
+impl<A, F, C, P> DifferentiableStep for Integrator<A, F, C, P>
+where
+    A: DiscreteAction,
+    F: DiscreteForce,
+    C: Constraint,
+    P: MomentumProjection,
+{
     fn dof(&self) -> usize {
         self.shape().n
     }
@@ -222,7 +244,11 @@ impl<A: DiscreteAction, F: DiscreteForce> DifferentiableStep for Integrator<A, F
         h: f64,
         jac: &mut [f64],
     ) -> Result<StepReport, Error> {
-        let n = self.shape().n;
+        let shape = self.shape();
+        if shape.d > 0 {
+            return Err(constrained_step(shape.d));
+        }
+        let n = shape.n;
         Error::check_len("jacobian", jac, 4 * n * n)?;
         let (t0, q0) = (state.t, state.q.clone());
         let report = Integrator::step(self, state, h)?;

@@ -19,6 +19,7 @@
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 mod alpha;
+pub mod chosen;
 pub mod composition;
 pub mod galerkin;
 pub mod method;
@@ -26,6 +27,7 @@ pub mod quadrature;
 mod symmetrized;
 
 pub use alpha::{AlphaForce, AlphaLd, GeneralizedMidpoint, Midpoint};
+pub use chosen::{BaseForce, BaseLd, ChosenForce, ChosenLd};
 pub use composition::{ComposedForce, ComposedLd, Composition, CompositionScheme};
 pub use galerkin::{Galerkin, GalerkinForce, GalerkinLd};
 pub use method::{BaseMethod, METHOD_GRAMMAR, Method, WithRule};
