@@ -17,7 +17,10 @@
 //! | sweeps | [`sweep`], [`shard`], [`sweep_table`], [`sweep_writer`] | members in parallel ([`marsden::studies::ensemble`]), one row each, streamed to the table |
 //!
 //! Catalog systems and expressions reach the generic runner through
-//! [`crate::catalog::WithLagrangian`]: one monomorphised run per Lagrangian type and rule.
+//! [`crate::catalog::WithLagrangian`]: one monomorphised run per Lagrangian type. The file's
+//! method is itself the rule ([`marsden::discrete::rules::chosen`]), and the certificate, the
+//! tangent run and the order study build the run's own problem type, so each system's
+//! integrator is compiled once.
 
 pub mod balance;
 pub mod certify;

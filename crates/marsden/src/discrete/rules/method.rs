@@ -1,8 +1,10 @@
 //! Methods by name: every rule of [`crate::discrete::rules`] as a value chosen at run time.
 //!
 //! [`Rule`] has generic associated types, so a rule chosen from a string cannot be a trait
-//! object; [`Method`] is the closed set of rules, and [`Method::dispatch`] calls a generic
-//! [`WithRule`] visitor with the concrete rule (one monomorphised copy per rule type).
+//! object; [`Method`] is the closed set of rules. [`Method::dispatch`] calls a generic
+//! [`WithRule`] visitor with the concrete rule (one monomorphised copy per rule type); a
+//! [`Method`] is also a [`Rule`] itself ([`super::chosen`]: one copy for all rules, the same
+//! numbers).
 //!
 //! Names (the grammar of [`METHOD_GRAMMAR`]):
 //!
