@@ -28,6 +28,7 @@ use marsden::analysis::certificate::{DifferentiableStep, symplectic_defect};
 use marsden::discrete::rules::Method as ChosenRule;
 use marsden::numerics::ad::{self, MultiFunction};
 use marsden::symmetry::GroupAction;
+use marsden::symmetry::check::relative_defect;
 use marsden::{
     Constraint, DiscreteAction, Force, Lagrangian, NewtonOptions, Problem, Rule as _, Scalar, State,
     mechanics,
@@ -271,13 +272,7 @@ fn equivariance<A: DiscreteAction, G: GroupAction>(
         for a in 0..g.algebra_dim() {
             let (defect, scale) = step_invariance(action, (g, a), (*t, h), (q, v));
             let d = defect.abs();
-            let relative = if d == 0.0 {
-                0.0
-            } else if scale > 0.0 && d.is_finite() {
-                d / scale
-            } else {
-                f64::INFINITY
-            };
+            let relative = relative_defect(d, scale);
             // NaN sticks: an action that cannot be evaluated is no certified symmetry.
             if d > out.max_abs_defect || d.is_nan() {
                 out.max_abs_defect = d;

@@ -207,6 +207,19 @@ fn directional<F: TwoBlock>(f: &F, x: &[f64], d: &[f64]) -> (f64, f64) {
     })
 }
 
+/// `|defect| / scale`: 0 for an exact zero (whatever the scale), infinite when the scale
+/// vanishes or the defect is not finite (a defect that cannot be judged certifies nothing).
+pub fn relative_defect(defect: f64, scale: f64) -> f64 {
+    let d = defect.abs();
+    if d == 0.0 {
+        0.0
+    } else if scale > 0.0 && d.is_finite() {
+        d / scale
+    } else {
+        f64::INFINITY
+    }
+}
+
 /// Runs `eval(a, sample) → (defect, scale)` over every generator and sample.
 fn check_with(
     symmetry: String,
@@ -225,13 +238,7 @@ fn check_with(
             for (k, s) in samples.iter().enumerate() {
                 let (defect, scale) = eval(a, s);
                 let d = defect.abs();
-                let relative = if d == 0.0 {
-                    0.0
-                } else if scale > 0.0 && d.is_finite() {
-                    d / scale
-                } else {
-                    f64::INFINITY
-                };
+                let relative = relative_defect(d, scale);
                 g.max_defect = g.max_defect.max(d);
                 if relative > g.max_relative {
                     g.max_relative = relative;
