@@ -5,7 +5,7 @@
 //! laid out as a straight-line program over registers `[inputs | one per instruction]`
 //! (`lower`). Evaluating runs each instruction once, in order: no stack, no repeated work, no
 //! constant in a register (constant operands are part of the instructions), and the commonest
-//! shapes of symbolic derivatives (`a·b + c`, `a² + b²`) as one instruction each. This is the
+//! shapes of symbolic derivatives (`a·b + c`, `a² + b²`, `(a·b)/c`, …) as one instruction each. This is the
 //! form of the symbolic gradient and Hessian of a potential, whose entries share most of their
 //! terms (`r = √(x² + y²)` in every entry of the Kepler gradient).
 //!
@@ -54,6 +54,14 @@ enum Instr {
     MulAdd(u32, u32, u32),
     /// `a² + b²`.
     SumSquares(u32, u32),
+    /// `a · b − c`.
+    MulSub(u32, u32, u32),
+    /// `c − a · b` (operands in that order).
+    SubMul(u32, u32, u32),
+    /// `(a · b) · c`.
+    Mul3(u32, u32, u32),
+    /// `(a · b) / c`.
+    MulDiv(u32, u32, u32),
 }
 
 /// Straight-line code for several outputs sharing their common subexpressions.
@@ -200,5 +208,9 @@ fn step<S: Scalar>(ins: Instr, regs: &[S]) -> S {
         Instr::Atan2(a, b) => atan2(r(a), r(b)),
         Instr::MulAdd(a, b, c) => r(a) * r(b) + r(c),
         Instr::SumSquares(a, b) => r(a) * r(a) + r(b) * r(b),
+        Instr::MulSub(a, b, c) => r(a) * r(b) - r(c),
+        Instr::SubMul(c, a, b) => r(c) - r(a) * r(b),
+        Instr::Mul3(a, b, c) => r(a) * r(b) * r(c),
+        Instr::MulDiv(a, b, c) => r(a) * r(b) / r(c),
     }
 }

@@ -2,10 +2,11 @@
 //! `[inputs | one per instruction]`.
 //!
 //! Fused (the default), constants never occupy a register: an operation with a constant operand
-//! becomes its constant form (`x·c`, `c/x`, …), and an addition whose operand is a product or a
-//! square used nowhere else becomes one superinstruction (`a·b + c`, `a² + b²`). Each keeps the
-//! rounding of the operations it replaces (`a·b` is rounded before the addition, no fused
-//! multiply–add; `+` and `·` commute exactly), so the values are bit for bit those of the plain
+//! becomes its constant form (`x·c`, `c/x`, …), and an operation whose operand is a product or a
+//! square used nowhere else becomes one superinstruction (`a·b + c`, `a² + b²`, `a·b − c`,
+//! `c − a·b`, `(a·b)·c`, `(a·b)/c`). Each keeps the rounding of the operations it replaces
+//! (`a·b` is rounded first, no fused multiply–add; `+` and `·` commute exactly, so
+//! `c·(a·b) = (a·b)·c` bit for bit), so the values are bit for bit those of the plain
 //! layout, where every constant is loaded into a register once and every operation is one
 //! instruction.
 
@@ -17,13 +18,21 @@ use super::build::{Graph, Key, Ref, UNARIES, arith};
 /// Sentinel for "no register yet".
 const NONE: u32 = u32::MAX;
 
-/// How an addition is emitted when it absorbs its operands.
+/// How an operation is emitted when it absorbs a product (or square) operand.
 #[derive(Debug, Clone, Copy)]
 enum Super {
     /// `a² + b²`.
     SumSquares(Ref, Ref),
     /// `a·b + c`.
     MulAdd(Ref, Ref, Ref),
+    /// `a·b − c`.
+    MulSub(Ref, Ref, Ref),
+    /// `c − a·b` (operands in that order).
+    SubMul(Ref, Ref, Ref),
+    /// `(a·b)·c`.
+    Mul3(Ref, Ref, Ref),
+    /// `(a·b)/c`.
+    MulDiv(Ref, Ref, Ref),
 }
 
 /// The instructions of `graph` and the registers of its outputs.
@@ -54,8 +63,8 @@ pub(super) fn lower(graph: &Graph, fuse: bool) -> (Vec<Instr>, Vec<u32>) {
     (l.instrs, outputs)
 }
 
-/// The additions emitted as superinstructions, and the operations they absorb (used once, by
-/// that addition, and not outputs).
+/// The operations emitted as superinstructions, and the products they absorb (used once, by
+/// that operation, and not outputs).
 fn superinstructions(graph: &Graph) -> (Vec<bool>, Vec<Option<Super>>) {
     let n = graph.ops.len();
     let mut uses = vec![0_u32; n];
@@ -74,42 +83,45 @@ fn superinstructions(graph: &Graph) -> (Vec<bool>, Vec<Option<Super>>) {
         }
     }
     graph.outputs.iter().for_each(|&r| count(r));
-    let (mut absorbed, mut fused) = (vec![false; n], vec![None; n]);
-    // The factors of a product or square operand that only this addition reads.
-    let product = |r: Ref, absorbed: &[bool]| match r {
-        Ref::Op(j) if uses[j as usize] == 1 && !absorbed[j as usize] => {
-            match graph.ops[j as usize] {
-                Key::Powi(a, 2) if variable(a) => Some((j, a, a)),
-                Key::Bin(op, a, b) if arith(op) == Arith::Mul && variable(a) && variable(b) => {
-                    Some((j, a, b))
-                }
-                _ => None,
-            }
-        }
-        _ => None,
-    };
+    let (mut absorbed, mut fused) = (vec![false; n], vec![None::<Super>; n]);
     for (k, key) in graph.ops.iter().enumerate() {
         let Key::Bin(op, a, b) = *key else { continue };
-        if arith(op) != Arith::Add || !variable(a) || !variable(b) {
+        if !variable(a) || !variable(b) {
             continue;
         }
-        let (pa, pb) = (product(a, &absorbed), product(b, &absorbed));
-        fused[k] = match (pa, pb) {
-            (Some((i, x, x2)), Some((j, y, y2))) if x == x2 && y == y2 && i != j => {
-                absorbed[i as usize] = true;
-                absorbed[j as usize] = true;
-                Some(Super::SumSquares(x, y))
+        // The factors of a product or square operand that only this operation reads (and
+        // that is not itself a superinstruction).
+        let product = |r: Ref, absorbed: &[bool], fused: &[Option<Super>]| match r {
+            Ref::Op(j) if uses[j as usize] == 1 && !absorbed[j as usize] => {
+                match (graph.ops[j as usize], fused[j as usize]) {
+                    (Key::Powi(x, 2), None) if variable(x) => Some((j, x, x)),
+                    (Key::Bin(m, x, y), None)
+                        if arith(m) == Arith::Mul && variable(x) && variable(y) =>
+                    {
+                        Some((j, x, y))
+                    }
+                    _ => None,
+                }
             }
-            (Some((i, x, y)), _) => {
-                absorbed[i as usize] = true;
-                Some(Super::MulAdd(x, y, b))
-            }
-            (None, Some((j, x, y))) => {
-                absorbed[j as usize] = true;
-                Some(Super::MulAdd(x, y, a))
-            }
-            (None, None) => None,
+            _ => None,
         };
+        let (pa, pb) = (product(a, &absorbed, &fused), product(b, &absorbed, &fused));
+        let (choice, taken) = match (arith(op), pa, pb) {
+            (Arith::Add, Some((i, x, x2)), Some((j, y, y2))) if x == x2 && y == y2 && i != j => {
+                absorbed[j as usize] = true;
+                (Super::SumSquares(x, y), i)
+            }
+            (Arith::Add, Some((i, x, y)), _) => (Super::MulAdd(x, y, b), i),
+            (Arith::Add, None, Some((j, x, y))) => (Super::MulAdd(x, y, a), j),
+            (Arith::Sub, Some((i, x, y)), _) => (Super::MulSub(x, y, b), i),
+            (Arith::Sub, None, Some((j, x, y))) => (Super::SubMul(a, x, y), j),
+            (Arith::Mul, Some((i, x, y)), _) => (Super::Mul3(x, y, b), i),
+            (Arith::Mul, None, Some((j, x, y))) => (Super::Mul3(x, y, a), j),
+            (Arith::Div, Some((i, x, y)), _) => (Super::MulDiv(x, y, b), i),
+            _ => continue,
+        };
+        absorbed[taken as usize] = true;
+        fused[k] = Some(choice);
     }
     (absorbed, fused)
 }
@@ -154,6 +166,16 @@ impl Lowering<'_> {
             Super::SumSquares(a, b) => Instr::SumSquares(self.operand(a), self.operand(b)),
             Super::MulAdd(a, b, c) => {
                 Instr::MulAdd(self.operand(a), self.operand(b), self.operand(c))
+            }
+            Super::MulSub(a, b, c) => {
+                Instr::MulSub(self.operand(a), self.operand(b), self.operand(c))
+            }
+            Super::SubMul(c, a, b) => {
+                Instr::SubMul(self.operand(c), self.operand(a), self.operand(b))
+            }
+            Super::Mul3(a, b, c) => Instr::Mul3(self.operand(a), self.operand(b), self.operand(c)),
+            Super::MulDiv(a, b, c) => {
+                Instr::MulDiv(self.operand(a), self.operand(b), self.operand(c))
             }
         }
     }
