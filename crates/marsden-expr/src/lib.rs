@@ -79,7 +79,7 @@
 //! | several expressions | `set` | [`ProgramSet`]: one inputs slice, one output slice |
 //! | compiled program | `program` | [`Program`]: evaluate, inspect, list the instructions |
 //! | structure | `separable`, `quadratic` | [`SeparableForm`]: `L = ½ vᵀMv − V` recognised exactly |
-//! | symbolic derivatives | `derive`, `tape` | `∇V`, `∇²V` as a [`Tape`]: shared subexpressions, registers |
+//! | symbolic derivatives | `derive`, `tape` | `∇V`, `∇²V` as a [`Tape`]: shared subexpressions, registers, fused constants and superinstructions |
 //! | interpreter | `eval` | the accumulator machine over any `S: Scalar`, no allocation |
 //! | code generation | `codegen`, `ops` | folded tree → instructions (Sethi–Ullman order, fused pairs) |
 //! | lowering | `lower`, `ir` | names resolved, constants folded (the normal form of `ir`) |

@@ -1,68 +1,105 @@
 //! [`Tape`]: several expressions over one inputs slice, with their common subexpressions
 //! evaluated once, by a register machine.
 //!
-//! The folded trees of the outputs are merged into one directed acyclic graph by hash-consing
-//! (a node equal to one already built is the same register; the operands of `+` and `·` are
-//! ordered first, which is exact), then laid out as a straight-line program over registers
-//! `[inputs | constants | one per operation]`. Evaluating copies the inputs and constants into
-//! the registers and runs each operation once, in order: no stack, no repeated work. This is
-//! the form of the symbolic gradient and Hessian of a potential, whose entries share most of
-//! their terms (`r = √(x² + y²)` in every entry of the Kepler gradient).
+//! The folded trees of the outputs are merged into one directed acyclic graph (`build`), then
+//! laid out as a straight-line program over registers `[inputs | one per instruction]`
+//! (`lower`). Evaluating runs each instruction once, in order: no stack, no repeated work, no
+//! constant in a register (constant operands are part of the instructions), and the commonest
+//! shapes of symbolic derivatives (`a·b + c`, `a² + b²`, `(a·b)/c`, …) as one instruction each. This is the
+//! form of the symbolic gradient and Hessian of a potential, whose entries share most of their
+//! terms (`r = √(x² + y²)` in every entry of the Kepler gradient).
+//!
+//! [`Tape::plain`] gives the same tape without the fused instructions (every constant loaded
+//! into a register, one instruction per operation): the reference the fused layout is tested
+//! against, bit for bit.
 
-use std::collections::HashMap;
+mod build;
+mod lower;
 
 use marsden::Scalar;
 
-use crate::functions::{Unary, atan2, powd};
-use crate::ir::{Arith, Node};
+use crate::functions::{Unary, atan2, powd, powf};
 
-/// One operation; operands are register indices (all smaller than the operation's own).
+pub(crate) use build::TapeBuilder;
+
+/// One instruction; operands are register indices (all smaller than the instruction's own).
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Instr {
+    /// A constant (only where no constant form of the operation exists, or as an output).
+    Load(f64),
     Neg(u32),
     Add(u32, u32),
     Sub(u32, u32),
     Mul(u32, u32),
     Div(u32, u32),
+    /// `a + c`.
+    AddC(u32, f64),
+    /// `a − c`.
+    SubC(u32, f64),
+    /// `c − a`.
+    CSub(f64, u32),
+    /// `a · c`.
+    MulC(u32, f64),
+    /// `a / c`.
+    DivC(u32, f64),
+    /// `c / a`.
+    CDiv(f64, u32),
     Square(u32),
     Call(Unary, u32),
     Powi(u32, i32),
     Powf(u32, f64),
     Powd(u32, u32),
     Atan2(u32, u32),
-}
-
-/// A register while the graph is built: inputs, constants and operations are numbered apart
-/// and placed at the end.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-enum Ref {
-    Input(u32),
-    Const(u32),
-    Op(u32),
-}
-
-/// The hash-consing key of an operation (constants by their bits).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-enum Key {
-    Neg(Ref),
-    Bin(u8, Ref, Ref),
-    Call(u8, Ref),
-    Powi(Ref, i32),
-    Powf(Ref, u64),
-    Powd(Ref, Ref),
-    Atan2(Ref, Ref),
+    /// `a · b + c` (the product rounded first).
+    MulAdd(u32, u32, u32),
+    /// `a² + b²`.
+    SumSquares(u32, u32),
+    /// `a · b − c`.
+    MulSub(u32, u32, u32),
+    /// `c − a · b` (operands in that order).
+    SubMul(u32, u32, u32),
+    /// `(a · b) · c`.
+    Mul3(u32, u32, u32),
+    /// `(a · b) / c`.
+    MulDiv(u32, u32, u32),
 }
 
 /// Straight-line code for several outputs sharing their common subexpressions.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Tape {
     inputs: usize,
-    constants: Vec<f64>,
     instrs: Vec<Instr>,
     outputs: Vec<u32>,
+    /// The same outputs without fused instructions ([`Tape::plain`]).
+    plain: Option<Box<Tape>>,
 }
 
 impl Tape {
+    /// The tape of `graph`: fused, with its plain layout kept for [`Tape::plain`].
+    fn from_graph(graph: build::Graph) -> Tape {
+        let (plain_instrs, plain_outputs) = lower::lower(&graph, false);
+        let (instrs, outputs) = lower::lower(&graph, true);
+        let plain = Tape {
+            inputs: graph.inputs,
+            instrs: plain_instrs,
+            outputs: plain_outputs,
+            plain: None,
+        };
+        Tape {
+            inputs: graph.inputs,
+            instrs,
+            outputs,
+            plain: Some(Box::new(plain)),
+        }
+    }
+
+    /// The same outputs without fused instructions: every constant in a register, one
+    /// instruction per operation (the layout the fused one is checked against; bit for bit
+    /// the same values at `f64`).
+    pub fn plain(&self) -> &Tape {
+        self.plain.as_deref().unwrap_or(self)
+    }
+
     /// Number of outputs.
     pub fn len(&self) -> usize {
         self.outputs.len()
@@ -73,7 +110,7 @@ impl Tape {
         self.outputs.is_empty()
     }
 
-    /// Number of operations (after sharing).
+    /// Number of instructions (after sharing and fusing).
     pub fn op_count(&self) -> usize {
         self.instrs.len()
     }
@@ -85,7 +122,7 @@ impl Tape {
 
     /// Number of registers an evaluation uses (the length [`Tape::eval_into`] gives `regs`).
     pub fn registers(&self) -> usize {
-        self.inputs + self.constants.len() + self.instrs.len()
+        self.inputs + self.instrs.len()
     }
 
     /// Evaluates every output at `inputs` into `out` (length [`Tape::len`]); `regs` is
@@ -118,25 +155,12 @@ impl Tape {
         self.run(regs, out);
     }
 
-    /// Runs the operations; `regs` holds exactly the inputs.
+    /// Runs the instructions; `regs` holds exactly the inputs.
     #[inline]
     fn run<S: Scalar>(&self, regs: &mut Vec<S>, out: &mut [S]) {
-        regs.extend(self.constants.iter().map(|&c| S::from(c)));
+        regs.reserve(self.instrs.len());
         for ins in &self.instrs {
-            let r = |i: u32| regs[i as usize];
-            let value = match *ins {
-                Instr::Neg(a) => -r(a),
-                Instr::Add(a, b) => r(a) + r(b),
-                Instr::Sub(a, b) => r(a) - r(b),
-                Instr::Mul(a, b) => r(a) * r(b),
-                Instr::Div(a, b) => r(a) / r(b),
-                Instr::Square(a) => r(a) * r(a),
-                Instr::Call(f, a) => f.apply(r(a)),
-                Instr::Powi(a, n) => r(a).powi(n),
-                Instr::Powf(a, e) => crate::functions::powf(r(a), e),
-                Instr::Powd(a, b) => powd(r(a), r(b)),
-                Instr::Atan2(a, b) => atan2(r(a), r(b)),
-            };
+            let value = step(*ins, regs);
             regs.push(value);
         }
         for (slot, &reg) in out.iter_mut().zip(&self.outputs) {
@@ -145,141 +169,48 @@ impl Tape {
     }
 }
 
-/// Builds a [`Tape`] output by output.
-#[derive(Debug, Default)]
-pub(crate) struct TapeBuilder {
-    inputs: usize,
-    constants: Vec<f64>,
-    constant_index: HashMap<u64, u32>,
-    ops: Vec<Key>,
-    op_index: HashMap<Key, u32>,
-    outputs: Vec<Ref>,
-}
-
-impl TapeBuilder {
-    /// Adds `node` as the next output.
-    pub(crate) fn output(&mut self, node: &Node) {
-        let r = self.node(node);
-        self.outputs.push(r);
-    }
-
-    /// The finished tape.
-    pub(crate) fn finish(self) -> Tape {
-        let (inputs, consts) = (self.inputs as u32, self.constants.len() as u32);
-        let place = |r: Ref| match r {
-            Ref::Input(i) => i,
-            Ref::Const(c) => inputs + c,
-            Ref::Op(k) => inputs + consts + k,
-        };
-        let instrs = self.ops.iter().map(|key| relocate(*key, place)).collect();
-        Tape {
-            inputs: self.inputs,
-            constants: self.constants,
-            instrs,
-            outputs: self.outputs.into_iter().map(place).collect(),
+/// The value of one instruction over the registers computed so far.
+#[inline(always)]
+fn step<S: Scalar>(ins: Instr, regs: &[S]) -> S {
+    let r = |i: u32| regs[i as usize];
+    match ins {
+        Instr::Load(c) => S::from(c),
+        Instr::Neg(a) => -r(a),
+        Instr::Add(a, b) => r(a) + r(b),
+        Instr::Sub(a, b) => r(a) - r(b),
+        Instr::Mul(a, b) => r(a) * r(b),
+        Instr::Div(a, b) => r(a) / r(b),
+        Instr::AddC(a, c) => {
+            let mut v = r(a);
+            v += c;
+            v
         }
-    }
-
-    fn constant(&mut self, c: f64) -> Ref {
-        let next = self.constants.len() as u32;
-        let index = *self.constant_index.entry(c.to_bits()).or_insert(next);
-        if index == next {
-            self.constants.push(c);
+        Instr::SubC(a, c) => {
+            let mut v = r(a);
+            v -= c;
+            v
         }
-        Ref::Const(index)
-    }
-
-    fn op(&mut self, key: Key) -> Ref {
-        let next = self.ops.len() as u32;
-        let index = *self.op_index.entry(key).or_insert(next);
-        if index == next {
-            self.ops.push(key);
+        Instr::CSub(c, a) => S::from(c) - r(a),
+        Instr::MulC(a, c) => {
+            let mut v = r(a);
+            v *= c;
+            v
         }
-        Ref::Op(index)
-    }
-
-    fn node(&mut self, node: &Node) -> Ref {
-        match node {
-            Node::Const(c) => self.constant(*c),
-            Node::Input(slot) => {
-                self.inputs = self.inputs.max(slot + 1);
-                Ref::Input(*slot as u32)
-            }
-            Node::Neg(a) => {
-                let a = self.node(a);
-                self.op(Key::Neg(a))
-            }
-            Node::Bin(op, a, b) => {
-                let (mut a, mut b) = (self.node(a), self.node(b));
-                let commutes = matches!(op, Arith::Add | Arith::Mul);
-                if commutes && b < a {
-                    std::mem::swap(&mut a, &mut b);
-                }
-                self.op(Key::Bin(*op as u8, a, b))
-            }
-            Node::Unary(f, a) => {
-                let a = self.node(a);
-                self.op(Key::Call(unary_code(*f), a))
-            }
-            Node::Powi(a, n) => {
-                let a = self.node(a);
-                self.op(Key::Powi(a, *n))
-            }
-            Node::Powf(a, e) => {
-                let a = self.node(a);
-                self.op(Key::Powf(a, e.to_bits()))
-            }
-            Node::Powd(a, b) => {
-                let (a, b) = (self.node(a), self.node(b));
-                self.op(Key::Powd(a, b))
-            }
-            Node::Atan2(y, x) => {
-                let (y, x) = (self.node(y), self.node(x));
-                self.op(Key::Atan2(y, x))
-            }
-        }
-    }
-}
-
-/// The unary functions in a fixed order (their code in a [`Key`]).
-const UNARIES: [Unary; 13] = [
-    Unary::Sin,
-    Unary::Cos,
-    Unary::Tan,
-    Unary::Asin,
-    Unary::Acos,
-    Unary::Atan,
-    Unary::Sinh,
-    Unary::Cosh,
-    Unary::Tanh,
-    Unary::Exp,
-    Unary::Ln,
-    Unary::Sqrt,
-    Unary::Abs,
-];
-
-fn unary_code(f: Unary) -> u8 {
-    UNARIES.iter().position(|&u| u == f).unwrap_or(0) as u8
-}
-
-/// The instruction of `key` with its operands placed in the register file.
-fn relocate(key: Key, place: impl Fn(Ref) -> u32) -> Instr {
-    match key {
-        Key::Neg(a) => Instr::Neg(place(a)),
-        Key::Bin(op, a, b) => {
-            let (a, b) = (place(a), place(b));
-            match op {
-                o if o == Arith::Add as u8 => Instr::Add(a, b),
-                o if o == Arith::Sub as u8 => Instr::Sub(a, b),
-                o if o == Arith::Mul as u8 => Instr::Mul(a, b),
-                _ => Instr::Div(a, b),
-            }
-        }
-        Key::Call(f, a) => Instr::Call(UNARIES[usize::from(f)], place(a)),
-        Key::Powi(a, 2) => Instr::Square(place(a)),
-        Key::Powi(a, n) => Instr::Powi(place(a), n),
-        Key::Powf(a, e) => Instr::Powf(place(a), f64::from_bits(e)),
-        Key::Powd(a, b) => Instr::Powd(place(a), place(b)),
-        Key::Atan2(y, x) => Instr::Atan2(place(y), place(x)),
+        // Not `v /= c`: num-dual divides by an `f64` as a product with its reciprocal, which
+        // rounds differently from the division the plain layout does.
+        Instr::DivC(a, c) => r(a) / S::from(c),
+        Instr::CDiv(c, a) => S::from(c) / r(a),
+        Instr::Square(a) => r(a) * r(a),
+        Instr::Call(f, a) => f.apply(r(a)),
+        Instr::Powi(a, n) => r(a).powi(n),
+        Instr::Powf(a, e) => powf(r(a), e),
+        Instr::Powd(a, b) => powd(r(a), r(b)),
+        Instr::Atan2(a, b) => atan2(r(a), r(b)),
+        Instr::MulAdd(a, b, c) => r(a) * r(b) + r(c),
+        Instr::SumSquares(a, b) => r(a) * r(a) + r(b) * r(b),
+        Instr::MulSub(a, b, c) => r(a) * r(b) - r(c),
+        Instr::SubMul(c, a, b) => r(c) - r(a) * r(b),
+        Instr::Mul3(a, b, c) => r(a) * r(b) * r(c),
+        Instr::MulDiv(a, b, c) => r(a) * r(b) / r(c),
     }
 }

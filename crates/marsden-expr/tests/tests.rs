@@ -13,5 +13,7 @@ mod errors;
 mod eval;
 // Structure read off a Lagrangian: separable or not, symbolic derivatives, the register machine.
 mod structure;
+// The register machine: fused instructions against the plain layout, bit for bit.
+mod tape;
 // Parser semantics: precedence, associativity, literals, functions, constants.
 mod parse;
