@@ -2,7 +2,8 @@
 //! `|q| = 1` (SHAKE + RATTLE), with the midpoint rule and constrained Lobatto IIIA–IIIB
 //! (`lobatto-3`, order 4). The tangent map is checked against central differences of whole runs
 //! started from initial data projected back onto `T*N`, for tangency of the propagated vectors,
-//! for symplecticity restricted to `T*N` (R17) and against the adjoint.
+//! for symplecticity restricted to `T*N` (R17) and against the adjoint; with a damping force
+//! (Lagrange–d'Alembert) against central differences and for tangency.
 //!
 //! For `L = ½|v|² − z` and `φ = ½(|q|² − 1)` the cotangent bundle is `q·q = 1`, `q·p = 0`; its
 //! tangent vectors at `(q, p)` are the `(δq, δp)` with `q·δq = 0` and `δq·p + q·δp = 0`.
@@ -10,6 +11,7 @@
 use super::common::relative_distance;
 use crate::common::tight;
 use marsden::discrete::rules::Galerkin;
+use marsden::forces::LinearDamping;
 use marsden::holonomic::Rattle;
 use marsden::sensitivity::{AdjointOptions, SensitiveStep, TangentOptions, adjoint, tangent};
 use marsden::systems::SphericalPendulum;
@@ -29,6 +31,26 @@ where
 {
     let p = pendulum();
     Integrator::new(rule.discretize(p))
+        .with_constraint(p)
+        .with_projection(Rattle::new(p, p).with_options(tight()))
+        .with_options(tight())
+        .unwrap()
+}
+
+/// The spherical pendulum with anisotropic linear damping `f = −diag(0.1, 0.05, 0.02) v`
+/// (Lagrange–d'Alembert; the constraint force stays normal, the damping need not be tangent).
+fn damped<R: Rule>(
+    rule: &R,
+) -> Integrator<
+    R::Discrete<SphericalPendulum>,
+    R::DiscreteForce<LinearDamping>,
+    SphericalPendulum,
+    Rattle<SphericalPendulum, SphericalPendulum>,
+> {
+    let p = pendulum();
+    let damping = LinearDamping::diagonal(&[0.1, 0.05, 0.02]).unwrap();
+    Integrator::new(rule.discretize(p))
+        .with_force(rule.discretize_force(damping, 3))
         .with_constraint(p)
         .with_projection(Rattle::new(p, p).with_options(tight()))
         .with_options(tight())
@@ -138,6 +160,14 @@ fn spherical_pendulum_lobatto3_tangent_map_matches_projected_central_differences
     check_finite_differences("lobatto-3", || constrained(&Galerkin::lobatto(3).unwrap()));
 }
 
+#[test]
+fn damped_spherical_pendulum_tangent_map_matches_projected_central_differences() {
+    check_finite_differences("damped, midpoint", || damped(&Midpoint));
+    check_finite_differences("damped, lobatto-3", || {
+        damped(&Galerkin::lobatto(3).unwrap())
+    });
+}
+
 /// The largest relative defect of tangency to `T*N` of the propagated basis vectors over a run:
 /// `|q·δq| / (|q||δq|)` and `|δq·p + q·δp| / (|δq||p| + |q||δp|)`.
 fn tangency_defect<D: SensitiveStep>(stepper: &mut D, steps: usize) -> (f64, f64) {
@@ -169,6 +199,14 @@ fn spherical_pendulum_propagated_vectors_stay_tangent_to_cotangent_bundle() {
         (
             "lobatto-3",
             tangency_defect(&mut constrained(&Galerkin::lobatto(3).unwrap()), 1000),
+        ),
+        (
+            "damped, midpoint",
+            tangency_defect(&mut damped(&Midpoint), 1000),
+        ),
+        (
+            "damped, lobatto-3",
+            tangency_defect(&mut damped(&Galerkin::lobatto(3).unwrap()), 1000),
         ),
     ] {
         println!(
