@@ -17,8 +17,8 @@ use marsden::sensitivity::{AdjointOptions, SensitiveStep, TangentOptions, adjoin
 use marsden::systems::SphericalPendulum;
 use marsden::{DiscreteAction, Initial, Integrator, Midpoint, NoForce, Rule, State, TimeGrid};
 
-type Constrained<A> =
-    Integrator<A, NoForce, SphericalPendulum, Rattle<SphericalPendulum, SphericalPendulum>>;
+type Constrained<A, F = NoForce> =
+    Integrator<A, F, SphericalPendulum, Rattle<SphericalPendulum, SphericalPendulum>>;
 
 fn pendulum() -> SphericalPendulum {
     SphericalPendulum::default()
@@ -41,12 +41,7 @@ where
 /// (Lagrange–d'Alembert; the constraint force stays normal, the damping need not be tangent).
 fn damped<R: Rule>(
     rule: &R,
-) -> Integrator<
-    R::Discrete<SphericalPendulum>,
-    R::DiscreteForce<LinearDamping>,
-    SphericalPendulum,
-    Rattle<SphericalPendulum, SphericalPendulum>,
-> {
+) -> Constrained<R::Discrete<SphericalPendulum>, R::DiscreteForce<LinearDamping>> {
     let p = pendulum();
     let damping = LinearDamping::diagonal(&[0.1, 0.05, 0.02]).unwrap();
     Integrator::new(rule.discretize(p))
