@@ -215,6 +215,11 @@ impl<L: Lagrangian, C: Constraint> Rattle<L, C> {
         result
     }
 
+    /// The Lagrangian whose Legendre transform the projection inverts.
+    pub fn lagrangian(&self) -> &L {
+        &self.lagrangian
+    }
+
     /// The velocities `v = FH(t, q, p)` of the last successful projection; they satisfy
     /// `Dφ(q) v = 0` to the solver tolerance.
     pub fn velocity(&self) -> &[f64] {

@@ -16,6 +16,8 @@
 //! - [`tangent`]: `S_k = ∂(q_k, p_k)/∂(q₀, p₀, θ)` forward along a run ([`Tangent`]).
 //! - [`adjoint`]: `dΛ/d(q₀, p₀, θ)` of `Λ = Σ_k ℓ_k(q_k, p_k)`, backwards ([`Gradient`]),
 //!   over [`checkpoints`] so memory stays bounded.
+//! - [`constrained`]: the step Jacobian of a constrained run (SHAKE + RATTLE, multipliers
+//!   included; `projection` linearises the projection onto `T*N`).
 //! - [`parametric`]: named parameters of the Lagrangian and the forces, held as coordinates
 //!   that do not move ([`ParametricIntegrator`]).
 //!
@@ -23,8 +25,10 @@
 
 pub mod adjoint;
 pub mod checkpoints;
+pub mod constrained;
 pub mod options;
 pub mod parametric;
+mod projection;
 pub mod step;
 pub mod tangent;
 

@@ -3,7 +3,9 @@
 //!
 //! The variational [`Integrator`] (unconstrained, with or without forces, every rule) gives
 //! `∂(q_{k+1}, p_{k+1})/∂(q_k, p_k)` by the implicit function theorem on its converged step
-//! ([`crate::analysis::certificate::variational`]); every
+//! ([`crate::analysis::certificate::variational`]); the constrained one (SHAKE + RATTLE,
+//! [`crate::holonomic::Rattle`]) gives it on tangent vectors of `T*N`
+//! ([`super::constrained`]); every
 //! [`crate::hamiltonian::HamiltonianIntegrator`] gives its own. Neither carries parameters
 //! (`P = 0`); [`super::parametric::ParametricIntegrator`] carries `P` of them.
 

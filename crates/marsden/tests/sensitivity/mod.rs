@@ -3,6 +3,7 @@
 
 mod adjoint;
 mod common;
+mod constrained;
 mod finite_differences;
 mod parameters;
 mod tangent;

@@ -1,0 +1,385 @@
+//! The exact Jacobian of a constrained step (SHAKE + RATTLE) by the implicit function theorem.
+//!
+//! One step of [`Integrator`] with holonomic constraints `φ` and the [`Rattle`] projection
+//! ([`crate::holonomic`], [`crate::integrator::equations`]) solves, for the control points
+//! `Q₁ … Q_s` (`Q₀ = q_k`), the multiplier `λ` and the stage multipliers `Λ₁ … Λ_c`,
+//!
+//! ```text
+//!     p_k + ∂Φ/∂Q₀ + F₀ = 0,     ∂Φ/∂Q_j + F_j = 0  (0 < j < s),
+//!     φ(Q_s) = 0,                φ(X_i) = 0  (i = 1 … c),
+//!     Φ = L_d(Q₀, …, Q_s) − h ⟨λ, φ(Q₀)⟩ − h Σ_i ⟨Λ_i, φ(X_i)⟩,
+//! ```
+//!
+//! sets `q_{k+1} = Q_s`, `p̃_{k+1} = ∂Φ/∂Q_s + F_s`, and projects `p̃_{k+1}` onto `T*N`
+//! ([`super::projection`]). Writing these equations as `R(y; q_k, p_k) = 0` with
+//! `y = (Q₁, …, Q_s, λ, Λ)`, the implicit function theorem at the converged step gives
+//! ([MW01] §1.5, §3.5; [LMO08] §3)
+//!
+//! ```text
+//!     dy/d(q_k, p_k) = −(∂R/∂y)⁻¹ ∂R/∂(q_k, p_k),      dq_{k+1} = dQ_s,
+//!     dp̃_{k+1} = ∂(∂Φ/∂Q_s + F_s)/∂q_k dq_k + ∂(∂Φ/∂Q_s + F_s)/∂y · dy,
+//! ```
+//!
+//! where `∂R/∂y` is the Newton matrix of the step (curvature of the constraints included,
+//! through the multipliers in `Φ`). All blocks come from one hyper-dual evaluation of
+//! `(Φ, F, φ(Q_s), φ(X_i))` over the variables `x = (Q₀, Q₁ … Q_s, λ, Λ)`, all seeded: the
+//! Hessian of `Φ` gives the momentum rows (with `−h Dφ(q_k)ᵀ` in the `λ` columns and
+//! `−h ∂φ(X_i)/∂Q_j` in the `Λ_i` columns), the first derivatives of `F` and `φ` the rest.
+//! The offsets `Δ_j = Q_j − q_k` the integrator stores are shifted inside the evaluation so
+//! that the derivative of slot `j` is `∂/∂Q_j` at fixed other points, as in
+//! [`crate::integrator::equations`]. Without constraints (`d = 0`) this is the unconstrained
+//! step Jacobian of [`crate::analysis::certificate::variational`].
+//!
+//! ## Tangent vectors of `T*N`
+//!
+//! The step equations are defined for any `(q_k, p_k)` near `T*N` (they impose `φ = 0` at the
+//! new point only), so the matrix written here is the derivative of that extension of the map,
+//! a full `2n × 2n` matrix. Only its action on tangent vectors of `T*N` at `(q_k, p_k)` —
+//! `Dφ(q_k) δq = 0` and `δ(Dφ(q) FH(q, p)) = 0` — is the derivative of the run's map on the
+//! constraint manifold; applied to such vectors it returns tangent vectors of `T*N` at
+//! `(q_{k+1}, p_{k+1})`, and restricted to them it preserves the canonical form ([LR04] §7.3).
+//! Components normal to `T*N` (e.g. from finite differences of unprojected initial data) have
+//! no meaning for the constrained dynamics.
+//!
+//! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LMO08]: Leyendecker, Marsden, Ortiz, ZAMM
+//! 88 (2008). [LR04]: Leimkuhler, Reich, *Simulating Hamiltonian Dynamics* (2004).
+
+use std::cell::RefCell;
+
+use super::projection::{ProjectionWorkspace, projection_jacobian};
+use super::step::{SensitiveStep, no_stage_offsets};
+use crate::discrete::{DiscreteAction, DiscreteForce};
+use crate::error::{Error, StepError, StepFailure};
+use crate::holonomic::{MomentumProjection, Rattle};
+use crate::integrator::{Integrator, StepReport};
+use crate::mechanics::{Constraint, Lagrangian, State};
+use crate::numerics::ad::{self, HessianParts, MultiFunction};
+use crate::numerics::dense::Lu;
+use crate::numerics::scratch::{NODE, with_buffer};
+use crate::scalar::Scalar;
+
+/// Inline capacity for the offsets of a step (`s·n`).
+const OFFSETS: usize = 16;
+
+/// Sizes of a constrained step.
+#[derive(Debug, Clone, Copy)]
+struct Layout {
+    n: usize,
+    s: usize,
+    d: usize,
+    stages: usize,
+    forced: bool,
+}
+
+impl Layout {
+    /// Variables `x = (Q₀ … Q_s, λ, Λ)`.
+    fn width(&self) -> usize {
+        (self.s + 1) * self.n + self.d * (1 + self.stages)
+    }
+    /// Unknowns `y = (Q₁ … Q_s, λ, Λ)`: the variables after `Q₀`.
+    fn unknowns(&self) -> usize {
+        self.width() - self.n
+    }
+    fn forces(&self) -> usize {
+        if self.forced {
+            (self.s + 1) * self.n
+        } else {
+            0
+        }
+    }
+}
+
+/// `(Φ, F, φ(Q_s), φ(X₁) … φ(X_c))` of one step as a function of `x = (q_k, Δ, λ, Λ)`.
+struct AugmentedStep<'a, A, F, C> {
+    action: &'a A,
+    force: &'a F,
+    constraint: &'a C,
+    t0: f64,
+    h: f64,
+    layout: Layout,
+}
+
+impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
+    for AugmentedStep<'_, A, F, C>
+{
+    fn inputs(&self) -> usize {
+        self.layout.width()
+    }
+    fn outputs(&self) -> usize {
+        let l = self.layout;
+        1 + l.forces() + l.d * (1 + l.stages)
+    }
+    fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
+        let l = self.layout;
+        let (n, sn, d) = (l.n, l.s * l.n, l.d);
+        let (q0, rest) = x.split_at(n);
+        let (offsets, multipliers) = rest.split_at(sn);
+        let zero = S::from(0.0);
+        // Δ_j − (q₀ − re q₀): same real part, derivatives taken with Q_j = q₀ + Δ_j held fixed.
+        let shifted = |i: usize| {
+            let a = q0[i % n];
+            offsets[i] + (S::from(a.re()) - a)
+        };
+        with_buffer::<S, OFFSETS, ()>(sn, zero, shifted, |offsets| {
+            out[0] = self.action.action(self.t0, self.h, q0, offsets);
+            let nf = l.forces();
+            if nf > 0 {
+                let forces = &mut out[1..1 + nf];
+                self.force
+                    .discrete_force(self.t0, self.h, q0, offsets, forces);
+            }
+            if d == 0 {
+                return;
+            }
+            let first = 1 + nf;
+            // −h ⟨λ, φ(Q₀)⟩, computed in the slot of φ(Q_s) before it is filled.
+            self.constraint.constraint(q0, &mut out[first..first + d]);
+            for c in 0..d {
+                out[0] -= out[first + c] * multipliers[c] * S::from(self.h);
+            }
+            let last = &offsets[(l.s - 1) * n..];
+            with_buffer::<S, NODE, ()>(
+                n,
+                zero,
+                |i| q0[i] + last[i],
+                |q_end| {
+                    self.constraint
+                        .constraint(q_end, &mut out[first..first + d]);
+                },
+            );
+            for i in 0..l.stages {
+                let block = first + (1 + i) * d;
+                with_buffer::<S, NODE, ()>(
+                    n,
+                    zero,
+                    |_| zero,
+                    |point| {
+                        self.action.stage_point(i, q0, offsets, point);
+                        self.constraint
+                            .constraint(point, &mut out[block..block + d]);
+                    },
+                );
+                for c in 0..d {
+                    out[0] -= out[block + c] * multipliers[(1 + i) * d + c] * S::from(self.h);
+                }
+            }
+        });
+    }
+}
+
+/// The derivative blocks of one full hyper-dual evaluation of [`AugmentedStep`].
+struct Blocks<'a> {
+    parts: &'a HessianParts,
+    layout: Layout,
+}
+
+impl Blocks<'_> {
+    /// `∂(∂Φ/∂Q_j + F_j)_a / ∂x_v`.
+    fn d_point(&self, j: usize, a: usize, v: usize) -> f64 {
+        let (l, w) = (self.layout, self.layout.width());
+        let row = j * l.n + a;
+        let force = if l.forced {
+            self.parts.jac_cols[(1 + row) * w + v]
+        } else {
+            0.0
+        };
+        self.parts.hess[row * w + v] + force
+    }
+
+    /// `∂R_r/∂x_v` for equation `r` of `R(y; q_k, p_k)` (momentum rows, then constraint rows).
+    fn d_equation(&self, r: usize, v: usize) -> f64 {
+        let (l, w) = (self.layout, self.layout.width());
+        let sn = l.s * l.n;
+        if r < sn {
+            self.d_point(r / l.n, r % l.n, v)
+        } else {
+            self.parts.jac_cols[(1 + l.forces() + r - sn) * w + v]
+        }
+    }
+}
+
+/// Buffers of [`shake_jacobian`], kept per thread so a run allocates only on its first step.
+#[derive(Debug, Default)]
+struct Workspace {
+    /// The converged unknowns `z` and `x = (q_k, z)`.
+    z: Vec<f64>,
+    x: Vec<f64>,
+    parts: HessianParts,
+    a_mat: Vec<f64>,
+    lu: Lu,
+    /// `dy` column-major (unknowns × 2n), one right-hand side, the solver's scratch.
+    dy: Vec<f64>,
+    col: Vec<f64>,
+    scratch: Vec<f64>,
+    /// `∂(q_{k+1}, p̃_{k+1})/∂(q_k, p_k)` and the projection's `∂p_{k+1}/∂(q_{k+1}, p̃_{k+1})`.
+    shake: Vec<f64>,
+    projection: ProjectionWorkspace,
+}
+
+thread_local! {
+    static WORKSPACE: RefCell<Workspace> = RefCell::new(Workspace::default());
+}
+
+/// Writes `∂(q_{k+1}, p̃_{k+1})/∂(q_k, p_k)` (row-major 2n × 2n) of the SHAKE step from
+/// `(t₀, q_k)` with converged unknowns `z = (Δ₁ … Δ_s, λ, Λ₁ … Λ_c)` into `jac`.
+fn shake_jacobian<A: DiscreteAction, F: DiscreteForce, C: Constraint>(
+    step: &AugmentedStep<'_, A, F, C>,
+    q0: &[f64],
+    z: &[f64],
+    ws: &mut Workspace,
+) -> Result<(), Error> {
+    let l = step.layout;
+    let (n, sn, w, u) = (l.n, l.s * l.n, l.width(), l.unknowns());
+    let m = 2 * n;
+    Error::check_len("step unknowns", z, u)?;
+    ws.x.clear();
+    ws.x.extend(q0.iter().chain(z));
+    ad::partial_hessian(step, &ws.x, 0..w, 0..w, &mut ws.parts);
+    let b = Blocks {
+        parts: &ws.parts,
+        layout: l,
+    };
+    ws.a_mat.clear();
+    ws.a_mat
+        .extend((0..u * u).map(|k| b.d_equation(k / u, n + k % u)));
+    ws.lu.factor(&ws.a_mat, u).map_err(|e| {
+        Error::Step(StepFailure {
+            step: 0,
+            t: step.t0,
+            cause: StepError::SingularJacobian {
+                iteration: 0,
+                pivot: e.pivot,
+            },
+        })
+    })?;
+    // dy = −(∂R/∂y)⁻¹ [∂R/∂q_k | ∂R/∂p_k]; p_k enters the first n rows with the identity.
+    ws.dy.resize(u * m, 0.0);
+    ws.col.resize(u, 0.0);
+    for c in 0..m {
+        for (r, entry) in ws.col.iter_mut().enumerate() {
+            *entry = -if c < n {
+                b.d_equation(r, c)
+            } else {
+                f64::from(u8::from(r == c - n))
+            };
+        }
+        ws.lu.solve(&mut ws.col, &mut ws.scratch);
+        ws.dy[c * u..(c + 1) * u].copy_from_slice(&ws.col);
+    }
+    ws.shake.resize(m * m, 0.0);
+    for a in 0..n {
+        for c in 0..m {
+            // Q_s is unknown (s − 1)·n + a.
+            ws.shake[a * m + c] = ws.dy[c * u + sn - n + a];
+            let direct = if c < n { b.d_point(l.s, a, c) } else { 0.0 };
+            let through: f64 = (0..u)
+                .map(|r| b.d_point(l.s, a, n + r) * ws.dy[c * u + r])
+                .sum();
+            ws.shake[(n + a) * m + c] = direct + through;
+        }
+    }
+    Ok(())
+}
+
+impl<A, F, C, L, C2> SensitiveStep for Integrator<A, F, C, Rattle<L, C2>>
+where
+    A: DiscreteAction,
+    F: DiscreteForce,
+    C: Constraint,
+    L: Lagrangian,
+    C2: Constraint,
+{
+    fn dof(&self) -> usize {
+        self.shape().n
+    }
+
+    fn parameters(&self) -> usize {
+        0
+    }
+
+    fn step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error> {
+        Integrator::step(self, state, h)
+    }
+
+    /// One SHAKE + RATTLE step and its Jacobian (see the module documentation: meaningful on
+    /// tangent vectors of `T*N`).
+    fn step_with_sensitivity(
+        &mut self,
+        state: &mut State,
+        h: f64,
+        jac: &mut [f64],
+    ) -> Result<StepReport, Error> {
+        let shape = self.shape();
+        let (n, m) = (shape.n, 2 * shape.n);
+        Error::check_len("jacobian", jac, m * m)?;
+        if self.is_explicit() && shape.s > 1 {
+            return Err(no_stage_offsets());
+        }
+        let (t0, q0) = (state.t, state.q.clone());
+        let report = Integrator::step(self, state, h)?;
+        let index = self.statistics().steps.saturating_sub(1);
+        let layout = Layout {
+            n,
+            s: shape.s,
+            d: shape.d,
+            stages: shape.stages,
+            forced: shape.forced,
+        };
+        let step = AugmentedStep {
+            action: self.action(),
+            force: self.force(),
+            constraint: self.constraint(),
+            t0,
+            h,
+            layout,
+        };
+        let rename = |e: Error| match e {
+            Error::Step(StepFailure {
+                cause: StepError::SingularJacobian { pivot, .. },
+                ..
+            }) => Error::Step(StepFailure {
+                step: index,
+                t: t0,
+                cause: StepError::SingularJacobian {
+                    iteration: report.iterations,
+                    pivot,
+                },
+            }),
+            other => other,
+        };
+        WORKSPACE.with_borrow_mut(|ws| {
+            let mut z = std::mem::take(&mut ws.z);
+            z.clear();
+            z.extend(
+                self.stage_offsets()
+                    .iter()
+                    .chain(self.multipliers())
+                    .chain(self.stage_multipliers()),
+            );
+            let solved = shake_jacobian(&step, &q0, &z, ws);
+            ws.z = z;
+            solved.map_err(rename)?;
+            let projection = self.projection();
+            if !projection.is_active() {
+                jac.copy_from_slice(&ws.shake);
+                return Ok(report);
+            }
+            let pj = projection_jacobian(
+                (projection.lagrangian(), self.constraint()),
+                t0 + h,
+                (&state.q, projection.velocity(), projection.multipliers()),
+                &mut ws.projection,
+            )
+            .map_err(rename)?;
+            // Rows q: SHAKE's; rows p: ∂p/∂(q_{k+1}, p̃_{k+1}) · SHAKE's.
+            jac[..n * m].copy_from_slice(&ws.shake[..n * m]);
+            for a in 0..n {
+                for c in 0..m {
+                    jac[(n + a) * m + c] =
+                        (0..m).map(|r| pj[a * m + r] * ws.shake[r * m + c]).sum();
+                }
+            }
+            Ok(report)
+        })
+    }
+}

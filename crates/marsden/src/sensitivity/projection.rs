@@ -1,0 +1,180 @@
+//! The derivative of the RATTLE momentum projection onto `T*N`.
+//!
+//! The projection ([`crate::holonomic::Rattle`]) replaces `p̃` at `q = q_{k+1}` by
+//! `p = p̃ − Dφ(q)ᵀν`, with `(v, ν)` the solution of ([HLW06] §VII.1, [LMO08] §3)
+//!
+//! ```text
+//!     K₁ = ∂L/∂v(t, q, v) + Dφ(q)ᵀν − p̃ = 0,        K₂ = Dφ(q) v = 0.
+//! ```
+//!
+//! The implicit function theorem at the converged `(v, ν)` gives, with `W = ∂²L/∂v²`,
+//! `H_c = ∇²φ_c(q)` and `G = Dφ(q)`,
+//!
+//! ```text
+//!     [[W, Gᵀ], [G, 0]] [dv; dν] = [dp̃ − (∂²L/∂v∂q + Σ_c ν_c H_c) dq;  −(vᵀH_c dq)_c],
+//!     dp = dp̃ − Σ_c ν_c H_c dq − Gᵀ dν,
+//! ```
+//!
+//! the same equations whether the projection took its closed form (constant mass matrix) or
+//! Newton's method. Second derivatives come from one hyper-dual evaluation of `L` over `(q, v)`
+//! and one of each constraint component over `q`.
+//!
+//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006). [LMO08]:
+//! Leyendecker, Marsden, Ortiz, ZAMM 88 (2008).
+
+use crate::error::{Error, StepError, StepFailure};
+use crate::mechanics::{Constraint, Lagrangian};
+use crate::numerics::ad::{self, HessianParts, MultiFunction};
+use crate::numerics::dense::Lu;
+use crate::numerics::scratch::{NODE, with_buffer};
+use crate::scalar::Scalar;
+
+/// `(q, v) ↦ L(t, q, v)`.
+struct AtTime<'a, L> {
+    lagrangian: &'a L,
+    t: f64,
+}
+
+impl<L: Lagrangian> MultiFunction for AtTime<'_, L> {
+    fn inputs(&self) -> usize {
+        2 * self.lagrangian.dof()
+    }
+    fn outputs(&self) -> usize {
+        1
+    }
+    fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
+        let (q, v) = x.split_at(x.len() / 2);
+        out[0] = self.lagrangian.lagrangian(S::from(self.t), q, v);
+    }
+}
+
+/// `q ↦ φ_c(q)` as the first output.
+struct Component<'a, C> {
+    constraint: &'a C,
+    c: usize,
+    n: usize,
+}
+
+impl<C: Constraint> MultiFunction for Component<'_, C> {
+    fn inputs(&self) -> usize {
+        self.n
+    }
+    fn outputs(&self) -> usize {
+        1
+    }
+    fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
+        let zero = S::from(0.0);
+        with_buffer::<S, NODE, ()>(
+            self.constraint.count(),
+            zero,
+            |_| zero,
+            |phi| {
+                self.constraint.constraint(x, phi);
+                out[0] = phi[self.c];
+            },
+        );
+    }
+}
+
+/// Buffers of [`projection_jacobian`].
+#[derive(Debug, Default)]
+pub(super) struct ProjectionWorkspace {
+    x: Vec<f64>,
+    parts: HessianParts,
+    /// `G = Dφ(q)` (d × n) and `Σ_c ν_c H_c` (n × n), `vᵀH_c` (d × n).
+    g: Vec<f64>,
+    curvature: Vec<f64>,
+    v_curvature: Vec<f64>,
+    kkt: Vec<f64>,
+    lu: Lu,
+    col: Vec<f64>,
+    scratch: Vec<f64>,
+    /// `∂p/∂(q, p̃)`, row-major n × 2n.
+    jac: Vec<f64>,
+}
+
+/// `∂p/∂(q, p̃)` (row-major n × 2n) of the projection at `q` with converged velocities `v` and
+/// multipliers `ν` at time `t` (see the module documentation).
+///
+/// Errors with [`StepError::SingularJacobian`] if the KKT matrix is singular.
+pub(super) fn projection_jacobian<'w, L: Lagrangian, C: Constraint>(
+    (lagrangian, constraint): (&L, &C),
+    t: f64,
+    (q, v, nu): (&[f64], &[f64], &[f64]),
+    ws: &'w mut ProjectionWorkspace,
+) -> Result<&'w [f64], Error> {
+    let (n, d) = (q.len(), constraint.count());
+    let (m, k) = (2 * n, n + d);
+    Error::check_len("projection velocity", v, n)?;
+    Error::check_len("projection multipliers", nu, d)?;
+    ws.g.resize(d * n, 0.0);
+    ws.curvature.clear();
+    ws.curvature.resize(n * n, 0.0);
+    ws.v_curvature.resize(d * n, 0.0);
+    for (c, &nu_c) in nu.iter().enumerate() {
+        let phi = Component { constraint, c, n };
+        ad::partial_hessian(&phi, q, 0..n, 0..n, &mut ws.parts);
+        ws.g[c * n..(c + 1) * n].copy_from_slice(&ws.parts.grad_rows);
+        for (entry, second) in ws.curvature.iter_mut().zip(&ws.parts.hess) {
+            *entry += nu_c * second;
+        }
+        for b in 0..n {
+            ws.v_curvature[c * n + b] = (0..n).map(|a| v[a] * ws.parts.hess[a * n + b]).sum();
+        }
+    }
+    ws.x.clear();
+    ws.x.extend(q.iter().chain(v));
+    let l = AtTime { lagrangian, t };
+    ad::partial_hessian(&l, &ws.x, n..m, 0..m, &mut ws.parts);
+    // hess row a (∂/∂v_a), column b < n: ∂²L/∂v_a∂q_b; column n + b: W_ab.
+    ws.kkt.clear();
+    ws.kkt.resize(k * k, 0.0);
+    for a in 0..n {
+        for b in 0..n {
+            ws.kkt[a * k + b] = ws.parts.hess[a * m + n + b];
+        }
+        for c in 0..d {
+            ws.kkt[a * k + n + c] = ws.g[c * n + a];
+            ws.kkt[(n + c) * k + a] = ws.g[c * n + a];
+        }
+    }
+    ws.lu.factor(&ws.kkt, k).map_err(|e| {
+        Error::Step(StepFailure {
+            step: 0,
+            t,
+            cause: StepError::SingularJacobian {
+                iteration: 0,
+                pivot: e.pivot,
+            },
+        })
+    })?;
+    ws.jac.resize(n * m, 0.0);
+    ws.col.resize(k, 0.0);
+    for b in 0..m {
+        for a in 0..n {
+            ws.col[a] = if b < n {
+                -(ws.parts.hess[a * m + b] + ws.curvature[a * n + b])
+            } else {
+                f64::from(u8::from(a == b - n))
+            };
+        }
+        for c in 0..d {
+            ws.col[n + c] = if b < n {
+                -ws.v_curvature[c * n + b]
+            } else {
+                0.0
+            };
+        }
+        ws.lu.solve(&mut ws.col, &mut ws.scratch);
+        for a in 0..n {
+            let direct = if b < n {
+                -ws.curvature[a * n + b]
+            } else {
+                f64::from(u8::from(a == b - n))
+            };
+            let through: f64 = (0..d).map(|c| ws.g[c * n + a] * ws.col[n + c]).sum();
+            ws.jac[a * m + b] = direct - through;
+        }
+    }
+    Ok(&ws.jac)
+}
