@@ -42,13 +42,14 @@ pub fn sensitivity(
             .error(Some(raw.span()), "[sensitivity] asks for no derivative")
             .help("add `initial = true` and/or `parameters = [\"…\"]`"));
     }
-    if system.constraint.count() > 0 {
+    if system.constraint.count() > 0 && !names.is_empty() {
         return Err(ck
             .error(
                 Some(raw.span()),
-                "sensitivities of constrained systems are not supported yet",
+                "parameter sensitivities of constrained systems are not supported yet",
             )
-            .note("the constrained step's linearisation (multipliers included) is not built"));
+            .note("the constrained step is differentiated with respect to (q₀, p₀) only")
+            .help("keep `initial = true` and remove `parameters`"));
     }
     let model = match names.is_empty() {
         true => None,

@@ -185,6 +185,7 @@ fn derivatives(
         final_jacobian: Vec::new(),
         samples: 0,
         error: Some(error),
+        note: None,
     };
     if record.error.is_some() || record.interrupted {
         return Some((failed("the run did not complete".to_owned()), None));

@@ -7,7 +7,10 @@
 //! and the run's own outputs are untouched. Each step's Jacobian comes from the implicit
 //! function theorem on the converged step ([MW01] §1.5), `S_{k+1} = DF_x S_k + [0 | DF_θ]`.
 //! With parameters, the step is that of [`ExprParametric`] (the file's texts with the named
-//! parameters as inputs) at the file's values.
+//! parameters as inputs) at the file's values. A constrained run (SHAKE + RATTLE) is
+//! differentiated with its multipliers and its projection ([`marsden::sensitivity`]): its
+//! Jacobian is that of the constrained run on tangent vectors of `T*N`, which the summary's
+//! `note` says; parameters of a constrained run are refused when the file is read.
 //!
 //! Files: `sensitivity.npy` of shape `[samples, 2n, columns]`, or `sensitivity.csv` (one row
 //! per stored step: `t`, then the entries row by row, named `q_x/q0_x`) with `format = "csv"`.
@@ -17,7 +20,7 @@
 use std::path::Path;
 
 use marsden::sensitivity::{ParametricIntegrator, Tangent, TangentOptions, tangent};
-use marsden::{Lagrangian, State};
+use marsden::{Constraint as _, Lagrangian, State};
 use marsden_io::{CsvWriter, NpyShape, NpyWriter};
 use serde::Serialize;
 
@@ -46,7 +49,14 @@ pub struct SensitivitySummary {
     pub samples: usize,
     /// Why the derivatives could not be computed (null when they were).
     pub error: Option<String>,
+    /// How to read them, when that needs saying (constrained runs; null otherwise).
+    pub note: Option<String>,
 }
+
+/// The note of a constrained run's Jacobians.
+const ON_TANGENT_VECTORS: &str = "constrained: the Jacobian extends the step off the \
+     constraint manifold; only its action on tangent vectors of T*N (δq with Dφ(q₀)·δq = 0 and \
+     the hidden constraint's derivative zero) is the derivative of the constrained run";
 
 /// The tangent run's Jacobians restricted to the asked columns.
 #[derive(Debug, Clone, PartialEq)]
@@ -117,6 +127,7 @@ fn select(spec: &RunSpec, asked: &SensitivitySpec, run: &Tangent) -> Sensitiviti
             final_jacobian: last.chunks(width.max(1)).map(<[f64]>::to_vec).collect(),
             samples: samples.len(),
             error: None,
+            note: (spec.system.constraint.count() > 0).then(|| ON_TANGENT_VECTORS.to_owned()),
         },
         samples,
     }
@@ -226,9 +237,14 @@ pub fn describe(summary: &SensitivitySummary) -> String {
     if let Some(e) = &summary.error {
         return format!("sensitivity: not computed: {e}");
     }
+    let note = summary
+        .note
+        .as_ref()
+        .map_or(String::new(), |n| format!(" ({n})"));
     let largest = (summary.final_jacobian.iter().flatten()).fold(0.0_f64, |m, x| m.max(x.abs()));
     format!(
-        "sensitivity: ∂(q, p)/∂({}), {}×{} at {} stored steps; final max |entry| {largest:.3e}",
+        "sensitivity: ∂(q, p)/∂({}), {}×{} at {} stored steps; final max |entry| \
+         {largest:.3e}{note}",
         summary.columns.join(", "),
         summary.rows.len(),
         summary.columns.len(),

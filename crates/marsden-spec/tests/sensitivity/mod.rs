@@ -6,29 +6,27 @@ use std::path::Path;
 
 use marsden_spec::{Controls, Outcome, RunSpec, RunStatus, Store, execute};
 
-/// Runs `text` into `out` (files and memory), checking that it completed.
-fn run(text: &str, out: &Path) -> Outcome {
+/// Runs `text` into `out` (files and memory) in the trajectory `format`, checking that it
+/// completed.
+fn run_as(text: &str, out: &Path, format: &str) -> Outcome {
     let text = format!(
-        "{text}\n[output]\ndir = \"{}\"\nplots = false\n",
-        out.display()
-    );
-    let spec = RunSpec::from_toml_str(&text, "sensitivity.toml").unwrap_or_else(|d| panic!("{d}"));
-    let controls = Controls::default();
-    let outcome = execute(&spec, Store::FilesAndMemory, &controls).unwrap();
-    assert_eq!(outcome.summary.status, RunStatus::Completed);
-    outcome
-}
-
-/// Runs `text` into `out` with `format = "npy"`: the Jacobians go to `sensitivity.npy`.
-fn run_npy(text: &str, out: &Path) -> Outcome {
-    let text = format!(
-        "{text}\n[output]\ndir = \"{}\"\nplots = false\nformat = \"npy\"\n",
+        "{text}\n[output]\ndir = \"{}\"\nplots = false\nformat = \"{format}\"\n",
         out.display()
     );
     let spec = RunSpec::from_toml_str(&text, "sensitivity.toml").unwrap_or_else(|d| panic!("{d}"));
     let outcome = execute(&spec, Store::FilesAndMemory, &Controls::default()).unwrap();
     assert_eq!(outcome.summary.status, RunStatus::Completed);
     outcome
+}
+
+/// [`run_as`] in CSV (the Jacobians go to `sensitivity.csv`).
+fn run(text: &str, out: &Path) -> Outcome {
+    run_as(text, out, "csv")
+}
+
+/// [`run_as`] in npy (the Jacobians go to `sensitivity.npy`).
+fn run_npy(text: &str, out: &Path) -> Outcome {
+    run_as(text, out, "npy")
 }
 
 /// `summary.json` as written, read back.
@@ -263,26 +261,72 @@ fn an_unknown_parameter_is_refused_with_a_suggestion() {
     assert!(message.contains("scalar parameters: mu"), "{message}");
 }
 
-#[test]
-fn constraints_and_empty_tables_are_refused() {
-    let constrained = r#"
+/// A pendulum in Cartesian coordinates, `x² + y² = 1`, `L = ½|v|² − g y` (so `p = v`), from
+/// `q = (1, 0)`, `v = (0, 0.5)`.
+const CARTESIAN_PENDULUM: &str = r#"
 [system]
 coordinates = ["x", "y"]
-lagrangian = "0.5*(x_dot^2 + y_dot^2) - y"
+parameters = { g = 1.0 }
+lagrangian = "0.5*(x_dot^2 + y_dot^2) - g*y"
 constraints = ["x^2 + y^2 - 1"]
 [initial]
 q = [1.0, 0.0]
-v = [0.0, 0.0]
+v = [0.0, 0.5]
 [integrator]
 method = "midpoint"
 h = 0.01
-steps = 10
+steps = 500
 [sensitivity]
 initial = true
 "#;
-    let message = refusal(constrained);
+
+/// A constrained run's final Jacobian carries tangent vectors of `T*N` at the start to tangent
+/// vectors at the end (the property the issue asks of the constrained tangent map): for
+/// `δ = (δq, δp)` with `q₀·δq = 0` and `δq·p₀ + q₀·δp = 0`, the image satisfies
+/// `q_K·δq_K = 0` (the constraint's derivative) and `δq_K·p_K + q_K·δp_K = 0` (the hidden
+/// constraint `q·v = 0`'s), each relative to its terms' sizes to 1e-10; and the summary says
+/// how to read the matrix.
+#[test]
+fn constrained_jacobian_maps_tangent_vectors_of_the_cotangent_bundle_to_tangent_vectors() {
+    let out = tempfile::tempdir().unwrap();
+    let outcome = run(CARTESIAN_PENDULUM, out.path());
+    let s = outcome.summary.sensitivity.as_ref().unwrap();
+    assert_eq!(s.error, None);
+    assert!(s.note.as_deref().unwrap_or("").contains("tangent vectors of T*N"));
+    let j = &s.final_jacobian;
+    let f = &outcome.summary.final_state;
+    let (q, p) = (&f.q, &f.p);
+    // At the start q₀ = (1, 0), p₀ = (0, 0.5): δq = (0, 1) needs δp_x = −0.5.
+    for delta in [[0.0, 1.0, -0.5, 0.0], [0.0, 0.0, 0.0, 1.0]] {
+        let image: Vec<f64> = (0..4)
+            .map(|r| (0..4).map(|c| j[r][c] * delta[c]).sum())
+            .collect();
+        let (dq, dp) = image.split_at(2);
+        let position = q[0] * dq[0] + q[1] * dq[1];
+        let position_scale = (q[0] * dq[0]).abs() + (q[1] * dq[1]).abs();
+        let hidden = dq[0] * p[0] + dq[1] * p[1] + q[0] * dp[0] + q[1] * dp[1];
+        let hidden_scale = (dq[0] * p[0]).abs()
+            + (dq[1] * p[1]).abs()
+            + (q[0] * dp[0]).abs()
+            + (q[1] * dp[1]).abs();
+        assert!(position_scale > 1e-3 && hidden_scale > 1e-3, "{image:?}");
+        assert!(
+            position.abs() <= 1e-10 * position_scale,
+            "q·δq = {position:e} (scale {position_scale:e})"
+        );
+        assert!(
+            hidden.abs() <= 1e-10 * hidden_scale,
+            "δ(q·p) = {hidden:e} (scale {hidden_scale:e})"
+        );
+    }
+}
+
+#[test]
+fn constrained_parameters_and_empty_tables_are_refused() {
+    let constrained = CARTESIAN_PENDULUM.replace("initial = true", "parameters = [\"g\"]");
+    let message = refusal(&constrained);
     assert!(
-        message.contains("constrained systems are not supported"),
+        message.contains("parameter sensitivities of constrained systems are not supported"),
         "{message}"
     );
     let empty = OSCILLATOR.replace("initial = true", "");

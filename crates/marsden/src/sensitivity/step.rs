@@ -14,8 +14,7 @@ use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::error::{Error, InputError};
 use crate::hamiltonian::{Hamiltonian, HamiltonianIntegrator, HamiltonianMethod};
 use crate::integrator::{Integrator, StepReport};
-use crate::holonomic::MomentumProjection;
-use crate::mechanics::{Constraint, State};
+use crate::mechanics::{State, Unconstrained};
 
 /// A one-step map `(q_k, p_k; θ) ↦ (q_{k+1}, p_{k+1})` that reports its exact Jacobian.
 pub trait SensitiveStep {
@@ -49,15 +48,10 @@ pub(super) fn no_stage_offsets() -> Error {
     })
 }
 
-/// Every integrator type (a tangent run uses the very integrator type of the run); a step with
-/// active holonomic constraints is refused by [`DifferentiableStep::step_with_jacobian`].
-impl<A, F, C, P> SensitiveStep for Integrator<A, F, C, P>
-where
-    A: DiscreteAction,
-    F: DiscreteForce,
-    C: Constraint,
-    P: MomentumProjection,
-{
+/// The integrator without constraints or projection (the type of `Integrator::new`); the one
+/// [`crate::run::Problem::integrator`] builds (SHAKE + RATTLE, constraints or none) is
+/// differentiated in [`super::constrained`].
+impl<A: DiscreteAction, F: DiscreteForce> SensitiveStep for Integrator<A, F, Unconstrained> {
     fn dof(&self) -> usize {
         self.shape().n
     }
