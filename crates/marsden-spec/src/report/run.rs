@@ -140,6 +140,9 @@ pub fn render(outcome: &Outcome) -> String {
 /// (or, without one, why there is no error to report).
 fn energy_lines(out: &mut String, s: &crate::run::Summary) {
     let e = &s.energy;
+    if let Some(why) = s.energy_not_available {
+        return line(out, "energy", why.to_owned());
+    }
     let over = over_samples(s);
     match (s.energy_not_conserved, &s.energy_balance) {
         (None, _) => line(

@@ -29,8 +29,8 @@ use marsden::discrete::rules::Method as ChosenRule;
 use marsden::numerics::ad::{self, MultiFunction};
 use marsden::symmetry::GroupAction;
 use marsden::{
-    Constraint, DiscreteAction, Force, Lagrangian, NewtonOptions, Problem, Rule as _, Scalar, State,
-    mechanics,
+    Constraint, DiscreteAction, Force, Lagrangian, NewtonOptions, Problem, Rule as _, Scalar,
+    State, mechanics,
 };
 use serde::Serialize;
 
