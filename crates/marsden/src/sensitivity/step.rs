@@ -11,8 +11,8 @@ use crate::analysis::certificate::DifferentiableStep;
 use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::error::{Error, InputError};
 use crate::hamiltonian::{Hamiltonian, HamiltonianIntegrator, HamiltonianMethod};
-use crate::holonomic::MomentumProjection;
 use crate::integrator::{Integrator, StepReport};
+use crate::holonomic::MomentumProjection;
 use crate::mechanics::{Constraint, State};
 
 /// A one-step map `(q_k, p_k; θ) ↦ (q_{k+1}, p_{k+1})` that reports its exact Jacobian.
