@@ -26,7 +26,10 @@ pub fn render(outcome: &Outcome) -> String {
         s.system,
         count_coordinates(&s.coordinates),
         s.method,
-        crate::problem::method::order_text(s.order),
+        match s.energy_not_available {
+            Some(_) => "the file's own L_d".to_owned(),
+            None => crate::problem::method::order_text(s.order),
+        },
         s.h
     );
     let per_step = if s.steps > 0 {
