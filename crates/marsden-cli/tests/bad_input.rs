@@ -14,8 +14,8 @@ fn unknown_key_names_the_key_and_its_table() {
             "4 | lagrangain = ",
             "  | ^^^^^^^^^^\n",
             "= help: did you mean `lagrangian`?",
-            "= note: valid keys in [system]: builtin, constraints, coordinates, forces, \
-             hamiltonian, lagrangian, name, parameters, symmetry",
+            "= note: valid keys in [system]: builtin, constraints, coordinates, \
+             discrete_lagrangian, forces, hamiltonian, lagrangian, name, parameters, symmetry",
         ],
     );
     assert_rejected(

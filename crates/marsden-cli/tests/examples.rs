@@ -20,7 +20,12 @@ fn every_example_runs_with_reduced_steps() {
         let s = run.summary();
         assert_eq!(s["status"], "completed", "{name}");
         assert_eq!(s["steps"], 40, "{name}");
-        // An energy error where energy is conserved, the balance of the forces otherwise.
+        // An energy error where energy is conserved, the balance of the forces otherwise, and
+        // for a file's own L_d (no continuous L) the reason there is none.
+        if !s["energy_not_available"].is_null() {
+            assert!(s["energy"]["max_rel_error"].is_null(), "{name}: energy");
+            continue;
+        }
         match s["energy_not_conserved"].is_null() {
             true => assert!(
                 s["energy"]["max_rel_error"].as_f64().is_some(),

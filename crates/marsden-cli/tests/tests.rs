@@ -19,6 +19,8 @@ mod commands;
 mod constraints;
 // `method = "exact"`: R3 through the problem file, refusals.
 mod exact;
+// `discrete_lagrangian`: R1 from the hand-written midpoint L_d, no energy, refusals.
+mod discrete;
 // Every file in examples/ runs with reduced steps, as README.md quotes them.
 mod examples;
 // `[system] hamiltonian`: the same map as the Lagrangian, refusals.

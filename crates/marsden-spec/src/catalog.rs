@@ -232,6 +232,9 @@ pub trait WithLagrangian {
     type Output;
     /// Runs the computation with `lagrangian`.
     fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output;
+    /// Runs the computation with a file's own discrete Lagrangian (no continuous `L`): each
+    /// computation says what it can do without one.
+    fn discrete(self, ld: &crate::model::ExprDiscreteLagrangian) -> Self::Output;
 }
 
 impl BuiltinSystem {
@@ -264,6 +267,9 @@ mod tests {
             let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.2 * i as f64).collect();
             let v: Vec<f64> = (0..n).map(|i| -0.7 + 0.3 * i as f64).collect();
             l.lagrangian(0.0, &q, &v)
+        }
+        fn discrete(self, _: &crate::model::ExprDiscreteLagrangian) -> f64 {
+            f64::NAN
         }
     }
 

@@ -103,6 +103,22 @@ impl WithLagrangian for Study<'_> {
             reference_source,
         })
     }
+
+    /// A file's own `L_d` is one method at one order nobody stated: there is no family of
+    /// rules to compare, and no continuous `L` for the reference solution.
+    fn discrete(self, _: &crate::model::ExprDiscreteLagrangian) -> Self::Output {
+        Err(Error::bad_input(
+            Diagnostic::new(
+                "`marsden order` cannot study a `discrete_lagrangian` file: the reference \
+                 solution and the rules are computed from a continuous L",
+            )
+            .at(self
+                .spec
+                .source
+                .locate_opt(self.spec.spans.lagrangian.clone()))
+            .help("write the Lagrangian as `lagrangian = \"…\"` to study the rules' orders"),
+        ))
+    }
 }
 
 /// One method's study (the method itself is the rule, [`marsden::discrete::rules::chosen`]).

@@ -10,6 +10,7 @@
 //! notebook cell), [`member`] (one member of a sweep).
 
 pub mod check;
+pub mod discrete;
 pub mod grid;
 pub mod hamiltonian;
 pub mod method;
@@ -124,6 +125,7 @@ fn validate_raw(
     with_sweep: bool,
 ) -> Result<RunSpec, Diagnostic> {
     let ck = Checker::new(&source);
+    discrete::refuse_unsupported(&ck, raw)?;
     let bodies = nbody_file::read(&ck, raw.initial.as_ref())?;
     let system = system::system(&ck, raw.system.as_ref(), bodies.as_ref())?;
     let (initial, initial_spans) = settings::initial(
@@ -184,7 +186,11 @@ fn validate_raw(
     let sensitivity = sensitivity::sensitivity(&ck, raw.sensitivity.as_ref(), &system)?;
     let system_table = raw.system.as_ref().map(|s| s.get_ref());
     let lagrangian_span = system_table
-        .and_then(|s| (s.lagrangian.as_ref().or(s.builtin.as_ref())).or(s.hamiltonian.as_ref()))
+        .and_then(|s| {
+            (s.lagrangian.as_ref().or(s.builtin.as_ref()))
+                .or(s.hamiltonian.as_ref())
+                .or(s.discrete_lagrangian.as_ref())
+        })
         .map(|v| v.span());
     let spans = SpecSpans {
         lagrangian: lagrangian_span,
@@ -219,7 +225,9 @@ fn run_name(raw: &raw::RawProblem, system: &SystemSpec, path: &Path) -> String {
     }
     match &system.lagrangian {
         LagrangianSpec::Builtin { builtin, .. } => builtin.name().to_owned(),
-        LagrangianSpec::Expression(_) | LagrangianSpec::Hamiltonian(_) => path
+        LagrangianSpec::Expression(_)
+        | LagrangianSpec::Hamiltonian(_)
+        | LagrangianSpec::Discrete(_) => path
             .file_stem()
             .map_or("run".to_owned(), |s| s.to_string_lossy().into_owned()),
     }

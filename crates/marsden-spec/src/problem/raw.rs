@@ -117,6 +117,9 @@ pub struct RawSystem {
     pub hamiltonian: Option<Spanned<String>>,
     /// A catalog system instead of an expression.
     pub builtin: Option<Spanned<String>>,
+    /// A discrete Lagrangian `L_d(q₀, q₁, h, t)` written with `<q>_0`, `<q>_1`, `h`, `t`: the
+    /// researcher's own method, instead of a continuous `L` and a rule.
+    pub discrete_lagrangian: Option<Spanned<String>>,
     /// Generalised forces, one expression per coordinate.
     pub forces: Option<SpannedList<String>>,
     /// Holonomic constraints `φ(q) = 0`, one expression each.

@@ -122,6 +122,7 @@ fn parametric(
         }
         LagrangianSpec::Builtin { .. } => return Err(refuse("the N-body builtin")),
         LagrangianSpec::Hamiltonian(_) => return Err(refuse("a `hamiltonian` system")),
+        LagrangianSpec::Discrete(_) => return Err(refuse("a `discrete_lagrangian` system")),
     };
     let forces: Vec<&str> = (system.force.components().programs().iter())
         .map(|p| p.text())

@@ -11,7 +11,8 @@ use marsden::{Initial, NewtonOptions, TimeGrid};
 use super::method::Method;
 use crate::catalog::{Builtin, BuiltinSystem, WithLagrangian};
 use crate::model::{
-    ExprConstraint, ExprForce, ExprLagrangian, HamiltonianExprLagrangian, Symmetry,
+    ExprConstraint, ExprDiscreteLagrangian, ExprForce, ExprLagrangian, HamiltonianExprLagrangian,
+    Symmetry,
 };
 use crate::source::SourceFile;
 
@@ -52,6 +53,25 @@ pub struct RunSpec {
     pub sensitivity: Option<super::SensitivitySpec>,
 }
 
+impl RunSpec {
+    /// The method's name: the rule, or `discrete_lagrangian` when the file gives its own `L_d`
+    /// (then `[integrator] method` was refused and the default rule is not used).
+    pub fn method_name(&self) -> String {
+        match self.system.has_energy() {
+            true => self.integrator.method.to_string(),
+            false => super::discrete::KEY.to_owned(),
+        }
+    }
+
+    /// The method's order, where known (none for a file's own `L_d`).
+    pub fn method_order(&self) -> Option<u32> {
+        self.integrator
+            .method
+            .order()
+            .filter(|_| self.system.has_energy())
+    }
+}
+
 /// `[analysis]`, validated.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct AnalysisSpec {
@@ -86,7 +106,13 @@ pub enum LagrangianSpec {
     Expression(ExprLagrangian),
     /// `hamiltonian = "…"`, run through its Lagrangian `L = ⟨p, v⟩ − H` at `∂H/∂p = v`.
     Hamiltonian(HamiltonianExprLagrangian),
+    /// `discrete_lagrangian = "…"`: the file's own `L_d`, with no continuous `L` behind it.
+    Discrete(ExprDiscreteLagrangian),
 }
+
+/// What a run of a `discrete_lagrangian` file says instead of an energy.
+pub const ENERGY_NOT_AVAILABLE: &str =
+    "not available (no continuous Lagrangian: the file gives L_d)";
 
 impl LagrangianSpec {
     /// Calls `f` with the concrete Lagrangian type.
@@ -95,6 +121,7 @@ impl LagrangianSpec {
             LagrangianSpec::Builtin { system, .. } => system.dispatch(f),
             LagrangianSpec::Expression(l) => f.call(l),
             LagrangianSpec::Hamiltonian(l) => f.call(l),
+            LagrangianSpec::Discrete(ld) => f.discrete(ld),
         }
     }
 
@@ -108,6 +135,7 @@ impl LagrangianSpec {
             LagrangianSpec::Hamiltonian(l) => {
                 format!("H = {}", l.hamiltonian.program().text())
             }
+            LagrangianSpec::Discrete(ld) => format!("L_d = {}", ld.program().text()),
         }
     }
 }
@@ -136,6 +164,11 @@ impl SystemSpec {
     /// Degrees of freedom.
     pub fn dof(&self) -> usize {
         self.coordinates.len()
+    }
+
+    /// Whether the system has an energy `⟨p, q̇⟩ − L`: not for a file's own `L_d`.
+    pub fn has_energy(&self) -> bool {
+        !matches!(self.lagrangian, LagrangianSpec::Discrete(_))
     }
 
     /// Why the energy is not conserved, if it is not: forces act, or the Lagrangian depends on

@@ -89,6 +89,21 @@ pub fn system(
             "give either `hamiltonian` or `lagrangian`/`builtin`, not both",
         ));
     }
+    if let Some(ld) = &system.discrete_lagrangian {
+        let other = [
+            ("lagrangian", &system.lagrangian),
+            ("builtin", &system.builtin),
+            ("hamiltonian", &system.hamiltonian),
+        ];
+        if let Some((key, _)) = other.iter().find(|(_, v)| v.is_some()) {
+            return Err(ck
+                .error(
+                    Some(ld.span()),
+                    format!("give either `discrete_lagrangian` or `{key}`, not both"),
+                )
+                .note("`discrete_lagrangian` is the method itself: no continuous L goes with it"));
+        }
+    }
     let mut params = Parameters::read(ck, system)?;
     if let Some(bodies) = bodies {
         file_masses(ck, system, &mut params, bodies)?;
@@ -101,9 +116,10 @@ pub fn system(
                 "give either `lagrangian` or `builtin`, not both",
             ));
         }
-        (None, None) => match &system.hamiltonian {
-            Some(h) => super::hamiltonian::expression(ck, h, system, &params)?,
-            None => {
+        (None, None) => match (&system.hamiltonian, &system.discrete_lagrangian) {
+            (Some(h), _) => super::hamiltonian::expression(ck, h, system, &params)?,
+            (None, Some(ld)) => super::discrete::expression(ck, ld, system, &params)?,
+            (None, None) => {
                 return Err(ck
                     .error(
                         Some(raw.span()),

@@ -84,6 +84,18 @@ fn system(out: &mut Lines, spec: &RunSpec) {
                 ),
             );
         }
+        LagrangianSpec::Discrete(ld) => {
+            let program = ld.program();
+            out.line("system", format!("{}: discrete Lagrangian", spec.name));
+            out.line(
+                "discrete_lagrangian",
+                format!(
+                    "{} ({} instructions), stepped by p_k = −D₁L_d, p_k+1 = D₂L_d",
+                    program.text(),
+                    program.op_count()
+                ),
+            );
+        }
     }
     out.line("coordinates", s.coordinates.join(", "));
     let mut params: Vec<String> = s
@@ -119,6 +131,13 @@ fn initial(out: &mut Lines, spec: &RunSpec, start: &Start) {
         InitialData::Momentum(_) => "p given, v by the inverse Legendre transform",
     };
     out.line("initial", format!("t0 = {}, q = {:?}", start.t, start.q));
+    if !spec.system.has_energy() {
+        out.line(
+            "",
+            format!("p = {:?} (given); v and energy: none without L", start.p),
+        );
+        return;
+    }
     out.line(
         "",
         format!("v = {:?}, p = {:?} ({given})", start.v, start.p),
@@ -133,11 +152,15 @@ fn integrator(out: &mut Lines, spec: &RunSpec) {
         Some(t_end) => format!("t_end = {t_end} → {} steps", g.steps),
         None => format!("{} steps", g.steps),
     };
-    let (method, order) = (&i.method, order_text(i.method.order()));
+    let (method, order) = (spec.method_name(), order_text(spec.method_order()));
     let span = format!("t = {} → {}", g.t0, g.t_end());
+    let order = match spec.system.has_energy() {
+        true => format!(" ({order})"),
+        false => String::new(),
+    };
     out.line(
         "integrator",
-        format!("{method} ({order}), h = {}, {length}, {span}", g.h),
+        format!("{method}{order}, h = {}, {length}, {span}", g.h),
     );
 
     let (tol, max) = (i.newton.residual_tolerance, i.newton.max_iterations);

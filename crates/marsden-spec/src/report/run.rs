@@ -26,7 +26,10 @@ pub fn render(outcome: &Outcome) -> String {
         s.system,
         count_coordinates(&s.coordinates),
         s.method,
-        crate::problem::method::order_text(s.order),
+        match s.energy_not_available {
+            Some(_) => "the file's own L_d".to_owned(),
+            None => crate::problem::method::order_text(s.order),
+        },
         s.h
     );
     let per_step = if s.steps > 0 {
@@ -140,6 +143,9 @@ pub fn render(outcome: &Outcome) -> String {
 /// (or, without one, why there is no error to report).
 fn energy_lines(out: &mut String, s: &crate::run::Summary) {
     let e = &s.energy;
+    if let Some(why) = s.energy_not_available {
+        return line(out, "energy", why.to_owned());
+    }
     let over = over_samples(s);
     match (s.energy_not_conserved, &s.energy_balance) {
         (None, _) => line(

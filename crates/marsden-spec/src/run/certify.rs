@@ -30,8 +30,8 @@ use marsden::numerics::ad::{self, MultiFunction};
 use marsden::symmetry::GroupAction;
 use marsden::symmetry::check::relative_defect;
 use marsden::{
-    Constraint, DiscreteAction, Force, Lagrangian, NewtonOptions, Problem, Rule as _, Scalar, State,
-    mechanics,
+    Constraint, DiscreteAction, Force, Lagrangian, NewtonOptions, Problem, Rule as _, Scalar,
+    State, mechanics,
 };
 use serde::Serialize;
 

@@ -26,6 +26,7 @@ pub mod balance;
 pub mod certify;
 pub mod controls;
 pub mod diagnostics;
+pub mod discrete;
 pub mod execute;
 pub mod noether_balance;
 pub mod observer;

@@ -22,7 +22,8 @@ use crate::model::MomentumMap;
 
 /// Streams samples to a [`RowSink`] and accumulates [`Diagnostics`].
 pub struct StreamObserver<'a, 's, L, C, M> {
-    lagrangian: &'a L,
+    /// The continuous Lagrangian of the energy column (`None`: a file's own `L_d`, no energy).
+    lagrangian: Option<&'a L>,
     constraint: &'a C,
     maps: &'a [M],
     sink: &'s mut (dyn RowSink + 's),
@@ -64,14 +65,15 @@ pub struct Sample<'s> {
 
 impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's, L, C, M> {
     /// An observer writing every `every`-th of `total` steps to `sink` (each row followed by
-    /// the velocities if `with_velocity`), watched by `controls`.
+    /// the velocities if `with_velocity`), watched by `controls`; without a `lagrangian` (`n`
+    /// coordinates of a file's own `L_d`) the rows have no energy and the velocities are NaN.
     pub fn new(
-        (lagrangian, constraint, maps): (&'a L, &'a C, &'a [M]),
+        (lagrangian, constraint, maps): ((Option<&'a L>, usize), &'a C, &'a [M]),
         (sink, with_velocity): (&'s mut (dyn RowSink + 's), bool),
         (every, total): (usize, usize),
         controls: &'a Controls<'a>,
     ) -> Self {
-        let n = lagrangian.dof();
+        let (lagrangian, n) = lagrangian;
         Self {
             lagrangian,
             constraint,
@@ -102,12 +104,23 @@ impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's
         self
     }
 
+    /// The energy `⟨p, q̇⟩ − L` at `s` (NaN if the inverse Legendre transform fails), the
+    /// velocities left in `self.velocity`, fed to the diagnostics; `None` without a continuous
+    /// Lagrangian (the velocities are then NaN).
+    fn energy(&mut self, s: Sample<'_>) -> Option<f64> {
+        let Some(lagrangian) = self.lagrangian else {
+            self.velocity.fill(f64::NAN);
+            return None;
+        };
+        let energy = mechanics::energy_from_momentum(lagrangian, s.t, s.q, s.p, &mut self.velocity)
+            .unwrap_or(f64::NAN);
+        self.diagnostics.energy.push(s.t, energy);
+        Some(energy)
+    }
+
     /// Feeds the diagnostics with a step that is not stored (no row is written).
     fn monitor(&mut self, s: Sample<'_>) {
-        let energy =
-            mechanics::energy_from_momentum(self.lagrangian, s.t, s.q, s.p, &mut self.velocity)
-                .unwrap_or(f64::NAN);
-        self.diagnostics.energy.push(s.t, energy);
+        let energy = self.energy(s).unwrap_or(f64::NAN);
         for (map, stats) in self.maps.iter().zip(&mut self.diagnostics.maps) {
             stats.push(map.value(s.q, s.p, &mut self.scratch));
         }
@@ -120,7 +133,7 @@ impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's
             };
             self.diagnostics.push_velocity_residual(rate);
         }
-        if !energy.is_finite() {
+        if !energy.is_finite() && self.lagrangian.is_some() {
             self.velocity.fill(0.0);
         }
     }
@@ -132,16 +145,13 @@ impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's
 
     /// Evaluates and writes one sample.
     pub fn record(&mut self, s: Sample<'_>) -> ControlFlow<()> {
-        let energy =
-            mechanics::energy_from_momentum(self.lagrangian, s.t, s.q, s.p, &mut self.velocity)
-                .unwrap_or(f64::NAN);
-        let finite = energy.is_finite();
-        self.diagnostics.energy.push(s.t, energy);
+        let energy = self.energy(s);
+        let finite = energy.is_none_or(f64::is_finite);
         self.row.clear();
         self.row.push(s.t);
         self.row.extend_from_slice(s.q);
         self.row.extend_from_slice(s.p);
-        self.row.push(energy);
+        self.row.extend(energy);
         for (map, stats) in self.maps.iter().zip(&mut self.diagnostics.maps) {
             let j = map.value(s.q, s.p, &mut self.scratch);
             stats.push(j);
@@ -157,8 +167,10 @@ impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's
             self.diagnostics.push_velocity_residual(rate);
             self.row.push(r);
             let d = self.constraint.count();
-            match multipliers_at(self.lagrangian, self.constraint, s.t, s.q, &self.velocity) {
-                Ok(lambda) if finite => self.row.extend_from_slice(&lambda),
+            let lambda = (self.lagrangian.filter(|_| finite))
+                .map(|l| multipliers_at(l, self.constraint, s.t, s.q, &self.velocity));
+            match lambda {
+                Some(Ok(lambda)) => self.row.extend_from_slice(&lambda),
                 _ => self.row.resize(self.row.len() + d, f64::NAN),
             }
         }
@@ -170,7 +182,7 @@ impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's
                     .resize(self.row.len() + self.velocity.len(), f64::NAN),
             }
         }
-        if !finite {
+        if !finite && self.lagrangian.is_some() {
             // A failed inverse Legendre transform leaves a poor guess behind: restart from 0.
             self.velocity.fill(0.0);
         }

@@ -36,9 +36,12 @@ pub fn layout(system: &SystemSpec) -> marsden_io::Result<Layout> {
         Group::scalar("t"),
         Group::vector("q", q),
         Group::vector("p", p),
-        Group::scalar("energy"),
-        Group::vector("J", j),
     ];
+    // A file's own `L_d` has no energy column: there is no continuous L to define one.
+    if system.has_energy() {
+        groups.push(Group::scalar("energy"));
+    }
+    groups.push(Group::vector("J", j));
     let d = system.constraint.components().len();
     if d > 0 {
         groups.push(Group::scalar(CONSTRAINT_RESIDUAL));

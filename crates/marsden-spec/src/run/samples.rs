@@ -21,10 +21,13 @@ pub struct Samples {
     pub q: Vec<Vec<f64>>,
     /// Momenta, per coordinate.
     pub p: Vec<Vec<f64>>,
-    /// Velocities (by the inverse Legendre transform; NaN where it failed), per coordinate.
+    /// Velocities (by the inverse Legendre transform; NaN where it failed, and for a file's own
+    /// `L_d`), per coordinate.
     pub v: Vec<Vec<f64>>,
-    /// Energy `⟨p, v⟩ − L`.
+    /// Energy `⟨p, v⟩ − L` (empty for a file's own `L_d`: no continuous L, no energy).
     pub energy: Vec<f64>,
+    /// Whether the rows carry an energy.
+    has_energy: bool,
     /// Momentum maps `J`, by symmetry name (in the file's order).
     pub momenta: Vec<(String, Vec<f64>)>,
     /// `max_i |φ_i(q)|`, if the system has constraints.
@@ -45,6 +48,7 @@ impl Samples {
             p: vec![Vec::new(); n],
             v: vec![Vec::new(); n],
             energy: Vec::new(),
+            has_energy: system.has_energy(),
             momenta: (system.symmetries.iter())
                 .map(|s| (s.name().to_owned(), Vec::new()))
                 .collect(),
@@ -66,7 +70,8 @@ impl Samples {
     /// Values per row as the files have them (without the velocities).
     pub fn file_width(&self) -> usize {
         let n = self.coordinates.len();
-        2 + 2 * n
+        1 + usize::from(self.has_energy)
+            + 2 * n
             + self.momenta.len()
             + usize::from(self.constraint_residual.is_some())
             + self.lambda.len()
@@ -82,7 +87,9 @@ impl RowSink for Samples {
         for column in self.q.iter_mut().chain(&mut self.p) {
             column.push(next());
         }
-        self.energy.push(next());
+        if self.has_energy {
+            self.energy.push(next());
+        }
         for (_, column) in &mut self.momenta {
             column.push(next());
         }

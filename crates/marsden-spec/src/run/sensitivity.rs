@@ -164,6 +164,11 @@ impl WithLagrangian for InitialOnly<'_> {
         };
         run().map_err(|e: marsden::Error| e.to_string())
     }
+
+    /// Refused when the file was read; said again here in case a caller builds the spec.
+    fn discrete(self, _: &crate::model::ExprDiscreteLagrangian) -> Self::Output {
+        Err("[sensitivity] cannot be used with `discrete_lagrangian`".to_owned())
+    }
 }
 
 /// The tangent run of the parametric model at the file's parameter values.

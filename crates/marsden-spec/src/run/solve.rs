@@ -5,8 +5,8 @@ use std::time::Instant;
 
 use marsden::discrete::exact::ExactDiscreteLagrangian;
 use marsden::{
-    Constraint, Force, Integrator, Lagrangian, Observer, Problem, Rule as _, RunFailure, SolveOptions,
-    Statistics, Trajectory, simulate,
+    Constraint, Force, Integrator, Lagrangian, Observer, Problem, Rule as _, RunFailure,
+    SolveOptions, Statistics, Trajectory, simulate,
 };
 use marsden_io::RowSink;
 
@@ -20,7 +20,7 @@ use super::start;
 use super::summary::FinalState;
 use crate::catalog::WithLagrangian;
 use crate::error::Diagnostic;
-use crate::model::MomentumMap;
+use crate::model::{ExprDiscreteLagrangian, MomentumMap};
 use crate::problem::{Method, RunSpec};
 use marsden::symmetry::GroupAction;
 
@@ -162,18 +162,29 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap + Grou
         general_path: !spec.integrator.fast_paths,
         compensated: spec.integrator.compensated,
     };
-    let parts = (lagrangian, constraint, maps);
+    let parts = ((Some(lagrangian), lagrangian.dof()), constraint, maps);
     let sink = (destination.sink, destination.with_velocity);
     let mut observer = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), controls)
         .monitoring_every_step(spec.analysis.every_step);
     let clock = Instant::now();
     let method = (&spec.integrator.method, spec.output.every);
     let (result, balance) = solve_balanced((&problem, maps), method, &options, &mut observer);
-    let (balance, balance_series, noether_balance) = match balance {
-        Some((b, series, noether)) => (Some(b), Some(series), noether),
-        None => (None, None, Vec::new()),
-    };
     let wall_seconds = clock.elapsed().as_secs_f64();
+    let mut record = finish(observer, result, wall_seconds);
+    if let Some((b, series, noether)) = balance {
+        (record.balance, record.balance_series) = (Some(b), Some(series));
+        record.noether_balance = noether;
+    }
+    Ok(record)
+}
+
+/// The record of a run that ended with `result` after `wall_seconds`, its last state written
+/// (no balances, no certificate).
+pub(super) fn finish<L: Lagrangian, C: Constraint, M: MomentumMap>(
+    mut observer: StreamObserver<'_, '_, L, C, M>,
+    result: Result<Trajectory, Box<RunFailure>>,
+    wall_seconds: f64,
+) -> RunRecord {
     let (trajectory, error) = match result {
         Ok(t) => (t, None),
         Err(failure) => (failure.trajectory, Some(failure.error.to_string())),
@@ -185,7 +196,7 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap + Grou
         .as_ref()
         .map(|e| format!("writing the trajectory failed: {e}"));
     let energy = non_finite_energy(&observer.diagnostics, observer.rows());
-    Ok(RunRecord {
+    RunRecord {
         error: error.or(io).or(energy),
         interrupted: observer.interrupted,
         steps: trajectory.steps,
@@ -194,11 +205,11 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap + Grou
         wall_seconds,
         rows: observer.rows(),
         diagnostics: observer.diagnostics,
-        balance,
-        balance_series,
-        noether_balance,
+        balance: None,
+        balance_series: None,
+        noether_balance: Vec::new(),
         certificate: None,
-    })
+    }
 }
 
 /// A failure if any stored energy was not finite: a run whose energies are NaN or infinite
@@ -259,6 +270,10 @@ impl WithLagrangian for Runner<'_> {
             record.certificate = Some(certificate(self.spec, (lagrangian, &force), &record)?);
         }
         Ok(record)
+    }
+
+    fn discrete(self, ld: &ExprDiscreteLagrangian) -> Self::Output {
+        super::discrete::run(ld, self.spec, self.destination, self.controls)
     }
 }
 

@@ -6,7 +6,7 @@ use marsden::{Constraint, Initial, Lagrangian, Problem, mechanics};
 
 use crate::catalog::WithLagrangian;
 use crate::error::Diagnostic;
-use crate::problem::RunSpec;
+use crate::problem::{InitialData, RunSpec};
 use crate::source::SourceFile;
 
 /// The complete initial state.
@@ -58,6 +58,29 @@ impl WithLagrangian for Prepare<'_> {
             p: start.p.clone(),
             energy,
             warnings,
+        })
+    }
+
+    /// A file's own `L_d`: the state is `(q, p)` as given (the file was refused with `v`);
+    /// there is no velocity and no energy (both NaN).
+    fn discrete(self, ld: &crate::model::ExprDiscreteLagrangian) -> Self::Output {
+        let spec = self.0;
+        let InitialData::Momentum(p) = &spec.initial.data else {
+            return Err(Diagnostic::new(
+                "a `discrete_lagrangian` run starts from momenta: there is no continuous L to \
+                 turn a velocity into a momentum",
+            )
+            .at(spec.source.locate_opt(spec.spans.initial_data.clone()))
+            .help("give `p = [...]` in [initial]"));
+        };
+        let n = marsden::DiscreteLagrangian::dof(ld);
+        Ok(Start {
+            t: spec.initial.t0,
+            q: spec.initial.q.clone(),
+            v: vec![f64::NAN; n],
+            p: p.clone(),
+            energy: f64::NAN,
+            warnings: Vec::new(),
         })
     }
 }

@@ -13,6 +13,7 @@ use super::noether_balance::NoetherBalance;
 use super::output::SUMMARY_JSON;
 use super::sensitivity::SensitivitySummary;
 use super::solve::RunRecord;
+use crate::problem::spec::ENERGY_NOT_AVAILABLE;
 use crate::problem::{LagrangianSpec, RunSpec};
 
 /// How a run ended.
@@ -105,6 +106,10 @@ pub struct Summary {
     /// null; when not null, `energy`'s errors are null (there is no error to measure) and
     /// `energy_balance` accounts for the change.
     pub energy_not_conserved: Option<&'static str>,
+    /// Why there is no energy at all (a file's own `L_d`: no continuous L), or absent; when
+    /// present, every number of `energy` is null.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy_not_available: Option<&'static str>,
     /// The discrete energy balance of a forced run with a two-point method, over every step
     /// (null otherwise).
     pub energy_balance: Option<BalanceSummary>,
@@ -257,6 +262,8 @@ impl Summary {
         let not_conserved = spec.system.energy_not_conserved();
         // An energy error only where energy is conserved.
         let error = |x: f64| if not_conserved.is_some() { f64::NAN } else { x };
+        let not_available = (!spec.system.has_energy()).then_some(ENERGY_NOT_AVAILABLE);
+        let available = |x: f64| if not_available.is_some() { f64::NAN } else { x };
         Summary {
             status: RunStatus::of(record),
             error: record.error.clone(),
@@ -265,10 +272,11 @@ impl Summary {
                 LagrangianSpec::Builtin { builtin, .. } => format!("builtin {}", builtin.name()),
                 LagrangianSpec::Expression(_) => "expression".to_owned(),
                 LagrangianSpec::Hamiltonian(_) => "hamiltonian".to_owned(),
+                LagrangianSpec::Discrete(_) => "discrete_lagrangian".to_owned(),
             },
             coordinates: spec.system.coordinates.clone(),
-            method: integrator.method.to_string(),
-            order: integrator.method.order(),
+            method: spec.method_name(),
+            order: spec.method_order(),
             h: integrator.grid.h,
             steps: record.steps,
             steps_requested: integrator.grid.steps,
@@ -276,11 +284,11 @@ impl Summary {
             t_final: record.final_state.t,
             wall_seconds: record.wall_seconds,
             energy: EnergySummary {
-                initial: d.energy.report().initial,
-                max_abs_error: error(d.energy.report().max_abs_error),
-                max_rel_error: error(d.energy.report().max_rel_error),
-                final_rel_error: error(d.energy.report().final_rel_error),
-                drift_per_unit_time: error(d.energy.report().drift_per_unit_time),
+                initial: available(d.energy.report().initial),
+                max_abs_error: available(error(d.energy.report().max_abs_error)),
+                max_rel_error: available(error(d.energy.report().max_rel_error)),
+                final_rel_error: available(error(d.energy.report().final_rel_error)),
+                drift_per_unit_time: available(error(d.energy.report().drift_per_unit_time)),
                 samples: d.energy.report().samples,
                 non_finite: d.energy.report().failures,
             },
@@ -311,6 +319,7 @@ impl Summary {
                 problem_sha256: spec.source.sha256().to_owned(),
             },
             energy_not_conserved: not_conserved,
+            energy_not_available: not_available,
             energy_balance: record.balance,
             noether_balance: record.noether_balance.clone(),
             certificate: record.certificate.clone(),

@@ -1,0 +1,192 @@
+//! End-to-end: `[system] discrete_lagrangian = "…"`, a researcher's own `L_d` run through the
+//! discrete Legendre transforms: R1's midpoint map from the hand-written midpoint `L_d`, no
+//! energy reported, momentum maps monitored, and every refusal (exit status 2, key named).
+
+use crate::util::{
+    Run, assert_close, assert_rejected, column, fixture, marsden_in, number, run_ok,
+};
+
+/// R1 (m = k = 1, (q, p) = (1, 0), h = 0.1): `q_N`, `p_N` of the midpoint map at N = 10, 100,
+/// 1000 (REFERENCE-CASES.md, closed form at 40 digits; the digits as published).
+#[allow(clippy::excessive_precision)]
+const R1: [(usize, f64, f64); 3] = [
+    (10, 0.54100229460035897, -0.84102111580931570),
+    (100, -0.84356915087578985, 0.53702056542622173),
+    (1000, 0.81725004081453757, 0.57628323833739662),
+];
+
+/// R1 through the file's own `L_d`: the midpoint rule's discrete Lagrangian written by hand
+/// against `lagrangian` with `method = "midpoint"` on the general path, 1000 steps.
+///
+/// Not bit for bit: the expression forms `x_1 − x_0` from the two rounded positions, where the
+/// rule solves for the offset Δ = q₁ − q₀ and forms `(q₀ + q₁)/2` as `q₀ + Δ/2`; the two agree
+/// to round-off. Asserted: every stored `q`, `p` within 1e-13 relative (to max(1, |value|)) of
+/// the rule's, and both on R1's closed form to 1e-12 at N = 10, 100, 1000.
+#[test]
+fn r1_hand_written_midpoint_discrete_lagrangian_matches_method_midpoint() {
+    let user = run_ok("discrete_oscillator_r1.toml", &["--quiet"]);
+    let rule = run_ok("midpoint_oscillator_general.toml", &["--quiet"]);
+    let (a, b) = (user.trajectory(), rule.trajectory());
+    assert_eq!(column(&a, "t"), column(&b, "t"));
+    let (mut max_diff, mut identical) = (0.0_f64, true);
+    for name in ["q_x", "p_x"] {
+        let (x, y) = (column(&a, name), column(&b, name));
+        assert_eq!(x.len(), 1001, "{name}: rows");
+        for (k, (u, r)) in x.iter().zip(y).enumerate() {
+            identical &= u.to_bits() == r.to_bits();
+            max_diff = max_diff.max((u - r).abs());
+            let bound = 1e-13 * r.abs().max(1.0);
+            assert!((u - r).abs() <= bound, "{name}[{k}]: {u:e} vs {r:e}");
+        }
+    }
+    println!(
+        "discrete_lagrangian vs midpoint: max |difference| {max_diff:.2e}, bit for bit: {identical}"
+    );
+    for (n, q, p) in R1 {
+        for (run, label) in [(&a, "discrete_lagrangian"), (&b, "midpoint")] {
+            assert_close(column(run, "q_x")[n], q, 1e-12, &format!("{label} q_{n}"));
+            assert_close(column(run, "p_x")[n], p, 1e-12, &format!("{label} p_{n}"));
+        }
+    }
+}
+
+/// R1's file run: no continuous L, so no energy anywhere — no column, every number of
+/// `energy` null, the reason in `energy_not_available` and on the console; the method is the
+/// file's `L_d` (no order).
+#[test]
+fn r1_discrete_lagrangian_run_reports_no_energy() {
+    let run = run_ok("discrete_oscillator_r1.toml", &[]);
+    let s = run.summary();
+    assert_eq!(s["status"], "completed");
+    assert_eq!(s["system"], "discrete_lagrangian");
+    assert_eq!(s["method"], "discrete_lagrangian");
+    assert!(s["order"].is_null());
+    let why = "not available (no continuous Lagrangian: the file gives L_d)";
+    assert_eq!(s["energy_not_available"], why);
+    for field in [
+        "initial",
+        "max_abs_error",
+        "max_rel_error",
+        "final_rel_error",
+        "drift_per_unit_time",
+    ] {
+        assert!(
+            s["energy"][field].is_null(),
+            "energy.{field}: {}",
+            s["energy"][field]
+        );
+    }
+    assert_eq!(s["energy"]["samples"], 0);
+    let columns = &s["output"]["columns"];
+    assert_eq!(columns, &serde_json::json!(["t", "q_x", "p_x"]));
+    assert!(run.trajectory().values("energy").is_none());
+    assert!(
+        run.stdout.contains(&format!("energy      {why}")),
+        "{}",
+        run.stdout
+    );
+    let q = s["final_state"]["q"][0].as_f64().unwrap();
+    assert_close(q, R1[2].1, 1e-12, "q_1000");
+}
+
+/// The rotation of the plane is a symmetry of the isotropic oscillator's midpoint `L_d`, and
+/// `J = x p_y − y p_x` (a function of `(q, p)` alone) is a quadratic invariant of the midpoint
+/// map: monitored with the file's `L_d`, it stays at `J₀ = 0.5` to round-off over 1000 steps.
+#[test]
+fn discrete_lagrangian_monitors_the_momentum_map_of_a_symmetry() {
+    let run = run_ok("discrete_rotation.toml", &["--quiet"]);
+    let s = run.summary();
+    assert_eq!(s["status"], "completed");
+    assert_close(number(&s, "momenta.rotation.initial"), 0.5, 1e-15, "J0");
+    let drift = number(&s, "momenta.rotation.max_abs_drift");
+    assert!(drift <= 1e-12, "max |J − J0| = {drift:e}");
+    assert_eq!(column(&run.trajectory(), "J_rotation").len(), 101);
+}
+
+fn rejected(name: &str, fragments: &[&str]) -> Run {
+    assert_rejected(name, fragments)
+}
+
+#[test]
+fn discrete_lagrangian_refuses_a_continuous_lagrangian_beside_it() {
+    rejected(
+        "discrete_and_lagrangian.toml",
+        &[
+            "give either `discrete_lagrangian` or `lagrangian`, not both",
+            "^",
+        ],
+    );
+}
+
+#[test]
+fn discrete_lagrangian_refuses_a_method() {
+    rejected(
+        "discrete_with_method.toml",
+        &[
+            "`method` cannot be used with `discrete_lagrangian`",
+            "is the method",
+            "^",
+        ],
+    );
+}
+
+#[test]
+fn discrete_lagrangian_refuses_velocities_and_says_to_give_momenta() {
+    rejected(
+        "discrete_with_velocity.toml",
+        &[
+            "`v` cannot be used with `discrete_lagrangian`",
+            "no continuous Lagrangian to turn a velocity into a momentum",
+            "p = [...]",
+            "^",
+        ],
+    );
+}
+
+#[test]
+fn discrete_lagrangian_refuses_forces_constraints_sweeps_sensitivities_and_certificates() {
+    for (file, key) in [
+        ("discrete_with_forces.toml", "forces"),
+        ("discrete_with_constraints.toml", "constraints"),
+        ("discrete_with_sweep.toml", "[sweep]"),
+        ("discrete_with_sensitivity.toml", "[sensitivity]"),
+        ("discrete_with_certify.toml", "certify"),
+    ] {
+        let message = format!("`{key}` cannot be used with `discrete_lagrangian`");
+        rejected(file, &[&message, "^"]);
+    }
+}
+
+#[test]
+fn discrete_lagrangian_points_at_unknown_names_and_missing_coordinates() {
+    let run = rejected(
+        "discrete_unknown_name.toml",
+        &["x_dot", "^", "[system] discrete_lagrangian"],
+    );
+    assert!(
+        run.stderr.contains("x_0") || run.stderr.contains("x_1"),
+        "{}",
+        run.stderr
+    );
+    rejected(
+        "discrete_without_coordinates.toml",
+        &[
+            "a `discrete_lagrangian` needs `coordinates` in [system]",
+            "^",
+        ],
+    );
+}
+
+/// `marsden order` studies rules against a reference from a continuous L: refused, exit 2.
+#[test]
+fn order_refuses_a_discrete_lagrangian_file() {
+    let tmp = tempfile::tempdir().unwrap();
+    let path = fixture("discrete_oscillator_r1.toml");
+    let output = marsden_in(tmp.path(), &["order", path.to_str().unwrap()]);
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("`marsden order` cannot study a `discrete_lagrangian` file"),
+        "{stderr}"
+    );
+}

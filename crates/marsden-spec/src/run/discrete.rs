@@ -1,0 +1,76 @@
+//! The run of a `discrete_lagrangian` file: the core's integrator built from the file's own
+//! [`ExprDiscreteLagrangian`] (general Newton path: the discrete Legendre transforms
+//! `p_k = −D₁L_d(q_k, q_{k+1})`, `p_{k+1} = D₂L_d(q_k, q_{k+1})`, [MW01] §1.3), streamed by the
+//! same observer as every run, without an energy: there is no continuous `L` to define one.
+//! Momentum maps `J(q, p)` are monitored as usual.
+//!
+//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+
+use std::time::Instant;
+
+use marsden::{DiscreteLagrangian as _, Integrator, RunFailure, State, Trajectory, simulate};
+
+use super::controls::Controls;
+use super::observer::StreamObserver;
+use super::solve::{Destination, RunRecord, finish};
+use crate::error::Diagnostic;
+use crate::model::{ExprDiscreteLagrangian, ExprLagrangian};
+use crate::problem::{InitialData, RunSpec};
+
+/// Runs `spec`, whose system is the discrete Lagrangian `ld`, streaming rows into
+/// `destination`.
+///
+/// # Errors
+/// Initial data given as velocities (refused when the file was read; said again for a spec
+/// built otherwise). A failing run is a [`RunRecord`] with an error message, not an `Err`.
+pub fn run(
+    ld: &ExprDiscreteLagrangian,
+    spec: &RunSpec,
+    destination: Destination<'_>,
+    controls: &Controls<'_>,
+) -> Result<RunRecord, Diagnostic> {
+    let InitialData::Momentum(p) = &spec.initial.data else {
+        return Err(Diagnostic::new(
+            "a `discrete_lagrangian` run starts from momenta `p`, not velocities",
+        ));
+    };
+    let start = State {
+        t: spec.initial.t0,
+        q: spec.initial.q.clone(),
+        p: p.clone(),
+    };
+    let (grid, n) = (spec.integrator.grid, ld.dof());
+    let s = &spec.system;
+    // No continuous Lagrangian: the observer's type parameter is never used for a value.
+    let parts = (
+        (None::<&ExprLagrangian>, n),
+        &s.constraint,
+        s.symmetries.as_slice(),
+    );
+    let sink = (destination.sink, destination.with_velocity);
+    let mut observer = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), controls)
+        .monitoring_every_step(spec.analysis.every_step);
+    let clock = Instant::now();
+    let result = solve(ld.clone(), spec, start, &mut observer);
+    Ok(finish(observer, result, clock.elapsed().as_secs_f64()))
+}
+
+/// Steps `ld` over the spec's grid from `start`, with the file's Newton options and summation.
+fn solve<O: marsden::Observer + ?Sized>(
+    ld: ExprDiscreteLagrangian,
+    spec: &RunSpec,
+    start: State,
+    observer: &mut O,
+) -> Result<Trajectory, Box<RunFailure>> {
+    let i = &spec.integrator;
+    let failure = |error| {
+        let trajectory = Trajectory::new(ld.dof(), 0, i.grid.h);
+        Box::new(RunFailure { error, trajectory })
+    };
+    let mut integrator = Integrator::new(ld.clone())
+        .with_options(i.newton)
+        .map_err(failure)?
+        .with_compensated_summation(i.compensated);
+    let options = marsden::RunOptions { stride: usize::MAX };
+    simulate(&mut integrator, start, &i.grid, &options, observer).into_result()
+}
