@@ -292,7 +292,12 @@ fn constrained_jacobian_maps_tangent_vectors_of_the_cotangent_bundle_to_tangent_
     let outcome = run(CARTESIAN_PENDULUM, out.path());
     let s = outcome.summary.sensitivity.as_ref().unwrap();
     assert_eq!(s.error, None);
-    assert!(s.note.as_deref().unwrap_or("").contains("tangent vectors of T*N"));
+    assert!(
+        s.note
+            .as_deref()
+            .unwrap_or("")
+            .contains("tangent vectors of T*N")
+    );
     let j = &s.final_jacobian;
     let f = &outcome.summary.final_state;
     let (q, p) = (&f.q, &f.p);

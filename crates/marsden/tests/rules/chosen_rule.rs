@@ -44,7 +44,9 @@ fn same_runs<L: Lagrangian, F: Force, C: Constraint>(
 ) {
     let method = Method::parse(name).unwrap();
     let concrete = method.dispatch(Concrete(problem, options));
-    let chosen = problem.solve(&method, options).map_err(|f| f.error.to_string());
+    let chosen = problem
+        .solve(&method, options)
+        .map_err(|f| f.error.to_string());
     match (concrete, chosen) {
         (Ok(a), Ok(b)) => {
             assert_eq!(a.len(), b.len(), "{name}");

@@ -25,9 +25,9 @@ use super::{
     SymmetrizedMidpoint, Trapezoid,
 };
 use crate::discrete::{DiscreteAction, DiscreteForce};
-use crate::separable::{ExplicitStep, SeparableStep};
 use crate::mechanics::{Force, Lagrangian};
 use crate::scalar::Scalar;
+use crate::separable::{ExplicitStep, SeparableStep};
 
 /// The discrete Lagrangian of a [`BaseMethod`]: midpoint and α-rules share [`AlphaLd`],
 /// trapezoid and the symmetrised rules [`SymmetrizedLd`].
@@ -98,9 +98,9 @@ impl Rule for BaseMethod {
     fn discretize_force<F: Force>(&self, force: F, dof: usize) -> BaseForce<F> {
         match self {
             Self::Midpoint => BaseForce::Alpha(Midpoint.discretize_force(force, dof)),
-            Self::Alpha(alpha) => BaseForce::Alpha(
-                GeneralizedMidpoint { alpha: *alpha }.discretize_force(force, dof),
-            ),
+            Self::Alpha(alpha) => {
+                BaseForce::Alpha(GeneralizedMidpoint { alpha: *alpha }.discretize_force(force, dof))
+            }
             Self::Trapezoid => BaseForce::Symmetrized(Trapezoid.discretize_force(force, dof)),
             Self::Symmetrized(alpha) => BaseForce::Symmetrized(
                 SymmetrizedMidpoint { alpha: *alpha }.discretize_force(force, dof),
@@ -122,9 +122,9 @@ impl Rule for Method {
     fn discretize<L: Lagrangian>(&self, lagrangian: L) -> ChosenLd<L> {
         match self {
             Self::Single(base) => ChosenLd::Single(base.discretize(lagrangian)),
-            Self::Composed(scheme, base) => ChosenLd::Composed(
-                Composition::new(base.clone(), *scheme).discretize(lagrangian),
-            ),
+            Self::Composed(scheme, base) => {
+                ChosenLd::Composed(Composition::new(base.clone(), *scheme).discretize(lagrangian))
+            }
         }
     }
     fn discretize_force<F: Force>(&self, force: F, dof: usize) -> ChosenForce<F> {
