@@ -48,6 +48,7 @@ use std::cell::RefCell;
 
 use super::projection::{ProjectionWorkspace, projection_jacobian};
 use super::step::{SensitiveStep, no_stage_offsets};
+use crate::analysis::certificate::DifferentiableStep;
 use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::error::{Error, StepError, StepFailure};
 use crate::holonomic::{MomentumProjection, Rattle};
@@ -314,6 +315,11 @@ where
         Error::check_len("jacobian", jac, m * m)?;
         if self.is_explicit() && shape.s > 1 {
             return Err(no_stage_offsets());
+        }
+        if shape.d == 0 {
+            // No constraint is active, so the projection is not either: the step is the
+            // unconstrained one, differentiated as such (fewer variables, less round-off).
+            return DifferentiableStep::step_with_jacobian(self, state, h, jac);
         }
         let (t0, q0) = (state.t, state.q.clone());
         let report = Integrator::step(self, state, h)?;
