@@ -12,7 +12,9 @@
 //!
 //! The arithmetic is that of the concrete rule, so a run with a [`Method`] gives the same
 //! numbers, bit for bit, as the run with the rule [`Method::dispatch`] passes; the cost is one
-//! predictable branch per evaluation of the action. Explicit and separable steps are reached
+//! predictable branch per evaluation of the action. The forwarding methods are always inlined:
+//! the small Newton kernels run in x86-64-v3 code only for what is inlined into them, and a
+//! rule evaluated out of line would run in baseline code. Explicit and separable steps are reached
 //! through the same trait objects ([`DiscreteAction::explicit`], [`DiscreteAction::separable`]).
 //! The compile-time sizes of the concrete rules ([`DiscreteAction::FIXED_STAGES`]) are not
 //! known for a chosen rule; they only prune code, the sizes taken at run time are the same.
@@ -154,7 +156,7 @@ macro_rules! forward_action {
             fn internal_stages(&self) -> usize {
                 each!(self, x => x.internal_stages(), $($variant),+)
             }
-            #[inline]
+            #[inline(always)]
             fn action<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], offsets: &[S]) -> S {
                 each!(self, x => x.action(t0, h, q0, offsets), $($variant),+)
             }
@@ -167,7 +169,7 @@ macro_rules! forward_action {
             fn constrained_stages(&self) -> Result<usize, String> {
                 each!(self, x => x.constrained_stages(), $($variant),+)
             }
-            #[inline]
+            #[inline(always)]
             fn stage_point<S: Scalar>(&self, i: usize, q0: &[S], offsets: &[S], out: &mut [S]) {
                 each!(self, x => x.stage_point(i, q0, offsets, out), $($variant),+)
             }
@@ -182,7 +184,7 @@ macro_rules! forward_action {
 macro_rules! forward_force {
     ($ty:ident, $($variant:path),+) => {
         impl<F: Force> DiscreteForce for $ty<F> {
-            #[inline]
+            #[inline(always)]
             fn discrete_force<S: Scalar>(
                 &self,
                 t0: f64,
