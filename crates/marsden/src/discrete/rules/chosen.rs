@@ -12,7 +12,8 @@
 //!
 //! The arithmetic is that of the concrete rule, so a run with a [`Method`] gives the same
 //! numbers, bit for bit, as the run with the rule [`Method::dispatch`] passes; the cost is one
-//! predictable branch per evaluation of the action. The forwarding methods are always inlined:
+//! predictable branch per evaluation of the action, and what the optimiser no longer sees across
+//! it (BENCHMARKS.md counts the instructions per step). The forwarding methods are always inlined:
 //! the small Newton kernels run in x86-64-v3 code only for what is inlined into them, and a
 //! rule evaluated out of line would run in baseline code. Explicit and separable steps are reached
 //! through the same trait objects ([`DiscreteAction::explicit`], [`DiscreteAction::separable`]).
