@@ -49,8 +49,8 @@ fn check_warns_of_a_huge_composition_with_its_newton_system_size() {
     // Velocity Störmer–Verlet substeps are explicit: no Newton system at all.
     let (code, stderr) = check_pendulum("triple-jump-10(trapezoid)", pendulum);
     assert_eq!((code, stderr.as_str()), (0, ""));
-    // …unless L is not separable: then 81 implicit trapezoid substeps, 81 unknowns, still small;
-    // with gauss-3 substeps 243.
+    // …unless L is not separable: then 81 implicit trapezoid substeps, 81 unknowns (at most 100
+    // pass without a word); with gauss-3 substeps 243.
     let coupled = "0.5*(1 + 0.1*cos(theta))*theta_dot^2 + cos(theta)";
     let (code, stderr) = check_pendulum("triple-jump-10(trapezoid)", coupled);
     assert_eq!((code, stderr.as_str()), (0, ""));

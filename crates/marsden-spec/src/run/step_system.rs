@@ -20,10 +20,10 @@ use marsden::{Constraint as _, Lagrangian, Rule as _};
 
 use crate::problem::RunSpec;
 
-/// Unknowns per step above which the method is said to be slow: a dense Newton system of this
-/// size already costs tens of milliseconds per step on one core, and the cost rises with the
-/// cube of the size (BENCHMARKS.md, "Robustness limits").
-pub const LARGE_STEP_SYSTEM: usize = 200;
+/// Unknowns per step above which the method is said to be slow: a step of this size already
+/// takes a good part of a second, and the cost rises with the cube of the size or faster
+/// (BENCHMARKS.md, "Robustness limits").
+pub const LARGE_STEP_SYSTEM: usize = 100;
 
 /// The unknowns of `spec`'s step with `lagrangian`, or `None` if its steps solve no Newton
 /// system (an explicit step, or `exact`, whose shooting solves `n` unknowns).
