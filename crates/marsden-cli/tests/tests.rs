@@ -43,3 +43,5 @@ mod run;
 mod sweep;
 // SIGTERM and SIGINT: an interrupted summary with the last state.
 mod signals;
+// A full disk, huge Newton systems said by `check`, counts too large, constant constraints.
+mod robust;

@@ -237,6 +237,63 @@ fn io_failures_are_typed_errors_naming_the_path() {
     );
 }
 
+/// A disk that takes bytes up to `limit`, then refuses (a short write, then an error, as a
+/// file-size limit or a full disk do).
+struct ShortThenFull {
+    written: Vec<u8>,
+    limit: usize,
+}
+
+impl Write for ShortThenFull {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let room = self.limit - self.written.len();
+        if room == 0 {
+            return Err(std::io::Error::other("file too large"));
+        }
+        let k = room.min(buf.len());
+        self.written.extend_from_slice(&buf[..k]);
+        Ok(k)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// After a write that fails part-way, `rows_written` counts the whole rows the writer took
+/// (not the rows accepted into the buffer), for limits inside the header, at a row boundary
+/// and inside a row.
+#[test]
+fn rows_written_after_a_failed_write_are_the_whole_rows_on_disk() {
+    for limit in [3, 9, 70_000, 100_003, 150_000] {
+        let sink = ShortThenFull {
+            written: Vec::new(),
+            limit,
+        };
+        let Ok(mut w) = CsvWriter::from_writer(sink, "trajectory.csv", &["t", "q"]) else {
+            assert!(limit < 4, "the header `t,q` fits in {limit} bytes");
+            continue;
+        };
+        let err = (0..1_000_000)
+            .map(|i| w.write_row(&[f64::from(i), 0.125]))
+            .find_map(Result::err)
+            .expect("the sink fills up");
+        assert!(err.to_string().contains("trajectory.csv"), "{err}");
+        let rows = w.rows_written();
+        assert!(rows < 1_000_000);
+        // Nothing more is written after the failure, and the count stays.
+        assert!(w.flush().is_ok());
+        assert_eq!(w.rows_written(), rows);
+        let bytes = w.into_inner().unwrap().written;
+        let whole = bytes.iter().filter(|&&b| b == b'\n').count() as u64;
+        assert_eq!(rows, whole - 1, "limit {limit}");
+        let text = String::from_utf8(bytes).unwrap();
+        if let Some(last) = rows.checked_sub(1) {
+            let line = text.lines().nth(rows as usize).unwrap();
+            assert_eq!(line, format!("{last},0.125"));
+        }
+    }
+}
+
 #[test]
 fn rows_and_headers_are_checked() {
     let mut w = CsvWriter::from_writer(Vec::new(), "mem.csv", &["t", "q"]).unwrap();

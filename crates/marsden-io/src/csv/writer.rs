@@ -38,7 +38,14 @@ pub struct CsvWriter<W: Write> {
     inner: Option<W>,
     path: PathBuf,
     width: usize,
+    /// Rows on the writer's side plus rows in `buf`.
     rows: u64,
+    /// Rows in `buf` (the header line is not one).
+    buffered: u64,
+    /// Bytes handed to the writer, all whole lines.
+    written: u64,
+    /// Cuts the output back to a length after a write failed mid-row (`None`: cannot).
+    cut: Option<fn(&mut W, u64) -> std::io::Result<()>>,
     buf: String,
 }
 
@@ -53,7 +60,13 @@ impl CsvWriter<File> {
         // Check the names before touching the file system.
         check_names(header.iter().map(AsRef::as_ref))?;
         let file = File::create(path).map_err(|e| Error::io("create", path, e))?;
-        Self::from_writer(file, path, header)
+        let mut w = Self::from_writer(file, path, header)?;
+        w.cut = Some(|file, len| {
+            use std::io::Seek as _;
+            file.set_len(len)?;
+            file.seek(std::io::SeekFrom::Start(len)).map(drop)
+        });
+        Ok(w)
     }
 }
 
@@ -73,6 +86,9 @@ impl<W: Write> CsvWriter<W> {
             path: path.into(),
             width: header.len(),
             rows: 0,
+            buffered: 0,
+            written: 0,
+            cut: None,
             buf: String::with_capacity(SPILL_BYTES + 1024),
         };
         for (i, name) in header.iter().enumerate() {
@@ -113,6 +129,7 @@ impl<W: Write> CsvWriter<W> {
         }
         self.buf.push('\n');
         self.rows += 1;
+        self.buffered += 1;
         if self.buf.len() >= SPILL_BYTES {
             self.spill()?;
         }
@@ -158,7 +175,8 @@ impl<W: Write> CsvWriter<W> {
         })
     }
 
-    /// Number of data rows accepted so far (header excluded).
+    /// Number of data rows accepted so far (header excluded), less those a failed write lost:
+    /// after a failure, and after [`finish`](Self::finish), the rows in the file.
     pub fn rows_written(&self) -> u64 {
         self.rows
     }
@@ -168,7 +186,10 @@ impl<W: Write> CsvWriter<W> {
         &self.path
     }
 
-    /// Writes the buffer to the underlying writer without flushing it.
+    /// Writes the buffer to the underlying writer without flushing it. If the writer fails
+    /// part-way (a full disk, a file-size limit), the rows it took whole stay and are counted,
+    /// the rest of the buffer is dropped (retrying a partly written buffer would duplicate
+    /// rows), and a row cut in two is cut off the file, which so ends on a row boundary.
     fn spill(&mut self) -> Result<()> {
         if self.buf.is_empty() {
             return Ok(());
@@ -178,11 +199,46 @@ impl<W: Write> CsvWriter<W> {
                 path: self.path.clone(),
             });
         };
-        // Clear even on failure: retrying a partly written buffer would duplicate rows.
-        let result = w.write_all(self.buf.as_bytes());
+        let bytes = self.buf.as_bytes();
+        let (done, failure) = write_some(w, bytes);
+        // The first spill carries the header line (a failed one fails `create`).
+        let header = self.written == 0;
+        let whole = bytes[..done]
+            .iter()
+            .rposition(|&b| b == b'\n')
+            .map_or(0, |i| i + 1);
+        let lines = bytes[..whole].iter().filter(|&&b| b == b'\n').count() as u64;
+        let rows = lines.saturating_sub(u64::from(header && whole > 0));
+        self.written += whole as u64;
+        self.rows -= self.buffered - rows;
+        self.buffered = 0;
         self.buf.clear();
-        result.map_err(|e| Error::io("write to", &self.path, e))
+        let Some(e) = failure else {
+            return Ok(());
+        };
+        if done > whole
+            && let Some(cut) = self.cut
+            && let Err(c) = cut(w, self.written)
+        {
+            let cause = std::io::Error::new(c.kind(), format!("{e}; the cut row stays: {c}"));
+            return Err(Error::io("write to", &self.path, cause));
+        }
+        Err(Error::io("write to", &self.path, e))
     }
+}
+
+/// Writes `bytes` as `write_all` does, but says how many reached the writer before a failure.
+fn write_some<W: Write>(w: &mut W, bytes: &[u8]) -> (usize, Option<std::io::Error>) {
+    let mut done = 0;
+    while done < bytes.len() {
+        match w.write(&bytes[done..]) {
+            Ok(0) => return (done, Some(std::io::ErrorKind::WriteZero.into())),
+            Ok(k) => done += k,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return (done, Some(e)),
+        }
+    }
+    (done, None)
 }
 
 impl<W: Write> Drop for CsvWriter<W> {

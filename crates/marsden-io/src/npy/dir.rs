@@ -99,9 +99,12 @@ impl NpyDirWriter {
         first
     }
 
-    /// Rows written so far.
+    /// Rows written so far; after a failed write, the rows every file holds whole.
     pub fn rows_written(&self) -> u64 {
-        self.rows
+        self.writers
+            .iter()
+            .map(NpyWriter::rows_written)
+            .fold(self.rows, u64::min)
     }
 
     /// The output directory.

@@ -61,6 +61,8 @@ pub struct NpyWriter<W: Write + Seek> {
     path: PathBuf,
     shape: NpyShape,
     rows: u64,
+    /// Rows the header on disk counts (all of them followed by their data).
+    on_disk: u64,
     buf: Vec<u8>,
 }
 
@@ -87,6 +89,7 @@ impl<W: Write + Seek> NpyWriter<W> {
             path: path.into(),
             shape,
             rows: 0,
+            on_disk: 0,
             buf: Vec::with_capacity(SPILL_BYTES + 1024),
         };
         w.spill()?;
@@ -159,7 +162,8 @@ impl<W: Write + Seek> NpyWriter<W> {
         })
     }
 
-    /// Rows written so far.
+    /// Rows written so far, less those a failed write lost (then: the rows the header on disk
+    /// counts).
     pub fn rows_written(&self) -> u64 {
         self.rows
     }
@@ -196,12 +200,22 @@ impl<W: Write + Seek> NpyWriter<W> {
             Ok(end)
         });
         self.buf.clear();
-        data.map_err(io)?;
-        w.seek(SeekFrom::Start(0))
-            .and_then(|_| w.write_all(&header(&self.shape.dims(self.rows))))
-            .and_then(|()| w.seek(SeekFrom::End(0)))
-            .map_err(io)?;
-        Ok(())
+        let patched = data.and_then(|_| {
+            w.seek(SeekFrom::Start(0))?;
+            w.write_all(&header(&self.shape.dims(self.rows)))?;
+            w.seek(SeekFrom::End(0))
+        });
+        match patched {
+            Ok(_) => {
+                self.on_disk = self.rows;
+                Ok(())
+            }
+            Err(e) => {
+                // A failed write loses the buffered rows: the count goes back to the header's.
+                self.rows = self.on_disk;
+                Err(io(e))
+            }
+        }
     }
 }
 

@@ -16,7 +16,7 @@ use crate::model::{
     ExprConstraint, ExprForce, ExprLagrangian, ForceInputs, MomentumMap as _, Symmetry,
 };
 use marsden_expr::closest;
-use marsden_expr::{Expr, Program, Symbols};
+use marsden_expr::{Expr, Program, Span, Symbols};
 
 /// The expressions besides the Lagrangian, parsed (syntax checked) before names are resolved.
 struct Parsed {
@@ -355,8 +355,38 @@ fn constraints(
         coordinates,
         "holonomic constraints φ(q)",
     )?;
+    on_the_coordinates(ck, what, list, &parsed.constraints, coordinates)?;
     let set = ck.compile_all(what, list, &parsed.constraints, symbols)?;
     Ok(ExprConstraint::new(set))
+}
+
+/// Rejects a constraint in which no coordinate appears (`"0"`, `"1"`, `"g - 9.81"`): `φ` is
+/// then a constant, which holds everywhere or nowhere, and `Dφ = 0` has no rank to impose.
+fn on_the_coordinates(
+    ck: &Checker<'_>,
+    context: &str,
+    list: &SpannedList<String>,
+    parsed: &[Expr],
+    coordinates: &[String],
+) -> Result<(), Diagnostic> {
+    for (i, (expr, value)) in parsed.iter().zip(list.get_ref()).enumerate() {
+        let names = expr.names();
+        if names.iter().any(|n| coordinates.iter().any(|c| c == n)) {
+            continue;
+        }
+        let msg = format!(
+            "constraint {i} does not depend on the coordinates: φ_{i}(q) = {} is a constant, \
+             which holds everywhere or nowhere (Dφ_{i} = 0)",
+            expr.text().trim()
+        );
+        let help = format!(
+            "write φ(q) = 0 in the coordinates ({}), e.g. \"x^2 + y^2 - 1\" for a circle",
+            coordinates.join(", ")
+        );
+        let e = expr.error_at(Span::new(0, expr.text().len()), msg, Some(help));
+        return Err(ck.expr_error(&format!("{context}[{i}]"), value, &e));
+    }
+    Ok(())
 }
 
 /// Rejects velocities and `t` in expressions of the coordinates only, with a precise message.

@@ -129,6 +129,8 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
                 .error
                 .get_or_insert(format!("writing the trajectory failed: {e}"));
         }
+        // The rows in the files: a write that failed part-way lost the rows it did not take.
+        record.rows = sink.rows_written();
         written = output::trajectory_files(spec.output.format, &layout);
         written.push(output::SUMMARY_JSON.to_owned());
         if spec.output.plots && record.rows > 0 {
@@ -158,9 +160,13 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
         summary.output.format = "memory";
     }
     if store.files() {
-        summary
-            .write(&dir)
-            .map_err(|e| Error::failed(Diagnostic::new(e)))?;
+        summary.write(&dir).map_err(|e| {
+            let d = Diagnostic::new(e);
+            Error::failed(match &summary.error {
+                Some(first) => d.note(format!("the run had failed before: {first}")),
+                None => d,
+            })
+        })?;
     }
     Ok(Outcome {
         summary,

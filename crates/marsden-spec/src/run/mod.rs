@@ -6,6 +6,7 @@
 //! | entry point | [`execute`] | the whole run ([`Store`]: files, memory or both) → [`Outcome`] |
 //! | caller's hold | [`controls`] | [`Progress`] callback and stop flag ([`Controls`]) |
 //! | initial state | [`start`] | `p` from `v` (or back), projection, regularity, symmetry warnings |
+//! | before a run | [`step_system`] | the size of the step's Newton system, a warning when it is large |
 //! | generic runner | [`solve`] | `Problem` from any `Lagrangian`, `Force`, `Constraint`; the method's rule |
 //! | forced runs | [`balance`] | the discrete energy balance of every step (R12) |
 //! | forced runs | [`noether_balance`] | the forced Noether balance of every symmetry (MW01 §3.2) |
@@ -37,6 +38,7 @@ pub mod sensitivity;
 pub mod shard;
 pub mod solve;
 pub mod start;
+pub mod step_system;
 pub mod summary;
 pub mod sweep;
 pub mod sweep_table;

@@ -51,6 +51,7 @@ impl WithLagrangian for Prepare<'_> {
         }
         let mut warnings = non_symmetries(lagrangian, spec, (start.t, &start.q, &v));
         warnings.extend(constraint_non_symmetries(spec, (start.t, &start.q, &v)));
+        warnings.extend(super::step_system::large_step_system(spec, lagrangian));
         Ok(Start {
             t: start.t,
             q: start.q.clone(),

@@ -2,9 +2,14 @@
 //! Lagrangians, each loaded and run (at most 40 steps, into a temporary directory). Asserts
 //! for every case: no panic; a refused file writes nothing; the summary's status agrees with
 //! its error; every stored energy is counted as a sample or declared non-finite; a completed
-//! run has finite energies throughout.
+//! run has finite energies throughout. The run count and the outcomes by exit class are
+//! written to `fuzz-outcomes.txt` in the target's temporary directory, which CI prints.
+
+use std::collections::BTreeMap;
+use std::sync::Mutex;
 
 use proptest::prelude::*;
+use proptest::test_runner::{Config, TestRunner};
 
 use marsden_spec::{Controls, Overrides, RunStatus, Store, execute, from_toml_str};
 
@@ -96,37 +101,78 @@ fn problem() -> impl Strategy<Value = String> {
         })
 }
 
-proptest! {
-    #![proptest_config(ProptestConfig { cases: 300, failure_persistence: None, ..ProptestConfig::default() })]
-
-    #[test]
-    fn generated_problem_files_fail_cleanly_or_report_the_truth(text in problem()) {
-        let tmp = tempfile::tempdir().unwrap();
-        let out = tmp.path().join("out");
-        let overrides = Overrides { out: Some(out.clone()), ..Overrides::default() };
-        let Ok(spec) = from_toml_str(&text, "fuzz.toml", &overrides) else {
-            prop_assert!(!out.exists(), "a refused file wrote {}", out.display());
-            return Ok(());
-        };
-        match execute(&spec, Store::Files, &Controls::none()) {
-            Err(e) => {
-                prop_assert!(
-                    !out.join("summary.json").exists() || e.kind == marsden_spec::ErrorKind::Failed,
-                    "refused, yet a summary was written: {e}\n{text}"
-                );
-            }
-            Ok(outcome) => {
-                let s = &outcome.summary;
-                let rows = usize::try_from(s.output.rows).unwrap();
-                prop_assert_eq!(s.status == RunStatus::Failed, s.error.is_some(), "{}", text);
-                prop_assert_eq!(s.energy.samples + s.energy.non_finite, rows, "{}", text);
-                if s.status == RunStatus::Completed {
+/// How a generated case ended, by the exit status `marsden run` gives it.
+fn outcome_class(text: &str) -> Result<&'static str, TestCaseError> {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let overrides = Overrides {
+        out: Some(out.clone()),
+        ..Overrides::default()
+    };
+    let Ok(spec) = from_toml_str(text, "fuzz.toml", &overrides) else {
+        prop_assert!(!out.exists(), "a refused file wrote {}", out.display());
+        return Ok("exit 2: refused while reading the file");
+    };
+    match execute(&spec, Store::Files, &Controls::none()) {
+        Err(e) => {
+            prop_assert!(
+                !out.join("summary.json").exists() || e.kind == marsden_spec::ErrorKind::Failed,
+                "refused, yet a summary was written: {e}\n{text}"
+            );
+            Ok(match e.kind {
+                marsden_spec::ErrorKind::Failed => "exit 1: no summary could be written",
+                _ => "exit 2: refused at the initial state",
+            })
+        }
+        Ok(outcome) => {
+            let s = &outcome.summary;
+            let rows = usize::try_from(s.output.rows).unwrap();
+            prop_assert_eq!(s.status == RunStatus::Failed, s.error.is_some(), "{}", text);
+            prop_assert_eq!(s.energy.samples + s.energy.non_finite, rows, "{}", text);
+            prop_assert!(out.join("summary.json").exists());
+            Ok(match s.status {
+                RunStatus::Completed => {
                     prop_assert_eq!(s.energy.non_finite, 0);
                     prop_assert_eq!(s.steps, s.steps_requested);
                     prop_assert!(s.t_final.is_finite(), "{}", text);
+                    "exit 0: completed"
                 }
-                prop_assert!(out.join("summary.json").exists());
-            }
+                RunStatus::Failed if s.steps == 0 => "exit 1: failed at the first step",
+                RunStatus::Failed => "exit 1: failed part-way",
+                RunStatus::Interrupted => "exit 1: interrupted",
+            })
         }
     }
+}
+
+/// Cases run by [`generated_problem_files_fail_cleanly_or_report_the_truth`].
+const CASES: u32 = 300;
+
+#[test]
+fn generated_problem_files_fail_cleanly_or_report_the_truth() {
+    let counts = Mutex::new(BTreeMap::<&'static str, usize>::new());
+    let config = Config {
+        cases: CASES,
+        failure_persistence: None,
+        ..Config::default()
+    };
+    let mut runner = TestRunner::new(config);
+    let result = runner.run(&problem(), |text| {
+        let class = outcome_class(&text)?;
+        *counts.lock().unwrap().entry(class).or_default() += 1;
+        Ok(())
+    });
+    if let Err(e) = result {
+        panic!("{e}");
+    }
+    let counts = counts.into_inner().unwrap();
+    let total: usize = counts.values().sum();
+    let mut report =
+        format!("{total} generated problem files run (crates/marsden-spec/tests/robust/fuzz.rs)\n");
+    for (class, n) in &counts {
+        report.push_str(&format!("{n:>6}  {class}\n"));
+    }
+    let path = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("fuzz-outcomes.txt");
+    std::fs::write(&path, report).unwrap();
+    assert_eq!(total, CASES as usize);
 }

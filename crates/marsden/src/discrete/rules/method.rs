@@ -19,7 +19,7 @@
 
 use super::composition::{Composition, CompositionScheme};
 use super::galerkin::{Galerkin, MAX_DEGREE};
-use super::quadrature::QuadratureFamily;
+use super::quadrature::{MAX_POINTS, QuadratureFamily};
 use super::{GeneralizedMidpoint, Midpoint, Rule, SymmetrizedMidpoint, Trapezoid};
 use crate::error::Error;
 use crate::error::InputError;
@@ -71,9 +71,26 @@ fn unknown(name: &str, reason: impl Into<String>) -> Error {
     })
 }
 
-fn parse_count(text: &str, name: &str) -> Result<usize, Error> {
-    text.parse::<usize>()
-        .map_err(|_| unknown(name, format!("`{text}` is not a whole number")))
+/// A whole-number argument of a method name; `what` and `valid` name it and its accepted range
+/// for the message when it is too large to be one (more digits than any count can have).
+fn parse_count(text: &str, name: &str, (what, valid): (&str, &str)) -> Result<usize, Error> {
+    text.parse::<usize>().map_err(|_| {
+        let digits = !text.is_empty() && text.bytes().all(|b| b.is_ascii_digit());
+        match digits {
+            true => unknown(name, format!("the {what} {text} is too large: {valid}")),
+            false => unknown(name, format!("`{text}` is not a whole number")),
+        }
+    })
+}
+
+/// The accepted stage counts of `gauss-<s>`.
+fn gauss_range() -> String {
+    format!("gauss-<s> takes 1 ≤ s ≤ {MAX_DEGREE}")
+}
+
+/// The accepted stage counts of `lobatto-<s>`.
+fn lobatto_range() -> String {
+    format!("lobatto-<s> takes 2 ≤ s ≤ {}", MAX_DEGREE + 1)
 }
 
 fn parse_alpha(text: &str, name: &str) -> Result<f64, Error> {
@@ -97,8 +114,14 @@ impl BaseMethod {
         match family {
             "alpha" => parse_alpha(rest, name).map(Self::Alpha),
             "symmetrized" => parse_alpha(rest, name).map(Self::Symmetrized),
-            "gauss" => Galerkin::gauss(parse_count(rest, name)?).map(Self::Galerkin),
-            "lobatto" => Galerkin::lobatto(parse_count(rest, name)?).map(Self::Galerkin),
+            "gauss" => {
+                let s = parse_count(rest, name, ("number of stages", &gauss_range()))?;
+                Galerkin::gauss(s).map(Self::Galerkin)
+            }
+            "lobatto" => {
+                let s = parse_count(rest, name, ("number of stages", &lobatto_range()))?;
+                Galerkin::lobatto(s).map(Self::Galerkin)
+            }
             "galerkin" => parse_galerkin(rest, name).map(Self::Galerkin),
             _ => Err(unknown(name, "no such method")),
         }
@@ -139,7 +162,10 @@ fn parse_galerkin(rest: &str, name: &str) -> Result<Galerkin, Error> {
         "lobatto" => QuadratureFamily::Lobatto,
         other => return Err(unknown(name, format!("no quadrature family `{other}`"))),
     };
-    let (s, r) = (parse_count(s, name)?, parse_count(r, name)?);
+    let degrees = format!("the degree s is at most {MAX_DEGREE}");
+    let points = format!("the number of points r is at most {MAX_POINTS}");
+    let s = parse_count(s, name, ("degree", &degrees))?;
+    let r = parse_count(r, name, ("number of quadrature points", &points))?;
     if s > MAX_DEGREE {
         return Err(unknown(
             name,
@@ -147,6 +173,19 @@ fn parse_galerkin(rest: &str, name: &str) -> Result<Galerkin, Error> {
         ));
     }
     Galerkin::new(s, family, r)
+}
+
+/// Why `scheme` is not a composition scheme: an order `triple-jump-<p>` does not take (too
+/// large, odd, below 4), or no such name.
+fn no_scheme(scheme: &str) -> String {
+    let order = scheme.strip_prefix("triple-jump-");
+    match order.filter(|p| !p.is_empty() && p.bytes().all(|b| b.is_ascii_digit())) {
+        Some(p) => format!("triple-jump-<p> takes the orders p = 4, 6, 8, 10, not {p}"),
+        None => format!(
+            "no composition scheme `{scheme}` (valid: {})",
+            CompositionScheme::valid_names()
+        ),
+    }
 }
 
 impl Method {
@@ -161,15 +200,8 @@ impl Method {
             let Some((scheme, base)) = inner.split_once('(') else {
                 return Err(unknown(name, "unbalanced parentheses"));
             };
-            let scheme = CompositionScheme::parse(scheme).map_err(|_| {
-                unknown(
-                    name,
-                    format!(
-                        "no composition scheme `{scheme}` (valid: {})",
-                        CompositionScheme::valid_names()
-                    ),
-                )
-            })?;
+            let scheme =
+                CompositionScheme::parse(scheme).map_err(|_| unknown(name, no_scheme(scheme)))?;
             if base.contains('(') {
                 return Err(unknown(
                     name,
@@ -355,5 +387,31 @@ mod tests {
             Method::parse("galerkin-4-gauss-3"),
             Err(Error::Input(InputError::InvalidGalerkin { .. }))
         ));
+    }
+
+    /// Counts with more digits than a `usize` holds are too large, with the accepted range
+    /// (not "not a whole number").
+    #[test]
+    fn huge_counts_are_too_large_with_the_accepted_range() {
+        let huge = "99999999999999999999";
+        let cases = [
+            (format!("gauss-{huge}"), "1 ≤ s ≤ 10"),
+            (format!("lobatto-{huge}"), "2 ≤ s ≤ 11"),
+            (format!("galerkin-{huge}-gauss-3"), "at most 10"),
+            (format!("galerkin-2-lobatto-{huge}"), "at most 24"),
+            (format!("kahan-li-6(gauss-{huge})"), "1 ≤ s ≤ 10"),
+        ];
+        for (name, range) in cases {
+            let message = Method::parse(&name).unwrap_err().to_string();
+            assert!(message.contains("too large"), "{name}: {message}");
+            assert!(message.contains(range), "{name}: {message}");
+            assert!(!message.contains("not a whole number"), "{name}: {message}");
+        }
+        let message = Method::parse(&format!("triple-jump-{huge}(midpoint)"))
+            .unwrap_err()
+            .to_string();
+        assert!(message.contains("p = 4, 6, 8, 10, not"), "{message}");
+        let message = Method::parse("gauss-x").unwrap_err().to_string();
+        assert!(message.contains("not a whole number"), "{message}");
     }
 }

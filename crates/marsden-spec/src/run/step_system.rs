@@ -1,0 +1,64 @@
+//! The size of the Newton system an implicit method solves every step, said before a run whose
+//! every step would be slow.
+//!
+//! An implicit step solves for the offsets of its control points and the constraint
+//! multipliers at once ([`marsden::integrator::StepShape::unknowns`]: `s·n + d·(1 + c)`, with
+//! `s` the step's segments, `n` the degrees of freedom, `d` the constraints and `c` the stage
+//! constraints). A composition `Ψ_h = Φ_{γ_m h} ∘ … ∘ Φ_{γ₁ h}` presents all its substeps as one
+//! step ([MW01] §2.5, [`marsden::discrete::rules::composition`]): its `s` is `m` times the base's,
+//! so `triple-jump-10(gauss-10)` (81 substeps of 10 segments) solves 810 unknowns per degree of
+//! freedom. Each Newton update differentiates the whole composed action twice by forward AD
+//! over all `(s + 1)·n` control coordinates and factors the dense Jacobian, a cost that grows
+//! with the cube of the size or faster. Explicit steps (the trapezoid rule and its
+//! compositions on `½ vᵀMv − V`, unforced and unconstrained) solve nothing and get no remark.
+//!
+//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+
+use marsden::discrete::DiscreteAction as _;
+use marsden::integrator::StepShape;
+use marsden::{Constraint as _, Lagrangian, Rule as _};
+
+use crate::problem::RunSpec;
+
+/// Unknowns per step above which the method is said to be slow: a step of this size already
+/// takes a good part of a second, and the cost rises with the cube of the size or faster
+/// (BENCHMARKS.md, "Robustness limits").
+pub const LARGE_STEP_SYSTEM: usize = 100;
+
+/// The unknowns of `spec`'s step with `lagrangian`, or `None` if its steps solve no Newton
+/// system (an explicit step, or `exact`, whose shooting solves `n` unknowns).
+pub fn step_unknowns<L: Lagrangian>(spec: &RunSpec, lagrangian: &L) -> Option<usize> {
+    let rule = spec.integrator.method.rule()?;
+    let action = rule.discretize(lagrangian);
+    let d = spec.system.constraint.count();
+    let forced = spec.system.force.is_active();
+    let free = d == 0 && !forced && !spec.integrator.compensated;
+    if free && spec.integrator.fast_paths && action.explicit().is_some() {
+        return None;
+    }
+    let stages = match d {
+        0 => 0,
+        _ => action.constrained_stages().unwrap_or(0),
+    };
+    let shape = StepShape {
+        n: action.dof(),
+        s: action.internal_stages() + 1,
+        d,
+        forced,
+        stages,
+    };
+    Some(shape.unknowns())
+}
+
+/// A warning if `spec`'s method solves more than [`LARGE_STEP_SYSTEM`] unknowns per step.
+pub fn large_step_system<L: Lagrangian>(spec: &RunSpec, lagrangian: &L) -> Option<String> {
+    let unknowns = step_unknowns(spec, lagrangian)?;
+    (unknowns > LARGE_STEP_SYSTEM).then(|| {
+        format!(
+            "the method `{}` solves a dense Newton system of {unknowns} unknowns every step \
+             (more than {LARGE_STEP_SYSTEM}): each step may take seconds; a composition of \
+             fewer substeps, or gauss-s with a smaller s, solves a smaller one",
+            spec.integrator.method
+        )
+    })
+}
