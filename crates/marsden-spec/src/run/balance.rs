@@ -107,7 +107,7 @@ impl BalanceSeries {
         self.t.push(t);
         self.change.push(s.energy_change);
         self.work
-            .push(s.total_work + s.total_time_work.unwrap_or(0.0));
+            .push(s.total_time_work.map_or(s.total_work, |w| s.total_work + w));
         if self.t.len() > Self::CAP {
             for v in [&mut self.t, &mut self.change, &mut self.work] {
                 let kept: Vec<f64> = v.iter().step_by(2).copied().collect();
