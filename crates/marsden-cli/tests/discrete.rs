@@ -15,39 +15,77 @@ const R1: [(usize, f64, f64); 3] = [
     (1000, 0.81725004081453757, 0.57628323833739662),
 ];
 
+/// Asserts that every column of `user` and `rule` holds the same bits (the user's file has
+/// no energy column: the columns of `user` are compared), and that the summaries agree bit for
+/// bit on the final state, the momentum maps and the steps; returns the number of rows.
+fn assert_bit_for_bit(user: &Run, rule: &Run) -> usize {
+    let (a, b) = (user.trajectory(), rule.trajectory());
+    let (s, r) = (user.summary(), rule.summary());
+    let names: Vec<String> = s["output"]["columns"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c.as_str().unwrap().to_owned())
+        .collect();
+    assert!(names.len() >= 3, "{names:?}");
+    let mut rows = 0;
+    for name in &names {
+        let (x, y) = (column(&a, name), column(&b, name));
+        assert_eq!(x.len(), y.len(), "{name}: rows");
+        for (k, (u, w)) in x.iter().zip(y).enumerate() {
+            assert_eq!(u.to_bits(), w.to_bits(), "{name}[{k}]: {u:e} vs {w:e}");
+        }
+        rows = x.len();
+    }
+    for field in ["final_state", "momenta", "steps", "status"] {
+        assert_eq!(s[field], r[field], "summary.{field}");
+    }
+    rows
+}
+
 /// R1 through the file's own `L_d`: the midpoint rule's discrete Lagrangian written by hand
-/// against `lagrangian` with `method = "midpoint"` on the general path, 1000 steps.
-///
-/// Not bit for bit: the expression forms `x_1 − x_0` from the two rounded positions, where the
-/// rule solves for the offset Δ = q₁ − q₀ and forms `(q₀ + q₁)/2` as `q₀ + Δ/2`; the two agree
-/// to round-off. Asserted: every stored `q`, `p` within 1e-13 relative (to max(1, |value|)) of
-/// the rule's, and both on R1's closed form to 1e-12 at N = 10, 100, 1000.
+/// reproduces `lagrangian` with `method = "midpoint"` (general path) bit for bit over 1000
+/// steps — the file's `L_d` is evaluated in the displacement the integrator steps, with the
+/// rule's operations (`marsden_expr::DisplacementForm`) — and both are on R1's closed form to
+/// 1e-12 at N = 10, 100, 1000.
 #[test]
-fn r1_hand_written_midpoint_discrete_lagrangian_matches_method_midpoint() {
+fn r1_hand_written_midpoint_discrete_lagrangian_reproduces_method_midpoint_bit_for_bit() {
     let user = run_ok("discrete_oscillator_r1.toml", &["--quiet"]);
     let rule = run_ok("midpoint_oscillator_general.toml", &["--quiet"]);
-    let (a, b) = (user.trajectory(), rule.trajectory());
-    assert_eq!(column(&a, "t"), column(&b, "t"));
-    let (mut max_diff, mut identical) = (0.0_f64, true);
-    for name in ["q_x", "p_x"] {
-        let (x, y) = (column(&a, name), column(&b, name));
-        assert_eq!(x.len(), 1001, "{name}: rows");
-        for (k, (u, r)) in x.iter().zip(y).enumerate() {
-            identical &= u.to_bits() == r.to_bits();
-            max_diff = max_diff.max((u - r).abs());
-            let bound = 1e-13 * r.abs().max(1.0);
-            assert!((u - r).abs() <= bound, "{name}[{k}]: {u:e} vs {r:e}");
-        }
-    }
-    println!(
-        "discrete_lagrangian vs midpoint: max |difference| {max_diff:.2e}, bit for bit: {identical}"
-    );
+    assert_eq!(assert_bit_for_bit(&user, &rule), 1001);
+    let a = user.trajectory();
     for (n, q, p) in R1 {
-        for (run, label) in [(&a, "discrete_lagrangian"), (&b, "midpoint")] {
-            assert_close(column(run, "q_x")[n], q, 1e-12, &format!("{label} q_{n}"));
-            assert_close(column(run, "p_x")[n], p, 1e-12, &format!("{label} p_{n}"));
-        }
+        assert_close(column(&a, "q_x")[n], q, 1e-12, &format!("q_{n}"));
+        assert_close(column(&a, "p_x")[n], p, 1e-12, &format!("p_{n}"));
     }
+}
+
+/// The example `examples/discrete_oscillator.toml` (a parameter `w`, `t_end = 20`) against the
+/// same system as a continuous L with `method = "midpoint"` (general path): bit for bit, on
+/// R1's map (w = 1, h = 0.1) to 1e-12 at N = 10, 100.
+#[test]
+fn discrete_oscillator_example_reproduces_method_midpoint_bit_for_bit() {
+    let file = crate::util::repo_root().join("examples/discrete_oscillator.toml");
+    let user = crate::util::marsden("run", &file, &["--quiet"]);
+    assert_eq!(user.code, 0, "{}", user.stderr);
+    let rule = run_ok("midpoint_discrete_oscillator_example.toml", &["--quiet"]);
+    assert_eq!(assert_bit_for_bit(&user, &rule), 201);
+    let a = user.trajectory();
+    for (n, q, p) in &R1[..2] {
+        assert_close(column(&a, "q_x")[*n], *q, 1e-12, &format!("q_{n}"));
+        assert_close(column(&a, "p_x")[*n], *p, 1e-12, &format!("p_{n}"));
+    }
+}
+
+/// Two degrees of freedom: the isotropic oscillator's hand-written midpoint `L_d` (the 2-DOF
+/// step kernel) against `method = "midpoint"` on the general path, bit for bit over 1000 steps,
+/// the rotation's momentum map included.
+#[test]
+fn two_dof_hand_written_midpoint_reproduces_method_midpoint_bit_for_bit() {
+    let user = run_ok("discrete_rotation.toml", &["--quiet"]);
+    let rule = run_ok("midpoint_rotation_general.toml", &["--quiet"]);
+    assert_eq!(assert_bit_for_bit(&user, &rule), 101);
+    assert!(user.summary()["momenta"]["rotation"].is_object());
 }
 
 /// R1's file run: no continuous L, so no energy anywhere — no column, every number of
@@ -101,6 +139,27 @@ fn discrete_lagrangian_monitors_the_momentum_map_of_a_symmetry() {
     let drift = number(&s, "momenta.rotation.max_abs_drift");
     assert!(drift <= 1e-12, "max |J − J0| = {drift:e}");
     assert_eq!(column(&run.trajectory(), "J_rotation").len(), 101);
+}
+
+/// A declared symmetry is checked against the file's `L_d` at the start: the translation in x
+/// is not one of the oscillator's (`⟨dL_d, ξ⟩ = −h x̄ = −h(q₀ + h p₀/2)·1` at the first step,
+/// here −0.1), so the run warns with the defect and goes on; the rotation is one (no warning).
+#[test]
+fn discrete_lagrangian_symmetries_are_checked_at_the_start() {
+    let run = run_ok("discrete_translation_not_symmetric.toml", &["--quiet"]);
+    assert!(
+        run.stderr
+            .contains("\"shift\" is not a symmetry of the discrete Lagrangian"),
+        "{}",
+        run.stderr
+    );
+    assert!(run.stderr.contains("1.000e-1"), "{}", run.stderr);
+    let rotation = run_ok("discrete_rotation.toml", &["--quiet"]);
+    assert!(
+        !rotation.stderr.contains("not a symmetry"),
+        "{}",
+        rotation.stderr
+    );
 }
 
 fn rejected(name: &str, fragments: &[&str]) -> Run {

@@ -79,6 +79,7 @@
 //! | several expressions | `set` | [`ProgramSet`]: one inputs slice, one output slice |
 //! | compiled program | `program` | [`Program`]: evaluate, inspect, list the instructions |
 //! | structure | `separable`, `quadratic` | [`SeparableForm`]: `L = ½ vᵀMv − V` recognised exactly |
+//! | two-point expressions | `displacement` | [`DisplacementForm`]: `L_d(q₀, q₁)` in `(q₀, q₁ − q₀)`, as the rules evaluate it |
 //! | symbolic derivatives | `derive`, `tape` | `∇V`, `∇²V` as a [`Tape`]: shared subexpressions, registers, fused constants and superinstructions |
 //! | interpreter | `eval` | the accumulator machine over any `S: Scalar`, no allocation |
 //! | code generation | `codegen`, `ops` | folded tree → instructions (Sethi–Ullman order, fused pairs) |
@@ -90,6 +91,7 @@
 mod ast;
 mod codegen;
 mod derive;
+mod displacement;
 mod error;
 mod eval;
 mod functions;
@@ -108,6 +110,7 @@ mod symbols;
 mod tape;
 
 pub use ast::Identifier;
+pub use displacement::DisplacementForm;
 pub use error::{ErrorKind, EvalError, ExprError, Span, SymbolError};
 pub use functions::{CONSTANTS, Function, is_reserved};
 pub use pipeline::Expr;

@@ -109,7 +109,7 @@ impl Program {
 }
 
 /// The input slots `node` reads, in tree order (with repetitions).
-fn collect_inputs(node: &Node, out: &mut Vec<usize>) {
+pub(crate) fn collect_inputs(node: &Node, out: &mut Vec<usize>) {
     match node {
         Node::Const(_) => {}
         Node::Input(slot) => out.push(*slot),

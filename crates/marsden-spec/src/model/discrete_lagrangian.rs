@@ -8,10 +8,16 @@
 //! `h` and the step's initial time `t`. There is no continuous `L` behind it, so neither the
 //! energy `⟨p, q̇⟩ − L` nor an initial velocity has a meaning for it.
 //!
+//! The integrator steps the displacement `Δ = q₁ − q₀`; the expression is evaluated in those
+//! variables ([`marsden_expr::DisplacementForm`]: `(x_1 − x_0)/h` as `Δ·(1/h)`,
+//! `(x_0 + x_1)/2` as `x_0 + Δ·0.5`, a leading `h*` as a factor `h`), which are the operations
+//! of the built-in rules: the midpoint rule's `L_d` written by hand reproduces
+//! `method = "midpoint"` (general path) bit for bit.
+//!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 use marsden::{DiscreteLagrangian, Scalar};
-use marsden_expr::Program;
+use marsden_expr::{DisplacementForm, Program};
 
 /// A discrete Lagrangian given as an expression over `[q₀, q₁, h, t]` (names `theta_0`,
 /// `theta_1`, `h`, `t`).
@@ -31,13 +37,20 @@ use marsden_expr::Program;
 #[derive(Debug, Clone, PartialEq)]
 pub struct ExprDiscreteLagrangian {
     program: Program,
+    offset: DisplacementForm,
     dof: usize,
 }
 
 impl ExprDiscreteLagrangian {
-    /// Wraps a program compiled against [`endpoint_inputs`] of `dof` coordinates.
+    /// Wraps a program compiled against [`endpoint_inputs`] of `dof` coordinates, and rewrites
+    /// it in the displacement the integrator steps ([`Program::displacement_form`]).
     pub fn new(program: Program, dof: usize) -> Self {
-        Self { program, dof }
+        let offset = program.displacement_form(dof);
+        Self {
+            program,
+            offset,
+            dof,
+        }
     }
 
     /// The compiled expression.
@@ -69,6 +82,14 @@ impl DiscreteLagrangian for ExprDiscreteLagrangian {
         x[2 * n] = S::from(h);
         x[2 * n + 1] = S::from(t0);
         self.program.eval(x)
+    }
+
+    /// `L_d(q₀, q₀ + Δ)` from the expression rewritten in `(q₀, Δ)`: the midpoint, velocity
+    /// and `h` factor the file writes are formed as the built-in rules form them, so a
+    /// hand-written rule's `L_d` steps bit for bit like the rule.
+    #[inline]
+    fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
+        self.offset.eval(t0, h, q0, delta)
     }
 }
 

@@ -37,17 +37,9 @@ pub fn expression(
     system: &RawSystem,
     params: &Parameters,
 ) -> Result<Resolved, Diagnostic> {
-    let Some(list) = &system.coordinates else {
-        return Err(ck
-            .error(
-                Some(text.span()),
-                "a `discrete_lagrangian` needs `coordinates` in [system]",
-            )
-            .help(
-                "e.g. `coordinates = [\"x\"]`; the expression then reads `x_0`, `x_1`, `h`, `t`",
-            ));
-    };
-    let coordinates = parameters::check_coordinates(ck, list)?;
+    let help = "e.g. `coordinates = [\"x\"]`; the expression then reads `x_0`, `x_1`, `h`, `t`";
+    let coordinates =
+        parameters::expression_coordinates(ck, ("discrete_lagrangian", text), system, help)?;
     params.numbers_only(ck, "a discrete Lagrangian")?;
     let constants: Vec<(String, f64)> = params
         .numbers

@@ -22,15 +22,8 @@ pub fn expression(
     system: &RawSystem,
     params: &Parameters,
 ) -> Result<Resolved, Diagnostic> {
-    let Some(list) = &system.coordinates else {
-        return Err(ck
-            .error(
-                Some(text.span()),
-                "a `hamiltonian` needs `coordinates` in [system]",
-            )
-            .help("e.g. `coordinates = [\"theta\"]`; momenta are then named `p_theta`"));
-    };
-    let coordinates = parameters::check_coordinates(ck, list)?;
+    let help = "e.g. `coordinates = [\"theta\"]`; momenta are then named `p_theta`";
+    let coordinates = parameters::expression_coordinates(ck, ("hamiltonian", text), system, help)?;
     params.numbers_only(ck, "an expression Hamiltonian")?;
     let constants: Vec<(String, f64)> = params
         .numbers

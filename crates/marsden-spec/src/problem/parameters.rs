@@ -166,6 +166,24 @@ fn masses(
     Ok(masses.clone())
 }
 
+/// The checked `coordinates` of [system] that the expression `key = text` is written in, or an
+/// error at the expression naming `key`, with `help` (how the expression names its inputs).
+///
+/// # Errors
+/// No `coordinates` in [system], or a bad name in them ([`check_coordinates`]).
+pub fn expression_coordinates(
+    ck: &Checker<'_>,
+    (key, text): (&str, &Spanned<String>),
+    system: &RawSystem,
+    help: &str,
+) -> Result<Vec<String>, Diagnostic> {
+    let Some(list) = &system.coordinates else {
+        let message = format!("a `{key}` needs `coordinates` in [system]");
+        return Err(ck.error(Some(text.span()), message).help(help.to_owned()));
+    };
+    check_coordinates(ck, list)
+}
+
 /// Checks coordinate names: identifiers, not built-in names, not `t`, unique, and no name is
 /// another's velocity (`x` and `x_dot`).
 pub fn check_coordinates(

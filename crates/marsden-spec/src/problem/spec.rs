@@ -177,13 +177,16 @@ impl SystemSpec {
         if self.force.is_active() {
             return Some("forces act");
         }
+        self.depends_on_time()
+            .then_some("the Lagrangian depends on t")
+    }
+
+    /// Whether the Lagrangian is an expression that reads `t` (its input slot `2n`); the
+    /// catalog Lagrangians are autonomous.
+    pub fn depends_on_time(&self) -> bool {
         match &self.lagrangian {
-            LagrangianSpec::Expression(l)
-                if l.program().inputs_used().contains(&(2 * self.dof())) =>
-            {
-                Some("the Lagrangian depends on t")
-            }
-            _ => None,
+            LagrangianSpec::Expression(l) => l.program().inputs_used().contains(&(2 * self.dof())),
+            _ => false,
         }
     }
 }

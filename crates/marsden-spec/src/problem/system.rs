@@ -222,15 +222,8 @@ fn expression(
     system: &RawSystem,
     params: &Parameters,
 ) -> Result<Resolved, Diagnostic> {
-    let Some(list) = &system.coordinates else {
-        return Err(ck
-            .error(
-                Some(text.span()),
-                "a `lagrangian` needs `coordinates` in [system]",
-            )
-            .help("e.g. `coordinates = [\"theta\"]`; velocities are then named `theta_dot`"));
-    };
-    let coordinates = parameters::check_coordinates(ck, list)?;
+    let help = "e.g. `coordinates = [\"theta\"]`; velocities are then named `theta_dot`";
+    let coordinates = parameters::expression_coordinates(ck, ("lagrangian", text), system, help)?;
     params.numbers_only(ck, "an expression Lagrangian")?;
     let constants: Vec<(String, f64)> = params
         .numbers

@@ -163,10 +163,14 @@ fn energy_lines(out: &mut String, s: &crate::run::Summary) {
             out,
             "energy",
             format!(
-                "balance ({why}): E0 = {}, E_N − E0 = {}, work {}, unaccounted {} (max {} per step)",
+                "balance ({why}): E0 = {}, E_N − E0 = {}, work {}{}, unaccounted {} (max {} per step)",
                 e.initial,
                 sci(b.energy_change),
                 sci(b.total_work),
+                b.total_time_work.map_or(String::new(), |w| format!(
+                    ", by the time dependence {}",
+                    sci(w)
+                )),
                 sci(b.total_defect),
                 sci(b.max_defect)
             ),
@@ -175,12 +179,9 @@ fn energy_lines(out: &mut String, s: &crate::run::Summary) {
             out,
             "energy",
             format!(
-                "not conserved ({why}): E0 = {}; no energy error to report{}",
+                "not conserved ({why}): E0 = {}; no energy error to report, and no balance \
+                 for a method with internal stages",
                 e.initial,
-                match why {
-                    "forces act" => ", and no balance for a method with internal stages",
-                    _ => "",
-                }
             ),
         ),
     }

@@ -9,11 +9,26 @@
 //! the whole trajectory in memory), computed in bounded memory as an [`Observer`] wrapped
 //! around the run's own observer; it applies to two-point rules (forces on `q_k` and `q_{k+1}`
 //! only), the others report no balance.
+//!
+//! A Lagrangian depending on `t` changes the energy by itself, `dE/dt = ⟨f, q̇⟩ − ∂L/∂t`
+//! ([MW01] §3.1 extended to forces). Its discrete counterpart is the derivative of the step's
+//! discrete Lagrangian in its start time, `∂L_d/∂t₀(q_k, q_{k+1})`: for a rule that samples `L`
+//! at the nodes `(t₀ + c_j h, q_{c_j}, v̄)` with weights `w_j`, `∂L_d/∂t₀ = Σ_j w_j ∂L/∂t` at
+//! the nodes. It is computed with the rule's own force quadrature applied to the "force"
+//! `(∂L/∂t, 0, …, 0)` ([`TimeDerivative`]; the weights `ℓ_j(c_i)` of a node sum to one over
+//! the end points), `∂L/∂t` by automatic differentiation. The balance then reads
+//! `D_k = E_{k+1} − E_k − W_k + ∂L_d/∂t₀`. For the midpoint rule and
+//! `L = ½q̇ᵀMq̇ − V(t, q)`, `D_k = V(t_{k+1}, q_{k+1}) − V(t_k, q_k) − ∇_qV·Δq − h ∂_tV` at
+//! `(t_k + h/2, (q_k + q_{k+1})/2)`: zero (to round-off) when `V` is a quadratic in `q` plus a
+//! term bilinear in `(t, q)` (e.g. `V = ½kq² − a t q`), `O(h³)` per step otherwise.
+//!
+//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 use std::ops::ControlFlow;
 
 use marsden::discrete::DiscreteForce;
-use marsden::{Lagrangian, Observer, StepView, mechanics};
+use marsden::numerics::ad::{MultiFunction, nested_gradient};
+use marsden::{Force, Lagrangian, Observer, Scalar, StepView, mechanics};
 use serde::Serialize;
 
 /// File name of the energy-balance plot, drawn instead of the energy-error plot.
@@ -32,13 +47,23 @@ pub struct BalanceSummary {
     pub energy_change: f64,
     /// Steps in the balance (every step of the run).
     pub steps: usize,
+    /// For a Lagrangian depending on `t`: `Σ_k −∂L_d/∂t₀`, the energy its explicit time
+    /// dependence puts in (absent for an autonomous Lagrangian); then
+    /// `energy_change = total_work + total_time_work + total_defect`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub total_time_work: Option<f64>,
 }
 
 impl BalanceSummary {
-    fn push(&mut self, delta_energy: f64, work: f64) {
-        let defect = delta_energy - work;
+    /// Adds a step whose energy changed by `delta_energy`, with the forces' work `work` and,
+    /// for a time-dependent Lagrangian, `time_work = −∂L_d/∂t₀`.
+    fn push(&mut self, delta_energy: f64, work: f64, time_work: Option<f64>) {
+        let defect = delta_energy - work - time_work.unwrap_or(0.0);
         self.steps += 1;
         self.total_work += work;
+        if let Some(w) = time_work {
+            *self.total_time_work.get_or_insert(0.0) += w;
+        }
         self.total_defect += defect;
         self.energy_change += delta_energy;
         // NaN sticks: a broken step does not report a perfect balance.
@@ -57,7 +82,7 @@ pub struct BalanceSeries {
     pub t: Vec<f64>,
     /// `E(t) − E₀`.
     pub change: Vec<f64>,
-    /// `Σ W_k` up to `t`.
+    /// `Σ W_k` up to `t` (with `Σ −∂L_d/∂t₀` for a time-dependent Lagrangian).
     pub work: Vec<f64>,
     stride: usize,
     total: usize,
@@ -81,7 +106,8 @@ impl BalanceSeries {
         }
         self.t.push(t);
         self.change.push(s.energy_change);
-        self.work.push(s.total_work);
+        self.work
+            .push(s.total_time_work.map_or(s.total_work, |w| s.total_work + w));
         if self.t.len() > Self::CAP {
             for v in [&mut self.t, &mut self.change, &mut self.work] {
                 let kept: Vec<f64> = v.iter().step_by(2).copied().collect();
@@ -92,11 +118,44 @@ impl BalanceSeries {
     }
 }
 
+/// `(∂L/∂t(t, q, v), 0, …, 0)`: discretised by a rule's force quadrature, the sum of its
+/// `f_d⁻ + f_d⁺` is the rule's `∂L_d/∂t₀` (see the module documentation).
+#[derive(Debug, Clone, Copy)]
+pub struct TimeDerivative<'l, L>(pub &'l L);
+
+/// `L` over the inputs `[t, q, v]`, for differentiating in `t`.
+struct OverTime<'l, L>(&'l L);
+
+impl<L: Lagrangian> MultiFunction for OverTime<'_, L> {
+    fn inputs(&self) -> usize {
+        2 * self.0.dof() + 1
+    }
+    fn outputs(&self) -> usize {
+        1
+    }
+    fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
+        let n = self.0.dof();
+        out[0] = self.0.lagrangian(x[0], &x[1..=n], &x[n + 1..]);
+    }
+}
+
+impl<L: Lagrangian> Force for TimeDerivative<'_, L> {
+    fn force<S: Scalar>(&self, t: S, q: &[S], v: &[S], out: &mut [S]) {
+        let x: Vec<S> = std::iter::once(t)
+            .chain(q.iter().chain(v).copied())
+            .collect();
+        out.iter_mut().for_each(|f| *f = S::from(0.0));
+        nested_gradient(&OverTime(self.0), &x, 0..1, &mut out[..1]);
+    }
+}
+
 /// An observer that accumulates the energy balance of every step and hands every step on to
 /// the run's own observer (which keeps its own sampling).
-pub struct Balanced<'o, L, F, O: ?Sized> {
+pub struct Balanced<'o, L, F, T, O: ?Sized> {
     lagrangian: &'o L,
     force: F,
+    /// The rule's discretisation of [`TimeDerivative`], for a Lagrangian depending on `t`.
+    time: Option<T>,
     h: f64,
     inner: &'o mut O,
     /// State of the previous step: `t_k`, `q_k`, `E_k`.
@@ -110,12 +169,19 @@ pub struct Balanced<'o, L, F, O: ?Sized> {
     pub series: BalanceSeries,
 }
 
-impl<'o, L: Lagrangian, F: DiscreteForce, O: Observer + ?Sized> Balanced<'o, L, F, O> {
-    /// The balance of a run of `lagrangian` with the two-point discrete force `force` and step
-    /// `h`, around `inner`; the series keeps every `every`-th of `total` steps.
+impl<'o, L, F, T, O> Balanced<'o, L, F, T, O>
+where
+    L: Lagrangian,
+    F: DiscreteForce,
+    T: DiscreteForce,
+    O: Observer + ?Sized,
+{
+    /// The balance of a run of `lagrangian` with the two-point discrete force `force`, the
+    /// discretised [`TimeDerivative`] `time` of a Lagrangian depending on `t`, and step `h`,
+    /// around `inner`; the series keeps every `every`-th of `total` steps.
     pub fn new(
         lagrangian: &'o L,
-        (force, h): (F, f64),
+        (force, time, h): (F, Option<T>, f64),
         (every, total): (usize, usize),
         inner: &'o mut O,
     ) -> Self {
@@ -123,6 +189,7 @@ impl<'o, L: Lagrangian, F: DiscreteForce, O: Observer + ?Sized> Balanced<'o, L, 
         Self {
             lagrangian,
             force,
+            time,
             h,
             inner,
             previous: (0.0, vec![0.0; n], f64::NAN),
@@ -160,6 +227,15 @@ impl<'o, L: Lagrangian, F: DiscreteForce, O: Observer + ?Sized> Balanced<'o, L, 
             .sum()
     }
 
+    /// `−∂L_d/∂t₀` of the step from the previous state (the displacement set by
+    /// [`Balanced::work`]), for a time-dependent Lagrangian.
+    fn time_work(&mut self) -> Option<f64> {
+        let time = self.time.as_ref()?;
+        let (t0, q0, _) = &self.previous;
+        time.discrete_force(*t0, self.h, q0, &self.delta, &mut self.f);
+        Some(-self.f.iter().sum::<f64>())
+    }
+
     fn remember(&mut self, t: f64, q: &[f64], e: f64) {
         self.previous.0 = t;
         self.previous.1.copy_from_slice(q);
@@ -167,7 +243,13 @@ impl<'o, L: Lagrangian, F: DiscreteForce, O: Observer + ?Sized> Balanced<'o, L, 
     }
 }
 
-impl<L: Lagrangian, F: DiscreteForce, O: Observer + ?Sized> Observer for Balanced<'_, L, F, O> {
+impl<L, F, T, O> Observer for Balanced<'_, L, F, T, O>
+where
+    L: Lagrangian,
+    F: DiscreteForce,
+    T: DiscreteForce,
+    O: Observer + ?Sized,
+{
     fn start(&mut self, initial: &StepView<'_>) {
         let e = self.energy(initial.t, initial.q, initial.p);
         self.remember(initial.t, initial.q, e);
@@ -178,7 +260,8 @@ impl<L: Lagrangian, F: DiscreteForce, O: Observer + ?Sized> Observer for Balance
     fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()> {
         let e = self.energy(view.t, view.q, view.p);
         let work = self.work(view.q);
-        self.summary.push(e - self.previous.2, work);
+        let time_work = self.time_work();
+        self.summary.push(e - self.previous.2, work, time_work);
         self.remember(view.t, view.q, e);
         self.series.push(view.step, view.t, &self.summary);
         self.inner.observe(view)

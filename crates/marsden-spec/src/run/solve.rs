@@ -10,7 +10,7 @@ use marsden::{
 };
 use marsden_io::RowSink;
 
-use super::balance::{BalanceSeries, BalanceSummary, Balanced};
+use super::balance::{BalanceSeries, BalanceSummary, Balanced, TimeDerivative};
 use super::certify::{Certificate, Ends, certify};
 use super::controls::Controls;
 use super::diagnostics::Diagnostics;
@@ -90,12 +90,13 @@ fn solve_exact<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
     simulate(&mut integrator, start, grid, &options.run, observer).into_result()
 }
 
-/// [`solve`], and for an active force and a two-point rule the discrete energy balance of every
-/// step ([`Balanced`]) and the forced Noether balance of every symmetry in `maps`
-/// ([`NoetherBalanced`]) on the way (the energy series keeps every `every`-th step).
+/// [`solve`], and for an active force or a Lagrangian depending on `t` (`time_dependent`) and
+/// a two-point rule the discrete energy balance of every step ([`Balanced`], with the
+/// `∂L_d/∂t₀` term when `time_dependent`) and the forced Noether balance of every symmetry in
+/// `maps` ([`NoetherBalanced`]) on the way (the energy series keeps every `every`-th step).
 pub fn solve_balanced<L: Lagrangian, F: Force, C: Constraint, M, O: Observer + ?Sized>(
     (problem, maps): (&Problem<L, F, C>, &[M]),
-    (method, every): (&Method, usize),
+    (method, every, time_dependent): (&Method, usize, bool),
     options: &SolveOptions,
     observer: &mut O,
 ) -> Balance
@@ -108,7 +109,7 @@ where
     use marsden::discrete::DiscreteAction as _;
     let l = problem.lagrangian();
     let two_point = rule.discretize(l).internal_stages() == 0;
-    if !problem.force().is_active() || !two_point {
+    if !(problem.force().is_active() || time_dependent) || !two_point {
         return (problem.solve_with(rule, options, observer), None);
     }
     let force = rule.discretize_force(problem.force(), l.dof());
@@ -120,7 +121,8 @@ where
         .map(|m| MomentumMap::name(m).to_owned())
         .collect();
     let mut noether = NoetherBalanced::new((names, maps), (&noether_force, h), observer);
-    let mut balanced = Balanced::new(l, (force, h), (every, total), &mut noether);
+    let time = time_dependent.then(|| rule.discretize_force(TimeDerivative(l), l.dof()));
+    let mut balanced = Balanced::new(l, (force, time, h), (every, total), &mut noether);
     let result = problem.solve_with(rule, options, &mut balanced);
     let (summary, series) = (balanced.summary, balanced.series);
     (result, Some((summary, series, noether.balances())))
@@ -167,7 +169,8 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap + Grou
     let mut observer = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), controls)
         .monitoring_every_step(spec.analysis.every_step);
     let clock = Instant::now();
-    let method = (&spec.integrator.method, spec.output.every);
+    let time_dependent = spec.system.depends_on_time();
+    let method = (&spec.integrator.method, spec.output.every, time_dependent);
     let (result, balance) = solve_balanced((&problem, maps), method, &options, &mut observer);
     let wall_seconds = clock.elapsed().as_secs_f64();
     let mut record = finish(observer, result, wall_seconds);

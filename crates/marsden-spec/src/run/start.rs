@@ -75,13 +75,14 @@ impl WithLagrangian for Prepare<'_> {
             .help("give `p = [...]` in [initial]"));
         };
         let n = marsden::DiscreteLagrangian::dof(ld);
+        let (t, q) = (spec.initial.t0, &spec.initial.q);
         Ok(Start {
-            t: spec.initial.t0,
-            q: spec.initial.q.clone(),
+            t,
+            q: q.clone(),
             v: vec![f64::NAN; n],
             p: p.clone(),
             energy: f64::NAN,
-            warnings: Vec::new(),
+            warnings: discrete_non_symmetries(ld, spec, (t, q, p)),
         })
     }
 }
@@ -218,6 +219,35 @@ fn constraint_non_symmetries(spec: &RunSpec, (t, q, v): (f64, &[f64], &[f64])) -
                 "\"{}\" does not keep the constraints invariant: Dφ(q)·ξ_Q(q) = {defect:.3e} at \
                  the initial state, so the constraint forces act along it and J_{} is monitored \
                  but not conserved",
+                report.symmetry, report.symmetry
+            )
+        })
+        .collect()
+}
+
+/// A warning for each declared symmetry that is not one of a file's own `L_d` at the first
+/// step's sample `(q₀, q₀ + h p₀)` (any pair of points tests the invariance; `p₀` stands in for
+/// the velocity, which an `L_d` alone does not define): `⟨dL_d, ξ_{Q×Q}⟩ ≠ 0` by the core's
+/// check, so the discrete momentum map is monitored but not conserved.
+fn discrete_non_symmetries<D: marsden::DiscreteLagrangian>(
+    ld: &D,
+    spec: &RunSpec,
+    (t, q, p): (f64, &[f64], &[f64]),
+) -> Vec<String> {
+    use marsden::symmetry::check::{DEFAULT_TOLERANCE, Sample, check_discrete};
+    let samples = [Sample::new(t, q, p)];
+    let h = spec.integrator.grid.h;
+    spec.system
+        .symmetries
+        .iter()
+        .filter_map(|s| check_discrete(ld, s, h, &samples, DEFAULT_TOLERANCE).ok())
+        .filter(|report| !report.is_symmetry())
+        .map(|report| {
+            let defect = report.worst().map_or(f64::NAN, |w| w.max_defect);
+            format!(
+                "\"{}\" is not a symmetry of the discrete Lagrangian: ⟨dL_d, ξ_Q×Q⟩ = \
+                 {defect:.3e} at the first step (q0, q0 + h p0), so J_{} is monitored but not \
+                 conserved",
                 report.symmetry, report.symmetry
             )
         })

@@ -14,6 +14,13 @@ use super::output::SUMMARY_JSON;
 use super::sensitivity::SensitivitySummary;
 use super::solve::RunRecord;
 use crate::problem::spec::ENERGY_NOT_AVAILABLE;
+
+/// Why a forced or time-dependent run has no energy balance: the balance is that of two-point
+/// rules (forces and `∂L_d/∂t₀` at `q_k`, `q_{k+1}`); a method with internal stages puts its
+/// discrete forces on the stage points, which the run does not keep.
+pub const BALANCE_NOT_AVAILABLE: &str = "not available for a method with internal stages (its \
+     discrete forces act on stage points the run does not keep); use a two-point method \
+     (midpoint, trapezoid, alpha-<a>, symmetrized-<a>) for the balance";
 use crate::problem::{LagrangianSpec, RunSpec};
 
 /// How a run ended.
@@ -113,6 +120,10 @@ pub struct Summary {
     /// The discrete energy balance of a forced run with a two-point method, over every step
     /// (null otherwise).
     pub energy_balance: Option<BalanceSummary>,
+    /// Why a run whose energy is not conserved has no `energy_balance` (a method with internal
+    /// stages), or absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy_balance_not_available: Option<&'static str>,
     /// The forced Noether balance of every declared symmetry of a forced run with a two-point
     /// method, over every step (absent otherwise).
     #[serde(skip_serializing_if = "Vec::is_empty", serialize_with = "as_object")]
@@ -321,6 +332,8 @@ impl Summary {
             energy_not_conserved: not_conserved,
             energy_not_available: not_available,
             energy_balance: record.balance,
+            energy_balance_not_available: (not_conserved.is_some() && record.balance.is_none())
+                .then_some(BALANCE_NOT_AVAILABLE),
             noether_balance: record.noether_balance.clone(),
             certificate: record.certificate.clone(),
             sensitivity: None,
