@@ -3,7 +3,8 @@
 //! `x² + y² + z² − l² = 0` (SHAKE + RATTLE, midpoint). The parameter columns of `summary.json`
 //! against central differences of whole runs, and their tangency to `T*N(θ)`.
 
-use marsden::sensitivity::{ConstrainedParametricIntegrator, SensitiveStep as _};
+use marsden::analysis::certificate::DifferentiableStep as _;
+use marsden::sensitivity::ConstrainedParametricIntegrator;
 use marsden::{Midpoint, State};
 use marsden_spec::RunSpec;
 
