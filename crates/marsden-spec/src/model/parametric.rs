@@ -1,11 +1,12 @@
-//! [`ExprParametric`]: a problem file's Lagrangian and forces with some of its parameters read
-//! as inputs, for their sensitivities ([`marsden::sensitivity::ParametricModel`]).
+//! [`ExprParametric`]: a problem file's Lagrangian, forces and constraints with some of its
+//! parameters read as inputs, for their sensitivities ([`marsden::sensitivity::ParametricModel`]).
 //!
 //! The run itself compiles every parameter as a constant. To differentiate with respect to a
 //! parameter `θ_j`, the same texts are compiled again with `θ_j` as an input slot after `t`,
 //! `[q₁ … qₙ, q̇₁ … q̇ₙ, t, θ₁ … θ_P]`; the other parameters stay constants. At `θ` equal to
 //! the file's values the model is the file's model, and the frozen-parameter step Jacobian of
-//! [`marsden::sensitivity::ParametricIntegrator`] gives `∂(q_{k+1}, p_{k+1})/∂θ` beside the
+//! [`marsden::sensitivity::ParametricIntegrator`] (with constraints, compiled over
+//! `[q₁ … qₙ, θ₁ … θ_P]`, [`marsden::sensitivity::ConstrainedParametricIntegrator`]) gives `∂(q_{k+1}, p_{k+1})/∂θ` beside the
 //! state columns ([MW01] §1.5: the step is the solution of the discrete Euler–Lagrange
 //! equations; the implicit function theorem differentiates it).
 //!
@@ -26,6 +27,8 @@ pub struct ExprParametric {
     names: Vec<String>,
     lagrangian: Program,
     forces: Vec<Program>,
+    /// The constraints `φ(q; θ)`, compiled over `[q, θ]`.
+    constraints: Vec<Program>,
 }
 
 /// The texts of a model and the names they are compiled against.
@@ -35,6 +38,9 @@ pub struct ParametricTexts<'a> {
     pub lagrangian: (&'a str, &'a [String]),
     /// One force text per coordinate (empty: no force) and the coordinate names they use.
     pub forces: (&'a [&'a str], &'a [String]),
+    /// One text per holonomic constraint `φ(q) = 0` (empty: none), over the coordinates of
+    /// the forces.
+    pub constraints: &'a [&'a str],
     /// Every scalar parameter with its value.
     pub constants: &'a [(String, f64)],
 }
@@ -56,11 +62,16 @@ impl ExprParametric {
             .iter()
             .map(|text| compile(text, &f_symbols))
             .collect::<Result<Vec<_>, _>>()?;
+        let c_symbols = constraint_symbols(f_coordinates, texts.constants, names)?;
+        let constraints = (texts.constraints.iter())
+            .map(|text| compile(text, &c_symbols))
+            .collect::<Result<Vec<_>, _>>()?;
         Ok(Self {
             dof: l_coordinates.len(),
             names: names.to_vec(),
             lagrangian,
             forces,
+            constraints,
         })
     }
 
@@ -84,6 +95,26 @@ fn symbols(
     for (j, name) in names.iter().enumerate() {
         symbols
             .add_input(name, first + j)
+            .map_err(|e| e.to_string())?;
+    }
+    for (name, value) in constants.iter().filter(|(c, _)| !names.contains(c)) {
+        symbols
+            .add_constant(name, *value)
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(symbols)
+}
+
+/// `[q]` as inputs, `names` after them, the other parameters as constants.
+fn constraint_symbols(
+    coordinates: &[String],
+    constants: &[(String, f64)],
+    names: &[String],
+) -> Result<Symbols, String> {
+    let mut symbols = Symbols::with_inputs(coordinates).map_err(|e| e.to_string())?;
+    for (j, name) in names.iter().enumerate() {
+        symbols
+            .add_input(name, coordinates.len() + j)
             .map_err(|e| e.to_string())?;
     }
     for (name, value) in constants.iter().filter(|(c, _)| !names.contains(c)) {
@@ -150,6 +181,28 @@ impl ParametricModel for ExprParametric {
     fn is_forced(&self) -> bool {
         !self.forces.is_empty()
     }
+
+    fn constraints(&self) -> usize {
+        self.constraints.len()
+    }
+
+    fn constraint_with<S: Scalar>(&self, theta: &[S], q: &[S], out: &mut [S]) {
+        let (n, len) = (q.len(), q.len() + theta.len());
+        let fill = q.first().or(theta.first()).copied().unwrap_or(S::from(0.0));
+        let (mut stack, mut heap);
+        let x: &mut [S] = if len <= STACK {
+            stack = [fill; STACK];
+            &mut stack[..len]
+        } else {
+            heap = vec![fill; len];
+            &mut heap
+        };
+        x[..n].copy_from_slice(q);
+        x[n..].copy_from_slice(theta);
+        for (phi, program) in out.iter_mut().zip(&self.constraints) {
+            *phi = program.eval(x);
+        }
+    }
 }
 
 #[cfg(test)]
@@ -163,6 +216,7 @@ mod tests {
         let texts = ParametricTexts {
             lagrangian: ("0.5*x_dot^2 - 0.5*k*x^2", &coordinates),
             forces: (&["-c*x_dot"], &coordinates),
+            constraints: &["x^2 - k"],
             constants: &constants,
         };
         let model = ExprParametric::compile(texts, &["k".to_owned()]).unwrap();
@@ -172,5 +226,9 @@ mod tests {
         model.force_with(&[9.0], 0.0, &[1.0], &[2.0], &mut f);
         assert_eq!(f, [-1.0]);
         assert!(!model.force_uses("k"));
+        // φ(x = 3; k = 9) = 0 over `[x, k]`.
+        let mut phi = [1.0];
+        model.constraint_with(&[9.0], &[3.0], &mut phi);
+        assert_eq!(phi, [0.0]);
     }
 }

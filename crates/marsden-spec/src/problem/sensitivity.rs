@@ -1,6 +1,7 @@
 //! `[sensitivity]`: which derivatives of the run to compute — with respect to the initial state
-//! (`initial = true`) and to named scalar parameters (`parameters = ["mu"]`) — checked against
-//! the system, with the parametric model compiled when parameters are named.
+//! (`initial = true`) and to named scalar parameters (`parameters = ["mu"]`, of the Lagrangian,
+//! the forces or the constraints) — checked against the system, with the parametric model
+//! compiled when parameters are named.
 
 use std::ops::Range;
 
@@ -11,7 +12,6 @@ use super::raw::RawSensitivity;
 use super::spec::{LagrangianSpec, SystemSpec};
 use crate::error::Diagnostic;
 use crate::model::{ExprParametric, ParametricTexts};
-use marsden::Constraint as _;
 use marsden_expr::closest;
 
 /// `[sensitivity]`, validated.
@@ -41,15 +41,6 @@ pub fn sensitivity(
         return Err(ck
             .error(Some(raw.span()), "[sensitivity] asks for no derivative")
             .help("add `initial = true` and/or `parameters = [\"…\"]`"));
-    }
-    if system.constraint.count() > 0 && !names.is_empty() {
-        return Err(ck
-            .error(
-                Some(raw.span()),
-                "parameter sensitivities of constrained systems are not supported yet",
-            )
-            .note("the constrained step is differentiated with respect to (q₀, p₀) only")
-            .help("keep `initial = true` and remove `parameters`"));
     }
     let model = match names.is_empty() {
         true => None,
@@ -127,9 +118,13 @@ fn parametric(
     let forces: Vec<&str> = (system.force.components().programs().iter())
         .map(|p| p.text())
         .collect();
+    let constraints: Vec<&str> = (system.constraint.components().programs().iter())
+        .map(|p| p.text())
+        .collect();
     let texts = ParametricTexts {
         lagrangian: (text, coordinates),
         forces: (&forces, &system.coordinates),
+        constraints: &constraints,
         constants: &system.parameters,
     };
     let names: Vec<String> = names.iter().map(|(n, _)| n.clone()).collect();

@@ -10,7 +10,8 @@
 //! parameters as inputs) at the file's values. A constrained run (SHAKE + RATTLE) is
 //! differentiated with its multipliers and its projection ([`marsden::sensitivity`]): its
 //! Jacobian is that of the constrained run on tangent vectors of `T*N`, which the summary's
-//! `note` says; parameters of a constrained run are refused when the file is read.
+//! `note` says. Parameters of a constrained run (in `L`, the forces or the constraints) are
+//! differentiated with [`ConstrainedParametricIntegrator`], multipliers and projection included.
 //!
 //! Files: `sensitivity.npy` of shape `[samples, 2n, columns]`, or `sensitivity.csv` (one row
 //! per stored step: `t`, then the entries row by row, named `q_x/q0_x`) with `format = "csv"`.
@@ -19,7 +20,9 @@
 
 use std::path::Path;
 
-use marsden::sensitivity::{ParametricIntegrator, Tangent, TangentOptions, tangent};
+use marsden::sensitivity::{
+    ConstrainedParametricIntegrator, ParametricIntegrator, Tangent, TangentOptions, tangent,
+};
 use marsden::{Constraint as _, Lagrangian, State};
 use marsden_io::{CsvWriter, NpyShape, NpyWriter};
 use serde::Serialize;
@@ -85,9 +88,14 @@ pub fn compute(
         return Err("method = \"exact\" has no step Jacobian to propagate; choose a rule".into());
     };
     let run = match &asked.model {
-        Some(model) => WithParameters { spec, model, state }
-            .call(rule)
-            .map_err(|e| e.to_string()),
+        Some(model) => WithParameters {
+            spec,
+            model,
+            state,
+            v: &start.v,
+        }
+        .call(rule)
+        .map_err(|e| e.to_string()),
         None => (spec.system.lagrangian).dispatch(InitialOnly { spec, rule, state }),
     }?;
     Ok(select(spec, asked, &run))
@@ -176,6 +184,8 @@ struct WithParameters<'a> {
     spec: &'a RunSpec,
     model: &'a ExprParametric,
     state: State,
+    /// The initial velocities (the constrained predictor's first guess).
+    v: &'a [f64],
 }
 
 impl WithParameters<'_> {
@@ -189,9 +199,19 @@ impl WithParameters<'_> {
                     .map_or(f64::NAN, |(_, v)| *v)
             })
             .collect();
-        let newton = spec.integrator.newton;
-        let mut vi = ParametricIntegrator::new(rule, self.model.clone(), &theta, newton)?;
-        tangent(&mut vi, self.state, &spec.integrator.grid, &options(spec))
+        let (newton, grid) = (spec.integrator.newton, &spec.integrator.grid);
+        let model = self.model.clone();
+        if self.model.constraints() > 0 {
+            let vi = ConstrainedParametricIntegrator::new(rule, model, &theta, newton)?;
+            return tangent(
+                &mut vi.with_velocity_hint(self.v),
+                self.state,
+                grid,
+                &options(spec),
+            );
+        }
+        let mut vi = ParametricIntegrator::new(rule, model, &theta, newton)?;
+        tangent(&mut vi, self.state, grid, &options(spec))
     }
 }
 

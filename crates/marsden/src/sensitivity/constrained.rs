@@ -47,8 +47,9 @@
 use std::cell::RefCell;
 
 use super::projection::{ProjectionWorkspace, projection_jacobian};
-use super::step::{SensitiveStep, no_stage_offsets};
+use super::step::SensitiveStep;
 use crate::analysis::certificate::DifferentiableStep;
+use crate::analysis::certificate::variational::{at_step, check_stage_offsets};
 use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::error::{Error, StepError, StepFailure};
 use crate::holonomic::{MomentumProjection, Rattle};
@@ -70,16 +71,22 @@ struct Layout {
     d: usize,
     stages: usize,
     forced: bool,
+    /// Parameters `P` (frozen coordinates of the model after the `n` free ones).
+    params: usize,
 }
 
 impl Layout {
-    /// Variables `x = (Q₀ … Q_s, λ, Λ)`.
+    /// Variables `x = (Q₀ … Q_s, λ, Λ, θ)`.
     fn width(&self) -> usize {
-        (self.s + 1) * self.n + self.d * (1 + self.stages)
+        self.n + self.unknowns() + self.params
     }
-    /// Unknowns `y = (Q₁ … Q_s, λ, Λ)`: the variables after `Q₀`.
+    /// Unknowns `y = (Q₁ … Q_s, λ, Λ)`: the variables after `Q₀`, before `θ`.
     fn unknowns(&self) -> usize {
-        self.width() - self.n
+        self.s * self.n + self.d * (1 + self.stages)
+    }
+    /// Coordinates of the model: `n` free, then `P` parameters.
+    fn coordinates(&self) -> usize {
+        self.n + self.params
     }
     fn forces(&self) -> usize {
         if self.forced {
@@ -112,59 +119,87 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
     }
     fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
         let l = self.layout;
-        let (n, sn, d) = (l.n, l.s * l.n, l.d);
+        let (n, sn, big) = (l.n, l.s * l.n, l.coordinates());
         let (q0, rest) = x.split_at(n);
-        let (offsets, multipliers) = rest.split_at(sn);
+        let (offsets, rest) = rest.split_at(sn);
+        let (multipliers, theta) = rest.split_at(l.d * (1 + l.stages));
         let zero = S::from(0.0);
-        // Δ_j − (q₀ − re q₀): same real part, derivatives taken with Q_j = q₀ + Δ_j held fixed.
+        // The model's point `(q₀, θ)` and offsets `(Δ_j − (q₀ − re q₀), 0)`: same real part,
+        // derivatives taken with `Q_j = q₀ + Δ_j` held fixed; `θ` never moves.
+        let point = |i: usize| if i < n { q0[i] } else { theta[i - n] };
         let shifted = |i: usize| {
-            let a = q0[i % n];
-            offsets[i] + (S::from(a.re()) - a)
+            let (j, a) = (i / big, i % big);
+            if a < n {
+                offsets[j * n + a] + (S::from(q0[a].re()) - q0[a])
+            } else {
+                zero
+            }
         };
-        with_buffer::<S, OFFSETS, ()>(sn, zero, shifted, |offsets| {
-            out[0] = self.action.action(self.t0, self.h, q0, offsets);
-            let nf = l.forces();
-            if nf > 0 {
-                let forces = &mut out[1..1 + nf];
-                self.force
-                    .discrete_force(self.t0, self.h, q0, offsets, forces);
-            }
-            if d == 0 {
-                return;
-            }
-            let first = 1 + nf;
-            // −h ⟨λ, φ(Q₀)⟩, computed in the slot of φ(Q_s) before it is filled.
-            self.constraint.constraint(q0, &mut out[first..first + d]);
-            for c in 0..d {
-                out[0] -= out[first + c] * multipliers[c] * S::from(self.h);
-            }
-            let last = &offsets[(l.s - 1) * n..];
-            with_buffer::<S, NODE, ()>(
-                n,
+        with_buffer::<S, NODE, ()>(big, zero, point, |q0| {
+            with_buffer::<S, OFFSETS, ()>(l.s * big, zero, shifted, |offsets| {
+                self.evaluate(q0, offsets, multipliers, out);
+            });
+        });
+    }
+}
+
+impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> AugmentedStep<'_, A, F, C> {
+    /// `(Φ, F, φ(Q_s), φ(X_i))` at the model's point `q0` and `offsets` (`n + P` per point).
+    fn evaluate<S: Scalar>(&self, q0: &[S], offsets: &[S], multipliers: &[S], out: &mut [S]) {
+        let l = self.layout;
+        let (n, d, big) = (l.n, l.d, l.coordinates());
+        let zero = S::from(0.0);
+        out[0] = self.action.action(self.t0, self.h, q0, offsets);
+        let nf = l.forces();
+        if nf > 0 {
+            // The forces on the free coordinates (those on θ are zero and not equations).
+            with_buffer::<S, OFFSETS, ()>(
+                (l.s + 1) * big,
                 zero,
-                |i| q0[i] + last[i],
-                |q_end| {
-                    self.constraint
-                        .constraint(q_end, &mut out[first..first + d]);
+                |_| zero,
+                |all| {
+                    self.force.discrete_force(self.t0, self.h, q0, offsets, all);
+                    for j in 0..=l.s {
+                        out[1 + j * n..1 + (j + 1) * n].copy_from_slice(&all[j * big..j * big + n]);
+                    }
                 },
             );
-            for i in 0..l.stages {
-                let block = first + (1 + i) * d;
-                with_buffer::<S, NODE, ()>(
-                    n,
-                    zero,
-                    |_| zero,
-                    |point| {
-                        self.action.stage_point(i, q0, offsets, point);
-                        self.constraint
-                            .constraint(point, &mut out[block..block + d]);
-                    },
-                );
-                for c in 0..d {
-                    out[0] -= out[block + c] * multipliers[(1 + i) * d + c] * S::from(self.h);
-                }
+        }
+        if d == 0 {
+            return;
+        }
+        let first = 1 + nf;
+        // −h ⟨λ, φ(Q₀)⟩, computed in the slot of φ(Q_s) before it is filled.
+        self.constraint.constraint(q0, &mut out[first..first + d]);
+        for c in 0..d {
+            out[0] -= out[first + c] * multipliers[c] * S::from(self.h);
+        }
+        let last = &offsets[(l.s - 1) * big..];
+        with_buffer::<S, NODE, ()>(
+            big,
+            zero,
+            |i| q0[i] + last[i],
+            |q_end| {
+                self.constraint
+                    .constraint(q_end, &mut out[first..first + d]);
+            },
+        );
+        for i in 0..l.stages {
+            let block = first + (1 + i) * d;
+            with_buffer::<S, NODE, ()>(
+                big,
+                zero,
+                |_| zero,
+                |point| {
+                    self.action.stage_point(i, q0, offsets, point);
+                    self.constraint
+                        .constraint(point, &mut out[block..block + d]);
+                },
+            );
+            for c in 0..d {
+                out[0] -= out[block + c] * multipliers[(1 + i) * d + c] * S::from(self.h);
             }
-        });
+        }
     }
 }
 
@@ -214,6 +249,8 @@ struct Workspace {
     scratch: Vec<f64>,
     /// `∂(q_{k+1}, p̃_{k+1})/∂(q_k, p_k)` and the projection's `∂p_{k+1}/∂(q_{k+1}, p̃_{k+1})`.
     shake: Vec<f64>,
+    /// The projection's point `(q_{k+1}, θ)`.
+    point: Vec<f64>,
     projection: ProjectionWorkspace,
 }
 
@@ -221,20 +258,24 @@ thread_local! {
     static WORKSPACE: RefCell<Workspace> = RefCell::new(Workspace::default());
 }
 
-/// Writes `∂(q_{k+1}, p̃_{k+1})/∂(q_k, p_k)` (row-major 2n × 2n) of the SHAKE step from
-/// `(t₀, q_k)` with converged unknowns `z = (Δ₁ … Δ_s, λ, Λ₁ … Λ_c)` into `jac`.
+/// Writes `∂(q_{k+1}, p̃_{k+1})/∂(q_k, p_k, θ)` (row-major 2n × (2n + P)) of the SHAKE step
+/// from `(t₀, q_k, θ)` with converged unknowns `z = (Δ₁ … Δ_s, λ, Λ₁ … Λ_c)` into `ws.shake`.
+///
+/// `θ` enters the step equations as a variable held fixed, so its columns are
+/// `dy/dθ = −(∂R/∂y)⁻¹ ∂R/∂θ` beside those of `(q_k, p_k)`.
 fn shake_jacobian<A: DiscreteAction, F: DiscreteForce, C: Constraint>(
     step: &AugmentedStep<'_, A, F, C>,
-    q0: &[f64],
+    (q0, theta): (&[f64], &[f64]),
     z: &[f64],
     ws: &mut Workspace,
 ) -> Result<(), Error> {
     let l = step.layout;
     let (n, sn, w, u) = (l.n, l.s * l.n, l.width(), l.unknowns());
-    let m = 2 * n;
+    let (m, cols) = (2 * n, 2 * n + l.params);
     Error::check_len("step unknowns", z, u)?;
+    Error::check_len("parameters", theta, l.params)?;
     ws.x.clear();
-    ws.x.extend(q0.iter().chain(z));
+    ws.x.extend(q0.iter().chain(z).chain(theta));
     ad::partial_hessian(step, &ws.x, 0..w, 0..w, &mut ws.parts);
     let b = Blocks {
         parts: &ws.parts,
@@ -253,33 +294,138 @@ fn shake_jacobian<A: DiscreteAction, F: DiscreteForce, C: Constraint>(
             },
         })
     })?;
-    // dy = −(∂R/∂y)⁻¹ [∂R/∂q_k | ∂R/∂p_k]; p_k enters the first n rows with the identity.
-    ws.dy.resize(u * m, 0.0);
+    // The x-column of input column c: q_k (c < n), none for p_k, θ (c ≥ 2n, after y).
+    let x_col = |c: usize| match c {
+        c if c < n => Some(c),
+        c if c >= m => Some(n + u + c - m),
+        _ => None,
+    };
+    // dy = −(∂R/∂y)⁻¹ [∂R/∂q_k | ∂R/∂p_k | ∂R/∂θ]; p_k enters the first n rows with the identity.
+    ws.dy.resize(u * cols, 0.0);
     ws.col.resize(u, 0.0);
-    for c in 0..m {
+    for c in 0..cols {
         for (r, entry) in ws.col.iter_mut().enumerate() {
-            *entry = -if c < n {
-                b.d_equation(r, c)
-            } else {
-                f64::from(u8::from(r == c - n))
+            *entry = -match x_col(c) {
+                Some(xc) => b.d_equation(r, xc),
+                None => f64::from(u8::from(r == c - n)),
             };
         }
         ws.lu.solve(&mut ws.col, &mut ws.scratch);
         ws.dy[c * u..(c + 1) * u].copy_from_slice(&ws.col);
     }
-    ws.shake.resize(m * m, 0.0);
+    ws.shake.resize(m * cols, 0.0);
     for a in 0..n {
-        for c in 0..m {
+        for c in 0..cols {
             // Q_s is unknown (s − 1)·n + a.
-            ws.shake[a * m + c] = ws.dy[c * u + sn - n + a];
-            let direct = if c < n { b.d_point(l.s, a, c) } else { 0.0 };
+            ws.shake[a * cols + c] = ws.dy[c * u + sn - n + a];
+            let direct = x_col(c).map_or(0.0, |xc| b.d_point(l.s, a, xc));
             let through: f64 = (0..u)
                 .map(|r| b.d_point(l.s, a, n + r) * ws.dy[c * u + r])
                 .sum();
-            ws.shake[(n + a) * m + c] = direct + through;
+            ws.shake[(n + a) * cols + c] = direct + through;
         }
     }
     Ok(())
+}
+
+/// The model a constrained step is differentiated with: the run's own discrete action,
+/// forces, constraints and projection Lagrangian (`θ` empty), or those of a parametric model
+/// on `ℝⁿ⁺ᴾ` with its parameter values `θ` ([`super::parametric::Frozen`]).
+pub(super) struct Model<'a, A, F, C, L> {
+    pub action: &'a A,
+    pub force: &'a F,
+    pub constraint: &'a C,
+    pub lagrangian: &'a L,
+    pub theta: &'a [f64],
+}
+
+/// After `run` stepped from `(t₀, q₀)` with step `h` to `state`, writes
+/// `∂(q_{k+1}, p_{k+1})/∂(q_k, p_k, θ)` (row-major 2n × (2n + P)) of that step into `jac`:
+/// SHAKE's Jacobian ([`shake_jacobian`]), then the projection's ([`projection_jacobian`]).
+/// `run` must have active constraints.
+pub(super) fn constrained_jacobian<A, F, C, L, RA, RF, RC, RL, RC2>(
+    run: &Integrator<RA, RF, RC, Rattle<RL, RC2>>,
+    model: &Model<'_, A, F, C, L>,
+    ((t0, h), q0): ((f64, f64), &[f64]),
+    (state, iterations): (&State, usize),
+    jac: &mut [f64],
+) -> Result<(), Error>
+where
+    A: DiscreteAction,
+    F: DiscreteForce,
+    C: Constraint,
+    L: Lagrangian,
+    RA: DiscreteAction,
+    RF: DiscreteForce,
+    RC: Constraint,
+    RL: Lagrangian,
+    RC2: Constraint,
+{
+    let shape = run.shape();
+    let (n, np) = (shape.n, model.theta.len());
+    let (m, cols) = (2 * n, 2 * n + np);
+    Error::check_len("jacobian", jac, m * cols)?;
+    let layout = Layout {
+        n,
+        s: shape.s,
+        d: shape.d,
+        stages: shape.stages,
+        forced: shape.forced,
+        params: np,
+    };
+    let step = AugmentedStep {
+        action: model.action,
+        force: model.force,
+        constraint: model.constraint,
+        t0,
+        h,
+        layout,
+    };
+    let index = run.statistics().steps.saturating_sub(1);
+    let rename = at_step(index, t0, iterations);
+    WORKSPACE.with_borrow_mut(|ws| {
+        let mut z = std::mem::take(&mut ws.z);
+        z.clear();
+        z.extend(
+            (run.stage_offsets().iter())
+                .chain(run.multipliers())
+                .chain(run.stage_multipliers()),
+        );
+        let solved = shake_jacobian(&step, (q0, model.theta), &z, ws);
+        ws.z = z;
+        solved.map_err(&rename)?;
+        let projection = run.projection();
+        if !projection.is_active() {
+            jac.copy_from_slice(&ws.shake);
+            return Ok(());
+        }
+        let mut point = std::mem::take(&mut ws.point);
+        point.clear();
+        point.extend(state.q.iter().chain(model.theta));
+        let pj = projection_jacobian(
+            (model.lagrangian, model.constraint),
+            t0 + h,
+            (&point, projection.velocity(), projection.multipliers()),
+            &mut ws.projection,
+        );
+        ws.point = point;
+        let pj = pj.map_err(&rename)?;
+        // Rows q: SHAKE's; rows p: ∂p/∂(q_{k+1}, p̃_{k+1}) · SHAKE's + ∂p/∂θ.
+        jac[..n * cols].copy_from_slice(&ws.shake[..n * cols]);
+        for a in 0..n {
+            for c in 0..cols {
+                let through: f64 = (0..m)
+                    .map(|r| pj[a * cols + r] * ws.shake[r * cols + c])
+                    .sum();
+                jac[(n + a) * cols + c] = if c >= m {
+                    through + pj[a * cols + c]
+                } else {
+                    through
+                };
+            }
+        }
+        Ok(())
+    })
 }
 
 impl<A, F, C, L, C2> SensitiveStep for Integrator<A, F, C, Rattle<L, C2>>
@@ -290,18 +436,6 @@ where
     L: Lagrangian,
     C2: Constraint,
 {
-    fn dof(&self) -> usize {
-        self.shape().n
-    }
-
-    fn parameters(&self) -> usize {
-        0
-    }
-
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error> {
-        Integrator::step(self, state, h)
-    }
-
     /// One SHAKE + RATTLE step and its Jacobian (see the module documentation: meaningful on
     /// tangent vectors of `T*N`).
     fn step_with_sensitivity(
@@ -310,82 +444,30 @@ where
         h: f64,
         jac: &mut [f64],
     ) -> Result<StepReport, Error> {
-        let shape = self.shape();
-        let (n, m) = (shape.n, 2 * shape.n);
-        Error::check_len("jacobian", jac, m * m)?;
-        if self.is_explicit() && shape.s > 1 {
-            return Err(no_stage_offsets());
-        }
-        if shape.d == 0 {
+        if self.shape().d == 0 {
             // No constraint is active, so the projection is not either: the step is the
             // unconstrained one, differentiated as such (fewer variables, less round-off).
-            return DifferentiableStep::step_with_jacobian(self, state, h, jac);
+            return self.step_with_jacobian(state, h, jac);
         }
+        let n = self.shape().n;
+        Error::check_len("jacobian", jac, 4 * n * n)?;
+        check_stage_offsets(self)?;
         let (t0, q0) = (state.t, state.q.clone());
         let report = Integrator::step(self, state, h)?;
-        let index = self.statistics().steps.saturating_sub(1);
-        let layout = Layout {
-            n,
-            s: shape.s,
-            d: shape.d,
-            stages: shape.stages,
-            forced: shape.forced,
-        };
-        let step = AugmentedStep {
+        let model = Model {
             action: self.action(),
             force: self.force(),
             constraint: self.constraint(),
-            t0,
-            h,
-            layout,
+            lagrangian: self.projection().lagrangian(),
+            theta: &[],
         };
-        let rename = |e: Error| match e {
-            Error::Step(StepFailure {
-                cause: StepError::SingularJacobian { pivot, .. },
-                ..
-            }) => Error::Step(StepFailure {
-                step: index,
-                t: t0,
-                cause: StepError::SingularJacobian {
-                    iteration: report.iterations,
-                    pivot,
-                },
-            }),
-            other => other,
-        };
-        WORKSPACE.with_borrow_mut(|ws| {
-            let mut z = std::mem::take(&mut ws.z);
-            z.clear();
-            z.extend(
-                self.stage_offsets()
-                    .iter()
-                    .chain(self.multipliers())
-                    .chain(self.stage_multipliers()),
-            );
-            let solved = shake_jacobian(&step, &q0, &z, ws);
-            ws.z = z;
-            solved.map_err(rename)?;
-            let projection = self.projection();
-            if !projection.is_active() {
-                jac.copy_from_slice(&ws.shake);
-                return Ok(report);
-            }
-            let pj = projection_jacobian(
-                (projection.lagrangian(), self.constraint()),
-                t0 + h,
-                (&state.q, projection.velocity(), projection.multipliers()),
-                &mut ws.projection,
-            )
-            .map_err(rename)?;
-            // Rows q: SHAKE's; rows p: ∂p/∂(q_{k+1}, p̃_{k+1}) · SHAKE's.
-            jac[..n * m].copy_from_slice(&ws.shake[..n * m]);
-            for a in 0..n {
-                for c in 0..m {
-                    jac[(n + a) * m + c] =
-                        (0..m).map(|r| pj[a * m + r] * ws.shake[r * m + c]).sum();
-                }
-            }
-            Ok(report)
-        })
+        constrained_jacobian(
+            self,
+            &model,
+            ((t0, h), &q0),
+            (state, report.iterations),
+            jac,
+        )?;
+        Ok(report)
     }
 }

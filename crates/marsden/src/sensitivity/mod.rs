@@ -12,14 +12,16 @@
 //! compositions) and discrete forces (Lagrange–d'Alembert) enter only through the action and
 //! the forces, so all of them are covered.
 //!
-//! - [`step`]: what a stepper offers ([`SensitiveStep`]): one step with its Jacobian.
+//! - [`step`]: what a stepper offers ([`SensitiveStep`], a [`crate::analysis::certificate::DifferentiableStep`]
+//!   with parameter columns): one step with its Jacobian.
 //! - [`tangent`]: `S_k = ∂(q_k, p_k)/∂(q₀, p₀, θ)` forward along a run ([`Tangent`]).
 //! - [`adjoint`]: `dΛ/d(q₀, p₀, θ)` of `Λ = Σ_k ℓ_k(q_k, p_k)`, backwards ([`Gradient`]),
 //!   over [`checkpoints`] so memory stays bounded.
 //! - [`constrained`]: the step Jacobian of a constrained run (SHAKE + RATTLE, multipliers
 //!   included; `projection` linearises the projection onto `T*N`).
 //! - [`parametric`]: named parameters of the Lagrangian and the forces, held as coordinates
-//!   that do not move ([`ParametricIntegrator`]).
+//!   that do not move ([`ParametricIntegrator`]); [`parametric_constrained`]: also of the
+//!   constraints, with SHAKE + RATTLE ([`ConstrainedParametricIntegrator`]).
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
@@ -28,6 +30,7 @@ pub mod checkpoints;
 pub mod constrained;
 pub mod options;
 pub mod parametric;
+pub mod parametric_constrained;
 mod projection;
 pub mod step;
 pub mod tangent;
@@ -35,5 +38,6 @@ pub mod tangent;
 pub use adjoint::{Gradient, adjoint};
 pub use options::{AdjointOptions, TangentOptions};
 pub use parametric::{ParametricIntegrator, ParametricModel};
+pub use parametric_constrained::ConstrainedParametricIntegrator;
 pub use step::SensitiveStep;
 pub use tangent::{Tangent, TangentSample, tangent};

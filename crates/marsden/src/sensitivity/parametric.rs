@@ -1,7 +1,9 @@
-//! Named parameters of the Lagrangian and the forces, as coordinates that do not move.
+//! Named parameters of the Lagrangian, the forces and the constraints, as coordinates that do
+//! not move.
 //!
-//! A model written once over the scalar, `L(t, q, v; θ)` and `f_L(t, q, v; θ)`
-//! ([`ParametricModel`]), is stepped at fixed `θ` by an ordinary [`Integrator`] ([`AtValues`]:
+//! A model written once over the scalar, `L(t, q, v; θ)`, `f_L(t, q, v; θ)` and `φ(q; θ)`
+//! ([`ParametricModel`]; constrained models are stepped by
+//! [`super::parametric_constrained::ConstrainedParametricIntegrator`]), is stepped at fixed `θ` by an ordinary [`Integrator`] ([`AtValues`]:
 //! `θ` enters as constants, so the run is the run of the model with those values). For the
 //! derivative, the same model is read as a system on `ℝⁿ⁺ᴾ` whose last `P` coordinates are `θ`
 //! ([`Frozen`]: `L̃(t, (q, θ), (v, ·)) = L(t, q, v; θ)`, forces zero on `θ`). With the offsets of
@@ -17,11 +19,14 @@
 //! system unchanged.
 
 use super::step::SensitiveStep;
-use crate::analysis::certificate::variational::frozen_step_jacobian;
+use crate::analysis::certificate::DifferentiableStep;
+use crate::analysis::certificate::variational::{
+    at_step, check_stage_offsets, frozen_step_jacobian,
+};
 use crate::discrete::rules::Rule;
 use crate::error::Error;
 use crate::integrator::{Integrator, StepReport};
-use crate::mechanics::{Force, Lagrangian, State};
+use crate::mechanics::{Constraint, Force, Lagrangian, State};
 use crate::numerics::newton::NewtonOptions;
 use crate::scalar::{Scalar, constant};
 
@@ -45,6 +50,16 @@ pub trait ParametricModel {
     /// Whether the model has a force (default `false`).
     fn is_forced(&self) -> bool {
         false
+    }
+
+    /// Number of holonomic constraints `φ(q; θ) = 0` (default none).
+    fn constraints(&self) -> usize {
+        0
+    }
+
+    /// Writes `φ(q; θ)` into `out` (length [`ParametricModel::constraints`]). Default: none.
+    fn constraint_with<S: Scalar>(&self, theta: &[S], q: &[S], out: &mut [S]) {
+        let _ = (theta, q, out);
     }
 }
 
@@ -110,6 +125,17 @@ impl<M: ParametricModel> Force for AtValues<M> {
     }
 }
 
+impl<M: ParametricModel> Constraint for AtValues<M> {
+    fn count(&self) -> usize {
+        self.model.constraints()
+    }
+    fn constraint<S: Scalar>(&self, q: &[S], out: &mut [S]) {
+        with_theta(self.lifted(), |theta| {
+            self.model.constraint_with(theta, q, out);
+        });
+    }
+}
+
 /// The model on `ℝⁿ⁺ᴾ` with `θ` as its last `P` coordinates (never stepped; used for the
 /// derivative only).
 #[derive(Debug, Clone, PartialEq)]
@@ -139,6 +165,17 @@ impl<M: ParametricModel> Force for Frozen<M> {
     }
     fn is_active(&self) -> bool {
         self.model.is_forced()
+    }
+}
+
+/// `φ̃(q, θ) = φ(q; θ)`: a constant of the constraints is a coordinate like the others.
+impl<M: ParametricModel> Constraint for Frozen<M> {
+    fn count(&self) -> usize {
+        self.model.constraints()
+    }
+    fn constraint<S: Scalar>(&self, q: &[S], out: &mut [S]) {
+        let n = self.model.dof();
+        self.model.constraint_with(&q[n..], &q[..n], out);
     }
 }
 
@@ -215,17 +252,29 @@ impl<R: Rule, M: ParametricModel + Clone> ParametricIntegrator<R, M> {
     }
 }
 
-impl<R: Rule, M: ParametricModel + Clone> SensitiveStep for ParametricIntegrator<R, M> {
+/// The step and its `(q_k, p_k)` Jacobian, as the run's integrator gives them.
+impl<R: Rule, M: ParametricModel + Clone> DifferentiableStep for ParametricIntegrator<R, M> {
     fn dof(&self) -> usize {
         self.run.shape().n
     }
 
-    fn parameters(&self) -> usize {
-        self.theta.len()
-    }
-
     fn step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error> {
         self.run.step(state, h)
+    }
+
+    fn step_with_jacobian(
+        &mut self,
+        state: &mut State,
+        h: f64,
+        jac: &mut [f64],
+    ) -> Result<StepReport, Error> {
+        self.run.step_with_jacobian(state, h, jac)
+    }
+}
+
+impl<R: Rule, M: ParametricModel + Clone> SensitiveStep for ParametricIntegrator<R, M> {
+    fn parameters(&self) -> usize {
+        self.theta.len()
     }
 
     fn step_with_sensitivity(
@@ -234,11 +283,10 @@ impl<R: Rule, M: ParametricModel + Clone> SensitiveStep for ParametricIntegrator
         h: f64,
         jac: &mut [f64],
     ) -> Result<StepReport, Error> {
-        if self.run.is_explicit() && self.run.shape().s > 1 {
-            return Err(super::step::no_stage_offsets());
-        }
+        check_stage_offsets(&self.run)?;
         let (t0, q0) = (state.t, state.q.clone());
         let report = self.run.step(state, h)?;
+        let index = self.run.statistics().steps.saturating_sub(1);
         frozen_step_jacobian(
             &self.frozen,
             &self.frozen_force,
@@ -246,7 +294,8 @@ impl<R: Rule, M: ParametricModel + Clone> SensitiveStep for ParametricIntegrator
             (&q0, &self.theta),
             self.run.stage_offsets(),
             jac,
-        )?;
+        )
+        .map_err(at_step(index, t0, report.iterations))?;
         Ok(report)
     }
 }

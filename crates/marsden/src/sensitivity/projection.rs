@@ -16,7 +16,8 @@
 //! ```
 //!
 //! the same equations whether the projection took its closed form (constant mass matrix) or
-//! Newton's method. Second derivatives come from one hyper-dual evaluation of `L` over `(q, v)`
+//! Newton's method. Parameters `θ` of `L` and `φ`, read as frozen coordinates after `q`, enter
+//! exactly as `dq` does (their own columns; [`super::parametric_constrained`]). Second derivatives come from one hyper-dual evaluation of `L` over `(q, v)`
 //! and one of each constraint component over `q`.
 //!
 //! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006). [LMO08]:
@@ -81,7 +82,7 @@ impl<C: Constraint> MultiFunction for Component<'_, C> {
 pub(super) struct ProjectionWorkspace {
     x: Vec<f64>,
     parts: HessianParts,
-    /// `G = Dφ(q)` (d × n) and `Σ_c ν_c H_c` (n × n), `vᵀH_c` (d × n).
+    /// `G = Dφ(q)` (d × n) and `Σ_c ν_c H_c` (n × (n + P)), `vᵀH_c` (d × (n + P)).
     g: Vec<f64>,
     curvature: Vec<f64>,
     v_curvature: Vec<f64>,
@@ -89,12 +90,17 @@ pub(super) struct ProjectionWorkspace {
     lu: Lu,
     col: Vec<f64>,
     scratch: Vec<f64>,
-    /// `∂p/∂(q, p̃)`, row-major n × 2n.
+    /// `∂p/∂(q, p̃, θ)`, row-major n × (2n + P).
     jac: Vec<f64>,
 }
 
-/// `∂p/∂(q, p̃)` (row-major n × 2n) of the projection at `q` with converged velocities `v` and
-/// multipliers `ν` at time `t` (see the module documentation).
+/// `∂p/∂(q, p̃, θ)` (row-major n × (2n + P)) of the projection at `q` with converged velocities
+/// `v` and multipliers `ν` at time `t` (see the module documentation).
+///
+/// `lagrangian` and `constraint` may carry `P` frozen coordinates `θ` after the `n` free ones
+/// (parameters, [`super::parametric::Frozen`]): `q` is then `(q, θ)` (length `n + P`), `v` the
+/// `n` free velocities, and `θ` enters as `q` does, with `dθ` in the last `P` columns. Without
+/// parameters (`P = 0`) the result is `∂p/∂(q, p̃)`.
 ///
 /// Errors with [`StepError::SingularJacobian`] if the KKT matrix is singular.
 pub(super) fn projection_jacobian<'w, L: Lagrangian, C: Constraint>(
@@ -103,35 +109,41 @@ pub(super) fn projection_jacobian<'w, L: Lagrangian, C: Constraint>(
     (q, v, nu): (&[f64], &[f64], &[f64]),
     ws: &'w mut ProjectionWorkspace,
 ) -> Result<&'w [f64], Error> {
-    let (n, d) = (q.len(), constraint.count());
-    let (m, k) = (2 * n, n + d);
-    Error::check_len("projection velocity", v, n)?;
+    let (n, big, d) = (v.len(), q.len(), constraint.count());
+    let (m, k, cols) = (2 * n, n + d, n + big);
+    Error::check_len("projection coordinates", q, lagrangian.dof())?;
     Error::check_len("projection multipliers", nu, d)?;
     ws.g.resize(d * n, 0.0);
     ws.curvature.clear();
-    ws.curvature.resize(n * n, 0.0);
-    ws.v_curvature.resize(d * n, 0.0);
+    ws.curvature.resize(n * big, 0.0);
+    ws.v_curvature.resize(d * big, 0.0);
     for (c, &nu_c) in nu.iter().enumerate() {
-        let phi = Component { constraint, c, n };
-        ad::partial_hessian(&phi, q, 0..n, 0..n, &mut ws.parts);
+        let phi = Component {
+            constraint,
+            c,
+            n: big,
+        };
+        ad::partial_hessian(&phi, q, 0..n, 0..big, &mut ws.parts);
         ws.g[c * n..(c + 1) * n].copy_from_slice(&ws.parts.grad_rows);
         for (entry, second) in ws.curvature.iter_mut().zip(&ws.parts.hess) {
             *entry += nu_c * second;
         }
-        for b in 0..n {
-            ws.v_curvature[c * n + b] = (0..n).map(|a| v[a] * ws.parts.hess[a * n + b]).sum();
+        for b in 0..big {
+            ws.v_curvature[c * big + b] = (0..n).map(|a| v[a] * ws.parts.hess[a * big + b]).sum();
         }
     }
     ws.x.clear();
     ws.x.extend(q.iter().chain(v));
+    ws.x.resize(2 * big, 0.0);
     let l = AtTime { lagrangian, t };
-    ad::partial_hessian(&l, &ws.x, n..m, 0..m, &mut ws.parts);
-    // hess row a (∂/∂v_a), column b < n: ∂²L/∂v_a∂q_b; column n + b: W_ab.
+    let w = 2 * big;
+    ad::partial_hessian(&l, &ws.x, big..big + n, 0..w, &mut ws.parts);
+    // hess row a (∂/∂v_a), column b < n + P: ∂²L/∂v_a∂(q, θ)_b; column n + P + b: W_ab.
     ws.kkt.clear();
     ws.kkt.resize(k * k, 0.0);
     for a in 0..n {
         for b in 0..n {
-            ws.kkt[a * k + b] = ws.parts.hess[a * m + n + b];
+            ws.kkt[a * k + b] = ws.parts.hess[a * w + big + b];
         }
         for c in 0..d {
             ws.kkt[a * k + n + c] = ws.g[c * n + a];
@@ -148,32 +160,32 @@ pub(super) fn projection_jacobian<'w, L: Lagrangian, C: Constraint>(
             },
         })
     })?;
-    ws.jac.resize(n * m, 0.0);
+    ws.jac.resize(n * cols, 0.0);
     ws.col.resize(k, 0.0);
-    for b in 0..m {
+    for b in 0..cols {
+        // The coordinate of column b: q_b (b < n), none for p̃, θ (b ≥ 2n).
+        let e = match b {
+            b if b < n => Some(b),
+            b if b >= m => Some(b - n),
+            _ => None,
+        };
         for a in 0..n {
-            ws.col[a] = if b < n {
-                -(ws.parts.hess[a * m + b] + ws.curvature[a * n + b])
-            } else {
-                f64::from(u8::from(a == b - n))
+            ws.col[a] = match e {
+                Some(e) => -(ws.parts.hess[a * w + e] + ws.curvature[a * big + e]),
+                None => f64::from(u8::from(a == b - n)),
             };
         }
         for c in 0..d {
-            ws.col[n + c] = if b < n {
-                -ws.v_curvature[c * n + b]
-            } else {
-                0.0
-            };
+            ws.col[n + c] = e.map_or(0.0, |e| -ws.v_curvature[c * big + e]);
         }
         ws.lu.solve(&mut ws.col, &mut ws.scratch);
         for a in 0..n {
-            let direct = if b < n {
-                -ws.curvature[a * n + b]
-            } else {
-                f64::from(u8::from(a == b - n))
+            let direct = match e {
+                Some(e) => -ws.curvature[a * big + e],
+                None => f64::from(u8::from(a == b - n)),
             };
             let through: f64 = (0..d).map(|c| ws.g[c * n + a] * ws.col[n + c]).sum();
-            ws.jac[a * m + b] = direct - through;
+            ws.jac[a * cols + b] = direct - through;
         }
     }
     Ok(&ws.jac)

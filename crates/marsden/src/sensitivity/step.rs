@@ -1,102 +1,46 @@
 //! What a stepper must offer to be differentiated along a run: one step that also writes the
 //! step's Jacobian with respect to the state and to the parameters it carries.
 //!
-//! The variational [`Integrator`] (unconstrained, with or without forces, every rule) gives
-//! `∂(q_{k+1}, p_{k+1})/∂(q_k, p_k)` by the implicit function theorem on its converged step
+//! [`SensitiveStep`] extends [`DifferentiableStep`] (one step and `∂(q_{k+1}, p_{k+1})/∂(q_k,
+//! p_k)`) with parameter columns. The variational [`Integrator`] (unconstrained, with or without
+//! forces, every rule) and every [`crate::hamiltonian::HamiltonianIntegrator`] carry none
+//! (`P = 0`) and use their [`DifferentiableStep`] Jacobian
 //! ([`crate::analysis::certificate::variational`]); the constrained one (SHAKE + RATTLE,
-//! [`crate::holonomic::Rattle`]) gives it on tangent vectors of `T*N`
-//! ([`super::constrained`]); every
-//! [`crate::hamiltonian::HamiltonianIntegrator`] gives its own. Neither carries parameters
-//! (`P = 0`); [`super::parametric::ParametricIntegrator`] carries `P` of them.
+//! [`crate::holonomic::Rattle`]) gives its Jacobian on tangent vectors of `T*N`
+//! ([`super::constrained`]); [`super::parametric::ParametricIntegrator`] and
+//! [`super::parametric_constrained::ConstrainedParametricIntegrator`] carry `P` parameters.
 
 use crate::analysis::certificate::DifferentiableStep;
 use crate::discrete::{DiscreteAction, DiscreteForce};
-use crate::error::{Error, InputError};
+use crate::error::Error;
 use crate::hamiltonian::{Hamiltonian, HamiltonianIntegrator, HamiltonianMethod};
 use crate::integrator::{Integrator, StepReport};
 use crate::mechanics::{State, Unconstrained};
 
-/// A one-step map `(q_k, p_k; θ) ↦ (q_{k+1}, p_{k+1})` that reports its exact Jacobian.
-pub trait SensitiveStep {
-    /// Degrees of freedom `n`.
-    fn dof(&self) -> usize;
-
-    /// Number of parameters `P` (the columns of the Jacobian beyond the state's `2n`).
-    fn parameters(&self) -> usize;
-
-    /// One plain step of size `h` from `state` (advanced in place, `state.t` included).
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error>;
+/// A one-step map `(q_k, p_k; θ) ↦ (q_{k+1}, p_{k+1})` that reports its exact Jacobian with
+/// respect to the state and to `P` parameters.
+pub trait SensitiveStep: DifferentiableStep {
+    /// Number of parameters `P` (the columns of the Jacobian beyond the state's `2n`);
+    /// default none.
+    fn parameters(&self) -> usize {
+        0
+    }
 
     /// One step, also writing `∂(q_{k+1}, p_{k+1})/∂(q_k, p_k, θ)` into `jac` (row-major,
-    /// `2n × (2n + P)`).
+    /// `2n × (2n + P)`); default: [`DifferentiableStep::step_with_jacobian`] (`P = 0`).
     fn step_with_sensitivity(
         &mut self,
         state: &mut State,
         h: f64,
         jac: &mut [f64],
-    ) -> Result<StepReport, Error>;
-}
-
-/// The error of an integrator whose last step left no stage offsets to differentiate (the
-/// explicit path of a composition keeps only the final offset).
-pub(super) fn no_stage_offsets() -> Error {
-    Error::Input(InputError::InvalidOption {
-        name: "fast_paths",
-        value: 1.0,
-        reason: "the explicit path of a composition keeps no stage offsets, so its step cannot \
-                 be differentiated; build the integrator with with_fast_paths(false)",
-    })
+    ) -> Result<StepReport, Error> {
+        self.step_with_jacobian(state, h, jac)
+    }
 }
 
 /// The integrator without constraints or projection (the type of `Integrator::new`); the one
 /// [`crate::run::Problem::integrator`] builds (SHAKE + RATTLE, constraints or none) is
 /// differentiated in [`super::constrained`].
-impl<A: DiscreteAction, F: DiscreteForce> SensitiveStep for Integrator<A, F, Unconstrained> {
-    fn dof(&self) -> usize {
-        self.shape().n
-    }
+impl<A: DiscreteAction, F: DiscreteForce> SensitiveStep for Integrator<A, F, Unconstrained> {}
 
-    fn parameters(&self) -> usize {
-        0
-    }
-
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error> {
-        Integrator::step(self, state, h)
-    }
-
-    fn step_with_sensitivity(
-        &mut self,
-        state: &mut State,
-        h: f64,
-        jac: &mut [f64],
-    ) -> Result<StepReport, Error> {
-        let shape = self.shape();
-        if self.is_explicit() && shape.s > 1 {
-            return Err(no_stage_offsets());
-        }
-        DifferentiableStep::step_with_jacobian(self, state, h, jac)
-    }
-}
-
-impl<H: Hamiltonian, M: HamiltonianMethod<H>> SensitiveStep for HamiltonianIntegrator<H, M> {
-    fn dof(&self) -> usize {
-        self.hamiltonian().dof()
-    }
-
-    fn parameters(&self) -> usize {
-        0
-    }
-
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error> {
-        HamiltonianIntegrator::step(self, state, h)
-    }
-
-    fn step_with_sensitivity(
-        &mut self,
-        state: &mut State,
-        h: f64,
-        jac: &mut [f64],
-    ) -> Result<StepReport, Error> {
-        HamiltonianIntegrator::step_with_jacobian(self, state, h, jac)
-    }
-}
+impl<H: Hamiltonian, M: HamiltonianMethod<H>> SensitiveStep for HamiltonianIntegrator<H, M> {}

@@ -10,6 +10,7 @@
 
 use super::common::relative_distance;
 use crate::common::tight;
+use marsden::analysis::certificate::DifferentiableStep;
 use marsden::discrete::rules::Galerkin;
 use marsden::forces::LinearDamping;
 use marsden::holonomic::Rattle;
@@ -310,19 +311,27 @@ enum StepperKind {
     Lobatto(Constrained<<Galerkin as Rule>::Discrete<SphericalPendulum>>),
 }
 
-impl SensitiveStep for StepperKind {
+impl DifferentiableStep for StepperKind {
     fn dof(&self) -> usize {
         3
     }
-    fn parameters(&self) -> usize {
-        0
-    }
     fn step(&mut self, state: &mut State, h: f64) -> Result<marsden::StepReport, marsden::Error> {
         match self {
-            Self::Midpoint(i) => SensitiveStep::step(i, state, h),
-            Self::Lobatto(i) => SensitiveStep::step(i, state, h),
+            Self::Midpoint(i) => DifferentiableStep::step(i, state, h),
+            Self::Lobatto(i) => DifferentiableStep::step(i, state, h),
         }
     }
+    fn step_with_jacobian(
+        &mut self,
+        state: &mut State,
+        h: f64,
+        jac: &mut [f64],
+    ) -> Result<marsden::StepReport, marsden::Error> {
+        self.step_with_sensitivity(state, h, jac)
+    }
+}
+
+impl SensitiveStep for StepperKind {
     fn step_with_sensitivity(
         &mut self,
         state: &mut State,

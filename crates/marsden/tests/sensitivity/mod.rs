@@ -4,6 +4,7 @@
 mod adjoint;
 mod common;
 mod constrained;
+mod constrained_parameters;
 mod finite_differences;
 mod parameters;
 mod tangent;

@@ -220,9 +220,48 @@ pub(crate) fn constrained_step(constraints: usize) -> Error {
     })
 }
 
+/// Names the step index, time and Newton iteration count of the step in the
+/// [`StepError::SingularJacobian`] of a step Jacobian (which knows neither); other errors pass.
+pub(crate) fn at_step(step: usize, t: f64, iteration: usize) -> impl Fn(Error) -> Error {
+    move |e| match e {
+        Error::Step(StepFailure {
+            cause: StepError::SingularJacobian { pivot, .. },
+            ..
+        }) => Error::Step(StepFailure {
+            step,
+            t,
+            cause: StepError::SingularJacobian { iteration, pivot },
+        }),
+        other => other,
+    }
+}
+
+/// Refuses an integrator whose steps keep no stage offsets to differentiate: the explicit path
+/// of a composition keeps only the final offset.
+pub(crate) fn check_stage_offsets<A, F, C, P>(
+    integrator: &Integrator<A, F, C, P>,
+) -> Result<(), Error>
+where
+    A: DiscreteAction,
+    F: DiscreteForce,
+    C: Constraint,
+    P: MomentumProjection,
+{
+    if integrator.is_explicit() && integrator.shape().s > 1 {
+        return Err(Error::Input(InputError::InvalidOption {
+            name: "fast_paths",
+            value: 1.0,
+            reason: "the explicit path of a composition keeps no stage offsets, so its step \
+                     cannot be differentiated; build the integrator with with_fast_paths(false)",
+        }));
+    }
+    Ok(())
+}
+
 /// Every integrator type, so that a certificate or a tangent run can use the very integrator
 /// type of a run (one compiled integrator per rule and system); a step with active holonomic
-/// constraints is refused ([`constrained_step`]).
+/// constraints is refused ([`constrained_step`]), and so is the explicit path of a composition
+/// ([`check_stage_offsets`]).
 impl<A, F, C, P> DifferentiableStep for Integrator<A, F, C, P>
 where
     A: DiscreteAction,
@@ -250,6 +289,7 @@ where
         }
         let n = shape.n;
         Error::check_len("jacobian", jac, 4 * n * n)?;
+        check_stage_offsets(self)?;
         let (t0, q0) = (state.t, state.q.clone());
         let report = Integrator::step(self, state, h)?;
         let step = self.statistics().steps.saturating_sub(1);
@@ -261,21 +301,7 @@ where
             self.stage_offsets(),
             jac,
         )
-        .map_err(|e| match e {
-            Error::Step(StepFailure {
-                t,
-                cause: StepError::SingularJacobian { pivot, .. },
-                ..
-            }) => Error::Step(StepFailure {
-                step,
-                t,
-                cause: StepError::SingularJacobian {
-                    iteration: report.iterations,
-                    pivot,
-                },
-            }),
-            other => other,
-        })?;
+        .map_err(at_step(step, t0, report.iterations))?;
         Ok(report)
     }
 }
