@@ -33,7 +33,7 @@ pub use spec::{
     Format, InitialData, InitialSpec, IntegratorSpec, LagrangianSpec, OutputSpec, Overrides,
     RunSpec, SpecSpans, SystemSpec,
 };
-pub use sweep::{SweepAxis, SweepSpec, SweepTarget};
+pub use sweep::{AxisValues, SweepAxis, SweepSpec, SweepTarget};
 
 use crate::error::Diagnostic;
 use crate::source::SourceFile;

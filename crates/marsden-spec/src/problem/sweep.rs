@@ -74,9 +74,54 @@ pub struct SweepAxis {
     /// What is varied.
     pub target: SweepTarget,
     /// The values along this axis, in order (at least one, all finite).
-    pub values: Vec<f64>,
+    pub values: AxisValues,
     /// Where the target is written.
     pub span: Range<usize>,
+}
+
+/// The values along an axis: a list, or an evenly spaced range computed on demand (a range of
+/// [`MAX_MEMBERS`] values holds three numbers, not 80 MB).
+#[derive(Debug, Clone, PartialEq)]
+pub enum AxisValues {
+    /// `values = [...]`, or a range of one value.
+    List(Vec<f64>),
+    /// `range = { start, stop, count }`, `count ≥ 2`, `start < stop`: `start + k·step` with
+    /// `step = (stop − start)/(count − 1)`, the last value `stop` itself.
+    Range {
+        /// The first value.
+        start: f64,
+        /// The last value.
+        stop: f64,
+        /// How many values.
+        count: usize,
+    },
+}
+
+impl AxisValues {
+    /// How many values.
+    pub fn len(&self) -> usize {
+        match self {
+            Self::List(values) => values.len(),
+            Self::Range { count, .. } => *count,
+        }
+    }
+
+    /// Whether there are none (never, for a validated axis).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Value `k` (`k < len()`).
+    pub fn get(&self, k: usize) -> f64 {
+        match *self {
+            Self::List(ref values) => values[k],
+            Self::Range { stop, count, .. } if k + 1 == count => stop,
+            Self::Range { start, stop, count } => {
+                let step = (stop - start) / (count - 1) as f64;
+                start + k as f64 * step
+            }
+        }
+    }
 }
 
 /// A validated `[sweep]`: one axis, or several (`[sweep.and]`) whose members are every
@@ -100,7 +145,7 @@ impl SweepSpec {
         let mut values = vec![0.0; self.axes.len()];
         for (slot, axis) in values.iter_mut().zip(&self.axes).rev() {
             let n = axis.values.len();
-            *slot = axis.values[rest % n];
+            *slot = axis.values.get(rest % n);
             rest /= n;
         }
         values
@@ -278,7 +323,7 @@ fn parse_initial(text: &str) -> Option<(InitialVector, usize)> {
     Some((vector, index))
 }
 
-fn values(ck: &Checker<'_>, raw: &Spanned<RawSweep>) -> Result<Vec<f64>, Diagnostic> {
+fn values(ck: &Checker<'_>, raw: &Spanned<RawSweep>) -> Result<AxisValues, Diagnostic> {
     let table = raw.get_ref();
     match (&table.values, &table.range) {
         (Some(_), Some(range)) => Err(ck.error(
@@ -294,7 +339,8 @@ fn values(ck: &Checker<'_>, raw: &Spanned<RawSweep>) -> Result<Vec<f64>, Diagnos
             }
             let each = list.get_ref().iter().enumerate();
             each.map(|(i, v)| ck.finite(&format!("sweep.values[{i}]"), v))
-                .collect()
+                .collect::<Result<Vec<f64>, _>>()
+                .map(AxisValues::List)
         }
         (None, Some(range)) => range_values(ck, range),
     }
@@ -304,7 +350,7 @@ fn values(ck: &Checker<'_>, raw: &Spanned<RawSweep>) -> Result<Vec<f64>, Diagnos
 pub const MAX_MEMBERS: usize = 10_000_000;
 
 /// `count` values from `start` to `stop`, both included (`count = 1`: `start` alone).
-fn range_values(ck: &Checker<'_>, raw: &Spanned<RawRange>) -> Result<Vec<f64>, Diagnostic> {
+fn range_values(ck: &Checker<'_>, raw: &Spanned<RawRange>) -> Result<AxisValues, Diagnostic> {
     let r = raw.get_ref();
     let missing = |key: &str| {
         ck.error(Some(raw.span()), format!("`range` needs `{key}`"))
@@ -346,12 +392,9 @@ fn range_values(ck: &Checker<'_>, raw: &Spanned<RawRange>) -> Result<Vec<f64>, D
             ));
     }
     if count == 1 {
-        return Ok(vec![start]);
+        return Ok(AxisValues::List(vec![start]));
     }
-    let step = (stop - start) / (count - 1) as f64;
-    let mut values: Vec<f64> = (0..count).map(|k| start + k as f64 * step).collect();
-    values[count - 1] = stop;
-    Ok(values)
+    Ok(AxisValues::Range { start, stop, count })
 }
 
 /// Writes member `k`'s value of every axis into the raw file at the swept places.
@@ -395,5 +438,42 @@ fn apply(raw: &mut RawProblem, axis: &SweepAxis, value: f64) {
                 *slot = Spanned::new(slot.span(), value);
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::AxisValues;
+
+    /// The values a range had when they were stored: `start + k·step` with the step computed
+    /// once, the last replaced by `stop`.
+    fn stored(start: f64, stop: f64, count: usize) -> Vec<f64> {
+        let step = (stop - start) / (count - 1) as f64;
+        let mut values: Vec<f64> = (0..count).map(|k| start + k as f64 * step).collect();
+        values[count - 1] = stop;
+        values
+    }
+
+    #[test]
+    fn range_values_on_demand_are_the_stored_values_bit_for_bit() {
+        for (start, stop, count) in [(0.1, 3.0, 30), (-1.0, 1e-3, 7), (0.0, 1.0, 2)] {
+            let range = AxisValues::Range { start, stop, count };
+            let on_demand: Vec<f64> = (0..range.len()).map(|k| range.get(k)).collect();
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&on_demand), bits(&stored(start, stop, count)));
+        }
+    }
+
+    #[test]
+    fn a_range_of_ten_million_values_ends_at_stop() {
+        let range = AxisValues::Range {
+            start: 0.1,
+            stop: 3.0,
+            count: 10_000_000,
+        };
+        assert_eq!(range.len(), 10_000_000);
+        assert_eq!(range.get(0), 0.1);
+        assert_eq!(range.get(9_999_999), 3.0);
+        assert!((range.get(5_000_000) - (0.1 + 2.9 * 5e6 / 9_999_999.0)).abs() < 1e-12);
     }
 }
