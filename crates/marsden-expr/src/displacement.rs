@@ -30,6 +30,7 @@ use crate::ir::{Arith, Node};
 use crate::pipeline::collect_inputs;
 use crate::program::Program;
 use marsden::Scalar;
+use marsden::numerics::scratch::with_slice;
 
 /// The input slots of a two-point expression over `[q₀ (n), q₁ (n), h, t]`, and of its
 /// rewritten body over `[q₀, Δ, h, t, m (n), v (n), q₀ + Δ (n), t_m]`.
@@ -97,17 +98,10 @@ impl DisplacementForm {
     /// The value at `(q₀, Δ)` for the step from `t0` of length `h`.
     #[inline]
     pub fn eval<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
-        let len = self.layout.len();
-        let (mut inline, mut heap);
-        let x: &mut [S] = if len <= 16 {
-            inline = [S::from(h); 16];
-            &mut inline[..len]
-        } else {
-            heap = vec![S::from(h); len];
-            &mut heap
-        };
-        self.fill(t0, h, q0, delta, x);
-        let value = self.body.eval(x);
+        let value = with_slice(self.layout.len(), S::from(h), |x| {
+            self.fill(t0, h, q0, delta, x);
+            self.body.eval(x)
+        });
         if self.times_h { value * h } else { value }
     }
 

@@ -13,12 +13,9 @@
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 use marsden::Scalar;
+use marsden::numerics::scratch::with_slice;
 use marsden::sensitivity::ParametricModel;
 use marsden_expr::{Expr, Program, Symbols};
-
-/// Inputs held on the stack up to this length (n ≤ 7 with two parameters); longer ones use
-/// the heap.
-const STACK: usize = 18;
 
 /// A Lagrangian and forces compiled over `[q, q̇, t, θ]`.
 #[derive(Debug, Clone, PartialEq)]
@@ -137,20 +134,12 @@ fn with_parametric_inputs<S: Scalar, R>(
     body: impl FnOnce(&[S]) -> R,
 ) -> R {
     let n = q.len();
-    let len = 2 * n + 1 + theta.len();
-    let (mut stack, mut heap);
-    let x: &mut [S] = if len <= STACK {
-        stack = [t; STACK];
-        &mut stack[..len]
-    } else {
-        heap = vec![t; len];
-        &mut heap
-    };
-    x[..n].copy_from_slice(q);
-    x[n..2 * n].copy_from_slice(v);
-    x[2 * n] = t;
-    x[2 * n + 1..].copy_from_slice(theta);
-    body(x)
+    with_slice(2 * n + 1 + theta.len(), t, |x| {
+        x[..n].copy_from_slice(q);
+        x[n..2 * n].copy_from_slice(v);
+        x[2 * n + 1..].copy_from_slice(theta);
+        body(x)
+    })
 }
 
 impl ParametricModel for ExprParametric {
@@ -187,21 +176,15 @@ impl ParametricModel for ExprParametric {
     }
 
     fn constraint_with<S: Scalar>(&self, theta: &[S], q: &[S], out: &mut [S]) {
-        let (n, len) = (q.len(), q.len() + theta.len());
+        let n = q.len();
         let fill = q.first().or(theta.first()).copied().unwrap_or(S::from(0.0));
-        let (mut stack, mut heap);
-        let x: &mut [S] = if len <= STACK {
-            stack = [fill; STACK];
-            &mut stack[..len]
-        } else {
-            heap = vec![fill; len];
-            &mut heap
-        };
-        x[..n].copy_from_slice(q);
-        x[n..].copy_from_slice(theta);
-        for (phi, program) in out.iter_mut().zip(&self.constraints) {
-            *phi = program.eval(x);
-        }
+        with_slice(n + theta.len(), fill, |x| {
+            x[..n].copy_from_slice(q);
+            x[n..].copy_from_slice(theta);
+            for (phi, program) in out.iter_mut().zip(&self.constraints) {
+                *phi = program.eval(x);
+            }
+        });
     }
 }
 

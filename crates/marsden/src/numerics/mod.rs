@@ -8,11 +8,11 @@
 //! | [`newton`] | Newton's method, its options, and the [`newton::Convergence`] rule every Newton loop uses |
 //! | [`dense`] | LU with partial pivoting in caller-owned buffers |
 //! | [`banded`] | band matrices and their LU (large chains in `O(n)`) |
-//! | `scratch` | stack buffers for the hot path |
+//! | [`scratch`] | stack buffers for the hot path |
 
 pub mod ad;
 pub mod banded;
 pub mod dense;
 pub(crate) mod dual;
 pub mod newton;
-pub(crate) mod scratch;
+pub mod scratch;
