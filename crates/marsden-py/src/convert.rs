@@ -1,11 +1,12 @@
 //! A run's [`Outcome`] as the dictionary the Python `Solution` is made from: the samples as
 //! NumPy arrays (one row per stored sample; `q`, `p` and `v` with one column per coordinate,
 //! the multipliers with one per constraint),
-//! `summary.json`'s text, the status, the error message and the warnings.
+//! `summary.json`'s text, the status, the error message and the warnings; with
+//! `[sensitivity]`, the stored Jacobians as a `samples × 2n × columns` array.
 
 use marsden_spec::{Outcome, Samples};
-use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyArray1, PyArray2};
+use numpy::ndarray::{Array2, Array3};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -44,6 +45,34 @@ pub fn outcome<'py>(py: Python<'py>, outcome: &Outcome) -> PyResult<Bound<'py, P
     d.set_item("status", outcome.summary.status.name())?;
     d.set_item("error", outcome.summary.error.clone())?;
     d.set_item("warnings", outcome.warnings.clone())?;
+    let jacobians = (outcome.summary.sensitivity.as_ref())
+        .zip(outcome.sensitivity.as_ref())
+        .map(|(block, samples)| sensitivity(py, &block.columns, samples))
+        .transpose()?;
+    d.set_item("sensitivity", jacobians)?;
+    Ok(d)
+}
+
+/// The stored Jacobians: `t` (one per sample) and `jacobians` (`samples × 2n × columns`).
+fn sensitivity<'py>(
+    py: Python<'py>,
+    columns: &[String],
+    samples: &[(f64, Vec<f64>)],
+) -> PyResult<Bound<'py, PyDict>> {
+    let width = columns.len();
+    let rows = samples.first().map_or(0, |(_, j)| j.len() / width.max(1));
+    let at = |(k, r, c): (usize, usize, usize)| {
+        (samples.get(k))
+            .and_then(|(_, j)| j.get(r * width + c))
+            .copied()
+            .unwrap_or(f64::NAN)
+    };
+    let d = PyDict::new(py);
+    let t: Vec<f64> = samples.iter().map(|(t, _)| *t).collect();
+    d.set_item("t", PyArray1::from_vec(py, t))?;
+    let cube: Bound<'py, PyArray3<f64>> =
+        Array3::from_shape_fn((samples.len(), rows, width), at).into_pyarray(py);
+    d.set_item("jacobians", cube)?;
     Ok(d)
 }
 

@@ -56,8 +56,8 @@ fn spec_of(text: &str, origin: &str, every: Option<usize>) -> PyResult<RunSpec> 
     Ok(spec)
 }
 
-/// Checks problem text and describes it: name, coordinates, parameters, method, `h`, steps
-/// and the sweep's target, if any.
+/// Checks problem text and describes it: name, coordinates, parameters, method, `h`, steps,
+/// the sweep's target, if any, and whether it has a `[sensitivity]` table.
 #[pyfunction]
 fn check<'py>(py: Python<'py>, text: &str, origin: &str) -> PyResult<Bound<'py, PyDict>> {
     let spec = spec_of(text, origin, None)?;
@@ -76,6 +76,7 @@ fn check<'py>(py: Python<'py>, text: &str, origin: &str) -> PyResult<Bound<'py, 
         (s.label(), members)
     });
     d.set_item("sweep", sweep)?;
+    d.set_item("sensitivity", spec.sensitivity.is_some())?;
     Ok(d)
 }
 

@@ -24,6 +24,7 @@ from typing import Any, Dict, List
 from . import _native
 from ._errors import ProblemError, SimulationError
 from ._problem import Problem
+from ._sensitivity import Sensitivity
 from ._solution import Solution
 from ._sweep import sweep
 from ._sympy import to_grammar
@@ -31,6 +32,7 @@ from ._sympy import to_grammar
 __all__ = [
     "Problem",
     "ProblemError",
+    "Sensitivity",
     "SimulationError",
     "Solution",
     "sweep",

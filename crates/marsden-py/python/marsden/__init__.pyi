@@ -11,8 +11,10 @@ Expression = Any  # a string in the problem-file grammar, or a SymPy expression
 Symmetries = Union[Mapping[str, Sequence[Expression]], Sequence[Tuple[str, Sequence[Expression]]]]
 FloatArray = npt.NDArray[np.float64]
 
-__all__ = ["Problem", "ProblemError", "SimulationError", "Solution", "sweep", "systems",
-           "to_grammar"]
+__all__ = ["Problem", "ProblemError", "Sensitivity", "SimulationError", "Solution", "sweep",
+           "systems", "to_grammar"]
+
+SensitivityRequest = Union[bool, Sequence[str], Mapping[str, Any]]
 
 class ProblemError(ValueError):
     """A problem that cannot run; the message is the ``marsden`` command's, with a caret."""
@@ -21,6 +23,17 @@ class SimulationError(RuntimeError):
     """A run that failed part-way; ``.solution`` holds the samples before the failure."""
     solution: Solution
     def __init__(self, message: str, solution: Solution) -> None: ...
+
+class Sensitivity:
+    """The Jacobians ``∂(q_k, p_k)/∂(columns)`` of a run (initial state and parameters)."""
+    rows: List[str]
+    columns: List[str]
+    final: FloatArray
+    t: FloatArray
+    jacobians: FloatArray
+    note: Optional[str]
+    def __init__(self, block: Dict[str, Any], arrays: Dict[str, Any]) -> None: ...
+    def column(self, name: str) -> FloatArray: ...
 
 class Solution:
     """The stored samples of a run, one row per sample, and its summary."""
@@ -37,6 +50,7 @@ class Solution:
     status: str
     error: Optional[str]
     warnings: List[str]
+    sensitivity: Optional[Sensitivity]
     def __init__(self, fields: Dict[str, Any]) -> None: ...
     def __len__(self) -> int: ...
     @property
@@ -94,7 +108,8 @@ class Problem:
     def h(self) -> float: ...
     @property
     def steps(self) -> int: ...
-    def solve(self, every: Optional[int] = ..., progress: bool = ...) -> Solution: ...
+    def solve(self, every: Optional[int] = ..., progress: bool = ...,
+              sensitivity: Optional[SensitivityRequest] = ...) -> Solution: ...
 
 def sweep(
     problem: Problem,

@@ -10,7 +10,8 @@ from __future__ import annotations
 import os
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
-from . import _native, _toml
+from . import _native, _sensitivity, _toml
+from ._errors import ProblemError
 from ._solution import Solution, from_native
 from ._sympy import is_sympy, to_grammar
 
@@ -198,17 +199,32 @@ class Problem:
         """The number of steps."""
         return self._info["steps"]
 
-    def solve(self, every: Optional[int] = None, progress: bool = False) -> Solution:
+    def solve(self, every: Optional[int] = None, progress: bool = False,
+              sensitivity: Optional[_sensitivity.Request] = None) -> Solution:
         """Runs the problem (without the interpreter's lock; Ctrl-C raises
         ``KeyboardInterrupt`` within a few hundred steps) and returns the stored samples.
 
         ``every``: store every k-th step (and the first and the last); default: the
         problem's ``[output] every``, else 1. ``progress``: a progress line on stderr.
+        ``sensitivity``: derivatives of the run, in :attr:`Solution.sensitivity` — ``True``
+        for ``∂(q_k, p_k)/∂(q₀, p₀)``, a list of parameter names for ``∂(q_k, p_k)/∂θ``, or
+        both as ``{"initial": True, "parameters": ["g"]}`` (the problem file's
+        ``[sensitivity]`` table)::
 
-        Raises :class:`marsden.SimulationError` if the run fails part-way; its
-        ``.solution`` holds the samples before the failure.
+            >>> s = pendulum.solve(sensitivity=["g", "l"])
+            >>> s.sensitivity.column("g")      # ∂(θ, p_θ)/∂g at the last step
+
+        Raises :class:`marsden.SimulationError` if the run fails part-way (its
+        ``.solution`` holds the samples before the failure) or if the derivatives asked for
+        could not be computed (its ``.solution`` holds the whole run).
         """
-        return from_native(_native.solve(self._text, self._origin, every, progress))
+        text = self._text
+        if sensitivity is not None:
+            if self._info.get("sensitivity"):
+                raise ProblemError("this problem already has a [sensitivity] table: leave out "
+                                   "solve(sensitivity=...), or remove the table")
+            text += _sensitivity.table(sensitivity)
+        return from_native(_native.solve(text, self._origin, every, progress))
 
     def __repr__(self) -> str:
         i = self._info

@@ -8,6 +8,7 @@ from typing import Any, Dict, List, Optional
 import numpy as np
 
 from ._errors import SimulationError
+from ._sensitivity import Sensitivity
 
 
 class Solution:
@@ -23,7 +24,9 @@ class Solution:
       constraint (``a = M⁻¹(… − Dφᵀλ)``; zero columns without constraints);
     - ``summary``: the dictionary ``marsden run`` writes as ``summary.json``;
     - ``status`` (``"completed"``, ``"failed"``), ``error`` (the failure's message),
-      ``warnings``.
+      ``warnings``;
+    - ``sensitivity``: the run's Jacobians (:class:`marsden.Sensitivity`) when they were asked
+      for (``solve(sensitivity=...)`` or a ``[sensitivity]`` table), else ``None``.
 
     >>> s = pendulum.solve(every=10)
     >>> s.t[-1], s.q[-1, 0], s.summary["energy"]["max_rel_error"]
@@ -45,6 +48,10 @@ class Solution:
         self.status: str = fields["status"]
         self.error: Optional[str] = fields["error"]
         self.warnings: List[str] = list(fields["warnings"])
+        block = self.summary.get("sensitivity")
+        arrays = fields.get("sensitivity")
+        self.sensitivity: Optional[Sensitivity] = (
+            Sensitivity(block, arrays) if block and arrays is not None else None)
 
     def __len__(self) -> int:
         return len(self.t)
@@ -130,4 +137,8 @@ def from_native(fields: Dict[str, Any]) -> Solution:
     solution = Solution(fields)
     if solution.status == "failed":
         raise SimulationError(f"the simulation failed: {solution.error}", solution)
+    derivatives = solution.summary.get("sensitivity") or {}
+    if derivatives.get("error"):
+        raise SimulationError(
+            f"the derivatives could not be computed: {derivatives['error']}", solution)
     return solution

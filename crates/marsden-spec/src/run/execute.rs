@@ -47,6 +47,9 @@ pub struct Outcome {
     pub samples: Option<Samples>,
     /// Problems that did not stop the run (a symmetry that is not one, a plot not drawn, …).
     pub warnings: Vec<String>,
+    /// `[sensitivity]`: the Jacobian at every stored step, `(t_k, J_k)` with `J_k` row-major
+    /// `2n × columns` (the summary names rows and columns); kept in memory as the samples are.
+    pub sensitivity: Option<Vec<(f64, Vec<f64>)>>,
 }
 
 /// Runs `spec`: checks the initial state, creates the output directory (unless only in
@@ -151,11 +154,15 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
         .map(str::to_owned)
         .collect();
     let sensitivity = derivatives(spec, &record, &start, store.files().then_some(&dir));
-    if let Some((_, Some(file))) = &sensitivity {
+    if let Some(Derivatives {
+        file: Some(file), ..
+    }) = &sensitivity
+    {
         written.push(file.clone());
     }
     let mut summary = Summary::new(spec, &record, columns, written);
-    summary.sensitivity = sensitivity.map(|(s, _)| s);
+    let (block, jacobians) = sensitivity.map_or((None, None), |d| (Some(d.summary), d.samples));
+    summary.sensitivity = block;
     if !store.files() {
         summary.output.format = "memory";
     }
@@ -173,7 +180,15 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
         dir: store.files().then_some(dir),
         samples,
         warnings,
+        sensitivity: jacobians.filter(|_| store.memory()),
     })
+}
+
+/// What `[sensitivity]` gave: the summary's block, the file written, the stored Jacobians.
+struct Derivatives {
+    summary: SensitivitySummary,
+    file: Option<String>,
+    samples: Option<Vec<(f64, Vec<f64>)>>,
 }
 
 /// `[sensitivity]`: the tangent run beside a completed run, its file written into `dir`;
@@ -183,32 +198,45 @@ fn derivatives(
     record: &RunRecord,
     start: &start::Start,
     dir: Option<&PathBuf>,
-) -> Option<(SensitivitySummary, Option<String>)> {
+) -> Option<Derivatives> {
     let asked = spec.sensitivity.as_ref()?;
-    let failed = |error: String| SensitivitySummary {
-        rows: Vec::new(),
-        columns: Vec::new(),
-        final_jacobian: Vec::new(),
-        samples: 0,
-        error: Some(error),
-        note: None,
+    let failed = |error: String| Derivatives {
+        summary: SensitivitySummary {
+            rows: Vec::new(),
+            columns: Vec::new(),
+            final_jacobian: Vec::new(),
+            samples: 0,
+            error: Some(error),
+            note: None,
+        },
+        file: None,
+        samples: None,
     };
     if record.error.is_some() || record.interrupted {
-        return Some((failed("the run did not complete".to_owned()), None));
+        return Some(failed("the run did not complete".to_owned()));
     }
     let found = match sensitivity::compute(spec, asked, start) {
         Ok(found) => found,
-        Err(e) => return Some((failed(e), None)),
+        Err(e) => return Some(failed(e)),
     };
     let Some(dir) = dir else {
-        return Some((found.summary, None));
+        return Some(Derivatives {
+            summary: found.summary,
+            file: None,
+            samples: Some(found.samples),
+        });
     };
-    match sensitivity::write(dir, spec.output.format, &found) {
-        Ok(file) => Some((found.summary, Some(file))),
+    let (summary, file) = match sensitivity::write(dir, spec.output.format, &found) {
+        Ok(file) => (found.summary, Some(file)),
         Err(e) => {
             let mut summary = found.summary;
             summary.error = Some(format!("writing the sensitivities failed: {e}"));
-            Some((summary, None))
+            (summary, None)
         }
-    }
+    };
+    Some(Derivatives {
+        summary,
+        file,
+        samples: Some(found.samples),
+    })
 }
