@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The Python package's tests: builds and installs crates/marsden-py (once, with the `python`
-# profile: thin LTO, much quicker to build than the `release` profile users get) into a fresh virtual environment with pytest, numpy, sympy and
+# profile: thin LTO, much quicker to build than the `release` profile users get) into a fresh virtual environment with pytest, numpy, sympy, scipy and
 # dask[distributed], then runs crates/marsden-py/tests. The bit-for-bit comparisons with the
 # `marsden` command use $MARSDEN_BIN, else target/{release,debug}/marsden (built if missing).
 #
@@ -13,7 +13,7 @@ VENV="${VENV:-target/ci-venv}"
 rm -rf "$VENV"
 "$PYTHON" -m venv "$VENV"
 "$VENV/bin/python" -m pip install --quiet --upgrade pip
-"$VENV/bin/python" -m pip install --quiet pytest numpy sympy "dask[distributed]" pandas
+"$VENV/bin/python" -m pip install --quiet pytest numpy sympy "dask[distributed]" pandas scipy
 start=$(date +%s)
 MATURIN_PEP517_ARGS="--profile python" "$VENV/bin/python" -m pip install --quiet ./crates/marsden-py
 echo "test-python: built and installed the extension in $(( $(date +%s) - start )) s"
