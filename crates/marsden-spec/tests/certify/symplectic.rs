@@ -93,7 +93,9 @@ fn pendulum_under_gravity_rotation_shows_a_large_defect() {
     );
     let s = "/certificate/symplecticity";
     assert!(number(&json, &format!("{s}/start")) <= 1e-12, "{json:#}");
-    let on = json.pointer(&format!("{s}/restricted_to")).and_then(|v| v.as_str());
+    let on = json
+        .pointer(&format!("{s}/restricted_to"))
+        .and_then(|v| v.as_str());
     assert!(on.is_some_and(|o| o.starts_with("T*N")), "{json:#}");
 }
 
