@@ -1,6 +1,7 @@
 //! End-to-end: `[system] discrete_lagrangian = "…"`, a researcher's own `L_d` run through the
 //! discrete Legendre transforms: R1's midpoint map from the hand-written midpoint `L_d`, no
-//! energy reported, momentum maps monitored, and every refusal (exit status 2, key named).
+//! energy reported, momentum maps monitored, sweeps, and every refusal (exit status 2, key
+//! named).
 
 use crate::util::{
     Run, assert_close, assert_rejected, column, fixture, marsden_in, number, run_ok,
@@ -203,11 +204,10 @@ fn discrete_lagrangian_refuses_velocities_and_says_to_give_momenta() {
 }
 
 #[test]
-fn discrete_lagrangian_refuses_forces_constraints_sweeps_sensitivities_and_certificates() {
+fn discrete_lagrangian_refuses_forces_constraints_sensitivities_and_certificates() {
     for (file, key) in [
         ("discrete_with_forces.toml", "forces"),
         ("discrete_with_constraints.toml", "constraints"),
-        ("discrete_with_sweep.toml", "[sweep]"),
         ("discrete_with_sensitivity.toml", "[sensitivity]"),
         ("discrete_with_certify.toml", "certify"),
     ] {
@@ -247,5 +247,92 @@ fn order_refuses_a_discrete_lagrangian_file() {
     assert!(
         stderr.contains("`marsden order` cannot study a `discrete_lagrangian` file"),
         "{stderr}"
+    );
+}
+
+/// The 2-DOF rotation file with a frequency parameter `w`, written to `dir` with `extra` appended.
+fn rotation_file(dir: &std::path::Path, w: f64, extra: &str) -> std::path::PathBuf {
+    let text = std::fs::read_to_string(fixture("discrete_rotation.toml"))
+        .unwrap()
+        .replace(
+            "[system]",
+            &format!("[system]\nparameters = {{ w = {w:?} }}"),
+        )
+        .replace("- 0.5*(((x_0", "- 0.5*w^2*(((x_0");
+    let path = dir.join(format!("rotation_{w}.toml"));
+    std::fs::write(&path, text + extra).unwrap();
+    path
+}
+
+/// `[sweep]` over a `discrete_lagrangian` file: one row per member with the momentum map of the
+/// declared rotation and the final state (no energy columns: there is no energy), each
+/// member's final state equal bit for bit to the single run of the file at that `w`; a
+/// member whose `L_d` overflows (`w = 1e200`) fails in its row while the others complete.
+#[test]
+fn sweep_over_a_discrete_lagrangian_keeps_each_members_final_state_and_momentum_map() {
+    let dir = tempfile::tempdir().unwrap();
+    let values = [0.5, 1.0, 1e200, 2.0];
+    let sweep = format!("\n[sweep]\nparameter = \"w\"\nvalues = {values:?}\n");
+    let run = crate::util::marsden("run", &rotation_file(dir.path(), 1.0, &sweep), &[]);
+    assert_eq!(
+        run.code, 1,
+        "a member failed: {}\n{}",
+        run.stdout, run.stderr
+    );
+    let table = crate::util::SweepTable::read(&run.out.join("sweep.csv"));
+    assert!(
+        !table
+            .header
+            .iter()
+            .any(|h| h.starts_with("energy") || h.starts_with("balance")),
+        "{:?}",
+        table.header
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(run.out.join("summary.json")).unwrap())
+            .unwrap();
+    assert_eq!(summary["members"], 4);
+    assert_eq!(summary["failed"], 1);
+    assert!(summary["energy_not_available"].is_string(), "{summary:#}");
+    let text = std::fs::read_to_string(run.out.join("sweep.csv")).unwrap();
+    let failed = text.lines().nth(3).unwrap();
+    assert!(
+        failed.starts_with("2,") && failed.contains(",failed,"),
+        "{failed}"
+    );
+    for (k, w) in values.iter().enumerate().filter(|(k, _)| *k != 2) {
+        let single = crate::util::marsden("run", &rotation_file(dir.path(), *w, ""), &["--quiet"]);
+        assert_eq!(single.code, 0, "{}", single.stderr);
+        let s = single.summary();
+        for (i, c) in ["x", "y"].iter().enumerate() {
+            for (v, name) in [("q", format!("q_{c}")), ("p", format!("p_{c}"))] {
+                let alone = s["final_state"][v][i].as_f64().unwrap();
+                let member = table.column(&name)[k];
+                assert_eq!(member.to_bits(), alone.to_bits(), "w = {w}: {name}");
+            }
+        }
+        assert_eq!(
+            table.column("J_rotation")[k],
+            0.5,
+            "w = {w}: J₀ = x p_y − y p_x"
+        );
+        let drift = table.column("J_rotation_drift")[k];
+        assert!(drift <= 1e-12, "w = {w}: J drift {drift:e}");
+    }
+    assert_eq!(table.column("steps")[2], 0.0);
+}
+
+/// What still cannot be swept in a `discrete_lagrangian` file is refused with the reason: its
+/// initial data are momenta, so there is no velocity `v[i]` to sweep.
+#[test]
+fn discrete_lagrangian_sweep_of_a_velocity_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let sweep = "\n[sweep]\ninitial = \"v[0]\"\nvalues = [0.1, 0.2]\n";
+    let run = crate::util::marsden("run", &rotation_file(dir.path(), 1.0, sweep), &[]);
+    assert_eq!(run.code, 2, "{}", run.stderr);
+    assert!(
+        run.stderr.contains("cannot sweep `v[0]`") && run.stderr.contains("^"),
+        "{}",
+        run.stderr
     );
 }

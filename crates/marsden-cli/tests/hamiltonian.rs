@@ -70,3 +70,58 @@ fn a_hamiltonian_uses_momenta_not_velocities_and_comes_alone() {
         &["give either `hamiltonian` or `lagrangian`/`builtin`, not both"],
     );
 }
+
+/// R12's balance for a Hamiltonian depending on `t`: `H = ½p² + ½x² − a t x` is the Legendre
+/// transform of the ramp `L = ½ẋ² − ½x² + a t x`, so the run reports the same balance as the
+/// time-dependent `L` (not an energy error): the time work equals its closed form
+/// `−Σ h a x̄_k` on the stored trajectory to 1e-13, every per-step defect is round-off
+/// (midpoint, potential quadratic in x plus bilinear in (t, x)), and the final state is the
+/// `L` file's to 1e-12 (the same map, MW01 Thm 2.6.2).
+#[test]
+fn r12_time_dependent_hamiltonian_reports_the_energy_balance() {
+    let run = run_ok("ramp_by_hamiltonian.toml", &[]);
+    let s = run.summary();
+    assert_eq!(s["energy_not_conserved"], "the Hamiltonian depends on t");
+    assert!(s["energy"]["max_rel_error"].is_null(), "{s:#}");
+    let t = run.trajectory();
+    let (q, e) = (
+        crate::util::column(&t, "q_x"),
+        crate::util::column(&t, "energy"),
+    );
+    assert_eq!(q.len(), 201);
+    let (a, h) = (0.05, 0.1);
+    let closed_form: f64 = q.windows(2).map(|w| -h * a * 0.5 * (w[0] + w[1])).sum();
+    let time_work = number(&s, "energy_balance.total_time_work");
+    assert!(
+        (time_work - closed_form).abs() <= 1e-13,
+        "time work {time_work:e} against −h a Σ x̄ = {closed_form:e}"
+    );
+    assert!(time_work.abs() > 1e-2, "{time_work:e}");
+    assert_eq!(number(&s, "energy_balance.total_work"), 0.0);
+    let unaccounted = e[200] - e[0] - time_work;
+    assert!(
+        unaccounted.abs() <= 1e-13,
+        "E_N − E_0 − W_t = {unaccounted:e}"
+    );
+    let max_defect = number(&s, "energy_balance.max_defect");
+    assert!(max_defect <= 1e-14, "max per-step defect {max_defect:e}");
+    assert!(
+        run.stdout
+            .contains("balance (the Hamiltonian depends on t)"),
+        "{}",
+        run.stdout
+    );
+    let l = run_ok("ramp_by_lagrangian.toml", &["--quiet"]).summary();
+    for (x, y) in final_state(&s).iter().zip(final_state(&l)) {
+        assert!((x - y).abs() <= 1e-12, "final state {x} against {y}");
+    }
+}
+
+/// An autonomous Hamiltonian still reports its energy error, not a balance.
+#[test]
+fn an_autonomous_hamiltonian_reports_its_energy_error() {
+    let s = run_ok("pendulum_h_midpoint.toml", &["--quiet"]).summary();
+    assert!(s["energy_not_conserved"].is_null(), "{s:#}");
+    assert!(s["energy_balance"].is_null(), "{s:#}");
+    assert!(number(&s, "energy.max_rel_error").is_finite());
+}

@@ -60,7 +60,7 @@ pub fn expression(
 /// other file.
 ///
 /// # Errors
-/// `method`, `v`, `forces`, `constraints`, `[sweep]`, `[sensitivity]` or `certify` beside a
+/// `method`, `v`, `forces`, `constraints`, `[sensitivity]` or `certify` beside a
 /// `discrete_lagrangian`.
 pub fn refuse_unsupported(ck: &Checker<'_>, raw: &RawProblem) -> Result<(), Diagnostic> {
     let Some(system) = raw.system.as_ref().map(Spanned::get_ref) else {
@@ -97,14 +97,6 @@ pub fn refuse_unsupported(ck: &Checker<'_>, raw: &RawProblem) -> Result<(), Diag
     if let Some(c) = &system.constraints {
         return Err(refuse(c.span(), "constraints", without_l)
             .help("use coordinates of the constrained configuration space in L_d"));
-    }
-    if let Some(s) = &raw.sweep {
-        return Err(refuse(
-            s.span(),
-            "[sweep]",
-            "sweeps over a file's own L_d are not supported",
-        )
-        .help("run the members as separate files"));
     }
     if let Some(s) = &raw.sensitivity {
         return Err(refuse(

@@ -177,15 +177,21 @@ impl SystemSpec {
         if self.force.is_active() {
             return Some("forces act");
         }
-        self.depends_on_time()
-            .then_some("the Lagrangian depends on t")
+        match (&self.lagrangian, self.depends_on_time()) {
+            (_, false) => None,
+            (LagrangianSpec::Hamiltonian(_), true) => Some("the Hamiltonian depends on t"),
+            (_, true) => Some("the Lagrangian depends on t"),
+        }
     }
 
-    /// Whether the Lagrangian is an expression that reads `t` (its input slot `2n`); the
+    /// Whether the Lagrangian is an expression that reads `t` (its input slot `2n`), or the
+    /// Legendre transform of a Hamiltonian that does (its slot `2n` too: `q`, `p`, `t`); the
     /// catalog Lagrangians are autonomous.
     pub fn depends_on_time(&self) -> bool {
+        let t = 2 * self.dof();
         match &self.lagrangian {
-            LagrangianSpec::Expression(l) => l.program().inputs_used().contains(&(2 * self.dof())),
+            LagrangianSpec::Expression(l) => l.program().inputs_used().contains(&t),
+            LagrangianSpec::Hamiltonian(l) => l.hamiltonian.program().inputs_used().contains(&t),
             _ => false,
         }
     }

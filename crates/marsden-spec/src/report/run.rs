@@ -193,11 +193,15 @@ fn certificate_lines(out: &mut String, s: &crate::run::Summary) {
     let y = &c.symplecticity;
     let defect = |x: Option<f64>| x.map_or("n/a".to_owned(), sci);
     let note = y.note.as_ref().map_or(String::new(), |n| format!(" ({n})"));
+    let measure = match y.restricted_to {
+        Some(_) => "on T*N max|ω(DF u, DF w) − ω(u, w)|/max|DF u|²",
+        None => "‖DFᵀJDF − J‖/‖DF‖²",
+    };
     line(
         out,
         "certificate",
         format!(
-            "symplecticity defect ‖DFᵀJDF − J‖/‖DF‖² = {} (first step), {} (from the final state){note}",
+            "symplecticity defect {measure} = {} (first step), {} (from the final state){note}",
             defect(y.start),
             defect(y.end)
         ),

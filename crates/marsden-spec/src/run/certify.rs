@@ -8,9 +8,11 @@
 //! the relative defect `‖DFᵀ J DF − J‖_max / ‖DF‖²_max` ([HLW06] Def. VI.2.2;
 //! [`marsden::analysis::certificate`]), at round-off for every variational integrator of an
 //! unforced system ([MW01] §1.3.2). A forced map is not symplectic: its defect is reported
-//! all the same, marked "not expected symplectic (forced)". The core certifies unconstrained
-//! steps only, so a constrained run reports no number and says so. The certified steps take
-//! the general Newton path (the fast paths compute the same map and leave no control points).
+//! all the same, marked "not expected symplectic (forced)". A constrained step (SHAKE + RATTLE)
+//! is symplectic on `T*N` only: its defect is measured on a basis of the tangent space of
+//! `T*N` ([`super::certify_constrained`]) and named so (`restricted_to`). The certified steps
+//! take the general Newton path (the fast paths compute the same map and leave no control
+//! points).
 //!
 //! **Equivariance.** A symmetry of the discrete action leaves it invariant, to first order
 //! `Σ_j ⟨∂A/∂Q_j, ξ_Q(Q_j)⟩ = 0` over the control points `Q₀ = q_k, …, Q_s = q_{k+1}` of a
@@ -35,6 +37,7 @@ use marsden::{
 };
 use serde::Serialize;
 
+use super::certify_constrained::step_defect_on_cotangent_bundle;
 use crate::problem::Method;
 
 /// `certificate { … }` of `summary.json`.
@@ -62,7 +65,15 @@ pub struct Symplecticity {
     pub expected_symplectic: bool,
     /// Why there is no number, or why it need not be small (null otherwise).
     pub note: Option<String>,
+    /// The space the defect is measured on when it is not all of `T*Q`: [`ON_T_STAR_N`] for a
+    /// constrained run (absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub restricted_to: Option<&'static str>,
 }
+
+/// What a constrained run's symplecticity defect is measured on.
+pub const ON_T_STAR_N: &str = "T*N: max |ω(DF u, DF w) − ω(u, w)| / max |DF u|² over a basis \
+     of the tangent space of the constraint manifold's cotangent bundle";
 
 /// `certificate.equivariance { <name>: { … } }`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -105,6 +116,7 @@ pub fn certify<L: Lagrangian, F: Force, C: Constraint, G: GroupAction>(
                 end_absolute: None,
                 expected_symplectic: !problem.force().is_active(),
                 note: Some("not available for method = \"exact\" (no step Jacobian)".to_owned()),
+                restricted_to: None,
             },
             equivariance: Vec::new(),
         };
@@ -154,16 +166,10 @@ impl<L: Lagrangian, F: Force, C: Constraint, G: GroupAction> Certify<'_, L, F, C
             end: None,
             start_absolute: None,
             end_absolute: None,
-            expected_symplectic: !forced && !constrained,
+            expected_symplectic: !forced,
             note: forced.then(|| "not expected symplectic (forced)".to_owned()),
+            restricted_to: constrained.then_some(ON_T_STAR_N),
         };
-        if constrained {
-            out.note = Some(
-                "not available for constrained runs (the core certifies unconstrained steps)"
-                    .to_owned(),
-            );
-            return out;
-        }
         let n = self.problem.lagrangian().dof();
         let built = (self.problem.integrator(rule, self.newton)).map(|i| i.with_fast_paths(false));
         let mut integrator = match built {
@@ -176,7 +182,12 @@ impl<L: Lagrangian, F: Force, C: Constraint, G: GroupAction> Certify<'_, L, F, C
         let mut failures = Vec::new();
         let (v0, start) = (self.ends.v0, self.ends.start);
         integrator.set_velocity_hint(v0);
-        match step_defect(&mut integrator, start, self.h) {
+        let model = (self.problem.lagrangian(), self.problem.constraint());
+        let defect = |integrator: &mut _, state: &State, v: &[f64]| match constrained {
+            true => step_defect_on_cotangent_bundle(integrator, model, (state, v), self.h),
+            false => step_defect(integrator, state, self.h),
+        };
+        match defect(&mut integrator, start, v0) {
             Ok((abs, rel)) => (out.start_absolute, out.start) = (Some(abs), Some(rel)),
             Err(e) => failures.push(format!("the first step: {e}")),
         }
@@ -185,7 +196,7 @@ impl<L: Lagrangian, F: Force, C: Constraint, G: GroupAction> Certify<'_, L, F, C
             integrator.reset();
             let v = self.velocity(end).unwrap_or_else(|| v0.to_vec());
             integrator.set_velocity_hint(&v);
-            match step_defect(&mut integrator, end, self.h) {
+            match defect(&mut integrator, end, &v) {
                 Ok((abs, rel)) => (out.end_absolute, out.end) = (Some(abs), Some(rel)),
                 Err(e) => failures.push(format!("the step from the final state: {e}")),
             }

@@ -5,9 +5,9 @@
 //!
 //! The columns are fixed by the base problem ([`SweepColumns`]): `member,<swept>…,t_final,`
 //! `steps,steps_requested,` then either `energy_max_rel_error,energy_final_rel_error,`
-//! `energy_rel_drift` (energy conserved) or `balance_total_work,balance_max_defect,`
-//! `balance_total_defect` (forces act or `L` depends on `t`: an energy error would mislead),
-//! then `J_<name>,J_<name>_drift` per symmetry, `q_<name>…`, `p_<name>…` (the final state),
+//! `energy_rel_drift` (energy conserved), `balance_total_work,balance_max_defect,`
+//! `balance_total_defect` (forces act or `L` depends on `t`: an energy error would mislead), or
+//! nothing (a file's own `L_d`: no continuous `L`, no energy), then `J_<name>,J_<name>_drift` per symmetry, `q_<name>…`, `p_<name>…` (the final state),
 //! and `status,error` (CSV) or a numeric `status` (`.npy`, [`RunStatus::code`]).
 
 use std::fmt::Write as _;
@@ -28,8 +28,41 @@ pub struct SweepColumns {
     pub coordinates: Vec<String>,
     /// Symmetry names.
     pub symmetries: Vec<String>,
-    /// Whether energy is conserved (energy-error columns) or not (energy-balance columns).
-    pub energy_conserved: bool,
+    /// What the rows say was preserved: the energy, its balance, or nothing.
+    pub preserved: Preserved,
+}
+
+/// What a sweep's rows report besides the momentum maps and the final state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Preserved {
+    /// Energy is conserved: its error (the energy-error columns).
+    Energy,
+    /// Forces act or `L` depends on `t`: the discrete energy balance (the balance columns).
+    Balance,
+    /// A file's own `L_d`: there is no energy (no such columns).
+    Nothing,
+}
+
+impl Preserved {
+    /// What `base`'s members preserve.
+    pub fn of(base: &RunSpec) -> Self {
+        if !base.system.has_energy() {
+            Self::Nothing
+        } else if base.system.energy_not_conserved().is_none() {
+            Self::Energy
+        } else {
+            Self::Balance
+        }
+    }
+
+    /// The columns of the table that say it.
+    fn columns(self) -> &'static [&'static str] {
+        match self {
+            Self::Energy => &ENERGY_COLUMNS,
+            Self::Balance => &BALANCE_COLUMNS,
+            Self::Nothing => &[],
+        }
+    }
 }
 
 impl SweepColumns {
@@ -44,7 +77,7 @@ impl SweepColumns {
                 .iter()
                 .map(|s| s.name().to_string())
                 .collect(),
-            energy_conserved: base.system.energy_not_conserved().is_none(),
+            preserved: Preserved::of(base),
         }
     }
 
@@ -53,12 +86,7 @@ impl SweepColumns {
         let mut names = vec!["member".to_owned()];
         names.extend(self.swept.iter().cloned());
         names.extend(["t_final", "steps", "steps_requested"].map(str::to_owned));
-        let preserved = if self.energy_conserved {
-            ENERGY_COLUMNS
-        } else {
-            BALANCE_COLUMNS
-        };
-        names.extend(preserved.map(str::to_owned));
+        names.extend(self.preserved.columns().iter().map(|c| (*c).to_owned()));
         for s in &self.symmetries {
             names.push(format!("J_{s}"));
             names.push(format!("J_{s}_drift"));
@@ -183,20 +211,22 @@ impl SweepRow {
         let mut row = vec![self.member as f64];
         row.extend(&self.values);
         row.extend([self.t_final, self.steps as f64, self.steps_requested as f64]);
-        if columns.energy_conserved {
-            row.extend([
+        match columns.preserved {
+            Preserved::Energy => row.extend([
                 self.energy_max_rel_error,
                 self.energy_final_rel_error,
                 self.energy_rel_drift,
-            ]);
-        } else {
-            let b = self.balance.as_ref();
-            let or_nan = |f: fn(&BalanceSummary) -> f64| b.map_or(f64::NAN, f);
-            row.extend([
-                or_nan(|b| b.total_work),
-                or_nan(|b| b.max_defect),
-                or_nan(|b| b.total_defect),
-            ]);
+            ]),
+            Preserved::Balance => {
+                let b = self.balance.as_ref();
+                let or_nan = |f: fn(&BalanceSummary) -> f64| b.map_or(f64::NAN, f);
+                row.extend([
+                    or_nan(|b| b.total_work),
+                    or_nan(|b| b.max_defect),
+                    or_nan(|b| b.total_defect),
+                ]);
+            }
+            Preserved::Nothing => {}
         }
         for i in 0..columns.symmetries.len() {
             match self.maps.get(i).filter(|m| m.samples > 0) {
@@ -214,13 +244,14 @@ impl SweepRow {
         row
     }
 
-    /// What the row says was preserved, for the console: the worst energy error, or the
-    /// worst balance defect.
-    fn preserved(&self, energy_conserved: bool) -> f64 {
-        match (energy_conserved, &self.balance) {
-            (true, _) => self.energy_max_rel_error,
-            (false, Some(b)) => b.max_defect,
-            (false, None) => f64::NAN,
+    /// What the row says was preserved, for the console: the worst energy error and the
+    /// drift, or the worst balance defect and the work (`None`: no energy).
+    pub fn preserved(&self, preserved: Preserved) -> Option<(f64, f64)> {
+        match (preserved, &self.balance) {
+            (Preserved::Energy, _) => Some((self.energy_max_rel_error, self.energy_rel_drift)),
+            (Preserved::Balance, Some(b)) => Some((b.max_defect, b.total_work)),
+            (Preserved::Balance, None) => Some((f64::NAN, f64::NAN)),
+            (Preserved::Nothing, _) => None,
         }
     }
 }
@@ -233,33 +264,23 @@ pub fn render(columns: &SweepColumns, rows: &[SweepRow]) -> String {
     for label in &columns.swept {
         let _ = write!(out, "  {label:>12}");
     }
-    let preserved = match columns.energy_conserved {
-        true => ("max|dE/E|", "drift/t"),
-        false => ("max defect", "work"),
+    let _ = write!(out, "  {:>12}  {:>9}", "t_final", "steps");
+    let _ = match columns.preserved {
+        Preserved::Energy => write!(out, "  {:>12}  {:>12}", "max|dE/E|", "drift/t"),
+        Preserved::Balance => write!(out, "  {:>12}  {:>12}", "max defect", "work"),
+        Preserved::Nothing => Ok(()),
     };
-    let _ = writeln!(
-        out,
-        "  {:>12}  {:>9}  {:>12}  {:>12}  status",
-        "t_final", "steps", preserved.0, preserved.1
-    );
+    let _ = writeln!(out, "  status");
     for r in rows {
         let _ = write!(out, "{:>6}", r.member);
         for v in &r.values {
             let _ = write!(out, "  {v:>12.6e}");
         }
-        let second = match columns.energy_conserved {
-            true => r.energy_rel_drift,
-            false => r.balance.as_ref().map_or(f64::NAN, |b| b.total_work),
-        };
-        let _ = write!(
-            out,
-            "  {:>12.6e}  {:>9}  {:>12.3e}  {:>12.3e}  {}",
-            r.t_final,
-            r.steps,
-            r.preserved(columns.energy_conserved),
-            second,
-            r.status.name()
-        );
+        let _ = write!(out, "  {:>12.6e}  {:>9}", r.t_final, r.steps);
+        if let Some((first, second)) = r.preserved(columns.preserved) {
+            let _ = write!(out, "  {first:>12.3e}  {second:>12.3e}");
+        }
+        let _ = write!(out, "  {}", r.status.name());
         match &r.error {
             Some(e) => {
                 let _ = writeln!(out, ": {}", e.lines().next().unwrap_or_default());
@@ -311,18 +332,18 @@ fn quote(field: &str) -> String {
 mod tests {
     use super::*;
 
-    fn columns(energy_conserved: bool) -> SweepColumns {
+    fn columns(preserved: Preserved) -> SweepColumns {
         SweepColumns {
             swept: vec!["l".into(), "q[0]".into()],
             coordinates: vec!["x".into()],
             symmetries: vec!["rot".into()],
-            energy_conserved,
+            preserved,
         }
     }
 
     #[test]
     fn a_failed_row_has_every_column_and_its_message() {
-        let cols = columns(true);
+        let cols = columns(Preserved::Energy);
         let row = SweepRow::new(3, vec![0.5, 0.1], (10, true), Err("bad, \"x\"".into()));
         let numeric = row.numeric(&cols);
         assert_eq!(numeric.len(), cols.numeric_names().len());
@@ -340,8 +361,23 @@ mod tests {
 
     #[test]
     fn a_forced_sweep_reports_the_balance_not_an_energy_error() {
-        let names = columns(false).numeric_names();
+        let names = columns(Preserved::Balance).numeric_names();
         assert!(names.contains(&"balance_max_defect".to_owned()));
         assert!(!names.iter().any(|n| n.starts_with("energy")));
+    }
+
+    #[test]
+    fn a_sweep_of_a_discrete_lagrangian_has_neither_energy_nor_balance_columns() {
+        let cols = columns(Preserved::Nothing);
+        let names = cols.numeric_names();
+        assert!(
+            !names
+                .iter()
+                .any(|n| n.starts_with("energy") || n.starts_with("balance")),
+            "{names:?}"
+        );
+        let row = SweepRow::new(0, vec![0.5, 0.1], (10, false), Err("x".into()));
+        assert_eq!(row.numeric(&cols).len(), names.len());
+        assert!(!render(&cols, &[row]).contains("max"));
     }
 }

@@ -13,8 +13,9 @@ use serde_json::json;
 
 use super::shard::Shard;
 use super::summary::RunStatus;
-use super::sweep_table::{self, SweepColumns, SweepRow};
+use super::sweep_table::{self, Preserved, SweepColumns, SweepRow};
 use crate::problem::Format;
+use crate::problem::spec::ENERGY_NOT_AVAILABLE;
 
 /// The failures' messages kept for `summary.json` (the table has them all).
 pub const FAILURES_KEPT: usize = 100;
@@ -108,10 +109,9 @@ impl SweepWriter {
         if let (Some(e), true) = (&row.error, self.failures.len() < FAILURES_KEPT) {
             self.failures.push((row.member, e.clone()));
         }
-        let preserved = match self.columns.energy_conserved {
-            true => row.energy_max_rel_error,
-            false => row.balance.as_ref().map_or(f64::NAN, |b| b.max_defect),
-        };
+        let preserved = row
+            .preserved(self.columns.preserved)
+            .map_or(f64::NAN, |p| p.0);
         if preserved.is_finite() {
             self.worst = Some(self.worst.map_or(preserved, |w| w.max(preserved)));
         }
@@ -155,9 +155,10 @@ impl SweepWriter {
         if matches!(self.table, Table::Csv(_)) {
             columns.push("error".to_owned());
         }
-        let preserved = match self.columns.energy_conserved {
-            true => json!({ "energy": { "max_rel_error": self.worst } }),
-            false => json!({ "energy_balance": { "max_defect": self.worst } }),
+        let preserved = match self.columns.preserved {
+            Preserved::Energy => json!({ "energy": { "max_rel_error": self.worst } }),
+            Preserved::Balance => json!({ "energy_balance": { "max_defect": self.worst } }),
+            Preserved::Nothing => json!({ "energy_not_available": ENERGY_NOT_AVAILABLE }),
         };
         let failures: Vec<serde_json::Value> = self
             .failures

@@ -2,6 +2,7 @@
 //! symplecticity and equivariance certificates (`[analysis] certify = true`) and the forced
 //! Noether balance, each read back from `summary.json`.
 
+mod constrained;
 mod named;
 mod noether;
 mod symplectic;
