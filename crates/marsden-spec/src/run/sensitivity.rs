@@ -13,20 +13,28 @@
 //! `note` says. Parameters of a constrained run (in `L`, the forces or the constraints) are
 //! differentiated with [`ConstrainedParametricIntegrator`], multipliers and projection included.
 //!
+//! The tangent run is watched as the file's run is ([`Controls`], [`compute_with`]): the
+//! progress callback every [`CHECK_EVERY`] steps and the stop flag there; a stopped tangent run
+//! keeps the Jacobians of the steps it took and says so in the summary's `error`.
+//!
 //! Files: `sensitivity.npy` of shape `[samples, 2n, columns]`, or `sensitivity.csv` (one row
 //! per stored step: `t`, then the entries row by row, named `q_x/q0_x`) with `format = "csv"`.
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
+use std::ops::ControlFlow;
 use std::path::Path;
+use std::time::Instant;
 
 use marsden::sensitivity::{
-    ConstrainedParametricIntegrator, ParametricIntegrator, Tangent, TangentOptions, tangent,
+    ConstrainedParametricIntegrator, ParametricIntegrator, SensitiveStep, Tangent, TangentOptions,
+    tangent_watched,
 };
-use marsden::{Constraint as _, Lagrangian, State};
+use marsden::{Constraint as _, Lagrangian, State, Termination, TimeGrid};
 use marsden_io::{CsvWriter, NpyShape, NpyWriter};
 use serde::Serialize;
 
+use super::controls::{CHECK_EVERY, Controls, Progress};
 use super::start::{self, Start};
 use crate::catalog::WithLagrangian;
 use crate::model::ExprParametric;
@@ -70,7 +78,7 @@ pub struct Sensitivities {
     pub samples: Vec<(f64, Vec<f64>)>,
 }
 
-/// Runs the tangent run of `spec` from `start`.
+/// Runs the tangent run of `spec` from `start`, unwatched ([`compute_with`]).
 ///
 /// # Errors
 /// The core's error (a step that failed, a rule whose step cannot be differentiated), as text.
@@ -78,6 +86,21 @@ pub fn compute(
     spec: &RunSpec,
     asked: &SensitivitySpec,
     start: &Start,
+) -> Result<Sensitivities, String> {
+    compute_with(spec, asked, start, &Controls::none())
+}
+
+/// Runs the tangent run of `spec` from `start`, showing its progress to `controls` and stopping
+/// when its flag is set (looked at every [`CHECK_EVERY`] steps): a stopped run gives the
+/// Jacobians of the steps it took, with the summary's `error` saying where it stopped.
+///
+/// # Errors
+/// The core's error (a step that failed, a rule whose step cannot be differentiated), as text.
+pub fn compute_with(
+    spec: &RunSpec,
+    asked: &SensitivitySpec,
+    start: &Start,
+    controls: &Controls<'_>,
 ) -> Result<Sensitivities, String> {
     let state = State {
         t: start.t,
@@ -87,18 +110,93 @@ pub fn compute(
     let Some(rule) = spec.integrator.method.rule() else {
         return Err("method = \"exact\" has no step Jacobian to propagate; choose a rule".into());
     };
+    let watched = Watched::new(spec, controls);
     let run = match &asked.model {
         Some(model) => WithParameters {
             spec,
             model,
             state,
             v: &start.v,
+            watched: &watched,
         }
         .call(rule)
         .map_err(|e| e.to_string()),
-        None => (spec.system.lagrangian).dispatch(InitialOnly { spec, rule, state }),
+        None => (spec.system.lagrangian).dispatch(InitialOnly {
+            spec,
+            rule,
+            state,
+            watched: &watched,
+        }),
     }?;
-    Ok(select(spec, asked, &run))
+    watched.report(run_steps(&run, spec.integrator.grid.steps), true);
+    let mut found = select(spec, asked, &run);
+    if let Termination::Stopped { steps } = run.termination {
+        found.summary.error = Some(format!(
+            "the tangent run was stopped after {steps} of {} steps; the Jacobians are those of \
+             the steps taken",
+            spec.integrator.grid.steps
+        ));
+    }
+    Ok(found)
+}
+
+/// Steps taken by a tangent run of `total` steps.
+fn run_steps(run: &Tangent, total: usize) -> usize {
+    match run.termination {
+        Termination::Stopped { steps } => steps,
+        _ => total,
+    }
+}
+
+/// The caller's controls as a tangent run sees them.
+struct Watched<'c, 'a> {
+    controls: &'c Controls<'a>,
+    total: usize,
+    clock: Instant,
+}
+
+impl<'c, 'a> Watched<'c, 'a> {
+    fn new(spec: &RunSpec, controls: &'c Controls<'a>) -> Self {
+        Self {
+            controls,
+            total: spec.integrator.grid.steps,
+            clock: Instant::now(),
+        }
+    }
+
+    /// Calls the progress callback, if any.
+    fn report(&self, step: usize, done: bool) {
+        if let Some(progress) = self.controls.progress {
+            progress(Progress {
+                step,
+                total: self.total,
+                elapsed: self.clock.elapsed(),
+                done,
+            });
+        }
+    }
+
+    /// The tangent run of `stepper`, watched every [`CHECK_EVERY`] steps.
+    fn tangent<D: SensitiveStep + ?Sized>(
+        &self,
+        stepper: &mut D,
+        state: State,
+        spec: &RunSpec,
+    ) -> Result<Tangent, marsden::Error> {
+        let active = self.controls.is_active();
+        let watch = |k: usize| {
+            if !active || !k.is_multiple_of(CHECK_EVERY) {
+                return ControlFlow::Continue(());
+            }
+            self.report(k, false);
+            match self.controls.stop_requested() {
+                true => ControlFlow::Break(()),
+                false => ControlFlow::Continue(()),
+            }
+        };
+        let grid: &TimeGrid = &spec.integrator.grid;
+        tangent_watched(stepper, state, grid, &options(spec), watch)
+    }
 }
 
 /// The columns asked for, with their names.
@@ -154,6 +252,7 @@ struct InitialOnly<'a> {
     spec: &'a RunSpec,
     rule: &'a marsden::discrete::rules::Method,
     state: State,
+    watched: &'a Watched<'a, 'a>,
 }
 
 impl WithLagrangian for InitialOnly<'_> {
@@ -168,7 +267,7 @@ impl WithLagrangian for InitialOnly<'_> {
         let run = || {
             let integrator = problem.integrator(self.rule, spec.integrator.newton)?;
             let mut vi = integrator.with_fast_paths(false);
-            tangent(&mut vi, self.state, &spec.integrator.grid, &options(spec))
+            self.watched.tangent(&mut vi, self.state, spec)
         };
         run().map_err(|e: marsden::Error| e.to_string())
     }
@@ -186,6 +285,7 @@ struct WithParameters<'a> {
     state: State,
     /// The initial velocities (the constrained predictor's first guess).
     v: &'a [f64],
+    watched: &'a Watched<'a, 'a>,
 }
 
 impl WithParameters<'_> {
@@ -199,19 +299,15 @@ impl WithParameters<'_> {
                     .map_or(f64::NAN, |(_, v)| *v)
             })
             .collect();
-        let (newton, grid) = (spec.integrator.newton, &spec.integrator.grid);
+        let newton = spec.integrator.newton;
         let model = self.model.clone();
         if self.model.constraints() > 0 {
             let vi = ConstrainedParametricIntegrator::new(rule, model, &theta, newton)?;
-            return tangent(
-                &mut vi.with_velocity_hint(self.v),
-                self.state,
-                grid,
-                &options(spec),
-            );
+            let mut vi = vi.with_velocity_hint(self.v);
+            return self.watched.tangent(&mut vi, self.state, spec);
         }
         let mut vi = ParametricIntegrator::new(rule, model, &theta, newton)?;
-        tangent(&mut vi, self.state, grid, &options(spec))
+        self.watched.tangent(&mut vi, self.state, spec)
     }
 }
 

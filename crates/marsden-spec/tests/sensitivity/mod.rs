@@ -5,6 +5,7 @@
 use std::path::Path;
 
 mod constrained;
+mod controls;
 
 use marsden_spec::{Controls, Outcome, RunSpec, RunStatus, Store, execute};
 

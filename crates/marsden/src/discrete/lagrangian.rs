@@ -26,7 +26,7 @@ use crate::scalar::Scalar;
 
 use crate::numerics::scratch::{NODE, with_buffer};
 use crate::separable::ExplicitStep;
-use crate::separable::SeparableStep;
+use crate::separable::{SeparableJacobian, SeparableStep};
 
 /// A two-point discrete Lagrangian `L_d(t₀, h, q₀, q₁)`.
 ///
@@ -81,6 +81,13 @@ pub trait DiscreteLagrangian {
     fn separable(&self) -> Option<&dyn SeparableStep> {
         None
     }
+
+    /// The step Jacobian from the structure of a separable Lagrangian, if this two-point rule
+    /// has one (the α and symmetrised α rules: `M` and `∇²V` at the nodes,
+    /// [`crate::separable::jacobian`]). Default: none.
+    fn separable_jacobian(&self) -> Option<&dyn SeparableJacobian> {
+        None
+    }
 }
 
 /// A discrete Lagrangian over the control points of one step (what the integrator steps).
@@ -122,6 +129,11 @@ pub trait DiscreteAction {
 
     /// A structured Newton step, if any (see [`DiscreteLagrangian::separable`]).
     fn separable(&self) -> Option<&dyn SeparableStep> {
+        None
+    }
+
+    /// A structured step Jacobian, if any (see [`DiscreteLagrangian::separable_jacobian`]).
+    fn separable_jacobian(&self) -> Option<&dyn SeparableJacobian> {
         None
     }
 
@@ -173,6 +185,9 @@ impl<D: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &D {
     fn separable(&self) -> Option<&dyn SeparableStep> {
         (**self).separable()
     }
+    fn separable_jacobian(&self) -> Option<&dyn SeparableJacobian> {
+        (**self).separable_jacobian()
+    }
 }
 
 impl<T: DiscreteLagrangian> DiscreteAction for T {
@@ -190,6 +205,9 @@ impl<T: DiscreteLagrangian> DiscreteAction for T {
     }
     fn separable(&self) -> Option<&dyn SeparableStep> {
         DiscreteLagrangian::separable(self)
+    }
+    fn separable_jacobian(&self) -> Option<&dyn SeparableJacobian> {
+        DiscreteLagrangian::separable_jacobian(self)
     }
 }
 

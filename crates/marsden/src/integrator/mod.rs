@@ -12,6 +12,7 @@ pub(crate) mod compensated;
 pub(crate) mod equations;
 mod explicit;
 mod failure;
+mod jacobian;
 pub mod maps;
 mod path;
 mod predictor;
@@ -33,7 +34,7 @@ use crate::holonomic::{MomentumProjection, NoProjection};
 use crate::mechanics::{Constraint, NoForce, State, Unconstrained};
 use crate::numerics::ad::HessianParts;
 use crate::numerics::newton::{NewtonOptions, NewtonReport, NewtonWorkspace};
-use crate::separable::{ExplicitWorkspace, SeparableWorkspace};
+use crate::separable::{ExplicitWorkspace, JacobianWorkspace, SeparableWorkspace};
 
 /// Steps a discrete action `A` with discrete forces `F`, constraints `C` and a momentum
 /// projection `P` (applied after each solved step; [`NoProjection`] by default).
@@ -95,6 +96,10 @@ struct Buffers {
     stage_multipliers: Vec<f64>,
     /// Scratch of the stage constraints (`X_i`, `φ`, `Dφ`).
     stage_scratch: Vec<f64>,
+    /// `q_k` of a step taken for its Jacobian ([`jacobian`]).
+    start: Vec<f64>,
+    /// The buffers of the separable step Jacobian ([`crate::separable::jacobian`]).
+    jacobian: JacobianWorkspace,
 }
 
 impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>

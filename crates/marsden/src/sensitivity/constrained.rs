@@ -452,8 +452,8 @@ where
         let n = self.shape().n;
         Error::check_len("jacobian", jac, 4 * n * n)?;
         check_stage_offsets(self)?;
-        let (t0, q0) = (state.t, state.q.clone());
-        let report = Integrator::step(self, state, h)?;
+        let t0 = state.t;
+        let report = self.step_keeping_start(state, h)?;
         let model = Model {
             action: self.action(),
             force: self.force(),
@@ -464,7 +464,7 @@ where
         constrained_jacobian(
             self,
             &model,
-            ((t0, h), &q0),
+            ((t0, h), self.step_start()),
             (state, report.iterations),
             jac,
         )?;

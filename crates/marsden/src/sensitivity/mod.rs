@@ -8,7 +8,9 @@
 //! action from one hyper-dual evaluation
 //! ([`crate::analysis::certificate::variational::frozen_step_jacobian`]) — never by
 //! differentiating Newton's iterations, so the derivative is that of the exact discrete map
-//! whatever the solver's path or iteration count. Rules (midpoint, trapezoid, α, Galerkin,
+//! whatever the solver's path or iteration count (on the separable and explicit paths of the
+//! α and trapezoid rules, the same derivative from `M` and `∇²V` alone,
+//! [`crate::separable::jacobian`]). Rules (midpoint, trapezoid, α, Galerkin,
 //! compositions) and discrete forces (Lagrange–d'Alembert) enter only through the action and
 //! the forces, so all of them are covered.
 //!
@@ -40,4 +42,4 @@ pub use options::{AdjointOptions, TangentOptions};
 pub use parametric::{ParametricIntegrator, ParametricModel};
 pub use parametric_constrained::ConstrainedParametricIntegrator;
 pub use step::SensitiveStep;
-pub use tangent::{Tangent, TangentSample, tangent};
+pub use tangent::{Tangent, TangentSample, tangent, tangent_watched};

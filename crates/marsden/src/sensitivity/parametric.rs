@@ -18,8 +18,7 @@
 //! arguments, and every rule, force discretisation and Galerkin table applies to the frozen
 //! system unchanged.
 
-use super::step::SensitiveStep;
-use crate::analysis::certificate::DifferentiableStep;
+use super::step::{SensitiveStep, differentiable_by_run};
 use crate::analysis::certificate::variational::{
     at_step, check_stage_offsets, frozen_step_jacobian,
 };
@@ -252,25 +251,7 @@ impl<R: Rule, M: ParametricModel + Clone> ParametricIntegrator<R, M> {
     }
 }
 
-/// The step and its `(q_k, p_k)` Jacobian, as the run's integrator gives them.
-impl<R: Rule, M: ParametricModel + Clone> DifferentiableStep for ParametricIntegrator<R, M> {
-    fn dof(&self) -> usize {
-        self.run.shape().n
-    }
-
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error> {
-        self.run.step(state, h)
-    }
-
-    fn step_with_jacobian(
-        &mut self,
-        state: &mut State,
-        h: f64,
-        jac: &mut [f64],
-    ) -> Result<StepReport, Error> {
-        self.run.step_with_jacobian(state, h, jac)
-    }
-}
+differentiable_by_run!(ParametricIntegrator);
 
 impl<R: Rule, M: ParametricModel + Clone> SensitiveStep for ParametricIntegrator<R, M> {
     fn parameters(&self) -> usize {
@@ -284,14 +265,14 @@ impl<R: Rule, M: ParametricModel + Clone> SensitiveStep for ParametricIntegrator
         jac: &mut [f64],
     ) -> Result<StepReport, Error> {
         check_stage_offsets(&self.run)?;
-        let (t0, q0) = (state.t, state.q.clone());
-        let report = self.run.step(state, h)?;
+        let t0 = state.t;
+        let report = self.run.step_keeping_start(state, h)?;
         let index = self.run.statistics().steps.saturating_sub(1);
         frozen_step_jacobian(
             &self.frozen,
             &self.frozen_force,
             (t0, h),
-            (&q0, &self.theta),
+            (self.run.step_start(), &self.theta),
             self.run.stage_offsets(),
             jac,
         )

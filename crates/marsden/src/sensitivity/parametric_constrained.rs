@@ -19,8 +19,7 @@
 
 use super::constrained::{Model, constrained_jacobian};
 use super::parametric::{AtValues, Frozen, ParametricModel};
-use super::step::SensitiveStep;
-use crate::analysis::certificate::DifferentiableStep;
+use super::step::{SensitiveStep, differentiable_by_run};
 use crate::analysis::certificate::variational::{
     at_step, check_stage_offsets, frozen_step_jacobian,
 };
@@ -133,28 +132,9 @@ impl<R: Rule, M: ParametricModel + Clone> ConstrainedParametricIntegrator<R, M> 
     }
 }
 
-/// The step and its `(q_k, p_k)` Jacobian, as the run's integrator gives them (unconstrained
-/// models only; the constrained Jacobian is [`SensitiveStep::step_with_sensitivity`]'s).
-impl<R: Rule, M: ParametricModel + Clone> DifferentiableStep
-    for ConstrainedParametricIntegrator<R, M>
-{
-    fn dof(&self) -> usize {
-        self.run.shape().n
-    }
-
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error> {
-        self.run.step(state, h)
-    }
-
-    fn step_with_jacobian(
-        &mut self,
-        state: &mut State,
-        h: f64,
-        jac: &mut [f64],
-    ) -> Result<StepReport, Error> {
-        self.run.step_with_jacobian(state, h, jac)
-    }
-}
+// `step_with_jacobian` refuses active constraints; the constrained Jacobian is
+// `step_with_sensitivity`'s.
+differentiable_by_run!(ConstrainedParametricIntegrator);
 
 impl<R: Rule, M: ParametricModel + Clone> SensitiveStep for ConstrainedParametricIntegrator<R, M> {
     fn parameters(&self) -> usize {
@@ -172,15 +152,15 @@ impl<R: Rule, M: ParametricModel + Clone> SensitiveStep for ConstrainedParametri
         let n = self.run.shape().n;
         Error::check_len("jacobian", jac, 2 * n * (2 * n + self.theta.len()))?;
         check_stage_offsets(&self.run)?;
-        let (t0, q0) = (state.t, state.q.clone());
-        let report = self.run.step(state, h)?;
+        let t0 = state.t;
+        let report = self.run.step_keeping_start(state, h)?;
         if self.run.shape().d == 0 {
             let index = self.run.statistics().steps.saturating_sub(1);
             frozen_step_jacobian(
                 &self.frozen,
                 &self.frozen_force,
                 (t0, h),
-                (&q0, &self.theta),
+                (self.run.step_start(), &self.theta),
                 self.run.stage_offsets(),
                 jac,
             )
@@ -195,7 +175,8 @@ impl<R: Rule, M: ParametricModel + Clone> SensitiveStep for ConstrainedParametri
             theta: &self.theta,
         };
         let state_and_iterations = (&*state, report.iterations);
-        constrained_jacobian(&self.run, &model, ((t0, h), &q0), state_and_iterations, jac)?;
+        let start = ((t0, h), self.run.step_start());
+        constrained_jacobian(&self.run, &model, start, state_and_iterations, jac)?;
         Ok(report)
     }
 }

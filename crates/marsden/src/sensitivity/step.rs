@@ -44,3 +44,38 @@ pub trait SensitiveStep: DifferentiableStep {
 impl<A: DiscreteAction, F: DiscreteForce> SensitiveStep for Integrator<A, F, Unconstrained> {}
 
 impl<H: Hamiltonian, M: HamiltonianMethod<H>> SensitiveStep for HamiltonianIntegrator<H, M> {}
+
+/// [`DifferentiableStep`] of a parametric integrator (`Type<R: Rule, M: ParametricModel>`) by
+/// the integrator in its field `run`: the step and its `(q_k, p_k)` Jacobian, as the run's
+/// integrator gives them.
+macro_rules! differentiable_by_run {
+    ($ty:ident) => {
+        impl<R, M> $crate::analysis::certificate::DifferentiableStep for $ty<R, M>
+        where
+            R: $crate::discrete::rules::Rule,
+            M: $crate::sensitivity::ParametricModel + Clone,
+        {
+            fn dof(&self) -> usize {
+                self.run.shape().n
+            }
+
+            fn step(
+                &mut self,
+                state: &mut $crate::mechanics::State,
+                h: f64,
+            ) -> Result<$crate::integrator::StepReport, $crate::error::Error> {
+                self.run.step(state, h)
+            }
+
+            fn step_with_jacobian(
+                &mut self,
+                state: &mut $crate::mechanics::State,
+                h: f64,
+                jac: &mut [f64],
+            ) -> Result<$crate::integrator::StepReport, $crate::error::Error> {
+                self.run.step_with_jacobian(state, h, jac)
+            }
+        }
+    };
+}
+pub(super) use differentiable_by_run;

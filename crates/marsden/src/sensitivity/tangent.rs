@@ -16,11 +16,13 @@
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 //! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
 
+use std::ops::ControlFlow;
+
 use super::options::TangentOptions;
 use super::step::SensitiveStep;
 use crate::error::Error;
 use crate::mechanics::State;
-use crate::run::TimeGrid;
+use crate::run::{Termination, TimeGrid};
 
 /// The sensitivities of a run: the final state and `∂(q, p)/∂(q₀, p₀, θ)` at the final and the
 /// kept states.
@@ -34,8 +36,13 @@ pub struct Tangent {
     pub state: State,
     /// `∂(q_K, p_K)/∂(q₀, p₀, θ)`, row-major `2n × columns` (rows `q`, then `p`).
     pub jacobian: Vec<f64>,
-    /// The kept states and their Jacobians ([`TangentOptions::every`]).
+    /// The kept states and their Jacobians ([`TangentOptions::every`]; a stopped run also
+    /// keeps its last state).
     pub samples: Vec<TangentSample>,
+    /// [`Termination::Completed`], or [`Termination::Stopped`] when the watcher of
+    /// [`tangent_watched`] asked to stop (`state` and `jacobian` are then those of the last
+    /// step taken). A failed step is an error, not a termination.
+    pub termination: Termination,
 }
 
 /// A kept state of a tangent run and its sensitivity.
@@ -85,6 +92,23 @@ pub fn tangent<D: SensitiveStep + ?Sized>(
     grid: &TimeGrid,
     options: &TangentOptions,
 ) -> Result<Tangent, Error> {
+    tangent_watched(stepper, start, grid, options, |_| ControlFlow::Continue(()))
+}
+
+/// [`tangent`], showing the number of steps taken to `watch` after every step (for a progress
+/// display and a stop flag): [`ControlFlow::Break`] ends the run there, with
+/// [`Termination::Stopped`] and the sensitivities of the steps taken.
+pub fn tangent_watched<D, W>(
+    stepper: &mut D,
+    start: State,
+    grid: &TimeGrid,
+    options: &TangentOptions,
+    mut watch: W,
+) -> Result<Tangent, Error>
+where
+    D: SensitiveStep + ?Sized,
+    W: FnMut(usize) -> ControlFlow<()>,
+{
     let n = stepper.dof();
     let (m, columns) = (2 * n, 2 * n + stepper.parameters());
     Error::check_len("q0", &start.q, n)?;
@@ -103,17 +127,23 @@ pub fn tangent<D: SensitiveStep + ?Sized>(
         });
     }
     let mut state = start;
+    let mut termination = Termination::Completed;
     for k in 0..grid.steps {
         stepper.step_with_sensitivity(&mut state, grid.h, &mut step)?;
         state.t = grid.time(k + 1);
         propagate(&step, &s, m, columns, &mut next);
         std::mem::swap(&mut s, &mut next);
-        if keep(k + 1) {
+        let stop = watch(k + 1).is_break();
+        if keep(k + 1) || (stop && options.every > 0) {
             samples.push(TangentSample {
                 step: k + 1,
                 state: state.clone(),
                 jacobian: s.clone(),
             });
+        }
+        if stop {
+            termination = Termination::Stopped { steps: k + 1 };
+            break;
         }
     }
     Ok(Tangent {
@@ -122,5 +152,6 @@ pub fn tangent<D: SensitiveStep + ?Sized>(
         state,
         jacobian: s,
         samples,
+        termination,
     })
 }

@@ -6,6 +6,7 @@
 //! |---|---|
 //! | [`explicit`] | the trapezoid rule is velocity Störmer–Verlet: one `∇V` per step, explicit |
 //! | [`alpha`] | the α rules: Newton for the offset alone, Jacobian `M/h + hα(1−α)∇²V`, reused while it contracts; band storage for chains |
+//! | [`jacobian`] | the step Jacobian of the α and symmetrised α rules from `M` and `∇²V` (implicit function theorem, one `n × n` solve) |
 //! | `alpha_small` | the same on stack arrays for `n ≤ 4` and a diagonal mass |
 //! | `step` | what a rule offers ([`SeparableStep`]), one step's data ([`Frame`]), the buffers ([`SeparableWorkspace`]) |
 //!
@@ -16,7 +17,9 @@
 pub mod alpha;
 mod alpha_small;
 pub mod explicit;
+pub mod jacobian;
 mod step;
 
 pub use explicit::{ExplicitRun, ExplicitStep, ExplicitWorkspace};
+pub use jacobian::{JacobianWorkspace, SeparableJacobian};
 pub use step::{Frame, SeparableStep, SeparableWorkspace};

@@ -23,7 +23,11 @@ pub fn final_state<D: SensitiveStep>(
     start: &State,
     grid: &TimeGrid,
 ) -> Vec<f64> {
-    let mut stepper = make();
+    run_to_end(make(), start, grid)
+}
+
+/// The final `(q, p)` of a plain run of `stepper` from `start` over `grid`.
+pub fn run_to_end<D: SensitiveStep>(mut stepper: D, start: &State, grid: &TimeGrid) -> Vec<f64> {
     let mut s = start.clone();
     for k in 0..grid.steps {
         stepper.step(&mut s, grid.h).unwrap();

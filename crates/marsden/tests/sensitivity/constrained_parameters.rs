@@ -11,12 +11,12 @@
 //! constraints, explicit `θ`-dependence included), and the adjoint's parameter gradient
 //! against the tangent's.
 
-use super::common::relative_distance;
+use super::common::{relative_distance, run_to_end};
 use crate::common::tight;
 use marsden::discrete::rules::Galerkin;
 use marsden::sensitivity::{
-    AdjointOptions, ConstrainedParametricIntegrator, ParametricModel, SensitiveStep,
-    TangentOptions, adjoint, tangent,
+    AdjointOptions, ConstrainedParametricIntegrator, ParametricModel, TangentOptions, adjoint,
+    tangent,
 };
 use marsden::{Midpoint, Rule, Scalar, State, TimeGrid};
 
@@ -60,16 +60,6 @@ fn integrator<R: Rule>(rule: &R, theta: &[f64]) -> ConstrainedParametricIntegrat
     ConstrainedParametricIntegrator::new(rule, PendulumGl, theta, tight()).unwrap()
 }
 
-/// The final `(q, p)` of a plain run.
-fn final_state<D: SensitiveStep>(mut d: D, start: &State, grid: &TimeGrid) -> Vec<f64> {
-    let mut s = start.clone();
-    for k in 0..grid.steps {
-        d.step(&mut s, grid.h).unwrap();
-        s.t = grid.time(k + 1);
-    }
-    s.q.iter().chain(&s.p).copied().collect()
-}
-
 fn check_parameter_columns<R: Rule>(name: &str, rule: &R) {
     let grid = TimeGrid::new(0.0, 0.01, 1000).unwrap();
     let run = tangent(
@@ -85,7 +75,7 @@ fn check_parameter_columns<R: Rule>(name: &str, rule: &R) {
         let shifted = |sign: f64| {
             let mut theta = THETA;
             theta[j] += sign * eps;
-            final_state(integrator(rule, &theta), &start(), &grid)
+            run_to_end(integrator(rule, &theta), &start(), &grid)
         };
         let (plus, minus) = (shifted(1.0), shifted(-1.0));
         let fd: Vec<f64> = (plus.iter().zip(&minus))

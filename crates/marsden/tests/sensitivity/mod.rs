@@ -7,4 +7,5 @@ mod constrained;
 mod constrained_parameters;
 mod finite_differences;
 mod parameters;
+mod separable_jacobian;
 mod tangent;

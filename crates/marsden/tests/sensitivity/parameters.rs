@@ -3,12 +3,11 @@
 //! length and damping coefficient (midpoint, forced); the adjoint's parameter gradient against
 //! the tangent's.
 
-use super::common::{relative_distance, state};
+use super::common::{relative_distance, run_to_end, state};
 use crate::common::tight;
 use marsden::discrete::rules::Galerkin;
 use marsden::sensitivity::{
-    AdjointOptions, ParametricIntegrator, ParametricModel, SensitiveStep, TangentOptions, adjoint,
-    tangent,
+    AdjointOptions, ParametricIntegrator, ParametricModel, TangentOptions, adjoint, tangent,
 };
 use marsden::systems::Kepler;
 use marsden::{Midpoint, Rule, Scalar, State, TimeGrid};
@@ -54,15 +53,6 @@ impl ParametricModel for DampedPendulumLc {
     }
 }
 
-fn final_state<D: SensitiveStep>(mut d: D, start: &State, grid: &TimeGrid) -> Vec<f64> {
-    let mut s = start.clone();
-    for k in 0..grid.steps {
-        d.step(&mut s, grid.h).unwrap();
-        s.t = grid.time(k + 1);
-    }
-    s.q.iter().chain(&s.p).copied().collect()
-}
-
 /// The parameter columns of the final Jacobian against central differences in `θ`.
 fn check_parameters<R: Rule, M: ParametricModel + Clone>(
     name: &str,
@@ -85,7 +75,7 @@ fn check_parameters<R: Rule, M: ParametricModel + Clone>(
         let shifted = |sign: f64| {
             let mut th = theta.to_vec();
             th[p] += sign * eps * theta[p].abs().max(1.0);
-            final_state(make(&th), start, grid)
+            run_to_end(make(&th), start, grid)
         };
         let (plus, minus) = (shifted(1.0), shifted(-1.0));
         let step = 2.0 * eps * theta[p].abs().max(1.0);

@@ -6,9 +6,11 @@ use super::common::{integrator, state};
 use crate::common::{assert_close, tight};
 use marsden::analysis::certificate::symplectic_defect;
 use marsden::discrete::rules::Galerkin;
-use marsden::sensitivity::{TangentOptions, tangent};
+use marsden::sensitivity::{TangentOptions, tangent, tangent_watched};
 use marsden::systems::{DampedOscillator, DoublePendulum, HarmonicOscillator, Kepler};
-use marsden::{Integrator, Midpoint, Rule, TimeGrid, Trapezoid};
+use marsden::{Integrator, Midpoint, Rule, Termination, TimeGrid, Trapezoid};
+use std::ops::ControlFlow;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// R1: the tangent map of one midpoint step of `q̈ = −q` with h = 0.1 is the Cayley matrix
 /// [[399, 40], [−40, 399]]/401, and of ten steps its tenth power.
@@ -120,4 +122,43 @@ fn tangent_map_of_10k_steps_is_symplectic_kepler_and_double_pendulum() {
     let (abs, rel) = symplectic_defect(&t.state_block(), 2);
     println!("double pendulum / gauss-2, 10⁴ steps: |MᵀJM − J| = {abs:.2e}, relative {rel:.2e}");
     assert!(rel <= 1e-10, "double pendulum: relative defect {rel:e}");
+}
+
+/// A stop flag set from the watcher after 37 of 100 steps ends the tangent run there: it says
+/// so ([`Termination::Stopped`]), keeps the state and Jacobian of step 37 — those of a 37-step
+/// run, bit for bit — and keeps step 37 as its last sample.
+#[test]
+fn stop_flag_set_from_the_watcher_ends_the_tangent_run_with_the_steps_done() {
+    let (q, p) = Kepler::pericentre(0.6);
+    let start = state(&q, &p);
+    let options = TangentOptions { every: 10 };
+    let stop = AtomicBool::new(false);
+    let mut seen = Vec::new();
+    let watch = |k: usize| {
+        seen.push(k);
+        if k == 37 {
+            stop.store(true, Ordering::Relaxed);
+        }
+        match stop.load(Ordering::Relaxed) {
+            true => ControlFlow::Break(()),
+            false => ControlFlow::Continue(()),
+        }
+    };
+    let grid = TimeGrid::new(0.0, 0.01, 100).unwrap();
+    let mut vi = integrator(Midpoint.discretize(Kepler::default()));
+    let stopped = tangent_watched(&mut vi, start.clone(), &grid, &options, watch).unwrap();
+    assert_eq!(stopped.termination, Termination::Stopped { steps: 37 });
+    assert_eq!(seen, (1..=37).collect::<Vec<_>>());
+
+    let grid = TimeGrid::new(0.0, 0.01, 37).unwrap();
+    let mut vi = integrator(Midpoint.discretize(Kepler::default()));
+    let done = tangent(&mut vi, start, &grid, &options).unwrap();
+    assert_eq!(done.termination, Termination::Completed);
+    assert_eq!(stopped.state, done.state);
+    assert_eq!(stopped.jacobian, done.jacobian);
+    let steps = |t: &marsden::sensitivity::Tangent| -> Vec<usize> {
+        t.samples.iter().map(|s| s.step).collect()
+    };
+    assert_eq!(steps(&stopped), [0, 10, 20, 30, 37]);
+    assert_eq!(steps(&stopped), steps(&done));
 }

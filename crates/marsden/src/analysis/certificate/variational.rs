@@ -143,16 +143,7 @@ pub fn frozen_step_jacobian<A: DiscreteAction, F: DiscreteForce>(
         a_mat.clear();
         a_mat
             .extend((0..sn * sn).map(|k| b.d_equation(k / sn / n, (k / sn) % n, dof + at(k % sn))));
-        lu.factor(a_mat, sn).map_err(|e| {
-            Error::Step(StepFailure {
-                step: 0,
-                t: t0,
-                cause: StepError::SingularJacobian {
-                    iteration: 0,
-                    pivot: e.pivot,
-                },
-            })
-        })?;
+        lu.factor(a_mat, sn).map_err(|e| singular(t0, e.pivot))?;
         // The x-column of input column c: q_k (c < n), none for p_k, θ (c ≥ 2n).
         let x_col = |c: usize| match c {
             c if c < n => Some(c),
@@ -185,6 +176,18 @@ pub fn frozen_step_jacobian<A: DiscreteAction, F: DiscreteForce>(
             }
         }
         Ok(())
+    })
+}
+
+/// The error of a singular `∂R/∂z` (step index and iteration filled in by [`at_step`]).
+fn singular(t: f64, pivot: f64) -> Error {
+    Error::Step(StepFailure {
+        step: 0,
+        t,
+        cause: StepError::SingularJacobian {
+            iteration: 0,
+            pivot,
+        },
     })
 }
 
@@ -290,18 +293,21 @@ where
         let n = shape.n;
         Error::check_len("jacobian", jac, 4 * n * n)?;
         check_stage_offsets(self)?;
-        let (t0, q0) = (state.t, state.q.clone());
-        let report = Integrator::step(self, state, h)?;
+        let t0 = state.t;
+        let report = self.step_keeping_start(state, h)?;
         let step = self.statistics().steps.saturating_sub(1);
-        step_jacobian(
-            self.action(),
-            self.force(),
-            (t0, h),
-            &q0,
-            self.stage_offsets(),
-            jac,
-        )
-        .map_err(at_step(step, t0, report.iterations))?;
+        let result = match self.separable_jacobian((t0, h), jac) {
+            Some(structured) => structured.map_err(|pivot| singular(t0, pivot)),
+            None => step_jacobian(
+                self.action(),
+                self.force(),
+                (t0, h),
+                self.step_start(),
+                self.stage_offsets(),
+                jac,
+            ),
+        };
+        result.map_err(at_step(step, t0, report.iterations))?;
         Ok(report)
     }
 }

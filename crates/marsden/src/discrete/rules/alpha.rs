@@ -11,7 +11,10 @@ use crate::numerics::newton::{NewtonFailure, NewtonOptions, NewtonReport};
 use crate::numerics::scratch::{NODE, with_buffer};
 use crate::scalar::Scalar;
 use crate::separable::alpha::solve_alpha;
-use crate::separable::{Frame, SeparableStep, SeparableWorkspace};
+use crate::separable::jacobian::step_jacobian;
+use crate::separable::{
+    Frame, JacobianWorkspace, SeparableJacobian, SeparableStep, SeparableWorkspace,
+};
 
 /// The midpoint rule (α = ½): second order, symmetric, the implicit midpoint method for
 /// mechanical Lagrangians.
@@ -63,6 +66,23 @@ impl<L: Lagrangian> DiscreteLagrangian for AlphaLd<L> {
     }
     fn separable(&self) -> Option<&dyn SeparableStep> {
         Some(self)
+    }
+    fn separable_jacobian(&self) -> Option<&dyn SeparableJacobian> {
+        Some(self)
+    }
+}
+
+/// On a separable `L` the α step's Jacobian needs `∇²V` at `q_α` alone (one node, weight 1;
+/// [`crate::separable::jacobian`]).
+impl<L: Lagrangian> SeparableJacobian for AlphaLd<L> {
+    fn step_jacobian(
+        &self,
+        grid: (f64, f64),
+        start: (&[f64], &[f64]),
+        jac: &mut [f64],
+        ws: &mut JacobianWorkspace,
+    ) -> Option<Result<(), f64>> {
+        step_jacobian(&self.lagrangian, &[(self.alpha, 1.0)], grid, start, jac, ws)
     }
 }
 

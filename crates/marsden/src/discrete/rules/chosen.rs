@@ -30,7 +30,7 @@ use super::{
 use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::mechanics::{Force, Lagrangian};
 use crate::scalar::Scalar;
-use crate::separable::{ExplicitStep, SeparableStep};
+use crate::separable::{ExplicitStep, SeparableJacobian, SeparableStep};
 
 /// The discrete Lagrangian of a [`BaseMethod`]: midpoint and α-rules share [`AlphaLd`],
 /// trapezoid and the symmetrised rules [`SymmetrizedLd`].
@@ -166,6 +166,9 @@ macro_rules! forward_action {
             }
             fn separable(&self) -> Option<&dyn SeparableStep> {
                 each!(self, x => x.separable(), $($variant),+)
+            }
+            fn separable_jacobian(&self) -> Option<&dyn SeparableJacobian> {
+                each!(self, x => x.separable_jacobian(), $($variant),+)
             }
             fn constrained_stages(&self) -> Result<usize, String> {
                 each!(self, x => x.constrained_stages(), $($variant),+)

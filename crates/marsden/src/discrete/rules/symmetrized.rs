@@ -12,7 +12,10 @@ use crate::mechanics::{Force, Lagrangian};
 use crate::numerics::scratch::{NODE, with_buffer};
 use crate::scalar::Scalar;
 use crate::separable::explicit::{run_by_steps, velocity_verlet, velocity_verlet_run};
-use crate::separable::{ExplicitRun, ExplicitStep, ExplicitWorkspace};
+use crate::separable::jacobian::step_jacobian;
+use crate::separable::{
+    ExplicitRun, ExplicitStep, ExplicitWorkspace, JacobianWorkspace, SeparableJacobian,
+};
 
 /// The trapezoid rule (symmetrised α = 0): velocity Störmer–Verlet for mechanical systems.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -107,6 +110,9 @@ impl<L: Lagrangian> DiscreteLagrangian for SymmetrizedLd<L> {
             .as_ref()
             .map(|_| self as &dyn ExplicitStep)
     }
+    fn separable_jacobian(&self) -> Option<&dyn SeparableJacobian> {
+        Some(self)
+    }
     #[inline]
     fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
         let mut sum = S::from(0.0);
@@ -117,6 +123,21 @@ impl<L: Lagrangian> DiscreteLagrangian for SymmetrizedLd<L> {
             });
         }
         sum * (0.5 * h)
+    }
+}
+
+/// On a separable `L` the symmetrised α step's Jacobian needs `∇²V` at `q_α` and `q_{1−α}`
+/// (weights ½; for the trapezoid rule the ends, [`crate::separable::jacobian`]).
+impl<L: Lagrangian> SeparableJacobian for SymmetrizedLd<L> {
+    fn step_jacobian(
+        &self,
+        grid: (f64, f64),
+        start: (&[f64], &[f64]),
+        jac: &mut [f64],
+        ws: &mut JacobianWorkspace,
+    ) -> Option<Result<(), f64>> {
+        let nodes = [(self.alpha, 0.5), (1.0 - self.alpha, 0.5)];
+        step_jacobian(&self.lagrangian, &nodes, grid, start, jac, ws)
     }
 }
 
