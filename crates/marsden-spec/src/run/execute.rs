@@ -153,7 +153,12 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
         .into_iter()
         .map(str::to_owned)
         .collect();
-    let sensitivity = derivatives(spec, &record, &start, store.files().then_some(&dir));
+    let sensitivity = derivatives(
+        spec,
+        (&record, &start),
+        store.files().then_some(&dir),
+        controls,
+    );
     if let Some(Derivatives {
         file: Some(file), ..
     }) = &sensitivity
@@ -191,13 +196,14 @@ struct Derivatives {
     samples: Option<Vec<(f64, Vec<f64>)>>,
 }
 
-/// `[sensitivity]`: the tangent run beside a completed run, its file written into `dir`;
-/// `None` without `[sensitivity]`. A failure is reported in the summary's block.
+/// `[sensitivity]`: the tangent run beside a completed run (watched by the run's `controls`:
+/// Ctrl-C and the progress bar), its file written into `dir`; `None` without
+/// `[sensitivity]`. A failure is reported in the summary's block.
 fn derivatives(
     spec: &RunSpec,
-    record: &RunRecord,
-    start: &start::Start,
+    (record, start): (&RunRecord, &start::Start),
     dir: Option<&PathBuf>,
+    controls: &Controls<'_>,
 ) -> Option<Derivatives> {
     let asked = spec.sensitivity.as_ref()?;
     let failed = |error: String| Derivatives {
@@ -215,7 +221,7 @@ fn derivatives(
     if record.error.is_some() || record.interrupted {
         return Some(failed("the run did not complete".to_owned()));
     }
-    let found = match sensitivity::compute(spec, asked, start) {
+    let found = match sensitivity::compute_with(spec, asked, start, controls) {
         Ok(found) => found,
         Err(e) => return Some(failed(e)),
     };
