@@ -1,9 +1,10 @@
 //! Translation of a [`Tape`] into Cranelift IR, one instruction at a time, and its compilation
 //! for the host.
 //!
-//! The function has the signature `(head: *const f64, last: f64, out: *mut f64)`: input
-//! register `i < inputs − 1` is `head[i]`, the last input register is `last` (the time `t` of a
-//! potential's tape, so `[q, t]` needs no copy), output `k` is stored to `out[k]`. Every
+//! The function has the signature `(head: *const f64, last: f64, out: *mut f64)`: for a split
+//! at `h`, input register `i < h` is `head[i]` and register `h` is `last` (the time `t` of a
+//! potential's tape over `[q, t]`, so `q` needs no copy); output `k` is stored to `out[k]`. (A
+//! tape's inputs are the slots it reads, up to the last: `∇V` of Kepler reads `[x, y]` only.) Every
 //! instruction becomes the IEEE 754 operations it names, in its order; functions other than
 //! `√` are calls of the interpreter's own (`functions`).
 
@@ -28,6 +29,14 @@ pub enum JitError {
     /// Cranelift rejected the settings, the function or its linking.
     #[error("native compilation failed: {0}")]
     Codegen(String),
+    /// The tape reads more inputs than `head` and `last` hold.
+    #[error("the tape reads {inputs} inputs, more than {head} and one")]
+    Inputs {
+        /// Inputs the tape reads.
+        inputs: usize,
+        /// Length of the `head` slice.
+        head: usize,
+    },
     /// The tape calls a two-argument function as a one-argument one.
     #[error("the tape calls `{0}` with one argument")]
     Arity(&'static str),
@@ -59,8 +68,19 @@ pub(crate) fn host_module() -> Result<JITModule, JitError> {
     Ok(JITModule::new(builder))
 }
 
-/// Defines the function computing `tape` in `module` (not yet finalized).
-pub(crate) fn define(module: &mut JITModule, tape: &Tape) -> Result<FuncId, JitError> {
+/// Defines the function computing `tape` in `module` (not yet finalized), inputs split at
+/// `head_len`.
+pub(crate) fn define(
+    module: &mut JITModule,
+    tape: &Tape,
+    head_len: usize,
+) -> Result<FuncId, JitError> {
+    if tape.input_len() > head_len + 1 {
+        return Err(JitError::Inputs {
+            inputs: tape.input_len(),
+            head: head_len,
+        });
+    }
     let pointer = module.target_config().pointer_type();
     let mut ctx = module.make_context();
     ctx.func.signature.params.extend([
@@ -84,6 +104,7 @@ pub(crate) fn define(module: &mut JITModule, tape: &Tape) -> Result<FuncId, JitE
             module,
             head: params[0],
             last: params[1],
+            head_len,
             inputs: vec![None; tape.input_len()],
             regs: Vec::with_capacity(tape.op_count()),
             calls: HashMap::new(),
@@ -112,6 +133,8 @@ struct Translator<'a> {
     module: &'a mut JITModule,
     head: Value,
     last: Value,
+    /// Input registers below this are read from `head`; the one equal to it is `last`.
+    head_len: usize,
     /// Input registers, loaded at their first use.
     inputs: Vec<Option<Value>>,
     /// The value of instruction `k` (register `inputs + k`).
@@ -131,7 +154,7 @@ impl Translator<'_> {
         if let Some(v) = self.inputs[r] {
             return v;
         }
-        let v = if r + 1 == n {
+        let v = if r == self.head_len {
             self.last
         } else {
             // Fits: the tape's registers are indexed by `u32`.

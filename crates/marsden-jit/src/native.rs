@@ -22,17 +22,32 @@ pub struct CompiledTape {
     module: Mutex<Option<JITModule>>,
     inputs: usize,
     outputs: usize,
+    /// Where the inputs are split: registers below are read from `head`, this one is `last`.
+    split: usize,
 }
 
 impl CompiledTape {
-    /// Compiles `tape` for this machine.
+    /// Compiles `tape` for this machine, to be called with all its inputs in one slice
+    /// ([`CompiledTape::eval`]).
     ///
     /// # Errors
     ///
     /// [`JitError`] if the machine has no Cranelift back end or compilation fails.
     pub fn compile(tape: &Tape) -> Result<Self, JitError> {
+        Self::compile_split(tape, tape.input_len())
+    }
+
+    /// Compiles `tape` for this machine, to be called with its inputs as `[head, last]` where
+    /// `head` has `head_len` values ([`CompiledTape::eval_split`]; the `[q, t]` of a potential
+    /// without copying `q`).
+    ///
+    /// # Errors
+    ///
+    /// [`JitError::Inputs`] if the tape reads more than `head_len + 1` inputs; otherwise as
+    /// [`CompiledTape::compile`].
+    pub fn compile_split(tape: &Tape, head_len: usize) -> Result<Self, JitError> {
         let mut module = compile::host_module()?;
-        let id = compile::define(&mut module, tape)?;
+        let id = compile::define(&mut module, tape, head_len)?;
         module
             .finalize_definitions()
             .map_err(|e| JitError::Codegen(e.to_string()))?;
@@ -42,6 +57,7 @@ impl CompiledTape {
             module: Mutex::new(Some(module)),
             inputs: tape.input_len(),
             outputs: tape.len(),
+            split: head_len,
         })
     }
 
@@ -73,30 +89,31 @@ impl CompiledTape {
             "a tape needs {} inputs",
             self.inputs
         );
-        let (head, last) = match self.inputs.checked_sub(1) {
-            Some(n) => (&inputs[..n], inputs[n]),
-            None => (inputs, 0.0),
-        };
-        self.eval_split(head, last, out);
+        let last = inputs.get(self.split).copied().unwrap_or(0.0);
+        self.eval_split(inputs, last, out);
     }
 
-    /// [`CompiledTape::eval`] at the inputs `[head.., last]`: the first
-    /// [`CompiledTape::input_len`] − 1 inputs from `head`, the last one `last` (the `[q, t]`
-    /// of a potential without copying `q`).
+    /// Evaluates every output at the inputs `[head, last]` split where it was compiled
+    /// ([`CompiledTape::compile_split`]; `head` may be longer).
     ///
     /// # Panics
     ///
-    /// If `head` is shorter than [`CompiledTape::input_len`] − 1 or `out` than
+    /// If `head` has fewer values than the tape reads from it or `out` is shorter than
     /// [`CompiledTape::len`].
     #[inline]
     pub fn eval_split(&self, head: &[f64], last: f64, out: &mut [f64]) {
         assert!(
-            head.len() + 1 >= self.inputs && out.len() >= self.outputs,
-            "a tape needs {} inputs and room for {} outputs",
-            self.inputs,
+            head.len() >= self.head_reads() && out.len() >= self.outputs,
+            "a tape needs {} inputs before the last and room for {} outputs",
+            self.head_reads(),
             self.outputs
         );
         self.call(head, last, out);
+    }
+
+    /// How many values the code reads from `head`.
+    fn head_reads(&self) -> usize {
+        self.inputs.min(self.split)
     }
 
     /// Runs the compiled code.
@@ -104,14 +121,14 @@ impl CompiledTape {
     /// Safety argument: `address` is the entry of a function that `compile::define` built with
     /// the signature of [`Entry`] in the host's default calling convention (the C one) and
     /// that `module` still owns (it is freed only on drop, which `&self` excludes). The code
-    /// reads `head[i]` for `i < inputs − 1` and writes `out[k]` for `k < outputs`, nothing
-    /// else; both slices are that long (checked by the only caller, `eval_split`), and `out`
+    /// reads `head[i]` for `i < head_reads()` (`compile::define`: input registers below both
+    /// the tape's inputs and the split) and writes `out[k]` for `k < outputs`, nothing else; both slices are that long (checked by the only caller, `eval_split`), and `out`
     /// is borrowed mutably, so the writes alias nothing. It calls only the safe functions of
     /// `functions`.
     #[allow(unsafe_code)]
     #[inline]
     fn call(&self, head: &[f64], last: f64, out: &mut [f64]) {
-        debug_assert!(head.len() + 1 >= self.inputs && out.len() >= self.outputs);
+        debug_assert!(head.len() >= self.head_reads() && out.len() >= self.outputs);
         // SAFETY: see above.
         unsafe {
             let entry = std::mem::transmute::<usize, Entry>(self.address);

@@ -17,18 +17,30 @@ fn compile(tape: &Tape) -> CompiledTape {
     CompiledTape::compile(tape).unwrap()
 }
 
+/// A tape compiled twice: all inputs in one slice, and split before the last input of `x`.
+struct Native {
+    whole: CompiledTape,
+    split: CompiledTape,
+}
+
+/// [`Native`] for inputs of length `len` (the tape may read fewer).
+fn compile_both(tape: &Tape, len: usize) -> Native {
+    Native {
+        whole: compile(tape),
+        split: CompiledTape::compile_split(tape, len - 1).unwrap(),
+    }
+}
+
 /// Asserts the compiled tape and the interpreter give the same bits at `x`, through both
-/// entry points (`eval` and `eval_split`).
-fn assert_same(native: &CompiledTape, tape: &Tape, x: &[f64], what: &str) {
+/// entry points (`eval`, and `eval_split` with `x = [head, last]`).
+fn assert_same(native: &Native, tape: &Tape, x: &[f64], what: &str) {
     let mut expected = vec![0.0; tape.len()];
     tape.eval_into(x, &mut Vec::new(), &mut expected);
     let mut got = vec![f64::NAN; tape.len()];
-    native.eval(x, &mut got);
+    native.whole.eval(x, &mut got);
     let mut split = vec![f64::NAN; tape.len()];
-    match tape.input_len().checked_sub(1) {
-        Some(n) => native.eval_split(&x[..n], x[n], &mut split),
-        None => native.eval_split(&[], 0.0, &mut split),
-    }
+    let n = x.len() - 1;
+    native.split.eval_split(&x[..n], x[n], &mut split);
     for (k, ((e, g), s)) in expected.iter().zip(&got).zip(&split).enumerate() {
         assert!(
             same_bits(*e, *g) && same_bits(*e, *s),
@@ -103,7 +115,6 @@ fn reference_potentials_gradient_and_hessian_match_interpreter() {
         ];
         for (what, tape) in tapes {
             let tape = tape.unwrap();
-            let native = compile(tape);
             let what = format!("{name} {what}");
             for x in [
                 [0.4, 0.0, 0.0],
@@ -112,7 +123,9 @@ fn reference_potentials_gradient_and_hessian_match_interpreter() {
                 [1.0e-3, 3.0, 0.0],
                 [1.0e-300, -1.0e300, 0.0],
             ] {
-                assert_same(&native, tape, &x[..tape.input_len()], &what);
+                // Inputs `[q, t]` (the tape may read fewer: Kepler's none of `t`).
+                let x = &x[..form.dof() + 1];
+                assert_same(&compile_both(tape, x.len()), tape, x, &what);
             }
         }
     }
@@ -161,7 +174,7 @@ fn every_function_matches_interpreter_at_special_inputs() {
     for text in EVERY_FUNCTION {
         let tape = Program::compile(text, &symbols).unwrap().tape();
         for tape in [&tape, tape.plain()] {
-            let native = compile(tape);
+            let native = compile_both(tape, 2);
             for x in SPECIAL {
                 for y in SPECIAL {
                     assert_same(&native, tape, &[x, y], text);
@@ -182,7 +195,7 @@ fn each_unary_function_matches_interpreter() {
     for f in functions {
         let text = format!("{f}(x)");
         let tape = Program::compile(&text, &symbols).unwrap().tape();
-        let native = compile(&tape);
+        let native = compile_both(&tape, 2);
         for k in -400..=400 {
             let x = f64::from(k) * 0.0173;
             assert_same(&native, &tape, &[x, 0.0], &text);
@@ -191,6 +204,25 @@ fn each_unary_function_matches_interpreter() {
             assert_same(&native, &tape, &[x, 0.0], &text);
         }
     }
+}
+
+/// A potential's tape reads `[q, t]` only up to its last slot used: Kepler's `∇V` reads `x, y`
+/// and not `t`, so the split form must not take `t` for `y` (and more inputs than the split
+/// allows are refused).
+#[test]
+fn split_inputs_follow_the_slots_not_the_tape_length() {
+    let (_, kepler) = &reference_forms()[0];
+    let gradient = kepler.gradient().unwrap();
+    assert_eq!(gradient.input_len(), 2);
+    let native = CompiledTape::compile_split(gradient, 2).unwrap();
+    let (mut expected, mut got) = (vec![0.0_f64; 2], [0.0; 2]);
+    gradient.eval_into(&[0.6, 0.8], &mut Vec::new(), &mut expected);
+    native.eval_split(&[0.6, 0.8], 123.0, &mut got);
+    assert_eq!(
+        got.map(f64::to_bits),
+        [expected[0].to_bits(), expected[1].to_bits()]
+    );
+    assert!(CompiledTape::compile_split(gradient, 0).is_err());
 }
 
 #[test]
@@ -213,8 +245,7 @@ fn tapes_without_instructions() {
     let symbols = xy_symbols();
     for text in ["y", "x", "a"] {
         let tape = Program::compile(text, &symbols).unwrap().tape();
-        let native = compile(&tape);
-        assert_same(&native, &tape, &[1.25, -0.5], text);
+        assert_same(&compile_both(&tape, 2), &tape, &[1.25, -0.5], text);
     }
 }
 
@@ -233,7 +264,7 @@ fn many_outputs_chain() {
     let hessian = form.hessian().unwrap();
     assert_eq!((gradient.len(), hessian.len()), (n, 2 * n - 1));
     for tape in [gradient, hessian] {
-        let native = compile(tape);
+        let native = compile_both(tape, n + 1);
         let x: Vec<f64> = (0..=n).map(|i| (i as f64 * 0.37).sin()).collect();
         assert_same(&native, tape, &x, "chain");
     }
@@ -252,9 +283,9 @@ fn reference_potentials_at_random_inputs() {
     };
     for (name, form) in reference_forms() {
         for tape in [form.gradient().unwrap(), form.hessian().unwrap()] {
-            let native = compile(tape);
+            let native = compile_both(tape, form.dof() + 1);
             for _ in 0..2000 {
-                let x: Vec<f64> = (0..tape.input_len()).map(|_| next()).collect();
+                let x: Vec<f64> = (0..=form.dof()).map(|_| next()).collect();
                 assert_same(&native, tape, &x, name);
             }
         }
@@ -311,13 +342,13 @@ proptest! {
         // Constant parts that fold to a non-finite value are a compile error: skipped.
         prop_assume!(program.is_ok());
         let tape = program.unwrap().tape();
-        assert_same(&compile(&tape), &tape, &[x, y], &text);
+        assert_same(&compile_both(&tape, 2), &tape, &[x, y], &text);
 
         let lagrangian = format!("0.5*(x_dot^2 + y_dot^2) - ({text})");
         let potential = Program::compile(&lagrangian, &symbols(&["x", "y"], &[("a", 0.7), ("b", -1.3)]));
         if let Some(form) = potential.ok().and_then(|p| p.separable(2)) {
             for tape in [form.gradient(), form.hessian()].into_iter().flatten() {
-                assert_same(&compile(tape), tape, &[x, y, 0.25], &text);
+                assert_same(&compile_both(tape, 3), tape, &[x, y, 0.25], &text);
             }
         }
     }

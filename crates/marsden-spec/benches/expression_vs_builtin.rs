@@ -110,7 +110,14 @@ mod expression_vs_builtin {
 
     #[divan::bench]
     fn kepler_trapezoid_expression_interpreted(b: Bencher) {
-        advance(b, kepler_text().interpreted(), Trapezoid, KEPLER, 0.01, 1000);
+        advance(
+            b,
+            kepler_text().interpreted(),
+            Trapezoid,
+            KEPLER,
+            0.01,
+            1000,
+        );
     }
 
     #[divan::bench]

@@ -65,14 +65,16 @@ struct NativeTapes {
     hessian: OnceLock<Option<marsden_jit::CompiledTape>>,
 }
 
-/// The native code of `tape` in `cell`, compiled now if this is its first use.
+/// The native code of `tape` (over `[q, t]`, `q` of length `dof`) in `cell`, compiled now if
+/// this is its first use.
 #[cfg(feature = "jit")]
 #[inline]
 fn native<'a>(
     cell: &'a OnceLock<Option<marsden_jit::CompiledTape>>,
     tape: &marsden_expr::Tape,
+    dof: usize,
 ) -> Option<&'a marsden_jit::CompiledTape> {
-    cell.get_or_init(|| marsden_jit::CompiledTape::compile(tape).ok())
+    cell.get_or_init(|| marsden_jit::CompiledTape::compile_split(tape, dof).ok())
         .as_ref()
 }
 
@@ -125,7 +127,7 @@ impl ExprLagrangian {
     #[inline]
     fn native_gradient(&self) -> Option<&marsden_jit::CompiledTape> {
         let tape = self.separable.as_deref()?.gradient()?;
-        native(&self.native.as_deref()?.gradient, tape)
+        native(&self.native.as_deref()?.gradient, tape, self.dof)
     }
 
     #[cfg(not(feature = "jit"))]
@@ -139,7 +141,7 @@ impl ExprLagrangian {
     #[inline]
     fn native_hessian(&self) -> Option<&marsden_jit::CompiledTape> {
         let tape = self.separable.as_deref()?.hessian()?;
-        native(&self.native.as_deref()?.hessian, tape)
+        native(&self.native.as_deref()?.hessian, tape, self.dof)
     }
 
     #[cfg(not(feature = "jit"))]
