@@ -191,7 +191,7 @@ impl Unary {
         self.function().name()
     }
 
-    fn function(self) -> Function {
+    pub(crate) fn function(self) -> Function {
         match self {
             Unary::Sin => Function::Sin,
             Unary::Cos => Function::Cos,

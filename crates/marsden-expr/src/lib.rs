@@ -119,4 +119,9 @@ pub use separable::SeparableForm;
 pub use set::ProgramSet;
 pub use suggest::closest;
 pub use symbols::{Symbol, Symbols, is_identifier};
-pub use tape::Tape;
+pub use tape::{Tape, TapeOp};
+
+/// The `f64` functions a [`Tape`]'s interpreter calls, for code generators that must match it.
+pub mod tape_f64 {
+    pub use crate::tape::{atan2_f64, call_f64, powd_f64, powf_f64, powi_f64};
+}

@@ -15,12 +15,14 @@
 
 mod build;
 mod lower;
+mod view;
 
 use marsden::Scalar;
 
 use crate::functions::{Unary, atan2, powd, powf};
 
 pub(crate) use build::TapeBuilder;
+pub use view::{TapeOp, atan2_f64, call_f64, powd_f64, powf_f64, powi_f64};
 
 /// One instruction; operands are register indices (all smaller than the instruction's own).
 #[derive(Debug, Clone, Copy, PartialEq)]

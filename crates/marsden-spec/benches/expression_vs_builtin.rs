@@ -3,10 +3,12 @@
 //!
 //! `cargo bench -p marsden-spec --bench expression_vs_builtin`. Rows, each `builtin` and
 //! `expression` (ratios in BENCHMARKS.md):
-//! * `kepler_trapezoid`: 1000 explicit steps, e = 0.6, h = 0.01;
+//! * `kepler_trapezoid`: 1000 explicit steps, e = 0.6, h = 0.01 (`expression`: ∇V by native
+//!   code with the default `jit` feature; `expression_interpreted`: by the tape interpreter);
 //! * `pendulum_midpoint`: 100 midpoint steps, q₀ = 1.5, h = 0.05;
 //! * `double_pendulum_midpoint`: 100 midpoint steps, q₀ = (1.5, 2), h = 0.01;
-//! * `kepler_gradient`: `∇V` by the symbolic tape, by AD of the expression, and in Rust;
+//! * `kepler_gradient`: `∇V` by the symbolic tape (compiled, and interpreted), by AD of the
+//!   expression, and in Rust;
 //! * `kepler_value`: `L` by the accumulator interpreter and by the register tape.
 
 use divan::{Bencher, black_box};
@@ -107,6 +109,18 @@ mod expression_vs_builtin {
     }
 
     #[divan::bench]
+    fn kepler_trapezoid_expression_interpreted(b: Bencher) {
+        advance(
+            b,
+            kepler_text().interpreted(),
+            Trapezoid,
+            KEPLER,
+            0.01,
+            1000,
+        );
+    }
+
+    #[divan::bench]
     fn pendulum_midpoint_builtin(b: Bencher) {
         advance(b, Pendulum::default(), Midpoint, PENDULUM, 0.05, 100);
     }
@@ -134,6 +148,11 @@ mod expression_vs_builtin {
     #[divan::bench]
     fn kepler_gradient_expression(b: Bencher) {
         gradient(b, kepler_text());
+    }
+
+    #[divan::bench]
+    fn kepler_gradient_expression_interpreted(b: Bencher) {
+        gradient(b, kepler_text().interpreted());
     }
 
     #[divan::bench]

@@ -1,0 +1,312 @@
+//! Translation of a [`Tape`] into Cranelift IR, one instruction at a time, and its compilation
+//! for the host.
+//!
+//! The function has the signature `(head: *const f64, last: f64, out: *mut f64)`: for a split
+//! at `h`, input register `i < h` is `head[i]` and register `h` is `last` (the time `t` of a
+//! potential's tape over `[q, t]`, so `q` needs no copy); output `k` is stored to `out[k]`. (A
+//! tape's inputs are the slots it reads, up to the last: `∇V` of Kepler reads `[x, y]` only.) Every
+//! instruction becomes the IEEE 754 operations it names, in its order; functions other than
+//! `√` are calls of the interpreter's own (`functions`).
+
+use std::collections::HashMap;
+
+use cranelift_codegen::ir::condcodes::FloatCC;
+use cranelift_codegen::ir::{AbiParam, FuncRef, InstBuilder, MemFlags, Type, Value, types};
+use cranelift_codegen::settings::{self, Configurable};
+use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
+use cranelift_jit::{JITBuilder, JITModule};
+use cranelift_module::{FuncId, Linkage, Module, default_libcall_names};
+use marsden_expr::{Function, Tape, TapeOp};
+
+use crate::functions;
+
+/// Why a tape was not compiled (the caller keeps the interpreter).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum JitError {
+    /// Cranelift has no back end for this machine.
+    #[error("no native code generator for this machine: {0}")]
+    UnsupportedHost(String),
+    /// Cranelift rejected the settings, the function or its linking.
+    #[error("native compilation failed: {0}")]
+    Codegen(String),
+    /// The tape reads more inputs than `head` and `last` hold.
+    #[error("the tape reads {inputs} inputs, more than {head} and one")]
+    Inputs {
+        /// Inputs the tape reads.
+        inputs: usize,
+        /// Length of the `head` slice.
+        head: usize,
+    },
+    /// The tape calls a two-argument function as a one-argument one.
+    #[error("the tape calls `{0}` with one argument")]
+    Arity(&'static str),
+}
+
+/// Maps any Cranelift error to [`JitError::Codegen`].
+fn codegen<E: std::fmt::Display>(e: E) -> JitError {
+    JitError::Codegen(e.to_string())
+}
+
+/// A module for the host, optimising for speed, that resolves the interpreter's functions.
+pub(crate) fn host_module() -> Result<JITModule, JitError> {
+    let mut flags = settings::builder();
+    for (name, value) in [
+        ("opt_level", "speed"),
+        ("use_colocated_libcalls", "false"),
+        ("is_pic", "false"),
+    ] {
+        flags.set(name, value).map_err(codegen)?;
+    }
+    let isa = cranelift_native::builder()
+        .map_err(|e| JitError::UnsupportedHost(e.to_string()))?
+        .finish(settings::Flags::new(flags))
+        .map_err(codegen)?;
+    let mut builder = JITBuilder::with_isa(isa, default_libcall_names());
+    for (name, address) in functions::symbols() {
+        builder.symbol(name, address);
+    }
+    Ok(JITModule::new(builder))
+}
+
+/// Defines the function computing `tape` in `module` (not yet finalized), inputs split at
+/// `head_len`.
+pub(crate) fn define(
+    module: &mut JITModule,
+    tape: &Tape,
+    head_len: usize,
+) -> Result<FuncId, JitError> {
+    if tape.input_len() > head_len + 1 {
+        return Err(JitError::Inputs {
+            inputs: tape.input_len(),
+            head: head_len,
+        });
+    }
+    let pointer = module.target_config().pointer_type();
+    let mut ctx = module.make_context();
+    ctx.func.signature.params.extend([
+        AbiParam::new(pointer),
+        AbiParam::new(types::F64),
+        AbiParam::new(pointer),
+    ]);
+    let id = module
+        .declare_function("marsden_tape", Linkage::Local, &ctx.func.signature)
+        .map_err(codegen)?;
+    let mut builder_ctx = FunctionBuilderContext::new();
+    {
+        let mut b = FunctionBuilder::new(&mut ctx.func, &mut builder_ctx);
+        let entry = b.create_block();
+        b.append_block_params_for_function_params(entry);
+        b.switch_to_block(entry);
+        b.seal_block(entry);
+        let params = b.block_params(entry).to_vec();
+        let mut t = Translator {
+            b,
+            module,
+            head: params[0],
+            last: params[1],
+            head_len,
+            inputs: vec![None; tape.input_len()],
+            regs: Vec::with_capacity(tape.op_count()),
+            calls: HashMap::new(),
+        };
+        for op in tape.instructions() {
+            let value = t.op(op)?;
+            t.regs.push(value);
+        }
+        for (k, &reg) in tape.outputs().iter().enumerate() {
+            let value = t.reg(reg);
+            let offset = i32::try_from(8 * k).map_err(codegen)?;
+            t.b.ins()
+                .store(MemFlags::trusted(), value, params[2], offset);
+        }
+        t.b.ins().return_(&[]);
+        t.b.finalize();
+    }
+    module.define_function(id, &mut ctx).map_err(codegen)?;
+    module.clear_context(&mut ctx);
+    Ok(id)
+}
+
+/// The state of one translation: the builder and the SSA value of each register so far.
+struct Translator<'a> {
+    b: FunctionBuilder<'a>,
+    module: &'a mut JITModule,
+    head: Value,
+    last: Value,
+    /// Input registers below this are read from `head`; the one equal to it is `last`.
+    head_len: usize,
+    /// Input registers, loaded at their first use.
+    inputs: Vec<Option<Value>>,
+    /// The value of instruction `k` (register `inputs + k`).
+    regs: Vec<Value>,
+    /// Functions imported so far, by symbol.
+    calls: HashMap<&'static str, FuncRef>,
+}
+
+impl Translator<'_> {
+    /// The value of register `r` (an input, loaded on first use, or an earlier instruction).
+    fn reg(&mut self, r: u32) -> Value {
+        let r = r as usize;
+        let n = self.inputs.len();
+        if r >= n {
+            return self.regs[r - n];
+        }
+        if let Some(v) = self.inputs[r] {
+            return v;
+        }
+        let v = if r == self.head_len {
+            self.last
+        } else {
+            // Fits: the tape's registers are indexed by `u32`.
+            let offset = (8 * r) as i32;
+            self.b
+                .ins()
+                .load(types::F64, MemFlags::trusted(), self.head, offset)
+        };
+        self.inputs[r] = Some(v);
+        v
+    }
+
+    fn constant(&mut self, c: f64) -> Value {
+        self.b.ins().f64const(c)
+    }
+
+    /// The IR of one instruction.
+    fn op(&mut self, op: TapeOp) -> Result<Value, JitError> {
+        Ok(match op {
+            TapeOp::Load(c) => self.constant(c),
+            TapeOp::Neg(a) => {
+                let a = self.reg(a);
+                self.b.ins().fneg(a)
+            }
+            TapeOp::Add(a, b) => self.binary(a, b, |b, x, y| b.ins().fadd(x, y)),
+            TapeOp::Sub(a, b) => self.binary(a, b, |b, x, y| b.ins().fsub(x, y)),
+            TapeOp::Mul(a, b) => self.binary(a, b, |b, x, y| b.ins().fmul(x, y)),
+            TapeOp::Div(a, b) => self.binary(a, b, |b, x, y| b.ins().fdiv(x, y)),
+            TapeOp::AddC(a, c) => self.with_constant(a, c, |b, x, k| b.ins().fadd(x, k)),
+            TapeOp::SubC(a, c) => self.with_constant(a, c, |b, x, k| b.ins().fsub(x, k)),
+            TapeOp::CSub(c, a) => self.with_constant(a, c, |b, x, k| b.ins().fsub(k, x)),
+            TapeOp::MulC(a, c) => self.with_constant(a, c, |b, x, k| b.ins().fmul(x, k)),
+            TapeOp::DivC(a, c) => self.with_constant(a, c, |b, x, k| b.ins().fdiv(x, k)),
+            TapeOp::CDiv(c, a) => self.with_constant(a, c, |b, x, k| b.ins().fdiv(k, x)),
+            TapeOp::Square(a) => self.binary(a, a, |b, x, y| b.ins().fmul(x, y)),
+            TapeOp::Call(f, a) => self.call(f, a)?,
+            TapeOp::Powi(a, n) => {
+                let x = self.reg(a);
+                let n = self.b.ins().iconst(types::I32, i64::from(n));
+                let sig = [types::F64, types::I32];
+                self.import(functions::POWI.0, &sig, &[x, n])?
+            }
+            TapeOp::Powf(a, e) => {
+                let x = self.reg(a);
+                let e = self.constant(e);
+                self.import(functions::POWF.0, &[types::F64; 2], &[x, e])?
+            }
+            TapeOp::Powd(a, b) => {
+                let (x, y) = (self.reg(a), self.reg(b));
+                self.import(functions::POWD.0, &[types::F64; 2], &[x, y])?
+            }
+            TapeOp::Atan2(a, b) => {
+                let (y, x) = (self.reg(a), self.reg(b));
+                self.import(functions::ATAN2.0, &[types::F64; 2], &[y, x])?
+            }
+            TapeOp::MulAdd(a, b, c) => {
+                let p = self.binary(a, b, |b, x, y| b.ins().fmul(x, y));
+                let c = self.reg(c);
+                self.b.ins().fadd(p, c)
+            }
+            TapeOp::SumSquares(a, b) => {
+                let p = self.binary(a, a, |b, x, y| b.ins().fmul(x, y));
+                let q = self.binary(b, b, |b, x, y| b.ins().fmul(x, y));
+                self.b.ins().fadd(p, q)
+            }
+            TapeOp::MulSub(a, b, c) => {
+                let p = self.binary(a, b, |b, x, y| b.ins().fmul(x, y));
+                let c = self.reg(c);
+                self.b.ins().fsub(p, c)
+            }
+            TapeOp::SubMul(c, a, b) => {
+                let p = self.binary(a, b, |b, x, y| b.ins().fmul(x, y));
+                let c = self.reg(c);
+                self.b.ins().fsub(c, p)
+            }
+            TapeOp::Mul3(a, b, c) => {
+                let p = self.binary(a, b, |b, x, y| b.ins().fmul(x, y));
+                let c = self.reg(c);
+                self.b.ins().fmul(p, c)
+            }
+            TapeOp::MulDiv(a, b, c) => {
+                let p = self.binary(a, b, |b, x, y| b.ins().fmul(x, y));
+                let c = self.reg(c);
+                self.b.ins().fdiv(p, c)
+            }
+        })
+    }
+
+    fn binary(
+        &mut self,
+        a: u32,
+        b: u32,
+        f: impl FnOnce(&mut FunctionBuilder<'_>, Value, Value) -> Value,
+    ) -> Value {
+        let (x, y) = (self.reg(a), self.reg(b));
+        f(&mut self.b, x, y)
+    }
+
+    fn with_constant(
+        &mut self,
+        a: u32,
+        c: f64,
+        f: impl FnOnce(&mut FunctionBuilder<'_>, Value, Value) -> Value,
+    ) -> Value {
+        let x = self.reg(a);
+        let k = self.constant(c);
+        f(&mut self.b, x, k)
+    }
+
+    /// A one-argument function: `√` as the (correctly rounded) instruction, `|x|` as the
+    /// interpreter's `x < 0 ? −x : x` (which keeps the sign of `−0` and of `NaN`), the others
+    /// as calls.
+    fn call(&mut self, f: Function, a: u32) -> Result<Value, JitError> {
+        let x = self.reg(a);
+        match f {
+            Function::Sqrt => Ok(self.b.ins().sqrt(x)),
+            Function::Abs => {
+                let zero = self.constant(0.0);
+                let negative = self.b.ins().fcmp(FloatCC::LessThan, x, zero);
+                let minus = self.b.ins().fneg(x);
+                Ok(self.b.ins().select(negative, minus, x))
+            }
+            _ => {
+                let (name, _) = functions::unary(f).ok_or(JitError::Arity(f.name()))?;
+                self.import(name, &[types::F64], &[x])
+            }
+        }
+    }
+
+    /// A call of the imported function `name` (parameters `params`, one `f64` result).
+    fn import(
+        &mut self,
+        name: &'static str,
+        params: &[Type],
+        args: &[Value],
+    ) -> Result<Value, JitError> {
+        let func = match self.calls.get(name) {
+            Some(&f) => f,
+            None => {
+                let mut sig = self.module.make_signature();
+                sig.params.extend(params.iter().map(|&t| AbiParam::new(t)));
+                sig.returns.push(AbiParam::new(types::F64));
+                let id = self
+                    .module
+                    .declare_function(name, Linkage::Import, &sig)
+                    .map_err(codegen)?;
+                let f = self.module.declare_func_in_func(id, self.b.func);
+                self.calls.insert(name, f);
+                f
+            }
+        };
+        let call = self.b.ins().call(func, args);
+        Ok(self.b.inst_results(call)[0])
+    }
+}

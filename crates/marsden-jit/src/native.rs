@@ -1,0 +1,163 @@
+//! [`CompiledTape`]: a tape as native code, and the only `unsafe` code of marsden — the call
+//! of that code ([`CompiledTape::call`]) and the release of its memory (`Drop`).
+
+use std::fmt;
+use std::sync::Mutex;
+
+use cranelift_jit::JITModule;
+use marsden_expr::Tape;
+
+use crate::compile::{self, JitError};
+
+/// The compiled function: `(head, last, out)` (see `compile`).
+type Entry = unsafe extern "C" fn(*const f64, f64, *mut f64);
+
+/// A [`Tape`] compiled to native code: the same outputs, bit for bit, as
+/// [`Tape::eval_into`] at `f64`.
+pub struct CompiledTape {
+    /// The address of the function (an [`Entry`]), valid while `module` is.
+    address: usize,
+    /// The owner of the code's memory; only ever touched again to free it. (In a mutex to be
+    /// `Sync`: a `JITModule` is `Send` but not `Sync`.)
+    module: Mutex<Option<JITModule>>,
+    inputs: usize,
+    outputs: usize,
+    /// Where the inputs are split: registers below are read from `head`, this one is `last`.
+    split: usize,
+}
+
+impl CompiledTape {
+    /// Compiles `tape` for this machine, to be called with all its inputs in one slice
+    /// ([`CompiledTape::eval`]).
+    ///
+    /// # Errors
+    ///
+    /// [`JitError`] if the machine has no Cranelift back end or compilation fails.
+    pub fn compile(tape: &Tape) -> Result<Self, JitError> {
+        Self::compile_split(tape, tape.input_len())
+    }
+
+    /// Compiles `tape` for this machine, to be called with its inputs as `[head, last]` where
+    /// `head` has `head_len` values ([`CompiledTape::eval_split`]; the `[q, t]` of a potential
+    /// without copying `q`).
+    ///
+    /// # Errors
+    ///
+    /// [`JitError::Inputs`] if the tape reads more than `head_len + 1` inputs; otherwise as
+    /// [`CompiledTape::compile`].
+    pub fn compile_split(tape: &Tape, head_len: usize) -> Result<Self, JitError> {
+        let mut module = compile::host_module()?;
+        let id = compile::define(&mut module, tape, head_len)?;
+        module
+            .finalize_definitions()
+            .map_err(|e| JitError::Codegen(e.to_string()))?;
+        let address = module.get_finalized_function(id) as usize;
+        Ok(Self {
+            address,
+            module: Mutex::new(Some(module)),
+            inputs: tape.input_len(),
+            outputs: tape.len(),
+            split: head_len,
+        })
+    }
+
+    /// Number of inputs (the tape's [`Tape::input_len`]).
+    pub fn input_len(&self) -> usize {
+        self.inputs
+    }
+
+    /// Number of outputs (the tape's [`Tape::len`]).
+    pub fn len(&self) -> usize {
+        self.outputs
+    }
+
+    /// Whether the tape has no outputs.
+    pub fn is_empty(&self) -> bool {
+        self.outputs == 0
+    }
+
+    /// Evaluates every output at `inputs` into `out`.
+    ///
+    /// # Panics
+    ///
+    /// If `inputs` is shorter than [`CompiledTape::input_len`] or `out` than
+    /// [`CompiledTape::len`].
+    #[inline]
+    pub fn eval(&self, inputs: &[f64], out: &mut [f64]) {
+        assert!(
+            inputs.len() >= self.inputs,
+            "a tape needs {} inputs",
+            self.inputs
+        );
+        let last = inputs.get(self.split).copied().unwrap_or(0.0);
+        self.eval_split(inputs, last, out);
+    }
+
+    /// Evaluates every output at the inputs `[head, last]` split where it was compiled
+    /// ([`CompiledTape::compile_split`]; `head` may be longer).
+    ///
+    /// # Panics
+    ///
+    /// If `head` has fewer values than the tape reads from it or `out` is shorter than
+    /// [`CompiledTape::len`].
+    #[inline]
+    pub fn eval_split(&self, head: &[f64], last: f64, out: &mut [f64]) {
+        assert!(
+            head.len() >= self.head_reads() && out.len() >= self.outputs,
+            "a tape needs {} inputs before the last and room for {} outputs",
+            self.head_reads(),
+            self.outputs
+        );
+        self.call(head, last, out);
+    }
+
+    /// How many values the code reads from `head`.
+    fn head_reads(&self) -> usize {
+        self.inputs.min(self.split)
+    }
+
+    /// Runs the compiled code.
+    ///
+    /// Safety argument: `address` is the entry of a function that `compile::define` built with
+    /// the signature of [`Entry`] in the host's default calling convention (the C one) and
+    /// that `module` still owns (it is freed only on drop, which `&self` excludes). The code
+    /// reads `head[i]` for `i < head_reads()` (`compile::define`: input registers below both
+    /// the tape's inputs and the split) and writes `out[k]` for `k < outputs`, nothing else; both slices are that long (checked by the only caller, `eval_split`), and `out`
+    /// is borrowed mutably, so the writes alias nothing. It calls only the safe functions of
+    /// `functions`.
+    #[allow(unsafe_code)]
+    #[inline]
+    fn call(&self, head: &[f64], last: f64, out: &mut [f64]) {
+        debug_assert!(head.len() >= self.head_reads() && out.len() >= self.outputs);
+        // SAFETY: see above.
+        unsafe {
+            let entry = std::mem::transmute::<usize, Entry>(self.address);
+            entry(head.as_ptr(), last, out.as_mut_ptr());
+        }
+    }
+}
+
+impl Drop for CompiledTape {
+    /// Frees the code's memory. Safety argument: nothing calls the code any more (`call`
+    /// borrows `self`) and the address is dropped with `self`.
+    #[allow(unsafe_code)]
+    fn drop(&mut self) {
+        let module = match self.module.get_mut() {
+            Ok(module) => module.take(),
+            Err(poisoned) => poisoned.into_inner().take(),
+        };
+        if let Some(module) = module {
+            // SAFETY: see above.
+            unsafe { module.free_memory() };
+        }
+    }
+}
+
+impl fmt::Debug for CompiledTape {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("CompiledTape")
+            .field("inputs", &self.inputs)
+            .field("outputs", &self.outputs)
+            .finish_non_exhaustive()
+    }
+}
