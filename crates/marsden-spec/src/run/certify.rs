@@ -10,7 +10,7 @@
 //! unforced system ([MW01] §1.3.2). A forced map is not symplectic: its defect is reported
 //! all the same, marked "not expected symplectic (forced)". A constrained step (SHAKE + RATTLE)
 //! is symplectic on `T*N` only: its defect is measured on a basis of the tangent space of
-//! `T*N` ([`super::certify_constrained`]) and named so (`restricted_to`). The certified steps
+//! `T*N` ([`marsden::sensitivity::cotangent`]) and named so (`restricted_to`). The certified steps
 //! take the general Newton path (the fast paths compute the same map and leave no control
 //! points).
 //!
@@ -37,8 +37,8 @@ use marsden::{
 };
 use serde::Serialize;
 
-use super::certify_constrained::step_defect_on_cotangent_bundle;
 use crate::problem::Method;
+use marsden::sensitivity::cotangent::step_defect_on_cotangent_bundle;
 
 /// `certificate { … }` of `summary.json`.
 #[derive(Debug, Clone, PartialEq, Serialize)]

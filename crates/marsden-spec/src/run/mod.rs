@@ -10,7 +10,7 @@
 //! | generic runner | [`solve`] | `Problem` from any `Lagrangian`, `Force`, `Constraint`; the method's rule |
 //! | forced runs | [`balance`] | the discrete energy balance of every step (R12) |
 //! | forced runs | [`noether_balance`] | the forced Noether balance of every symmetry (MW01 §3.2) |
-//! | on request | [`certify`], [`certify_constrained`] | symplecticity defect of the step map (on `T*N` when constrained), equivariance defect of `L_d` |
+//! | on request | [`certify`] | symplecticity defect of the step map (on `T*N` when constrained), equivariance defect of `L_d` |
 //! | per sample | [`observer`] | one row `t, q, p, energy, J…, residual`, [`diagnostics`] |
 //! | where rows go | [`output`], [`samples`] | columns and writers of the files; in-memory [`Samples`] |
 //! | afterwards | [`summary`], [`plots`] | `summary.json`; the PNG plots (also `marsden plot`) |
@@ -25,7 +25,6 @@
 
 pub mod balance;
 pub mod certify;
-pub mod certify_constrained;
 pub mod controls;
 pub mod diagnostics;
 pub mod discrete;

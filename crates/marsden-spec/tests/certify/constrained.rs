@@ -4,9 +4,9 @@
 
 use marsden::holonomic::Rattle;
 use marsden::sensitivity::SensitiveStep as _;
+use marsden::sensitivity::cotangent::{cotangent_basis, omega, restricted_defect};
 use marsden::systems::SphericalPendulum;
 use marsden::{Initial, Integrator, Midpoint, NewtonOptions, Rule as _, State};
-use marsden_spec::run::certify_constrained::{cotangent_basis, omega, restricted_defect};
 
 use super::{number, summary_json};
 

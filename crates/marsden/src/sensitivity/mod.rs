@@ -24,12 +24,15 @@
 //! - [`parametric`]: named parameters of the Lagrangian and the forces, held as coordinates
 //!   that do not move ([`ParametricIntegrator`]); [`parametric_constrained`]: also of the
 //!   constraints, with SHAKE + RATTLE ([`ConstrainedParametricIntegrator`]).
+//! - [`cotangent`]: the symplecticity certificate of a constrained step, on `T*N` (a basis of
+//!   its tangent space pushed through the step Jacobian).
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 pub mod adjoint;
 pub mod checkpoints;
 pub mod constrained;
+pub mod cotangent;
 pub mod options;
 pub mod parametric;
 pub mod parametric_constrained;

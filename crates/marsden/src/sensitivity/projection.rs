@@ -31,9 +31,9 @@ use crate::numerics::scratch::{NODE, with_buffer};
 use crate::scalar::Scalar;
 
 /// `(q, v) ↦ L(t, q, v)`.
-struct AtTime<'a, L> {
-    lagrangian: &'a L,
-    t: f64,
+pub(super) struct AtTime<'a, L> {
+    pub(super) lagrangian: &'a L,
+    pub(super) t: f64,
 }
 
 impl<L: Lagrangian> MultiFunction for AtTime<'_, L> {
@@ -50,10 +50,10 @@ impl<L: Lagrangian> MultiFunction for AtTime<'_, L> {
 }
 
 /// `q ↦ φ_c(q)` as the first output.
-struct Component<'a, C> {
-    constraint: &'a C,
-    c: usize,
-    n: usize,
+pub(super) struct Component<'a, C> {
+    pub(super) constraint: &'a C,
+    pub(super) c: usize,
+    pub(super) n: usize,
 }
 
 impl<C: Constraint> MultiFunction for Component<'_, C> {

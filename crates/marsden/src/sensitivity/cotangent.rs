@@ -9,7 +9,7 @@
 //!
 //! and it is symplectic there: it preserves the canonical 2-form `ω` restricted to `T*N`
 //! ([MW01] §3.5, [LR04] §7.3), not on all of `T*Q` — the core's step Jacobian
-//! ([`marsden::sensitivity::SensitiveStep`]) is the derivative of an extension of the map off
+//! ([`SensitiveStep`]) is the derivative of an extension of the map off
 //! `T*N` whose normal components mean nothing. So the certificate takes a basis `u₁ … u_k`
 //! (`k = 2n − 2d`) of the tangent space of `T*N` at the step's start, pushes it through the
 //! step Jacobian `DF`, and reports
@@ -35,49 +35,11 @@
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LR04]: Leimkuhler, Reich, *Simulating
 //! Hamiltonian Dynamics* (2004).
 
-use marsden::numerics::ad::{self, HessianParts, MultiFunction};
-use marsden::sensitivity::SensitiveStep;
-use marsden::{Constraint, Lagrangian, Scalar, State};
-
-/// `(q, v) ↦ L(t, q, v)`.
-struct AtTime<'a, L> {
-    lagrangian: &'a L,
-    t: f64,
-}
-
-impl<L: Lagrangian> MultiFunction for AtTime<'_, L> {
-    fn inputs(&self) -> usize {
-        2 * self.lagrangian.dof()
-    }
-    fn outputs(&self) -> usize {
-        1
-    }
-    fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
-        let (q, v) = x.split_at(x.len() / 2);
-        out[0] = self.lagrangian.lagrangian(S::from(self.t), q, v);
-    }
-}
-
-/// `q ↦ φ_c(q)`.
-struct Component<'a, C> {
-    constraint: &'a C,
-    c: usize,
-    n: usize,
-}
-
-impl<C: Constraint> MultiFunction for Component<'_, C> {
-    fn inputs(&self) -> usize {
-        self.n
-    }
-    fn outputs(&self) -> usize {
-        1
-    }
-    fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
-        let mut phi = vec![S::from(0.0); self.constraint.count()];
-        self.constraint.constraint(x, &mut phi);
-        out[0] = phi[self.c];
-    }
-}
+use super::SensitiveStep;
+use super::projection::{AtTime, Component};
+use crate::error::Error;
+use crate::mechanics::{Constraint, Lagrangian, State};
+use crate::numerics::ad::{self, HessianParts};
 
 /// An orthonormal basis (in the velocity chart, see the module documentation) of the tangent
 /// space of `T*N` at `(t, q, p)` with `p = ∂L/∂v(t, q, v)`, as vectors `(δq, δp)` of length
@@ -202,7 +164,7 @@ pub fn step_defect_on_cotangent_bundle<S: SensitiveStep, L: Lagrangian, C: Const
     model: (&L, &C),
     (state, v): (&State, &[f64]),
     h: f64,
-) -> Result<(f64, f64), marsden::Error> {
+) -> Result<(f64, f64), Error> {
     let n = stepper.dof();
     let basis = cotangent_basis(model, state.t, (&state.q, v));
     let mut jac = vec![0.0; 4 * n * n];
