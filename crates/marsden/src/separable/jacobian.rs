@@ -25,10 +25,12 @@
 //! one Hessian of `V` per node (banded for local potentials, [`crate::numerics::banded`]) and one
 //! `n × n` factorisation, where the general Jacobian
 //! ([`crate::analysis::certificate::variational`]) takes a full hyper-dual Hessian of the
-//! discrete action. Tests compare the two to round-off.
+//! discrete action. Tests compare the two to round-off. Up to four degrees of freedom the same
+//! arithmetic runs on stack arrays (`jacobian_small`, the same bits).
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
+use super::jacobian_small::{StepData, step_jacobian_small};
 use super::step::{Mass, node};
 use crate::mechanics::{Lagrangian, MassMatrix, Structure};
 use crate::numerics::banded::{BandLu, Banded};
@@ -54,9 +56,9 @@ pub trait SeparableJacobian {
 #[derive(Debug, Clone, Default)]
 pub struct JacobianWorkspace {
     /// `None`: not asked yet; `Some(None)`: not separable.
-    mass: Option<Option<Mass>>,
+    pub(super) mass: Option<Option<Mass>>,
     /// `∇²V` at one node.
-    hess: Banded,
+    pub(super) hess: Banded,
     a: Banded,
     b: Banded,
     c: Banded,
@@ -85,7 +87,7 @@ impl JacobianWorkspace {
 }
 
 /// `M_ij` of the constant mass.
-fn mass_entry(mass: &Mass, n: usize, i: usize, j: usize) -> f64 {
+pub(super) fn mass_entry(mass: &Mass, n: usize, i: usize, j: usize) -> f64 {
     match mass {
         Mass::Diagonal(d) if i == j => d[i],
         Mass::Diagonal(_) => 0.0,
@@ -94,21 +96,57 @@ fn mass_entry(mass: &Mass, n: usize, i: usize, j: usize) -> f64 {
 }
 
 /// The step Jacobian of the module documentation for the rule with `nodes` `(c_i, w_i)`; `None`
-/// if `l` is not separable, `Some(Err(pivot))` if `A` is singular.
+/// if `l` is not separable, `Some(Err(pivot))` if `A` is singular. Systems of up to four degrees
+/// of freedom take the same arithmetic on stack arrays ([`super::jacobian_small`]).
 pub(crate) fn step_jacobian<L: Lagrangian>(
     l: &L,
     nodes: &[(f64, f64)],
-    (t0, h): (f64, f64),
-    (q0, delta): (&[f64], &[f64]),
+    grid: (f64, f64),
+    start: (&[f64], &[f64]),
     jac: &mut [f64],
     ws: &mut JacobianWorkspace,
 ) -> Option<Result<(), f64>> {
-    let n = q0.len();
+    let data = step_data(l, nodes, grid, start, ws)?;
+    if let Some(Some(mass)) = &ws.mass
+        && let Some(small) = step_jacobian_small(&data, mass, &mut ws.hess, jac)
+    {
+        return Some(small);
+    }
+    Some(banded(&data, jac, ws))
+}
+
+/// The step's data with the half-bandwidth of `∇²V` (that of the potential for a diagonal
+/// mass, else full); `None` if `l` is not separable.
+pub(super) fn step_data<'a, L: Lagrangian>(
+    l: &'a L,
+    nodes: &'a [(f64, f64)],
+    grid: (f64, f64),
+    start: (&'a [f64], &'a [f64]),
+    ws: &mut JacobianWorkspace,
+) -> Option<StepData<'a, L>> {
     let diagonal = matches!(ws.mass_of(l)?, Mass::Diagonal(_));
     let bandwidth = match l.potential_bandwidth() {
         Some(b) if diagonal => b,
-        _ => n.saturating_sub(1),
+        _ => start.0.len().saturating_sub(1),
     };
+    Some(StepData {
+        l,
+        nodes,
+        grid,
+        start,
+        bandwidth,
+    })
+}
+
+/// The step Jacobian in band storage, any `n`; `Err(pivot)` if `A` is singular.
+pub(super) fn banded<L: Lagrangian>(
+    data: &StepData<'_, L>,
+    jac: &mut [f64],
+    ws: &mut JacobianWorkspace,
+) -> Result<(), f64> {
+    let (l, nodes, bandwidth) = (data.l, data.nodes, data.bandwidth);
+    let ((t0, h), (q0, delta)) = (data.grid, data.start);
+    let n = q0.len();
     for m in [&mut ws.a, &mut ws.b, &mut ws.c, &mut ws.k] {
         m.reshape(n, bandwidth);
     }
@@ -137,11 +175,9 @@ pub(crate) fn step_jacobian<L: Lagrangian>(
             }
         }
     }
-    if let Err(e) = ws.lu.factor(&ws.a) {
-        return Some(Err(e.pivot));
-    }
+    ws.lu.factor(&ws.a).map_err(|e| e.pivot)?;
     write_jacobian(n, jac, ws);
-    Some(Ok(()))
+    Ok(())
 }
 
 /// `Y = A⁻¹[−B | I]`, then `[[I | 0] + Y; K Y − [C | 0]]` into `jac` (row-major `2n × 2n`).

@@ -8,6 +8,7 @@
 //! | [`alpha`] | the α rules: Newton for the offset alone, Jacobian `M/h + hα(1−α)∇²V`, reused while it contracts; band storage for chains |
 //! | [`jacobian`] | the step Jacobian of the α and symmetrised α rules from `M` and `∇²V` (implicit function theorem, one `n × n` solve) |
 //! | `alpha_small` | the same on stack arrays for `n ≤ 4` and a diagonal mass |
+//! | `jacobian_small` | the step Jacobian on stack arrays for `n ≤ 4`, bit for bit the band one |
 //! | `step` | what a rule offers ([`SeparableStep`]), one step's data ([`Frame`]), the buffers ([`SeparableWorkspace`]) |
 //!
 //! The integrator takes these paths only for unforced, unconstrained two-point steps, and
@@ -18,6 +19,7 @@ pub mod alpha;
 mod alpha_small;
 pub mod explicit;
 pub mod jacobian;
+mod jacobian_small;
 mod step;
 
 pub use explicit::{ExplicitRun, ExplicitStep, ExplicitWorkspace};
