@@ -8,7 +8,7 @@
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 /// A point of phase space `(t, q, p)`.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct State {
     /// Time.
     pub t: f64,
@@ -16,6 +16,24 @@ pub struct State {
     pub q: Vec<f64>,
     /// Momenta (length n).
     pub p: Vec<f64>,
+}
+
+/// `clone_from` copies into the vectors already held (no allocation when the lengths agree),
+/// so a loop that keeps states can reuse them.
+impl Clone for State {
+    fn clone(&self) -> Self {
+        Self {
+            t: self.t,
+            q: self.q.clone(),
+            p: self.p.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.t = source.t;
+        self.q.clone_from(&source.q);
+        self.p.clone_from(&source.p);
+    }
 }
 
 /// Initial data, given as velocities or as momenta.
@@ -52,5 +70,29 @@ impl Initial {
             q: q.to_vec(),
             p: p.to_vec(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::State;
+
+    /// `clone_from` gives an equal state in the vectors the target already held.
+    #[test]
+    fn clone_from_reuses_the_vectors() {
+        let source = State {
+            t: 0.5,
+            q: vec![1.0, 2.0],
+            p: vec![3.0, 4.0],
+        };
+        let mut target = State {
+            t: 0.0,
+            q: vec![0.0; 2],
+            p: vec![0.0; 2],
+        };
+        let (q, p) = (target.q.as_ptr(), target.p.as_ptr());
+        target.clone_from(&source);
+        assert_eq!(target, source);
+        assert_eq!((target.q.as_ptr(), target.p.as_ptr()), (q, p));
     }
 }
