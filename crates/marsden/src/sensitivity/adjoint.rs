@@ -18,12 +18,14 @@
 //! [Sanz-Serna 2016]: J. M. Sanz-Serna, *Symplectic Runge–Kutta schemes for adjoint equations,
 //! automatic differentiation, optimal control and more*, SIAM Review 58 (2016).
 
+use std::ops::ControlFlow;
+
 use super::checkpoints::{Checkpoints, Segment};
 use super::options::{AdjointOptions, check_cotangent};
 use super::step::SensitiveStep;
 use crate::error::Error;
 use crate::mechanics::State;
-use crate::run::TimeGrid;
+use crate::run::{Termination, TimeGrid};
 
 /// The gradient of a loss over a run, and what the reverse sweep kept in memory.
 #[derive(Debug, Clone, PartialEq)]
@@ -32,27 +34,40 @@ pub struct Gradient {
     pub n: usize,
     /// The state the run reached.
     pub state: State,
-    /// `dΛ/d(q₀, p₀, θ)` (length `2n + P`).
+    /// `dΛ/d(q₀, p₀, θ)` (length `2n + P`); empty when the run was stopped.
     pub gradient: Vec<f64>,
     /// Checkpoints stored by the forward sweep.
     pub checkpoints: usize,
     /// Steps per recomputed segment (the states and Jacobians held at once).
     pub segment: usize,
+    /// [`Termination::Completed`], or [`Termination::Stopped`] when the watcher of
+    /// [`adjoint_watched`] asked to stop (no gradient then: it needs both sweeps whole; `state`
+    /// is the last one the forward sweep reached). A failed step is an error, not a
+    /// termination.
+    pub termination: Termination,
 }
 
 /// `λ ← DF_xᵀ λ`, `g ← g + DF_θᵀ λ` for one step Jacobian `[DF_x | DF_θ]` (2n × columns);
-/// `tmp` has length 2n.
-pub(super) fn pull_back(jac: &[f64], m: usize, lambda: &mut [f64], g: &mut [f64], tmp: &mut [f64]) {
+/// `sums` has length `columns`.
+///
+/// Each entry of `[DF_x | DF_θ]ᵀ λ = Σ_r λ_r row_r` is summed over the rows in order from
+/// `−0.0`, the start of `Iterator::sum` for `f64`, so the result is that of the column sums
+/// `Σ_r DF_{rc} λ_r` bit for bit, read row by row.
+pub(super) fn pull_back(
+    jac: &[f64],
+    m: usize,
+    lambda: &mut [f64],
+    g: &mut [f64],
+    sums: &mut [f64],
+) {
     let columns = m + g.len();
-    for (c, t) in tmp.iter_mut().enumerate() {
-        *t = (0..m).map(|r| jac[r * columns + c] * lambda[r]).sum();
+    sums.fill(-0.0);
+    for (row, l) in jac.chunks_exact(columns).zip(lambda.iter()) {
+        sums.iter_mut().zip(row).for_each(|(s, j)| *s += j * l);
     }
-    for (p, gp) in g.iter_mut().enumerate() {
-        *gp += (0..m)
-            .map(|r| jac[r * columns + m + p] * lambda[r])
-            .sum::<f64>();
-    }
-    lambda.copy_from_slice(tmp);
+    let (through, direct) = sums.split_at(m);
+    lambda.copy_from_slice(through);
+    g.iter_mut().zip(direct).for_each(|(gp, s)| *gp += s);
 }
 
 /// The gradient of `Λ = Σ_k ℓ_k(q_k, p_k)` over the run of `stepper` from `start` on `grid`
@@ -65,21 +80,55 @@ pub fn adjoint<D, L>(
     stepper: &mut D,
     start: State,
     grid: &TimeGrid,
-    mut loss: L,
+    loss: L,
     options: &AdjointOptions,
 ) -> Result<Gradient, Error>
 where
     D: SensitiveStep + Clone,
     L: FnMut(usize, &State, &mut [f64]),
 {
+    let watch = |_| ControlFlow::Continue(());
+    adjoint_watched(stepper, start, grid, loss, options, watch)
+}
+
+/// [`adjoint`], showing the steps of work done to `watch` after every step of either sweep
+/// (`1 … K` forwards, then `K + 1 … 2K` backwards: a progress display and a stop flag):
+/// [`ControlFlow::Break`] ends the run there, with [`Termination::Stopped`] (`steps`: the
+/// count shown last) and no gradient.
+pub fn adjoint_watched<D, L, W>(
+    stepper: &mut D,
+    start: State,
+    grid: &TimeGrid,
+    mut loss: L,
+    options: &AdjointOptions,
+    mut watch: W,
+) -> Result<Gradient, Error>
+where
+    D: SensitiveStep + Clone,
+    L: FnMut(usize, &State, &mut [f64]),
+    W: FnMut(usize) -> ControlFlow<()>,
+{
     let n = stepper.dof();
     let m = 2 * n;
     Error::check_len("q0", &start.q, n)?;
     Error::check_len("p0", &start.p, n)?;
     let every = options.spacing(grid.steps);
-    let (checkpoints, state) = Checkpoints::record(stepper, start.clone(), grid, every)?;
+    let (checkpoints, state, stopped) =
+        Checkpoints::record(stepper, start.clone(), grid, every, &mut watch)?;
+    let mut gradient = Gradient {
+        n,
+        state,
+        gradient: Vec::new(),
+        checkpoints: checkpoints.len(),
+        segment: every.min(grid.steps),
+        termination: Termination::Completed,
+    };
+    if let Some(steps) = stopped {
+        gradient.termination = Termination::Stopped { steps };
+        return Ok(gradient);
+    }
     let (mut lambda, mut g) = (vec![0.0; m], vec![0.0; stepper.parameters()]);
-    let (mut tmp, mut cot) = (vec![0.0; m], vec![0.0; m]);
+    let (mut sums, mut cot) = (vec![0.0; m + g.len()], vec![0.0; m]);
     let mut add = |k: usize, x: &State, lambda: &mut [f64]| -> Result<(), Error> {
         cot.fill(0.0);
         loss(k, x, &mut cot);
@@ -88,20 +137,21 @@ where
         Ok(())
     };
     let mut segment = Segment::default();
+    let mut done = grid.steps;
     for c in (0..checkpoints.len()).rev() {
         checkpoints.recompute(c, grid, &mut segment)?;
         for (i, jac) in segment.jacobians.iter().enumerate().rev() {
             add(segment.first + i + 1, &segment.states[i + 1], &mut lambda)?;
-            pull_back(jac, m, &mut lambda, &mut g, &mut tmp);
+            pull_back(jac, m, &mut lambda, &mut g, &mut sums);
+            done += 1;
+            if watch(done).is_break() {
+                gradient.termination = Termination::Stopped { steps: done };
+                return Ok(gradient);
+            }
         }
     }
     add(0, &start, &mut lambda)?;
     lambda.extend_from_slice(&g);
-    Ok(Gradient {
-        n,
-        state,
-        gradient: lambda,
-        checkpoints: checkpoints.len(),
-        segment: every.min(grid.steps),
-    })
+    gradient.gradient = lambda;
+    Ok(gradient)
 }

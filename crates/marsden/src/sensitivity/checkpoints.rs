@@ -8,6 +8,8 @@
 //!
 //! [GW08]: Griewank & Walther, *Evaluating Derivatives*, 2nd ed. (2008).
 
+use std::ops::ControlFlow;
+
 use super::step::SensitiveStep;
 use crate::error::Error;
 use crate::mechanics::State;
@@ -35,13 +37,18 @@ pub struct Segment {
 
 impl<D: SensitiveStep + Clone> Checkpoints<D> {
     /// The forward sweep: runs `stepper` from `start` over `grid` with plain steps, keeping
-    /// every `every`-th state; returns the checkpoints and the final state.
-    pub fn record(
+    /// every `every`-th state and showing the steps taken to `watch` after each; returns the
+    /// checkpoints, the state reached and, if `watch` asked to stop, the steps taken.
+    pub fn record<W>(
         stepper: &mut D,
         start: State,
         grid: &TimeGrid,
         every: usize,
-    ) -> Result<(Self, State), Error> {
+        mut watch: W,
+    ) -> Result<(Self, State, Option<usize>), Error>
+    where
+        W: FnMut(usize) -> ControlFlow<()>,
+    {
         let every = every.max(1);
         let mut stored = Vec::with_capacity(grid.steps / every + 1);
         let mut state = start;
@@ -51,11 +58,14 @@ impl<D: SensitiveStep + Clone> Checkpoints<D> {
             }
             stepper.step(&mut state, grid.h)?;
             state.t = grid.time(k + 1);
+            if watch(k + 1).is_break() {
+                return Ok((Self { every, stored }, state, Some(k + 1)));
+            }
         }
         if grid.steps == 0 {
             stored.push((state.clone(), stepper.clone()));
         }
-        Ok((Self { every, stored }, state))
+        Ok((Self { every, stored }, state, None))
     }
 
     /// Number of stored checkpoints.

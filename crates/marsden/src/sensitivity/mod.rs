@@ -40,7 +40,7 @@ mod projection;
 pub mod step;
 pub mod tangent;
 
-pub use adjoint::{Gradient, adjoint};
+pub use adjoint::{Gradient, adjoint, adjoint_watched};
 pub use options::{AdjointOptions, TangentOptions};
 pub use parametric::{ParametricIntegrator, ParametricModel};
 pub use parametric_constrained::ConstrainedParametricIntegrator;

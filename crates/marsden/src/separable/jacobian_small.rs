@@ -138,18 +138,17 @@ fn factor<const N: usize>(a: &mut [[f64; N]; N], b: usize) -> Result<[usize; N],
         }
         pivots[k] = p;
         if p != k {
-            for c in k..=last_col {
-                let x = a[k][c];
-                a[k][c] = a[p][c];
-                a[p][c] = x;
-            }
+            let (upper, lower) = a.split_at_mut(p);
+            upper[k][k..=last_col].swap_with_slice(&mut lower[0][k..=last_col]);
         }
-        for i in k + 1..=last_row {
-            let f = a[i][k] / pivot;
-            a[i][k] = f;
+        let (done, below) = a.split_at_mut(k + 1);
+        let pivot_row = &done[k][k + 1..=last_col];
+        for row in &mut below[..last_row - k] {
+            let f = row[k] / pivot;
+            row[k] = f;
             if f != 0.0 {
-                for c in k + 1..=last_col {
-                    a[i][c] -= f * a[k][c];
+                for (x, y) in row[k + 1..=last_col].iter_mut().zip(pivot_row) {
+                    *x -= f * y;
                 }
             }
         }

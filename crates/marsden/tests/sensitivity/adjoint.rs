@@ -4,9 +4,13 @@
 use super::common::{integrator, relative_distance, state};
 use crate::common::tight;
 use marsden::discrete::rules::Galerkin;
-use marsden::sensitivity::{AdjointOptions, SensitiveStep, TangentOptions, adjoint, tangent};
+use marsden::sensitivity::{
+    AdjointOptions, SensitiveStep, TangentOptions, adjoint, adjoint_watched, tangent,
+};
 use marsden::systems::{DampedDrivenPendulum, Kepler};
-use marsden::{Integrator, Midpoint, Rule, State, TimeGrid};
+use marsden::{Integrator, Midpoint, Rule, State, Termination, TimeGrid};
+use std::ops::ControlFlow;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The loss cotangent of sample k: ℓ_k = Σ_i w_{ik} x_i²/2 on every 7th step (∇ℓ_k = w ∘ x_k).
 fn cotangent(k: usize, x: &State, out: &mut [f64]) {
@@ -115,4 +119,64 @@ fn adjoint_memory_is_sqrt_k() {
         (100_000usize.div_ceil(317), 317)
     );
     assert!(g.gradient.iter().all(|x| x.is_finite()));
+}
+
+/// A stop flag set from the watcher ends the adjoint at once, in either sweep: it says so
+/// ([`Termination::Stopped`] with the steps of work shown last), gives no gradient, and the
+/// watcher saw every step of work up to there (`1 … K` forwards, `K + 1 … 2K` backwards); a
+/// stop during the forward sweep leaves the state of a plain run of that many steps. A watcher
+/// that never stops sees `1 … 2K` and changes nothing in the gradient.
+#[test]
+fn stop_flag_set_from_the_watcher_ends_the_adjoint_in_either_sweep() {
+    let (q, p) = Kepler::pericentre(0.6);
+    let start = state(&q, &p);
+    let grid = TimeGrid::new(0.0, 0.01, 100).unwrap();
+    let options = AdjointOptions::default();
+    let make = || integrator(Midpoint.discretize(Kepler::default()));
+    let run = |stop_at: usize| {
+        let stop = AtomicBool::new(false);
+        let mut seen = Vec::new();
+        let watch = |k: usize| {
+            seen.push(k);
+            if k == stop_at {
+                stop.store(true, Ordering::Relaxed);
+            }
+            match stop.load(Ordering::Relaxed) {
+                true => ControlFlow::Break(()),
+                false => ControlFlow::Continue(()),
+            }
+        };
+        let g = adjoint_watched(
+            &mut make(),
+            start.clone(),
+            &grid,
+            cotangent,
+            &options,
+            watch,
+        );
+        (g.unwrap(), seen)
+    };
+
+    let (forward_stop, seen) = run(37);
+    assert_eq!(forward_stop.termination, Termination::Stopped { steps: 37 });
+    assert!(forward_stop.gradient.is_empty());
+    assert_eq!(seen, (1..=37).collect::<Vec<_>>());
+    let mut plain = start.clone();
+    make().advance(&mut plain, grid.h, 37).unwrap();
+    assert_eq!(forward_stop.state, plain);
+
+    let (reverse_stop, seen) = run(150);
+    assert_eq!(
+        reverse_stop.termination,
+        Termination::Stopped { steps: 150 }
+    );
+    assert!(reverse_stop.gradient.is_empty());
+    assert_eq!(seen, (1..=150).collect::<Vec<_>>());
+
+    let (whole, seen) = run(usize::MAX);
+    let unwatched = adjoint(&mut make(), start, &grid, cotangent, &options).unwrap();
+    assert_eq!(whole.termination, Termination::Completed);
+    assert_eq!(seen, (1..=200).collect::<Vec<_>>());
+    assert_eq!(whole, unwatched);
+    assert_eq!(whole.gradient.len(), 4);
 }
