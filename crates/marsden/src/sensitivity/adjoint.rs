@@ -99,7 +99,7 @@ pub fn adjoint_watched<D, L, W>(
     stepper: &mut D,
     start: State,
     grid: &TimeGrid,
-    mut loss: L,
+    loss: L,
     options: &AdjointOptions,
     mut watch: W,
 ) -> Result<Gradient, Error>
@@ -127,31 +127,67 @@ where
         gradient.termination = Termination::Stopped { steps };
         return Ok(gradient);
     }
-    let (mut lambda, mut g) = (vec![0.0; m], vec![0.0; stepper.parameters()]);
-    let (mut sums, mut cot) = (vec![0.0; m + g.len()], vec![0.0; m]);
-    let mut add = |k: usize, x: &State, lambda: &mut [f64]| -> Result<(), Error> {
-        cot.fill(0.0);
-        loss(k, x, &mut cot);
-        check_cotangent(&cot, m)?;
-        lambda.iter_mut().zip(&cot).for_each(|(l, c)| *l += c);
-        Ok(())
+    let sweep = Sweep {
+        grid,
+        start: &start,
+        m,
+        parameters: stepper.parameters(),
     };
-    let mut segment = Segment::default();
-    let mut done = grid.steps;
-    for c in (0..checkpoints.len()).rev() {
-        checkpoints.recompute(c, grid, &mut segment)?;
-        for (i, jac) in segment.jacobians.iter().enumerate().rev() {
-            add(segment.first + i + 1, &segment.states[i + 1], &mut lambda)?;
-            pull_back(jac, m, &mut lambda, &mut g, &mut sums);
-            done += 1;
-            if watch(done).is_break() {
-                gradient.termination = Termination::Stopped { steps: done };
-                return Ok(gradient);
+    match sweep.reverse(&checkpoints, loss, watch)? {
+        ControlFlow::Continue(g) => gradient.gradient = g,
+        ControlFlow::Break(steps) => gradient.termination = Termination::Stopped { steps },
+    }
+    Ok(gradient)
+}
+
+/// What the reverse sweep needs besides the checkpoints: the grid, `x₀`, `2n` and `P`.
+struct Sweep<'a> {
+    grid: &'a TimeGrid,
+    start: &'a State,
+    m: usize,
+    parameters: usize,
+}
+
+impl Sweep<'_> {
+    /// `λ_k = DF_x(x_k)ᵀ λ_{k+1} + ∇ℓ_k(x_k)` and `g_θ` backwards over the recomputed
+    /// segments, showing `K + 1 … 2K` to `watch`: `(λ₀, g_θ)` end to end, or the count at
+    /// which `watch` asked to stop.
+    fn reverse<D, L, W>(
+        &self,
+        checkpoints: &Checkpoints<D>,
+        mut loss: L,
+        mut watch: W,
+    ) -> Result<ControlFlow<usize, Vec<f64>>, Error>
+    where
+        D: SensitiveStep + Clone,
+        L: FnMut(usize, &State, &mut [f64]),
+        W: FnMut(usize) -> ControlFlow<()>,
+    {
+        let m = self.m;
+        let (mut lambda, mut g) = (vec![0.0; m], vec![0.0; self.parameters]);
+        let (mut sums, mut cot) = (vec![0.0; m + self.parameters], vec![0.0; m]);
+        let mut add = |k: usize, x: &State, lambda: &mut [f64]| -> Result<(), Error> {
+            cot.fill(0.0);
+            loss(k, x, &mut cot);
+            check_cotangent(&cot, m)?;
+            lambda.iter_mut().zip(&cot).for_each(|(l, c)| *l += c);
+            Ok(())
+        };
+        let mut segment = Segment::default();
+        let mut done = self.grid.steps;
+        for c in (0..checkpoints.len()).rev() {
+            checkpoints.recompute(c, self.grid, &mut segment)?;
+            for (i, jac) in segment.jacobians.iter().enumerate().rev() {
+                add(segment.first + i + 1, &segment.states[i + 1], &mut lambda)?;
+                pull_back(jac, m, &mut lambda, &mut g, &mut sums);
+                done += 1;
+                if watch(done).is_break() {
+                    return Ok(ControlFlow::Break(done));
+                }
             }
         }
+        add(0, self.start, &mut lambda)?;
+        lambda.extend_from_slice(&g);
+        Ok(ControlFlow::Continue(lambda))
     }
-    add(0, &start, &mut lambda)?;
-    lambda.extend_from_slice(&g);
-    gradient.gradient = lambda;
-    Ok(gradient)
 }
