@@ -17,8 +17,8 @@
 //! - [`step`]: what a stepper offers ([`SensitiveStep`], a [`crate::analysis::certificate::DifferentiableStep`]
 //!   with parameter columns): one step with its Jacobian.
 //! - [`tangent`]: `S_k = ∂(q_k, p_k)/∂(q₀, p₀, θ)` forward along a run ([`Tangent`]).
-//! - [`adjoint`]: `dΛ/d(q₀, p₀, θ)` of `Λ = Σ_k ℓ_k(q_k, p_k)`, backwards ([`Gradient`]),
-//!   over [`checkpoints`] so memory stays bounded.
+//! - [`adjoint`]: `dΛ/d(q₀, p₀, θ)` of `Λ = Σ_k ℓ_k(q_k, p_k)`, backwards ([`Gradient`]; watched:
+//!   [`adjoint_watched`]), over [`checkpoints`] so memory stays bounded.
 //! - [`constrained`]: the step Jacobian of a constrained run (SHAKE + RATTLE, multipliers
 //!   included; `projection` linearises the projection onto `T*N`).
 //! - [`parametric`]: named parameters of the Lagrangian and the forces, held as coordinates
