@@ -194,6 +194,14 @@ impl Lagrangian for ExprLagrangian {
     /// `∇V` from the symbolic gradient's tape (registers in `scratch`); AD without one.
     #[inline]
     fn potential_gradient(&self, t: f64, q: &[f64], grad: &mut [f64], scratch: &mut Vec<f64>) {
+        // Once compiled, the native code is one atomic load away: no look-up of the form.
+        #[cfg(feature = "jit")]
+        if let Some(native) = (self.native.as_deref())
+            .and_then(|n| n.gradient.get())
+            .and_then(Option::as_ref)
+        {
+            return native.eval_split(q, t, grad);
+        }
         match self.separable.as_deref().and_then(SeparableForm::gradient) {
             Some(tape) => match self.native_gradient() {
                 Some(native) => native.eval_split(q, t, grad),
