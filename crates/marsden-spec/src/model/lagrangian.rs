@@ -284,13 +284,15 @@ impl Lagrangian for ExprLagrangian {
 }
 
 /// The Hessian's entries `∂²V/∂qᵢ∂qⱼ` (in the order of [`SeparableForm::hessian_entries`])
-/// written into `hess` at `(i, j)` and `(j, i)`, every other entry zero.
+/// written into `hess` at `(i, j)` and `(j, i)`; the other entries are left at the zero they
+/// start at ([`Lagrangian::potential_hessian`]'s contract).
 #[inline]
 fn scatter(form: &SeparableForm, entries: &[f64], hess: &mut Banded) {
-    hess.fill_zero();
     for (&(i, j), &value) in form.hessian_entries().iter().zip(entries) {
         hess.set(i, j, value);
-        hess.set(j, i, value);
+        if i != j {
+            hess.set(j, i, value);
+        }
     }
 }
 
