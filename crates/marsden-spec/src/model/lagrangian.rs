@@ -8,7 +8,9 @@
 //! tapes of [`SeparableForm`] instead of automatic differentiation.
 //!
 //! With the `jit` feature (default), those tapes are compiled to native code at their first use
-//! ([`marsden_jit`], the same values bit for bit); where that is not possible (no code
+//! ([`marsden_jit`], the same values bit for bit), and so is the trapezoid rule's whole explicit
+//! run with `∇V` inside its loop ([`VerletKernel`], for a diagonal mass: the state stays in
+//! registers from step to step); where that is not possible (no code
 //! generator for the machine), or with the environment variable `MARSDEN_JIT=0` when the
 //! Lagrangian is built, the tapes' interpreter evaluates them.
 
