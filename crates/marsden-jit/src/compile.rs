@@ -37,13 +37,21 @@ pub enum JitError {
         /// Length of the `head` slice.
         head: usize,
     },
+    /// A gradient tape without one output per degree of freedom.
+    #[error("the gradient tape has {outputs} outputs for {dof} degrees of freedom")]
+    Outputs {
+        /// Outputs of the tape.
+        outputs: usize,
+        /// Degrees of freedom.
+        dof: usize,
+    },
     /// The tape calls a two-argument function as a one-argument one.
     #[error("the tape calls `{0}` with one argument")]
     Arity(&'static str),
 }
 
 /// Maps any Cranelift error to [`JitError::Codegen`].
-fn codegen<E: std::fmt::Display>(e: E) -> JitError {
+pub(crate) fn codegen<E: std::fmt::Display>(e: E) -> JitError {
     JitError::Codegen(e.to_string())
 }
 
@@ -99,22 +107,9 @@ pub(crate) fn define(
         b.switch_to_block(entry);
         b.seal_block(entry);
         let params = b.block_params(entry).to_vec();
-        let mut t = Translator {
-            b,
-            module,
-            head: params[0],
-            last: params[1],
-            head_len,
-            inputs: vec![None; tape.input_len()],
-            regs: Vec::with_capacity(tape.op_count()),
-            calls: HashMap::new(),
-        };
-        for op in tape.instructions() {
-            let value = t.op(op)?;
-            t.regs.push(value);
-        }
-        for (k, &reg) in tape.outputs().iter().enumerate() {
-            let value = t.reg(reg);
+        let mut t = Translator::new(b, module, (params[0], params[1], head_len));
+        let outputs = t.translate(tape, vec![None; tape.input_len()])?;
+        for (k, value) in outputs.into_iter().enumerate() {
             let offset = i32::try_from(8 * k).map_err(codegen)?;
             t.b.ins()
                 .store(MemFlags::trusted(), value, params[2], offset);
@@ -128,8 +123,8 @@ pub(crate) fn define(
 }
 
 /// The state of one translation: the builder and the SSA value of each register so far.
-struct Translator<'a> {
-    b: FunctionBuilder<'a>,
+pub(crate) struct Translator<'a> {
+    pub(crate) b: FunctionBuilder<'a>,
     module: &'a mut JITModule,
     head: Value,
     last: Value,
@@ -143,7 +138,43 @@ struct Translator<'a> {
     calls: HashMap<&'static str, FuncRef>,
 }
 
-impl Translator<'_> {
+impl<'a> Translator<'a> {
+    /// A translator into `b`'s function, reading inputs missing from [`Translator::translate`]'s
+    /// `inputs` from `(head, last)` split at `head_len`.
+    pub(crate) fn new(
+        b: FunctionBuilder<'a>,
+        module: &'a mut JITModule,
+        (head, last, head_len): (Value, Value, usize),
+    ) -> Self {
+        Self {
+            b,
+            module,
+            head,
+            last,
+            head_len,
+            inputs: Vec::new(),
+            regs: Vec::new(),
+            calls: HashMap::new(),
+        }
+    }
+
+    /// The IR of `tape` at the current position of the builder: the SSA values of its outputs.
+    /// `inputs` (length [`Tape::input_len`]) gives the value of an input register, or `None`
+    /// to load it from `(head, last)` at its first use.
+    pub(crate) fn translate(
+        &mut self,
+        tape: &Tape,
+        inputs: Vec<Option<Value>>,
+    ) -> Result<Vec<Value>, JitError> {
+        self.inputs = inputs;
+        self.regs.clear();
+        for op in tape.instructions() {
+            let value = self.op(op)?;
+            self.regs.push(value);
+        }
+        Ok(tape.outputs().iter().map(|&reg| self.reg(reg)).collect())
+    }
+
     /// The value of register `r` (an input, loaded on first use, or an earlier instruction).
     fn reg(&mut self, r: u32) -> Value {
         let r = r as usize;

@@ -10,6 +10,11 @@
 //! `atan2`, …) is a call to the very `f64` function the interpreter calls
 //! ([`marsden_expr::tape_f64`]).
 //!
+//! [`CompiledVerlet`] compiles a whole velocity Störmer–Verlet run of a separable Lagrangian
+//! with a diagonal mass, the gradient tape inside its loop (`marsden::mechanics::kernel`): the
+//! state stays in registers from step to step, and the numbers are the generic Rust loop's bit
+//! for bit.
+//!
 //! Where Cranelift has no back end for the host, or compilation fails, [`CompiledTape::compile`]
 //! returns a [`JitError`] and the caller keeps the interpreter.
 //!
@@ -33,6 +38,7 @@
 mod compile;
 mod functions;
 mod native;
+mod verlet;
 
 pub use compile::JitError;
-pub use native::CompiledTape;
+pub use native::{CompiledTape, CompiledVerlet};

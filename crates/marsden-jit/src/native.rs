@@ -1,5 +1,6 @@
-//! [`CompiledTape`]: a tape as native code, and the only `unsafe` code of marsden — the call
-//! of that code ([`CompiledTape::call`]) and the release of its memory (`Drop`).
+//! [`CompiledTape`]: a tape as native code, [`CompiledVerlet`]: a Verlet run with a gradient
+//! tape inside, and the only `unsafe` code of marsden — the calls of that code
+//! ([`CompiledTape::call`], [`CompiledVerlet::call`]) and the release of its memory (`free`).
 
 use std::fmt;
 use std::sync::Mutex;
@@ -8,6 +9,7 @@ use cranelift_jit::JITModule;
 use marsden_expr::Tape;
 
 use crate::compile::{self, JitError};
+use crate::verlet;
 
 /// The compiled function: `(head, last, out)` (see `compile`).
 type Entry = unsafe extern "C" fn(*const f64, f64, *mut f64);
@@ -137,19 +139,143 @@ impl CompiledTape {
     }
 }
 
-impl Drop for CompiledTape {
-    /// Frees the code's memory. Safety argument: nothing calls the code any more (`call`
-    /// borrows `self`) and the address is dropped with `self`.
+/// The compiled Verlet run: `(q, p, g, d, t₀, h, steps) → steps done` (see `verlet`).
+type VerletEntry =
+    unsafe extern "C" fn(*mut f64, *mut f64, *mut f64, *const f64, f64, f64, i64) -> i64;
+
+/// A velocity Störmer–Verlet run with a potential's gradient tape compiled into its loop
+/// ([`crate::verlet`]'s equations): the same numbers, bit for bit, as the generic loop of
+/// `marsden::separable::explicit` calling the tape's interpreter once per step.
+pub struct CompiledVerlet {
+    /// The address of the function (a [`VerletEntry`]), valid while `module` is.
+    address: usize,
+    /// The owner of the code's memory (as in [`CompiledTape`]).
+    module: Mutex<Option<JITModule>>,
+    dof: usize,
+}
+
+impl CompiledVerlet {
+    /// Compiles the run for the gradient tape `gradient` of a potential over `[q, t]` with
+    /// `dof` coordinates.
+    ///
+    /// # Errors
+    ///
+    /// [`JitError`] if the tape does not have `dof` outputs or reads more than `[q, t]`, the
+    /// machine has no Cranelift back end, or compilation fails.
+    pub fn compile(gradient: &Tape, dof: usize) -> Result<Self, JitError> {
+        let mut module = compile::host_module()?;
+        let id = verlet::define(&mut module, gradient, dof)?;
+        module
+            .finalize_definitions()
+            .map_err(|e| JitError::Codegen(e.to_string()))?;
+        let address = module.get_finalized_function(id) as usize;
+        Ok(Self {
+            address,
+            module: Mutex::new(Some(module)),
+            dof,
+        })
+    }
+
+    /// The degrees of freedom `n` it was compiled for.
+    pub fn dof(&self) -> usize {
+        self.dof
+    }
+
+    /// Up to `steps` steps from `(q, p)` at `t₀ = grid.0` with step `h = grid.1`, in place;
+    /// `drift[i] = h/mᵢ`; `grad` is `∇V(t₀, q)` on entry and `∇V` at the final state on exit.
+    /// Stops before the first step whose new state is not finite; returns the steps done.
+    ///
+    /// # Panics
+    ///
+    /// If a slice's length is not [`CompiledVerlet::dof`].
+    pub fn run(
+        &self,
+        grid: (f64, f64),
+        steps: usize,
+        drift: &[f64],
+        (q, p): (&mut [f64], &mut [f64]),
+        grad: &mut [f64],
+    ) -> usize {
+        let n = self.dof;
+        assert!(
+            q.len() == n && p.len() == n && grad.len() == n && drift.len() == n,
+            "a Verlet run of {n} degrees of freedom needs slices of that length"
+        );
+        // More steps than `i64::MAX` cannot be run anyway; the loop stops at the bound.
+        let steps = i64::try_from(steps).unwrap_or(i64::MAX);
+        let done = self.call(grid, steps, drift, (q, p), grad);
+        usize::try_from(done).unwrap_or(0)
+    }
+
+    /// Runs the compiled code.
+    ///
+    /// Safety argument: `address` is the entry of a function that `verlet::define` built with
+    /// the signature of [`VerletEntry`] in the host's default calling convention (the C one)
+    /// and that `module` still owns (freed only on drop, which `&self` excludes). The code
+    /// reads `q[i]`, `p[i]`, `grad[i]`, `drift[i]` and writes `q[i]`, `p[i]`, `grad[i]` for
+    /// `i < dof`, nothing else (`verlet::emit_run`: one load and one store per index below
+    /// `dof`); all four slices have that length (checked by the only caller, `run`), and the
+    /// three written ones are distinct mutable borrows, so nothing aliases. It calls only the
+    /// safe functions of `functions`.
     #[allow(unsafe_code)]
-    fn drop(&mut self) {
-        let module = match self.module.get_mut() {
-            Ok(module) => module.take(),
-            Err(poisoned) => poisoned.into_inner().take(),
-        };
-        if let Some(module) = module {
-            // SAFETY: see above.
-            unsafe { module.free_memory() };
+    fn call(
+        &self,
+        (t0, h): (f64, f64),
+        steps: i64,
+        drift: &[f64],
+        (q, p): (&mut [f64], &mut [f64]),
+        grad: &mut [f64],
+    ) -> i64 {
+        // SAFETY: see above.
+        unsafe {
+            let entry = std::mem::transmute::<usize, VerletEntry>(self.address);
+            entry(
+                q.as_mut_ptr(),
+                p.as_mut_ptr(),
+                grad.as_mut_ptr(),
+                drift.as_ptr(),
+                t0,
+                h,
+                steps,
+            )
         }
+    }
+}
+
+impl Drop for CompiledVerlet {
+    /// Frees the code's memory (`free`).
+    fn drop(&mut self) {
+        free(&mut self.module);
+    }
+}
+
+impl fmt::Debug for CompiledVerlet {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("CompiledVerlet")
+            .field("dof", &self.dof)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Frees the memory of the code `module` owns. Safety argument: the callers are the `Drop`
+/// implementations, when nothing can call the code any more (every call borrows the owner)
+/// and its address is dropped with the owner.
+#[allow(unsafe_code)]
+fn free(module: &mut Mutex<Option<JITModule>>) {
+    let module = match module.get_mut() {
+        Ok(module) => module.take(),
+        Err(poisoned) => poisoned.into_inner().take(),
+    };
+    if let Some(module) = module {
+        // SAFETY: see above.
+        unsafe { module.free_memory() };
+    }
+}
+
+impl Drop for CompiledTape {
+    /// Frees the code's memory (`free`).
+    fn drop(&mut self) {
+        free(&mut self.module);
     }
 }
 

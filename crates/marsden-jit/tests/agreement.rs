@@ -64,14 +64,14 @@ fn symbols(coords: &[&str], params: &[(&str, f64)]) -> Symbols {
 }
 
 /// The separable form of `text` (inputs `[q, q̇, t]`).
-fn separable(text: &str, coords: &[&str], params: &[(&str, f64)]) -> SeparableForm {
+pub(crate) fn separable(text: &str, coords: &[&str], params: &[(&str, f64)]) -> SeparableForm {
     let program = Program::compile(text, &symbols(coords, params)).unwrap();
     program.separable(coords.len()).unwrap()
 }
 
 /// REFERENCE-CASES Kepler (μ = 1), the pendulum and a double-pendulum-like potential
 /// (constant mass matrix, coupled through `cos(θ₁ − θ₂)`).
-fn reference_forms() -> Vec<(&'static str, SeparableForm)> {
+pub(crate) fn reference_forms() -> Vec<(&'static str, SeparableForm)> {
     let double = "0.5*(th1_dot^2 + th2_dot^2) + (m1+m2)*g*l1*cos(th1) + m2*g*l2*cos(th2) \
         - 0.3*m2*g*cos(th1 - th2)";
     let double_params = [

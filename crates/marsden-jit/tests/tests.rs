@@ -6,3 +6,6 @@
 // Compiled tapes against the interpreter, bit for bit: reference potentials, every function,
 // special inputs, random expressions.
 mod agreement;
+
+// The compiled Verlet run against the same loop in Rust around the tape interpreter.
+mod verlet;

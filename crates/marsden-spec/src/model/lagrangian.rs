@@ -8,7 +8,9 @@
 //! tapes of [`SeparableForm`] instead of automatic differentiation.
 //!
 //! With the `jit` feature (default), those tapes are compiled to native code at their first use
-//! ([`marsden_jit`], the same values bit for bit); where that is not possible (no code
+//! ([`marsden_jit`], the same values bit for bit), and so is the trapezoid rule's whole explicit
+//! run with `∇V` inside its loop ([`VerletKernel`], for a diagonal mass: the state stays in
+//! registers from step to step); where that is not possible (no code
 //! generator for the machine), or with the environment variable `MARSDEN_JIT=0` when the
 //! Lagrangian is built, the tapes' interpreter evaluates them.
 
@@ -17,9 +19,12 @@ use std::sync::Arc;
 #[cfg(feature = "jit")]
 use std::sync::OnceLock;
 
+use marsden::mechanics::kernel::VerletKernel;
 use marsden::mechanics::lagrangian::{gradient_by_ad, hessian_by_ad};
 use marsden::mechanics::{MassMatrix, Structure};
 use marsden::numerics::banded::Banded;
+#[cfg(feature = "jit")]
+use marsden::numerics::scratch::with_slice;
 use marsden::{Lagrangian, Scalar};
 
 use super::inputs::with_inputs;
@@ -55,14 +60,41 @@ impl PartialEq for ExprLagrangian {
     }
 }
 
-/// The separable form's gradient and Hessian tapes as native code, each compiled at its first
-/// use (`None` inside: compilation failed, the interpreter is used).
+/// The separable form's gradient and Hessian tapes as native code, and the explicit run with
+/// the gradient inside, each compiled at its first use (`None` inside: compilation failed, the
+/// interpreter is used).
 #[derive(Debug, Default)]
 struct NativeTapes {
     #[cfg(feature = "jit")]
     gradient: OnceLock<Option<marsden_jit::CompiledTape>>,
     #[cfg(feature = "jit")]
     hessian: OnceLock<Option<marsden_jit::CompiledTape>>,
+    #[cfg(feature = "jit")]
+    verlet: OnceLock<Option<NativeVerlet>>,
+}
+
+/// The compiled Verlet run as the core's [`VerletKernel`].
+#[cfg(feature = "jit")]
+#[derive(Debug)]
+struct NativeVerlet(marsden_jit::CompiledVerlet);
+
+#[cfg(feature = "jit")]
+impl VerletKernel for NativeVerlet {
+    #[inline]
+    fn run(
+        &self,
+        grid: (f64, f64),
+        steps: usize,
+        drift: &[f64],
+        state: (&mut [f64], &mut [f64]),
+        grad: &mut [f64],
+    ) -> usize {
+        self.0.run(grid, steps, drift, state, grad)
+    }
+
+    fn dof(&self) -> usize {
+        self.0.dof()
+    }
 }
 
 /// The native code of `tape` (over `[q, t]`, `q` of length `dof`) in `cell`, compiled now if
@@ -136,6 +168,21 @@ impl ExprLagrangian {
         None
     }
 
+    /// The native code of `∇V` once it has been compiled: no look-up of the separable form,
+    /// one atomic load (what every call after the first takes).
+    #[cfg(feature = "jit")]
+    #[inline(always)]
+    fn compiled_gradient(&self) -> Option<&marsden_jit::CompiledTape> {
+        self.native.as_deref()?.gradient.get()?.as_ref()
+    }
+
+    /// The native code of `∇²V` once it has been compiled (as [`Self::compiled_gradient`]).
+    #[cfg(feature = "jit")]
+    #[inline(always)]
+    fn compiled_hessian(&self) -> Option<&marsden_jit::CompiledTape> {
+        self.native.as_deref()?.hessian.get()?.as_ref()
+    }
+
     /// The native code of `∇²V`, if there is one.
     #[cfg(feature = "jit")]
     #[inline]
@@ -194,6 +241,74 @@ impl Lagrangian for ExprLagrangian {
     /// `∇V` from the symbolic gradient's tape (registers in `scratch`); AD without one.
     #[inline]
     fn potential_gradient(&self, t: f64, q: &[f64], grad: &mut [f64], scratch: &mut Vec<f64>) {
+        #[cfg(feature = "jit")]
+        if let Some(native) = self.compiled_gradient() {
+            return native.eval_split(q, t, grad);
+        }
+        self.gradient_first_or_interpreted(t, q, grad, scratch);
+    }
+
+    /// The half-bandwidth of the symbolic `∇²V` when it is narrower than dense.
+    fn potential_bandwidth(&self) -> Option<usize> {
+        let form = self.separable.as_deref()?;
+        form.hessian()?;
+        (form.bandwidth() + 1 < self.dof).then_some(form.bandwidth())
+    }
+
+    /// `∇²V` from the symbolic Hessian's tape; AD without one.
+    #[inline]
+    fn potential_hessian(&self, t: f64, q: &[f64], hess: &mut Banded) {
+        #[cfg(feature = "jit")]
+        if let (Some(native), Some(form)) = (self.compiled_hessian(), self.separable.as_deref()) {
+            return with_slice(native.len(), 0.0, |entries| {
+                native.eval_split(q, t, entries);
+                scatter(form, entries, hess);
+            });
+        }
+        self.hessian_first_or_interpreted(t, q, hess);
+    }
+
+    /// The explicit run with the compiled gradient inside its loop (compiled now if this is
+    /// its first use); `None` without native code.
+    fn verlet_kernel(&self) -> Option<&dyn VerletKernel> {
+        #[cfg(feature = "jit")]
+        {
+            let tape = self.separable.as_deref()?.gradient()?;
+            let cell = &self.native.as_deref()?.verlet;
+            let compile = || marsden_jit::CompiledVerlet::compile(tape, self.dof).ok();
+            cell.get_or_init(|| compile().map(NativeVerlet))
+                .as_ref()
+                .map(|kernel| kernel as &dyn VerletKernel)
+        }
+        #[cfg(not(feature = "jit"))]
+        None
+    }
+}
+
+/// The Hessian's entries `∂²V/∂qᵢ∂qⱼ` (in the order of [`SeparableForm::hessian_entries`])
+/// written into `hess` at `(i, j)` and `(j, i)`; the other entries are left at the zero they
+/// start at ([`Lagrangian::potential_hessian`]'s contract).
+#[inline]
+fn scatter(form: &SeparableForm, entries: &[f64], hess: &mut Banded) {
+    for (&(i, j), &value) in form.hessian_entries().iter().zip(entries) {
+        hess.set(i, j, value);
+        if i != j {
+            hess.set(j, i, value);
+        }
+    }
+}
+
+impl ExprLagrangian {
+    /// `∇V` the first time (compiling the native code) or by the interpreter or AD: kept out
+    /// of `potential_gradient` so that its common case is a few instructions.
+    #[inline(never)]
+    fn gradient_first_or_interpreted(
+        &self,
+        t: f64,
+        q: &[f64],
+        grad: &mut [f64],
+        scratch: &mut Vec<f64>,
+    ) {
         match self.separable.as_deref().and_then(SeparableForm::gradient) {
             Some(tape) => match self.native_gradient() {
                 Some(native) => native.eval_split(q, t, grad),
@@ -206,15 +321,10 @@ impl Lagrangian for ExprLagrangian {
         }
     }
 
-    /// The half-bandwidth of the symbolic `∇²V` when it is narrower than dense.
-    fn potential_bandwidth(&self) -> Option<usize> {
-        let form = self.separable.as_deref()?;
-        form.hessian()?;
-        (form.bandwidth() + 1 < self.dof).then_some(form.bandwidth())
-    }
-
-    /// `∇²V` from the symbolic Hessian's tape; AD without one.
-    fn potential_hessian(&self, t: f64, q: &[f64], hess: &mut Banded) {
+    /// `∇²V` the first time (compiling the native code) or by the interpreter or AD (as
+    /// [`Self::gradient_first_or_interpreted`]).
+    #[inline(never)]
+    fn hessian_first_or_interpreted(&self, t: f64, q: &[f64], hess: &mut Banded) {
         let Some(form) = self.separable.as_deref() else {
             return hessian_by_ad(self, t, q, hess);
         };
@@ -230,11 +340,7 @@ impl Lagrangian for ExprLagrangian {
                     tape.eval_in_place(regs, entries);
                 }
             }
-            hess.fill_zero();
-            for (&(i, j), &value) in form.hessian_entries().iter().zip(entries.iter()) {
-                hess.set(i, j, value);
-                hess.set(j, i, value);
-            }
+            scatter(form, entries, hess);
         });
     }
 }

@@ -7,6 +7,7 @@
 //!
 //! [MW01]: J. E. Marsden, M. West, *Discrete mechanics and variational integrators*, Acta Numerica 10 (2001).
 
+use super::kernel::VerletKernel;
 use crate::numerics::ad::{self, HessianParts, MultiFunction};
 use crate::numerics::banded::Banded;
 use crate::numerics::scratch::{NODE, with_buffer};
@@ -86,6 +87,14 @@ pub trait Lagrangian {
     fn potential_hessian(&self, t: f64, q: &[f64], hess: &mut Banded) {
         hessian_by_ad(self, t, q, hess);
     }
+
+    /// The Lagrangian's own explicit run ([`crate::mechanics::kernel`]), if it has one: for a
+    /// separable `L` with a diagonal mass, the trapezoid rule's runs then take their steps in
+    /// it instead of the generic loop. It must give the generic loop's numbers bit for bit.
+    /// Default: `None`.
+    fn verlet_kernel(&self) -> Option<&dyn VerletKernel> {
+        None
+    }
 }
 
 /// What is known about the form of a Lagrangian.
@@ -148,6 +157,9 @@ impl<L: Lagrangian + ?Sized> Lagrangian for &L {
     }
     fn potential_hessian(&self, t: f64, q: &[f64], hess: &mut Banded) {
         (**self).potential_hessian(t, q, hess)
+    }
+    fn verlet_kernel(&self) -> Option<&dyn VerletKernel> {
+        (**self).verlet_kernel()
     }
 }
 

@@ -10,6 +10,7 @@
 //! | [`constraint`] | holonomic constraints `φ: Q → ℝ^d` |
 //! | [`state`] | points `(t, q, p)` of phase space and initial data `(q₀, v₀)` or `(q₀, p₀)` |
 //! | [`jet`] | Legendre transform `FL`, energy, Euler–Lagrange residual, accelerations, `FH` |
+//! | [`kernel`] | a separable `L`'s own explicit (velocity Störmer–Verlet) run, e.g. compiled code |
 //! | [`potential`] | `∇V`, `∇²V` of a separable `L`, hand-written ones checked against AD |
 //! | [`structure`] | shortcuts for separable Lagrangians: `p = Mv`, `v = M⁻¹p` |
 
@@ -17,6 +18,7 @@ pub mod constraint;
 pub(crate) mod constraint_jacobian;
 pub mod force;
 pub mod jet;
+pub mod kernel;
 pub mod lagrangian;
 pub mod potential;
 pub mod state;

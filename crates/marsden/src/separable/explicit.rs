@@ -25,11 +25,14 @@
 //! carried from one step to the next, the times are `t₀ + k h`, and for diagonal masses and
 //! `n ≤ 4` the state lives in fixed-size arrays, so the loop is the bare kick–drift–kick of
 //! `verlet.c`. It gives the same numbers, bit for bit, as repeated single steps (test
-//! `explicit_run.rs`).
+//! `explicit_run.rs`). A Lagrangian that brings its own run
+//! ([`crate::mechanics::Lagrangian::verlet_kernel`], e.g. compiled from an expression) takes
+//! the run's steps in it, with the same numbers again.
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
 use crate::mechanics::Lagrangian;
+use crate::mechanics::kernel::VerletKernel;
 use crate::mechanics::structure::InverseMass;
 
 /// A step that needs no nonlinear solve (object-safe: plain `f64` state).
@@ -120,6 +123,8 @@ pub struct ExplicitWorkspace {
     solve: Vec<f64>,
     /// Offsets and new momenta of [`ExplicitStep::explicit_run`]'s default loop.
     run: Vec<f64>,
+    /// `h/mᵢ` for a [`VerletKernel`].
+    drift: Vec<f64>,
 }
 
 impl ExplicitWorkspace {
@@ -128,6 +133,7 @@ impl ExplicitWorkspace {
             self.grad.resize(n, 0.0);
             self.q_next.resize(n, 0.0);
             self.cache_q.resize(n, 0.0);
+            self.drift.resize(n, 0.0);
             self.cache_valid = false;
         }
     }
@@ -193,6 +199,9 @@ pub(crate) fn velocity_verlet<L: Lagrangian>(
     gradients
 }
 
+/// The largest `n` run on fixed-size arrays.
+const MAX_FIXED: usize = 4;
+
 /// `steps` velocity Störmer–Verlet steps of a separable `L` in one loop
 /// ([`ExplicitStep::explicit_run`]): fixed-size arrays for a diagonal mass and `n ≤ 4`, else
 /// `None` (the caller then repeats [`velocity_verlet`]).
@@ -207,6 +216,14 @@ pub(crate) fn velocity_verlet_run<L: Lagrangian>(
     let InverseMass::Diagonal(inverse) = inverse_mass else {
         return None;
     };
+    // The kernel reproduces the fixed-size loop below (times `t₀ + k·h`), not the step-by-step
+    // loop of larger systems (times `t_{k−1} + h`, different in the last bit).
+    let kernel = (inverse.len() <= MAX_FIXED)
+        .then(|| l.verlet_kernel())
+        .flatten();
+    if let Some(kernel) = kernel.filter(|k| k.dof() == inverse.len()) {
+        return kernel_run(l, kernel, inverse, grid, steps, state, ws);
+    }
     match inverse.len() {
         1 => verlet_run_fixed::<L, 1>(l, inverse, grid, steps, state, ws),
         2 => verlet_run_fixed::<L, 2>(l, inverse, grid, steps, state, ws),
@@ -214,6 +231,40 @@ pub(crate) fn velocity_verlet_run<L: Lagrangian>(
         4 => verlet_run_fixed::<L, 4>(l, inverse, grid, steps, state, ws),
         _ => None,
     }
+}
+
+/// The run in the Lagrangian's own kernel ([`crate::mechanics::kernel`]), with the gradient
+/// cache kept as [`verlet_run_fixed`] keeps it.
+fn kernel_run<L: Lagrangian>(
+    l: &L,
+    kernel: &dyn VerletKernel,
+    inverse: &[f64],
+    (t0, h): (f64, f64),
+    steps: usize,
+    (q, p): (&mut [f64], &mut [f64]),
+    ws: &mut ExplicitWorkspace,
+) -> Option<ExplicitRun> {
+    let n = inverse.len();
+    if q.len() != n || p.len() != n {
+        return None;
+    }
+    ws.resize(n);
+    let mut run = ExplicitRun::default();
+    if !ws.holds(t0, h, q) {
+        l.potential_gradient(t0, q, &mut ws.grad, &mut ws.scratch);
+        run.gradients += 1;
+    }
+    ws.drift
+        .iter_mut()
+        .zip(inverse)
+        .for_each(|(d, m)| *d = h * m);
+    let done = kernel.run((t0, h), steps, &ws.drift, (q, p), &mut ws.grad);
+    run.steps = done;
+    run.gradients += done + usize::from(done < steps);
+    ws.cache_q.copy_from_slice(q);
+    ws.cache_t = t0 + done as f64 * h;
+    ws.cache_valid = true;
+    Some(run)
 }
 
 /// The run loop on `N`-arrays: kick, drift, gradient, kick, exactly as [`velocity_verlet`]
