@@ -83,21 +83,47 @@ pub(crate) fn define(
     tape: &Tape,
     head_len: usize,
 ) -> Result<FuncId, JitError> {
-    if tape.input_len() > head_len + 1 {
-        return Err(JitError::Inputs {
+    check_inputs(tape, head_len)?;
+    let pointer = AbiParam::new(module.target_config().pointer_type());
+    let params = [pointer, AbiParam::new(types::F64), pointer];
+    let split = |p: &[Value]| (p[0], p[1], head_len);
+    define_with(module, ("marsden_tape", &params, &[]), split, |t, p| {
+        let outputs = t.translate(tape, vec![None; tape.input_len()])?;
+        for (k, value) in outputs.into_iter().enumerate() {
+            let offset = i32::try_from(8 * k).map_err(codegen)?;
+            t.b.ins().store(MemFlags::trusted(), value, p[2], offset);
+        }
+        t.b.ins().return_(&[]);
+        Ok(())
+    })
+}
+
+/// [`JitError::Inputs`] if `tape` reads more inputs than `head` values and one.
+pub(crate) fn check_inputs(tape: &Tape, head: usize) -> Result<(), JitError> {
+    match tape.input_len() > head + 1 {
+        true => Err(JitError::Inputs {
             inputs: tape.input_len(),
-            head: head_len,
-        });
+            head,
+        }),
+        false => Ok(()),
     }
-    let pointer = module.target_config().pointer_type();
+}
+
+/// Declares the function `name(params) → returns` in `module` and defines it: `body` emits its
+/// IR through a [`Translator`] positioned in the entry block (inputs read from the parameters
+/// `split` picks), given the parameters' values; the blocks are sealed and the function
+/// finished here.
+pub(crate) fn define_with(
+    module: &mut JITModule,
+    (name, params, returns): (&str, &[AbiParam], &[AbiParam]),
+    split: impl FnOnce(&[Value]) -> (Value, Value, usize),
+    body: impl FnOnce(&mut Translator<'_>, &[Value]) -> Result<(), JitError>,
+) -> Result<FuncId, JitError> {
     let mut ctx = module.make_context();
-    ctx.func.signature.params.extend([
-        AbiParam::new(pointer),
-        AbiParam::new(types::F64),
-        AbiParam::new(pointer),
-    ]);
+    ctx.func.signature.params.extend_from_slice(params);
+    ctx.func.signature.returns.extend_from_slice(returns);
     let id = module
-        .declare_function("marsden_tape", Linkage::Local, &ctx.func.signature)
+        .declare_function(name, Linkage::Local, &ctx.func.signature)
         .map_err(codegen)?;
     let mut builder_ctx = FunctionBuilderContext::new();
     {
@@ -105,16 +131,10 @@ pub(crate) fn define(
         let entry = b.create_block();
         b.append_block_params_for_function_params(entry);
         b.switch_to_block(entry);
-        b.seal_block(entry);
-        let params = b.block_params(entry).to_vec();
-        let mut t = Translator::new(b, module, (params[0], params[1], head_len));
-        let outputs = t.translate(tape, vec![None; tape.input_len()])?;
-        for (k, value) in outputs.into_iter().enumerate() {
-            let offset = i32::try_from(8 * k).map_err(codegen)?;
-            t.b.ins()
-                .store(MemFlags::trusted(), value, params[2], offset);
-        }
-        t.b.ins().return_(&[]);
+        let values = b.block_params(entry).to_vec();
+        let mut t = Translator::new(b, module, split(&values));
+        body(&mut t, &values)?;
+        t.b.seal_all_blocks();
         t.b.finalize();
     }
     module.define_function(id, &mut ctx).map_err(codegen)?;

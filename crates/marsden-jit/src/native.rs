@@ -1,11 +1,12 @@
 //! [`CompiledTape`]: a tape as native code, [`CompiledVerlet`]: a Verlet run with a gradient
 //! tape inside, and the only `unsafe` code of marsden — the calls of that code
-//! ([`CompiledTape::call`], [`CompiledVerlet::call`]) and the release of its memory (`free`).
+//! ([`CompiledTape::call`], [`CompiledVerlet::call`]) and the release of its memory (`Code`'s `Drop`).
 
 use std::fmt;
 use std::sync::Mutex;
 
 use cranelift_jit::JITModule;
+use cranelift_module::FuncId;
 use marsden_expr::Tape;
 
 use crate::compile::{self, JitError};
@@ -17,11 +18,8 @@ type Entry = unsafe extern "C" fn(*const f64, f64, *mut f64);
 /// A [`Tape`] compiled to native code: the same outputs, bit for bit, as
 /// [`Tape::eval_into`] at `f64`.
 pub struct CompiledTape {
-    /// The address of the function (an [`Entry`]), valid while `module` is.
-    address: usize,
-    /// The owner of the code's memory; only ever touched again to free it. (In a mutex to be
-    /// `Sync`: a `JITModule` is `Send` but not `Sync`.)
-    module: Mutex<Option<JITModule>>,
+    /// The function, an [`Entry`].
+    code: Code,
     inputs: usize,
     outputs: usize,
     /// Where the inputs are split: registers below are read from `head`, this one is `last`.
@@ -50,13 +48,8 @@ impl CompiledTape {
     pub fn compile_split(tape: &Tape, head_len: usize) -> Result<Self, JitError> {
         let mut module = compile::host_module()?;
         let id = compile::define(&mut module, tape, head_len)?;
-        module
-            .finalize_definitions()
-            .map_err(|e| JitError::Codegen(e.to_string()))?;
-        let address = module.get_finalized_function(id) as usize;
         Ok(Self {
-            address,
-            module: Mutex::new(Some(module)),
+            code: Code::finalize(module, id)?,
             inputs: tape.input_len(),
             outputs: tape.len(),
             split: head_len,
@@ -122,7 +115,7 @@ impl CompiledTape {
     ///
     /// Safety argument: `address` is the entry of a function that `compile::define` built with
     /// the signature of [`Entry`] in the host's default calling convention (the C one) and
-    /// that `module` still owns (it is freed only on drop, which `&self` excludes). The code
+    /// that its `Code` still owns (it is freed only on drop, which `&self` excludes). The code
     /// reads `head[i]` for `i < head_reads()` (`compile::define`: input registers below both
     /// the tape's inputs and the split) and writes `out[k]` for `k < outputs`, nothing else; both slices are that long (checked by the only caller, `eval_split`), and `out`
     /// is borrowed mutably, so the writes alias nothing. It calls only the safe functions of
@@ -133,7 +126,7 @@ impl CompiledTape {
         debug_assert!(head.len() >= self.head_reads() && out.len() >= self.outputs);
         // SAFETY: see above.
         unsafe {
-            let entry = std::mem::transmute::<usize, Entry>(self.address);
+            let entry = std::mem::transmute::<usize, Entry>(self.code.address);
             entry(head.as_ptr(), last, out.as_mut_ptr());
         }
     }
@@ -147,10 +140,8 @@ type VerletEntry =
 /// ([`crate::verlet`]'s equations): the same numbers, bit for bit, as the generic loop of
 /// `marsden::separable::explicit` calling the tape's interpreter once per step.
 pub struct CompiledVerlet {
-    /// The address of the function (a [`VerletEntry`]), valid while `module` is.
-    address: usize,
-    /// The owner of the code's memory (as in [`CompiledTape`]).
-    module: Mutex<Option<JITModule>>,
+    /// The function, a [`VerletEntry`].
+    code: Code,
     dof: usize,
 }
 
@@ -165,13 +156,8 @@ impl CompiledVerlet {
     pub fn compile(gradient: &Tape, dof: usize) -> Result<Self, JitError> {
         let mut module = compile::host_module()?;
         let id = verlet::define(&mut module, gradient, dof)?;
-        module
-            .finalize_definitions()
-            .map_err(|e| JitError::Codegen(e.to_string()))?;
-        let address = module.get_finalized_function(id) as usize;
         Ok(Self {
-            address,
-            module: Mutex::new(Some(module)),
+            code: Code::finalize(module, id)?,
             dof,
         })
     }
@@ -211,7 +197,7 @@ impl CompiledVerlet {
     ///
     /// Safety argument: `address` is the entry of a function that `verlet::define` built with
     /// the signature of [`VerletEntry`] in the host's default calling convention (the C one)
-    /// and that `module` still owns (freed only on drop, which `&self` excludes). The code
+    /// and that its `Code` still owns (freed only on drop, which `&self` excludes). The code
     /// reads `q[i]`, `p[i]`, `grad[i]`, `drift[i]` and writes `q[i]`, `p[i]`, `grad[i]` for
     /// `i < dof`, nothing else (`verlet::emit_run`: one load and one store per index below
     /// `dof`); all four slices have that length (checked by the only caller, `run`), and the
@@ -228,7 +214,7 @@ impl CompiledVerlet {
     ) -> i64 {
         // SAFETY: see above.
         unsafe {
-            let entry = std::mem::transmute::<usize, VerletEntry>(self.address);
+            let entry = std::mem::transmute::<usize, VerletEntry>(self.code.address);
             entry(
                 q.as_mut_ptr(),
                 p.as_mut_ptr(),
@@ -242,13 +228,6 @@ impl CompiledVerlet {
     }
 }
 
-impl Drop for CompiledVerlet {
-    /// Frees the code's memory (`free`).
-    fn drop(&mut self) {
-        free(&mut self.module);
-    }
-}
-
 impl fmt::Debug for CompiledVerlet {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("CompiledVerlet")
@@ -257,25 +236,43 @@ impl fmt::Debug for CompiledVerlet {
     }
 }
 
-/// Frees the memory of the code `module` owns. Safety argument: the callers are the `Drop`
-/// implementations, when nothing can call the code any more (every call borrows the owner)
-/// and its address is dropped with the owner.
-#[allow(unsafe_code)]
-fn free(module: &mut Mutex<Option<JITModule>>) {
-    let module = match module.get_mut() {
-        Ok(module) => module.take(),
-        Err(poisoned) => poisoned.into_inner().take(),
-    };
-    if let Some(module) = module {
-        // SAFETY: see above.
-        unsafe { module.free_memory() };
+/// A finalized function and the module that owns its memory.
+struct Code {
+    /// The address of the function, valid while `module` is.
+    address: usize,
+    /// The owner of the code's memory; only ever touched again to free it. (In a mutex to be
+    /// `Sync`: a `JITModule` is `Send` but not `Sync`.)
+    module: Mutex<Option<JITModule>>,
+}
+
+impl Code {
+    /// Finalizes `module` and takes the address of its function `id`.
+    fn finalize(mut module: JITModule, id: FuncId) -> Result<Self, JitError> {
+        module
+            .finalize_definitions()
+            .map_err(|e| JitError::Codegen(e.to_string()))?;
+        let address = module.get_finalized_function(id) as usize;
+        Ok(Self {
+            address,
+            module: Mutex::new(Some(module)),
+        })
     }
 }
 
-impl Drop for CompiledTape {
-    /// Frees the code's memory (`free`).
+impl Drop for Code {
+    /// Frees the code's memory. Safety argument: nothing can call the code any more (every
+    /// call borrows the [`CompiledTape`] or [`CompiledVerlet`] that owns this) and the address
+    /// is dropped with `self`.
+    #[allow(unsafe_code)]
     fn drop(&mut self) {
-        free(&mut self.module);
+        let module = match self.module.get_mut() {
+            Ok(module) => module.take(),
+            Err(poisoned) => poisoned.into_inner().take(),
+        };
+        if let Some(module) = module {
+            // SAFETY: see above.
+            unsafe { module.free_memory() };
+        }
     }
 }
 

@@ -21,12 +21,12 @@
 
 use cranelift_codegen::ir::condcodes::{FloatCC, IntCC};
 use cranelift_codegen::ir::{AbiParam, InstBuilder, MemFlags, Value, types};
-use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext, Variable};
+use cranelift_frontend::{FunctionBuilder, Variable};
 use cranelift_jit::JITModule;
-use cranelift_module::{FuncId, Linkage, Module};
+use cranelift_module::{FuncId, Module};
 use marsden_expr::Tape;
 
-use crate::compile::{JitError, Translator, codegen};
+use crate::compile::{JitError, Translator, check_inputs, codegen, define_with};
 
 /// Defines the Verlet run of the gradient tape `gradient` (over `[q, t]`, `n` outputs) in
 /// `module` (not yet finalized).
@@ -35,43 +35,27 @@ pub(crate) fn define(
     gradient: &Tape,
     n: usize,
 ) -> Result<FuncId, JitError> {
-    if gradient.input_len() > n + 1 {
-        return Err(JitError::Inputs {
-            inputs: gradient.input_len(),
-            head: n,
-        });
-    }
+    check_inputs(gradient, n)?;
     if gradient.len() != n {
         return Err(JitError::Outputs {
             outputs: gradient.len(),
             dof: n,
         });
     }
-    let pointer = module.target_config().pointer_type();
-    let mut ctx = module.make_context();
-    let sig = &mut ctx.func.signature;
-    sig.params.extend([AbiParam::new(pointer); 4]);
-    sig.params.extend([AbiParam::new(types::F64); 2]);
-    sig.params.push(AbiParam::new(types::I64));
-    sig.returns.push(AbiParam::new(types::I64));
-    let id = module
-        .declare_function("marsden_verlet", Linkage::Local, &ctx.func.signature)
-        .map_err(codegen)?;
-    let mut builder_ctx = FunctionBuilderContext::new();
-    {
-        let mut b = FunctionBuilder::new(&mut ctx.func, &mut builder_ctx);
-        let entry = b.create_block();
-        b.append_block_params_for_function_params(entry);
-        b.switch_to_block(entry);
-        let params = b.block_params(entry).to_vec();
-        let mut t = Translator::new(b, module, (params[0], params[4], n));
-        emit_run(&mut t, gradient, n, &params)?;
-        t.b.seal_all_blocks();
-        t.b.finalize();
-    }
-    module.define_function(id, &mut ctx).map_err(codegen)?;
-    module.clear_context(&mut ctx);
-    Ok(id)
+    let (pointer, float) = (
+        AbiParam::new(module.target_config().pointer_type()),
+        AbiParam::new(types::F64),
+    );
+    let integer = AbiParam::new(types::I64);
+    let params = [pointer, pointer, pointer, pointer, float, float, integer];
+    // The tape's inputs are all given as values (`q_{k+1}` and `t`): the split is never read.
+    let split = |p: &[Value]| (p[0], p[4], n);
+    define_with(
+        module,
+        ("marsden_verlet", &params, &[integer]),
+        split,
+        |t, p| emit_run(t, gradient, n, p),
+    )
 }
 
 /// The state carried from step to step: the steps done and `q`, `p`, `g`.

@@ -138,6 +138,13 @@ impl ExplicitWorkspace {
         }
     }
 
+    /// Marks the gradient held as the one at `(t, q)`.
+    fn remember(&mut self, t: f64, q: &[f64]) {
+        self.cache_q.copy_from_slice(q);
+        self.cache_t = t;
+        self.cache_valid = true;
+    }
+
     /// Whether the cached gradient was taken at `(t, q)`.
     fn holds(&self, t: f64, h: f64, q: &[f64]) -> bool {
         let close = (t - self.cache_t).abs() <= 16.0 * f64::EPSILON * t.abs().max(h.abs());
@@ -261,9 +268,7 @@ fn kernel_run<L: Lagrangian>(
     let done = kernel.run((t0, h), steps, &ws.drift, (q, p), &mut ws.grad);
     run.steps = done;
     run.gradients += done + usize::from(done < steps);
-    ws.cache_q.copy_from_slice(q);
-    ws.cache_t = t0 + done as f64 * h;
-    ws.cache_valid = true;
+    ws.remember(t0 + done as f64 * h, q);
     Some(run)
 }
 
@@ -309,8 +314,6 @@ fn verlet_run_fixed<L: Lagrangian, const N: usize>(
     }
     (*q_out, *p_out) = (x, y);
     ws.grad.copy_from_slice(&g);
-    ws.cache_q.copy_from_slice(&x);
-    ws.cache_t = t0 + run.steps as f64 * h;
-    ws.cache_valid = true;
+    ws.remember(t0 + run.steps as f64 * h, &x);
     Some(run)
 }
