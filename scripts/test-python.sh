@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# The Python package's tests: builds and installs crates/marsden-py (once, with the `python`
-# profile: thin LTO, much quicker to build than the `release` profile users get) into a fresh virtual environment with pytest, numpy, sympy, scipy and
-# dask[distributed], then runs crates/marsden-py/tests. The bit-for-bit comparisons with the
+# The Python package's tests: builds and installs crates/marsden-py into a fresh virtual
+# environment with pytest, numpy, sympy, scipy and dask[distributed], then runs
+# crates/marsden-py/tests. The extension is built with the `dev` profile (`pip install` gives
+# users `release`): it reuses the dependencies `cargo test` compiled into target/debug, and the
+# suite runs in seconds at that optimisation level (the bits are the same in every profile). The bit-for-bit comparisons with the
 # `marsden` command use $MARSDEN_BIN, else target/{release,debug}/marsden (built if missing).
 #
 #   scripts/test-python.sh            # VENV=target/ci-venv by default
@@ -15,7 +17,7 @@ rm -rf "$VENV"
 "$VENV/bin/python" -m pip install --quiet --upgrade pip
 "$VENV/bin/python" -m pip install --quiet pytest numpy sympy "dask[distributed]" pandas scipy
 start=$(date +%s)
-MATURIN_PEP517_ARGS="--profile python" "$VENV/bin/python" -m pip install --quiet ./crates/marsden-py
+MATURIN_PEP517_ARGS="--profile dev" "$VENV/bin/python" -m pip install --quiet ./crates/marsden-py
 echo "test-python: built and installed the extension in $(( $(date +%s) - start )) s"
 if [ -z "${MARSDEN_BIN:-}" ] && [ ! -x target/debug/marsden ] && [ ! -x target/release/marsden ]; then
     cargo build -p marsden-cli

@@ -27,7 +27,8 @@
 //! `verlet.c`. It gives the same numbers, bit for bit, as repeated single steps (test
 //! `explicit_run.rs`). A Lagrangian that brings its own run
 //! ([`crate::mechanics::Lagrangian::verlet_kernel`], e.g. compiled from an expression) takes
-//! the run's steps in it, with the same numbers again.
+//! the run's steps in it when the mass is diagonal and `n ≤ 4` (the fixed-size loop it
+//! replaces), with the same numbers again; larger systems keep the generic loop.
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 

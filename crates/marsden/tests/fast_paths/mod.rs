@@ -3,6 +3,7 @@
 mod compensated;
 mod explicit;
 mod explicit_run;
+mod hessian_contract;
 mod jacobian_reuse;
 mod separable;
 mod small_constrained_kernels;
