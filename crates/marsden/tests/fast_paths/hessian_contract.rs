@@ -91,7 +91,11 @@ fn steps<A: DiscreteAction>(action: A, start: &State, steps: usize) -> Integrato
 
 fn assert_clean<L>(l: &ZeroChecked<L>, what: &str) {
     assert!(l.calls.get() > 0, "{what}: the Hessian was never asked for");
-    assert_eq!(l.dirty.get(), 0, "{what}: a caller passed a matrix with nonzero entries");
+    assert_eq!(
+        l.dirty.get(),
+        0,
+        "{what}: a caller passed a matrix with nonzero entries"
+    );
 }
 
 #[test]
