@@ -2,9 +2,11 @@
 # The Python package's tests: builds and installs crates/marsden-py into a fresh virtual
 # environment with pytest, numpy, sympy, scipy and dask[distributed], then runs
 # crates/marsden-py/tests. The extension is built with the `dev` profile (`pip install` gives
-# users `release`): it reuses the dependencies `cargo test` compiled into target/debug, and the
-# suite runs in seconds at that optimisation level (the bits are the same in every profile). The bit-for-bit comparisons with the
-# `marsden` command use $MARSDEN_BIN, else target/{release,debug}/marsden (built if missing).
+# users `release`): most dependencies `cargo test` compiled into target/debug are reused (the
+# workspace crates are compiled again: a build of marsden-py alone resolves other features),
+# and the suite runs in seconds at that level (the bits are the same in every profile). The
+# bit-for-bit comparisons with the `marsden` command use $MARSDEN_BIN, else
+# target/{release,debug}/marsden (built if missing).
 #
 #   scripts/test-python.sh            # VENV=target/ci-venv by default
 #   PYTHON=python3.12 scripts/test-python.sh -k sweep

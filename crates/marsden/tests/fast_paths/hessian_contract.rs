@@ -79,14 +79,13 @@ fn chain_start(n: usize) -> State {
     }
 }
 
-/// Steps `action` from `start`; returns the integrator for its Lagrangian's counters.
-fn steps<A: DiscreteAction>(action: A, start: &State, steps: usize) -> Integrator<A> {
+/// Takes `steps` steps of `action` from `start` (the counters are in its Lagrangian).
+fn steps<A: DiscreteAction>(action: A, start: &State, steps: usize) {
     let mut integrator = Integrator::new(action);
     let mut s = start.clone();
     for _ in 0..steps {
         integrator.step(&mut s, 0.05).unwrap();
     }
-    integrator
 }
 
 fn assert_clean<L>(l: &ZeroChecked<L>, what: &str) {
