@@ -2,9 +2,9 @@
 # The Python package's tests: builds and installs crates/marsden-py into a fresh virtual
 # environment with pytest, numpy, sympy, scipy and dask[distributed], then runs
 # crates/marsden-py/tests. The extension is built with the `dev` profile (`pip install` gives
-# users `release`): most dependencies `cargo test` compiled into target/debug are reused (the
-# workspace crates are compiled again: a build of marsden-py alone resolves other features),
-# and the suite runs in seconds at that level (the bits are the same in every profile). The
+# users `release`): what `cargo test --workspace` compiled into target/debug is reused, the
+# workspace crates included (marsden-py's Cargo.toml names the features a build of it alone
+# would otherwise resolve differently), and the suite runs in seconds at that level (the bits are the same in every profile). The
 # bit-for-bit comparisons with the `marsden` command use $MARSDEN_BIN, else
 # target/{release,debug}/marsden (built if missing).
 #
