@@ -43,8 +43,8 @@ where
     });
     let before = stepper.statistics();
     let mut last_report = initial;
-    // Steps between stored samples run in one loop when nobody watches each step.
-    let chunked = stepper.runs_in_chunks() && !observer.every_step();
+    // Steps between stored samples run in one call when nobody watches each step.
+    let chunked = !observer.every_step();
     let cadence = observer.cadence().max(1);
     let mut k = 0;
     while k < grid.steps {
@@ -55,7 +55,7 @@ where
             1
         };
         let done_before = stepper.steps_done();
-        let outcome = stepper.advance(&mut state, grid.h, chunk);
+        let outcome = stepper.advance_on(&mut state, grid, k, chunk);
         k += stepper.steps_done() - done_before;
         state.t = grid.time(k);
         traj.steps = k;

@@ -9,6 +9,8 @@ use crate::holonomic::MomentumProjection;
 use crate::integrator::{Integrator, Statistics, StepReport};
 use crate::mechanics::{Constraint, State};
 
+use super::grid::TimeGrid;
+
 /// A one-step method with its buffers, as the run loop sees it.
 pub trait Stepper {
     /// Degrees of freedom `n` and number of constraints `d` of the states it steps.
@@ -21,11 +23,18 @@ pub trait Stepper {
     /// Steps completed over the stepper's life (the loop counts a chunk's steps by it).
     fn steps_done(&self) -> usize;
 
-    /// Whether [`Stepper::advance`] runs many steps in one loop faster than one by one (the
-    /// explicit path); the run loop then hands it the steps between samples when no observer
-    /// watches each one. Default: false.
-    fn runs_in_chunks(&self) -> bool {
-        false
+    /// `steps` steps from grid point `k` of `grid` (`state.t = grid.time(k)`), each new state
+    /// at the grid's own time `grid.time(k + j)`: the times of a step-by-step run, bit for bit.
+    /// The run loop hands a stepper all the steps between two samples in one call when no
+    /// observer watches each step. Default: one [`Stepper::advance`] per step.
+    fn advance_on(
+        &mut self,
+        state: &mut State,
+        grid: &TimeGrid,
+        k: usize,
+        steps: usize,
+    ) -> Result<StepReport, Error> {
+        step_by_step(self, state, grid, k, steps)
     }
 
     /// The multipliers `λ` of the last step (length d; default: none).
@@ -67,8 +76,20 @@ where
     fn steps_done(&self) -> usize {
         Integrator::statistics(self).steps
     }
-    fn runs_in_chunks(&self) -> bool {
-        self.is_explicit()
+    /// The explicit path runs the chunk in its own loop ([`Integrator::advance`]: times
+    /// `state.t + j h` inside the chunk, as the explicit kernels count them); the others step
+    /// one by one at the grid's times.
+    fn advance_on(
+        &mut self,
+        state: &mut State,
+        grid: &TimeGrid,
+        k: usize,
+        steps: usize,
+    ) -> Result<StepReport, Error> {
+        match self.is_explicit() {
+            true => Integrator::advance(self, state, grid.h, steps),
+            false => step_by_step(self, state, grid, k, steps),
+        }
     }
     fn multipliers(&self) -> &[f64] {
         Integrator::multipliers(self)
@@ -82,4 +103,20 @@ where
     fn statistics(&self) -> Statistics {
         *Integrator::statistics(self)
     }
+}
+
+/// `steps` single steps from grid point `k`, the time of each new state set to the grid's.
+fn step_by_step<S: Stepper + ?Sized>(
+    stepper: &mut S,
+    state: &mut State,
+    grid: &TimeGrid,
+    k: usize,
+    steps: usize,
+) -> Result<StepReport, Error> {
+    let mut report = StepReport::default();
+    for j in 1..=steps {
+        report = stepper.advance(state, grid.h, 1)?;
+        state.t = grid.time(k + j);
+    }
+    Ok(report)
 }

@@ -10,8 +10,8 @@ use marsden::discrete::legendre::legendre_plus;
 use marsden::integrator::maps::{discrete_hamiltonian_map, two_step_map};
 use marsden::systems::Pendulum;
 use marsden::{
-    Initial, Midpoint, NewtonOptions, Problem, Rule, RunOptions, SolveOptions, StepView,
-    Termination, TimeGrid,
+    Initial, Lagrangian, Midpoint, NewtonOptions, Observer, Problem, Rule, RunOptions, Scalar,
+    SolveOptions, StepView, Termination, TimeGrid,
 };
 
 #[test]
@@ -100,4 +100,93 @@ fn streaming_energy_monitor_equals_the_batch_report() {
     assert!((streamed.drift_per_unit_time - batch.drift_per_unit_time).abs() < 1e-15);
     // A symplectic method on a conservative system: bounded error, no drift.
     assert!(batch.drift_per_unit_time.abs() < 1e-3 * batch.max_abs_error);
+}
+
+/// `L = ½ v² − ½ q² + q sin(3t) + r q⁴`: a driven oscillator whose step depends on the time
+/// (so a time off the grid by one rounding would show in the bits), on the general Newton path
+/// (no structure declared); beyond the barrier of `r > 0` it leaves the floats.
+#[derive(Debug, Clone)]
+struct Driven {
+    r: f64,
+}
+impl Lagrangian for Driven {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn lagrangian<S: Scalar>(&self, t: S, q: &[S], v: &[S]) -> S {
+        let (q, v) = (q[0], v[0]);
+        v * v * 0.5 - q * q * 0.5 + q * (t * 3.0).sin() + q.powi(4) * self.r
+    }
+}
+
+/// Counts what it is shown, and asks to be shown only the stored samples.
+struct SamplesOnly(usize);
+impl Observer for SamplesOnly {
+    fn observe(&mut self, _view: &StepView<'_>) -> ControlFlow<()> {
+        self.0 += 1;
+        ControlFlow::Continue(())
+    }
+    fn every_step(&self) -> bool {
+        false
+    }
+}
+
+/// A Newton run between samples in one call ([`marsden::run::stepper::Stepper::advance_on`],
+/// what `simulate` does when no observer watches each step) equals the run seen step by step,
+/// bit for bit: samples, times, statistics, and after a failure the error (step and time) and
+/// the last good state. The grid starts at `t₀ = 0.3` with `h = 0.07`, so that `t₀ + k h`
+/// differs from `(t₀ + j h) + (k − j) h` in the last bits.
+#[test]
+fn newton_steps_between_samples_in_one_call_equal_the_steps_seen_one_by_one() {
+    let run = |r: f64, q0: f64, stride: usize, watch: bool| {
+        let grid = TimeGrid::new(0.3, 0.07, 700).unwrap();
+        let start = Initial::velocity(&[q0], &[0.2]);
+        let problem = Problem::new(Driven { r }, start, grid).unwrap();
+        let options = SolveOptions {
+            run: RunOptions { stride },
+            ..SolveOptions::default()
+        };
+        match watch {
+            true => {
+                let mut seen = 0;
+                let mut observer = |_: &StepView<'_>| {
+                    seen += 1;
+                    ControlFlow::Continue(())
+                };
+                let traj = problem.solve_with(&Midpoint, &options, &mut observer);
+                let traj = traj.unwrap_or_else(|failure| failure.trajectory);
+                assert_eq!(seen, traj.steps, "the watcher saw every completed step");
+                traj
+            }
+            false => {
+                let mut samples = SamplesOnly(0);
+                let traj = problem.solve_with(&Midpoint, &options, &mut samples);
+                let traj = traj.unwrap_or_else(|failure| failure.trajectory);
+                // Shown the stored samples only (a failure's last state is stored, not shown).
+                assert!(samples.0 < traj.len(), "{} of {}", samples.0, traj.len());
+                traj
+            }
+        }
+    };
+    for (r, q0, stride) in [(0.0, 0.4, 50), (0.02, 6.0, 3)] {
+        let (chunked, single) = (run(r, q0, stride, false), run(r, q0, stride, true));
+        assert_eq!(chunked.step_indices, single.step_indices);
+        assert_eq!(chunked.times, single.times);
+        for i in 0..chunked.len() {
+            assert_eq!(chunked.q(i), single.q(i), "sample {i}");
+            assert_eq!(chunked.p(i), single.p(i), "sample {i}");
+        }
+        assert_eq!(chunked.statistics, single.statistics);
+        assert_eq!(
+            format!("{:?}", chunked.termination),
+            format!("{:?}", single.termination)
+        );
+        let completed = matches!(chunked.termination, Termination::Completed);
+        assert_eq!(completed, r == 0.0, "{:?}", chunked.termination);
+        assert!(
+            chunked.steps > 2 * stride,
+            "failed at step {}",
+            chunked.steps
+        );
+    }
 }
