@@ -156,6 +156,9 @@ pub(crate) struct Translator<'a> {
     regs: Vec<Value>,
     /// Functions imported so far, by symbol.
     calls: HashMap<&'static str, FuncRef>,
+    /// Registers whose sine and cosine the tape both takes, and the two values once computed
+    /// (one call, [`functions::SIN_COS`]).
+    sin_cos: HashMap<u32, Option<[Value; 2]>>,
 }
 
 impl<'a> Translator<'a> {
@@ -175,6 +178,7 @@ impl<'a> Translator<'a> {
             inputs: Vec::new(),
             regs: Vec::new(),
             calls: HashMap::new(),
+            sin_cos: HashMap::new(),
         }
     }
 
@@ -188,6 +192,7 @@ impl<'a> Translator<'a> {
     ) -> Result<Vec<Value>, JitError> {
         self.inputs = inputs;
         self.regs.clear();
+        self.sin_cos = sines_and_cosines(tape);
         for op in tape.instructions() {
             let value = self.op(op)?;
             self.regs.push(value);
@@ -328,11 +333,45 @@ impl<'a> Translator<'a> {
                 let minus = self.b.ins().fneg(x);
                 Ok(self.b.ins().select(negative, minus, x))
             }
+            Function::Sin | Function::Cos if self.sin_cos.contains_key(&a) => {
+                let pair = match self.sin_cos.get(&a).copied().flatten() {
+                    Some(pair) => pair,
+                    None => {
+                        let pair = self.sin_and_cos(x)?;
+                        self.sin_cos.insert(a, Some(pair));
+                        pair
+                    }
+                };
+                Ok(pair[usize::from(f == Function::Cos)])
+            }
             _ => {
                 let (name, _) = functions::unary(f).ok_or(JitError::Arity(f.name()))?;
                 self.import(name, &[types::F64], &[x])
             }
         }
+    }
+
+    /// `[sin x, cos x]` from one call of [`functions::SIN_COS`].
+    fn sin_and_cos(&mut self, x: Value) -> Result<[Value; 2], JitError> {
+        let name = functions::SIN_COS.0;
+        let func = match self.calls.get(name) {
+            Some(&f) => f,
+            None => {
+                let mut sig = self.module.make_signature();
+                sig.params.push(AbiParam::new(types::F64));
+                sig.returns.extend([AbiParam::new(types::F64); 2]);
+                let id = self
+                    .module
+                    .declare_function(name, Linkage::Import, &sig)
+                    .map_err(codegen)?;
+                let f = self.module.declare_func_in_func(id, self.b.func);
+                self.calls.insert(name, f);
+                f
+            }
+        };
+        let call = self.b.ins().call(func, &[x]);
+        let results = self.b.inst_results(call);
+        Ok([results[0], results[1]])
     }
 
     /// A call of the imported function `name` (parameters `params`, one `f64` result).
@@ -360,4 +399,25 @@ impl<'a> Translator<'a> {
         let call = self.b.ins().call(func, args);
         Ok(self.b.inst_results(call)[0])
     }
+}
+
+/// The registers whose sine and cosine `tape` both takes (none where the two cannot come
+/// from one call, [`functions::SIN_COS_IN_ONE_CALL`]).
+fn sines_and_cosines(tape: &Tape) -> HashMap<u32, Option<[Value; 2]>> {
+    if !functions::SIN_COS_IN_ONE_CALL {
+        return HashMap::new();
+    }
+    let (mut sines, mut cosines) = (Vec::new(), Vec::new());
+    for op in tape.instructions() {
+        match op {
+            TapeOp::Call(Function::Sin, a) => sines.push(a),
+            TapeOp::Call(Function::Cos, a) => cosines.push(a),
+            _ => {}
+        }
+    }
+    sines
+        .into_iter()
+        .filter(|a| cosines.contains(a))
+        .map(|a| (a, None))
+        .collect()
 }

@@ -61,6 +61,36 @@ extern "C" fn marsden_atan2(y: f64, x: f64) -> f64 {
     atan2_f64(y, x)
 }
 
+/// `(sin x, cos x)`, returned in two registers (`#[repr(C)]`: both parts floating-point, the
+/// C ABI of the targets where compiled code calls it, [`SIN_COS_IN_ONE_CALL`]).
+#[repr(C)]
+pub(crate) struct SinCos {
+    sin: f64,
+    cos: f64,
+}
+
+/// Both in one call where a tape takes the sine and the cosine of one register (the
+/// derivatives of `cos(θ₁ − θ₂)`): the two calls of the interpreter, so the same values, and
+/// LLVM may compute them together.
+extern "C" fn marsden_sin_cos(x: f64) -> SinCos {
+    SinCos {
+        sin: call_f64(Function::Sin, x),
+        cos: call_f64(Function::Cos, x),
+    }
+}
+
+/// Whether compiled code takes a sine and cosine of one register in one call: where a
+/// two-`f64` result comes back in two floating-point registers both in the C ABI and in
+/// Cranelift's (System V x86-64, AArch64 outside Windows).
+pub(crate) const SIN_COS_IN_ONE_CALL: bool = cfg!(all(
+    not(windows),
+    any(target_arch = "x86_64", target_arch = "aarch64")
+));
+
+/// `(sin x, cos x)`: symbol and address.
+pub(crate) const SIN_COS: (&str, extern "C" fn(f64) -> SinCos) =
+    ("marsden_sin_cos", marsden_sin_cos);
+
 /// `xⁿ`: symbol and address.
 pub(crate) const POWI: (&str, PowiFn) = ("marsden_powi", marsden_powi);
 /// `x^e`, constant `e`: symbol and address.
@@ -81,5 +111,6 @@ pub(crate) fn symbols() -> Vec<(&'static str, *const u8)> {
     for (name, f) in [POWF, POWD, ATAN2] {
         all.push((name, f as *const u8));
     }
+    all.push((SIN_COS.0, SIN_COS.1 as *const u8));
     all
 }

@@ -353,3 +353,31 @@ proptest! {
         }
     }
 }
+
+/// The Taylor data of the double pendulum's `L` ([`Program::jet`]): its tapes take the sine
+/// and the cosine of `θ₁ − θ₂`, `θ₁` and `θ₂` each, which compiled code computes in one call
+/// per register; the values are the interpreter's bit for bit (a swap of the two would show).
+#[test]
+fn sine_and_cosine_of_one_register_in_one_call_match_interpreter() {
+    let text = "0.5*(m1 + m2)*l1^2*a_dot^2 + 0.5*m2*l2^2*b_dot^2 \
+                + m2*l1*l2*a_dot*b_dot*cos(a - b) + (m1 + m2)*g*l1*cos(a) + m2*g*l2*cos(b)";
+    let params = [
+        ("m1", 1.0),
+        ("m2", 1.3),
+        ("l1", 1.0),
+        ("l2", 0.8),
+        ("g", 9.81),
+    ];
+    let program = Program::compile(text, &symbols(&["a", "b"], &params)).unwrap();
+    let jet = program.jet(5).unwrap();
+    for tape in [jet.first(), jet.second()] {
+        let native = compile_both(tape, 5);
+        for x in [
+            [1.5, 2.0, 0.3, -0.2, 0.0],
+            [-0.7, 0.25, -1.1, 2.5, 3.0],
+            [3.0, -3.0, 0.0, 0.0, 0.5],
+        ] {
+            assert_same(&native, tape, &x, "double pendulum jet");
+        }
+    }
+}

@@ -348,3 +348,61 @@ fn compiled_verlet_run_takes_the_generic_loops_steps_bit_for_bit() {
         );
     }
 }
+
+/// The double pendulum: `M(q)` depends on the angle difference, so no separable form.
+const DOUBLE_PENDULUM: &str = "0.5*(m1 + m2)*l1^2*a_dot^2 + 0.5*m2*l2^2*b_dot^2 \
+     + m2*l1*l2*a_dot*b_dot*cos(a - b) + (m1 + m2)*g*l1*cos(a) + m2*g*l2*cos(b)";
+
+/// A Lagrangian without the separable form, of up to four degrees of freedom, takes the small
+/// step kernel with its dual numbers composed from the native value, gradient and Hessian of
+/// `L` (`marsden::numerics::dual::compose`): the run equals the interpreted program's and the
+/// catalog's double pendulum to round-off, and so do the general path's (no small kernel)
+/// and a time-dependent Lagrangian's.
+#[test]
+fn lagrangians_without_the_separable_form_compose_their_duals_from_native_taylor_data() {
+    use marsden::systems::DoublePendulum;
+    let params = [
+        ("m1", 1.0),
+        ("m2", 1.3),
+        ("l1", 1.0),
+        ("l2", 0.8),
+        ("g", 9.81),
+    ];
+    let text = lagrangian(DOUBLE_PENDULUM, &["a", "b"], &params);
+    assert_eq!(text.structure(), Structure::General);
+    assert!(text.jet_is_native(), "the jet is compiled on this machine");
+    let interpreted = text.clone().interpreted();
+    assert!(!interpreted.jet_is_native());
+    let builtin = DoublePendulum {
+        m1: 1.0,
+        m2: 1.3,
+        l1: 1.0,
+        l2: 0.8,
+        g: 9.81,
+    };
+    // Two time units from a chaotic start (longer, round-off grows past any tolerance).
+    let start: (&[f64], &[f64]) = (&[1.5, 2.0], &[0.3, -0.2]);
+    let (a, _) = run(&text, Midpoint, start, 200);
+    let (b, _) = run(&interpreted, Midpoint, start, 200);
+    let (c, _) = run(&builtin, Midpoint, start, 200);
+    assert_states_close(&a, &b, 1e-11, "composed against interpreted");
+    assert_states_close(&a, &c, 1e-11, "composed against the catalog");
+    assert!(
+        bits(&a) != bits(&b),
+        "the composed duals are another evaluation (else this test shows nothing)"
+    );
+    // A time-dependent, velocity-coupled Lagrangian of three coordinates (t among the inputs).
+    let driven = "0.5*(1 + x^2)*x_dot^2 + 0.5*y_dot^2 + 0.5*z_dot^2 + x*y_dot - y*x_dot \
+                  - 0.5*(x^2 + y^2 + z^2) + z*sin(2*t) - 0.1*x^2*y*z";
+    let l = lagrangian(driven, &["x", "y", "z"], &[]);
+    assert!(l.jet_is_native());
+    let start: (&[f64], &[f64]) = (&[0.3, -0.2, 0.5], &[0.1, 0.4, -0.3]);
+    let (a, _) = run(&l, Midpoint, start, 500);
+    let (b, _) = run(l.clone().interpreted(), Midpoint, start, 500);
+    assert_states_close(
+        &a,
+        &b,
+        1e-11,
+        "time-dependent, composed against interpreted",
+    );
+}

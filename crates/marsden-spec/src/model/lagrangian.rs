@@ -13,6 +13,16 @@
 //! registers from step to step); where that is not possible (no code
 //! generator for the machine), or with the environment variable `MARSDEN_JIT=0` when the
 //! Lagrangian is built, the tapes' interpreter evaluates them.
+//!
+//! Without the separable form (a mass matrix depending on `q`, velocity-linear terms), the
+//! integrator takes the general path, whose small step kernels (up to four coordinates)
+//! evaluate `L` at fixed-size dual numbers. There, with native code, `L`'s value, gradient and
+//! Hessian in `[q, q̇, t]` ([`Jet`], symbolic, one tape each for first and second order) are
+//! evaluated at the real parts and the dual number is composed from them by Taylor's formula,
+//! exact for dual numbers ([`marsden::numerics::dual::compose::compose`]): the same values as
+//! the program's own dual evaluation to round-off, without interpreting it over 9 to 25 parts
+//! per operation. Every other scalar type (values, the general path's chunked duals) still runs
+//! the program.
 
 use std::cell::RefCell;
 use std::sync::Arc;
@@ -24,11 +34,13 @@ use marsden::mechanics::lagrangian::{gradient_by_ad, hessian_by_ad};
 use marsden::mechanics::{MassMatrix, Structure};
 use marsden::numerics::banded::Banded;
 #[cfg(feature = "jit")]
+use marsden::numerics::dual::compose::{Order, compose};
+#[cfg(feature = "jit")]
 use marsden::numerics::scratch::with_slice;
 use marsden::{Lagrangian, Scalar};
 
 use super::inputs::with_inputs;
-use marsden_expr::{Program, SeparableForm};
+use marsden_expr::{Jet, Program, SeparableForm};
 
 /// A Lagrangian given as an expression over `[q, q̇, t]` (names `theta`, `theta_dot`, `t`).
 ///
@@ -51,6 +63,11 @@ pub struct ExprLagrangian {
     separable: Option<Arc<SeparableForm>>,
     /// Native code for the separable form's tapes; `None` to interpret them.
     native: Option<Arc<NativeTapes>>,
+    /// Without the separable form, for up to four degrees of freedom: the value, gradient and
+    /// Hessian of `L` in `[q, q̇, t]`, from which the small step kernels' dual numbers are
+    /// composed (`marsden::numerics::dual::compose`) by native code instead of interpreting the
+    /// program over them.
+    jet: Option<Arc<NativeJet>>,
 }
 
 /// Equal programs and forms (the native code is a function of the form's tapes).
@@ -71,6 +88,58 @@ struct NativeTapes {
     hessian: OnceLock<Option<marsden_jit::CompiledTape>>,
     #[cfg(feature = "jit")]
     verlet: OnceLock<Option<NativeVerlet>>,
+}
+
+/// The Taylor data of `L` ([`Jet`]) and its native code, compiled at the first use (`None`
+/// inside: compilation failed, and the program is interpreted as without a jet).
+#[derive(Debug)]
+struct NativeJet {
+    jet: Jet,
+    #[cfg(feature = "jit")]
+    native: OnceLock<Option<[marsden_jit::CompiledTape; 2]>>,
+}
+
+impl NativeJet {
+    /// The jet of `program` over `[q, q̇, t]`, when native code may evaluate it.
+    fn of(program: &Program, dof: usize) -> Option<Self> {
+        let wanted = jit_wanted() && dof <= 4;
+        Some(Self {
+            jet: wanted.then(|| program.jet(2 * dof + 1)).flatten()?,
+            #[cfg(feature = "jit")]
+            native: OnceLock::new(),
+        })
+    }
+
+    /// The native code of the first- and second-order tapes, compiled now if this is the first
+    /// use.
+    #[cfg(feature = "jit")]
+    #[inline]
+    fn native(&self) -> Option<&[marsden_jit::CompiledTape; 2]> {
+        let compile = |tape| marsden_jit::CompiledTape::compile(tape).ok();
+        let both = || Some([compile(self.jet.first())?, compile(self.jet.second())?]);
+        self.native.get_or_init(both).as_ref()
+    }
+
+    /// `L` at the small kernels' dual numbers `x = [q, q̇, t]` from the native Taylor data;
+    /// `None` for other scalar types or without native code.
+    #[inline]
+    fn compose<S: Scalar>(&self, x: &[S]) -> Option<S> {
+        #[cfg(feature = "jit")]
+        {
+            let mut native = true;
+            let value = compose(x, |a, order, out| match (self.native(), order) {
+                (Some([first, _]), Order::First) => first.eval(a, out),
+                (Some([_, second]), Order::Second) => second.eval(a, out),
+                (None, _) => native = false,
+            });
+            value.filter(|_| native)
+        }
+        #[cfg(not(feature = "jit"))]
+        {
+            let _ = (x, &self.jet);
+            None
+        }
+    }
 }
 
 /// The compiled Verlet run as the core's [`VerletKernel`].
@@ -127,11 +196,16 @@ impl ExprLagrangian {
     pub fn new(program: Program, dof: usize) -> Self {
         let separable = program.separable(dof).map(Arc::new);
         let native = (separable.is_some() && jit_wanted()).then(Arc::default);
+        let jet = match separable {
+            Some(_) => None,
+            None => NativeJet::of(&program, dof).map(Arc::new),
+        };
         Self {
             program,
             dof,
             separable,
             native,
+            jet,
         }
     }
 
@@ -139,6 +213,7 @@ impl ExprLagrangian {
     pub fn without_structure(mut self) -> Self {
         self.separable = None;
         self.native = None;
+        self.jet = None;
         self
     }
 
@@ -146,7 +221,21 @@ impl ExprLagrangian {
     /// gives; for comparisons).
     pub fn interpreted(mut self) -> Self {
         self.native = None;
+        self.jet = None;
         self
+    }
+
+    /// Whether the small step kernels' dual numbers are composed from native Taylor data
+    /// (compiling it now if it has not been yet): a Lagrangian without the separable form, of
+    /// at most four degrees of freedom, with native code.
+    pub fn jet_is_native(&self) -> bool {
+        #[cfg(feature = "jit")]
+        return self
+            .jet
+            .as_deref()
+            .is_some_and(|jet| jet.native().is_some());
+        #[cfg(not(feature = "jit"))]
+        false
     }
 
     /// Whether `∇V` is evaluated by native code (compiling it now if it has not been yet).
@@ -223,7 +312,10 @@ impl Lagrangian for ExprLagrangian {
 
     #[inline]
     fn lagrangian<S: Scalar>(&self, t: S, q: &[S], v: &[S]) -> S {
-        with_inputs(q, v, t, |x| self.program.eval(x))
+        with_inputs(q, v, t, |x| {
+            let composed = self.jet.as_deref().and_then(|jet| jet.compose(x));
+            composed.unwrap_or_else(|| self.program.eval(x))
+        })
     }
 
     fn structure(&self) -> Structure {

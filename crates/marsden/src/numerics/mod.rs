@@ -4,7 +4,7 @@
 //! | module | what |
 //! |---|---|
 //! | [`ad`] | the only module that seeds dual numbers: gradients, Jacobians, mixed Hessian blocks |
-//! | `dual` | fixed-size dual numbers for the small step kernels |
+//! | [`dual`] | fixed-size dual numbers for the small step kernels; [`dual::compose`] evaluates a function at them from its Taylor data |
 //! | [`newton`] | Newton's method, its options, and the [`newton::Convergence`] rule every Newton loop uses |
 //! | [`dense`] | LU with partial pivoting in caller-owned buffers |
 //! | [`banded`] | band matrices and their LU (large chains in `O(n)`) |
@@ -13,6 +13,6 @@
 pub mod ad;
 pub mod banded;
 pub mod dense;
-pub(crate) mod dual;
+pub mod dual;
 pub mod newton;
 pub mod scratch;

@@ -31,6 +31,7 @@ use num_dual::{Derivative, HyperDual64, HyperDualSVec64};
 
 use crate::scalar::Scalar;
 
+pub mod compose;
 mod fixed;
 #[cfg(test)]
 mod tests;
