@@ -384,7 +384,7 @@ fn lagrangians_without_the_separable_form_compose_their_duals_from_native_taylor
     let start: (&[f64], &[f64]) = (&[1.5, 2.0], &[0.3, -0.2]);
     let (a, _) = run(&text, Midpoint, start, 200);
     let (b, _) = run(&interpreted, Midpoint, start, 200);
-    let (c, _) = run(&builtin, Midpoint, start, 200);
+    let (c, _) = run(builtin, Midpoint, start, 200);
     assert_states_close(&a, &b, 1e-11, "composed against interpreted");
     assert_states_close(&a, &c, 1e-11, "composed against the catalog");
     assert!(
