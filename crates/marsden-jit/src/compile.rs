@@ -353,22 +353,7 @@ impl<'a> Translator<'a> {
 
     /// `[sin x, cos x]` from one call of [`functions::SIN_COS`].
     fn sin_and_cos(&mut self, x: Value) -> Result<[Value; 2], JitError> {
-        let name = functions::SIN_COS.0;
-        let func = match self.calls.get(name) {
-            Some(&f) => f,
-            None => {
-                let mut sig = self.module.make_signature();
-                sig.params.push(AbiParam::new(types::F64));
-                sig.returns.extend([AbiParam::new(types::F64); 2]);
-                let id = self
-                    .module
-                    .declare_function(name, Linkage::Import, &sig)
-                    .map_err(codegen)?;
-                let f = self.module.declare_func_in_func(id, self.b.func);
-                self.calls.insert(name, f);
-                f
-            }
-        };
+        let func = self.imported(functions::SIN_COS.0, &[types::F64], 2)?;
         let call = self.b.ins().call(func, &[x]);
         let results = self.b.inst_results(call);
         Ok([results[0], results[1]])
@@ -381,23 +366,33 @@ impl<'a> Translator<'a> {
         params: &[Type],
         args: &[Value],
     ) -> Result<Value, JitError> {
-        let func = match self.calls.get(name) {
-            Some(&f) => f,
-            None => {
-                let mut sig = self.module.make_signature();
-                sig.params.extend(params.iter().map(|&t| AbiParam::new(t)));
-                sig.returns.push(AbiParam::new(types::F64));
-                let id = self
-                    .module
-                    .declare_function(name, Linkage::Import, &sig)
-                    .map_err(codegen)?;
-                let f = self.module.declare_func_in_func(id, self.b.func);
-                self.calls.insert(name, f);
-                f
-            }
-        };
+        let func = self.imported(name, params, 1)?;
         let call = self.b.ins().call(func, args);
         Ok(self.b.inst_results(call)[0])
+    }
+
+    /// The imported function `name` (parameters `params`, `results` values of type `f64`),
+    /// declared at its first use.
+    fn imported(
+        &mut self,
+        name: &'static str,
+        params: &[Type],
+        results: usize,
+    ) -> Result<FuncRef, JitError> {
+        if let Some(&f) = self.calls.get(name) {
+            return Ok(f);
+        }
+        let mut sig = self.module.make_signature();
+        sig.params.extend(params.iter().map(|&t| AbiParam::new(t)));
+        sig.returns
+            .extend(std::iter::repeat_n(AbiParam::new(types::F64), results));
+        let id = self
+            .module
+            .declare_function(name, Linkage::Import, &sig)
+            .map_err(codegen)?;
+        let f = self.module.declare_func_in_func(id, self.b.func);
+        self.calls.insert(name, f);
+        Ok(f)
     }
 }
 
