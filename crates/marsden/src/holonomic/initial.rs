@@ -38,7 +38,7 @@ pub struct ConstraintRank {
 }
 
 impl ConstraintRank {
-    /// `Ok` if `Dφ` has full row rank, else [`Error::RedundantConstraints`].
+    /// `Ok` if `Dφ` has full row rank, else [`crate::error::SetupError::RedundantConstraints`].
     pub fn full_rank(self, q: &[f64]) -> Result<(), Error> {
         if self.rank == self.count {
             Ok(())
@@ -106,12 +106,12 @@ fn worst(x: &[f64]) -> (usize, f64) {
 /// Checks initial data against the constraints, in this order:
 ///
 /// 1. positions: `‖φ(q₀)‖∞ ≤ tol · max(1, ‖q₀‖∞ ‖Dφ(q₀)‖_max)` (the scale of `φ` near `q₀`),
-///    else [`Error::InitialPositionOffConstraint`];
+///    else [`crate::error::SetupError::InitialPositionOffConstraint`];
 /// 2. rank: `Dφ(q₀)` has full row rank ([`constraint_rank`]), else
-///    [`Error::RedundantConstraints`];
+///    [`crate::error::SetupError::RedundantConstraints`];
 /// 3. velocities: `‖Dφ(q₀) v₀‖∞ ≤ tol · max(1, ‖Dφ(q₀)‖_max ‖v₀‖∞)`, else
-///    [`Error::InitialVelocityNotTangent`] (`what` names the input: `"velocity v0"` or
-///    `"momentum p0"` when `v₀ = FH(q₀, p₀)`).
+///    [`crate::error::SetupError::InitialVelocityNotTangent`] (`what` names the input:
+///    `"velocity v0"` or `"momentum p0"` when `v₀ = FH(q₀, p₀)`).
 pub fn check_initial<C: Constraint>(
     c: &C,
     q: &[f64],
@@ -167,8 +167,8 @@ pub struct PositionProjection {
 /// `q ← q − Dφ(q)ᵀ (Dφ(q) Dφ(q)ᵀ)⁻¹ φ(q)` (Gauss–Newton for the underdetermined system; each
 /// correction is the shortest one that solves the linearised constraints, and for a sphere the
 /// result is the nearest point). Converges to round-off, or fails with
-/// [`Error::PositionProjectionFailed`] after 50 iterations or when `Dφ Dφᵀ` is singular (for
-/// instance when `φ(q) = 0` has no solution).
+/// [`crate::error::SetupError::PositionProjectionFailed`] after 50 iterations or when `Dφ Dφᵀ` is
+/// singular (for instance when `φ(q) = 0` has no solution).
 pub fn project_position<C: Constraint>(c: &C, q: &[f64]) -> Result<PositionProjection, Error> {
     project_in_metric(c, q, None)
 }
@@ -177,7 +177,7 @@ pub fn project_position<C: Constraint>(c: &C, q: &[f64]) -> Result<PositionProje
 /// `∂²L/∂v²` at the initial state): `q ← q − W⁻¹Dφᵀ (Dφ W⁻¹ Dφᵀ)⁻¹ φ(q)`, the nearest point in
 /// the kinetic-energy norm to first order (for a point mass on a sphere the same as
 /// [`project_position`]). Fails as [`project_position`] does, and with
-/// [`Error::PositionProjectionFailed`] at iteration 0 if `W` is singular.
+/// [`crate::error::SetupError::PositionProjectionFailed`] at iteration 0 if `W` is singular.
 pub fn project_position_in_metric<C: Constraint>(
     c: &C,
     q: &[f64],

@@ -10,10 +10,10 @@
 //!     p_{k+1} =  D₂L_d(q_k, q_{k+1}) + f_d⁺(q_k, q_{k+1}).
 //! ```
 //!
-//! A [`Force`] is written once over the scalar type; a rule turns it into a [`DiscreteForce`]
-//! with its own quadrature (see [`crate::discrete::rules`]). Generalising to control points, a
-//! `DiscreteForce` returns the generalised force on every control point of a step, so forces
-//! work with Galerkin rules too.
+//! A [`Force`] is written once over the scalar type; a rule turns it into a
+//! [`DiscreteForce`](crate::discrete::DiscreteForce) with its own quadrature (see
+//! [`crate::discrete::rules`]). Generalising to control points, a `DiscreteForce` returns the
+//! generalised force on every control point of a step, so forces work with Galerkin rules too.
 //!
 //! Ready-made forces (damping, constant and periodic driving, controls, sums, Hamiltonian forces
 //! `f_H(t, q, p)` and user-written discrete forces `f_d^±`) live in [`crate::forces`].

@@ -61,8 +61,9 @@ pub fn momentum(mass: &MassMatrix, v: &[f64], p: &mut [f64]) {
     }
 }
 
-/// `v = M⁻¹ p`, or the singular mass matrix as [`Error::SingularLagrangian`] (a diagonal entry
-/// or an elimination pivot at most `1e-13` of the largest entry, as in [`Lu`]).
+/// `v = M⁻¹ p`, or the singular mass matrix as [`crate::error::SetupError::SingularLagrangian`]
+/// (a diagonal entry or an elimination pivot at most `1e-13` of the largest entry, as in
+/// [`Lu`]).
 pub fn velocity(
     mass: &MassMatrix,
     t: f64,

@@ -31,8 +31,8 @@ pub trait Observer {
     /// Called after every completed step; return `ControlFlow::Break(())` to stop the run.
     fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()>;
     /// Whether [`Observer::observe`] must see every step (default: true). When false, it may
-    /// see only the stored samples, and [`simulate`] hands the stepper the steps between
-    /// samples in one call ([`crate::run::stepper::Stepper::advance_on`]).
+    /// see only the stored samples, and [`simulate`](crate::run::simulate()) hands the stepper
+    /// the steps between samples in one call ([`crate::run::stepper::Stepper::advance_on`]).
     fn every_step(&self) -> bool {
         true
     }

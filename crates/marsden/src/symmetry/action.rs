@@ -82,8 +82,9 @@ pub trait FiniteAction: GroupAction {
 /// Checks that `action` fits a system with `dof` degrees of freedom and that its generators are
 /// finite and fully written at `q`.
 ///
-/// Errors: [`Error::SymmetryDimension`] if `action.dof() ≠ dof` (generators with the wrong
-/// number of components), [`Error::InvalidGenerator`] for a non-finite or unwritten component
+/// Errors: [`crate::error::InputError::SymmetryDimension`] if `action.dof() ≠ dof` (generators
+/// with the wrong number of components), [`crate::error::InputError::InvalidGenerator`] for a
+/// non-finite or unwritten component
 /// (each output is pre-filled with NaN, so a component the generator forgets stays NaN).
 pub fn validate<G: GroupAction>(action: &G, dof: usize, q: &[f64]) -> Result<(), Error> {
     if action.dof() != dof || q.len() != dof {
@@ -208,7 +209,8 @@ impl<G: FiniteAction> MultiFunction for Finite<'_, G> {
 /// Cotangent lift of the finite action: `Φ_g^{T*Q}(q, p) = (Φ_g(q), DΦ_g(q)⁻ᵀ p)`, with the
 /// derivative `DΦ_g(q)` by AD (seed: *Hamiltonian momentum maps*, cotangent lift).
 ///
-/// Errors with [`Error::SingularJacobian`] if `DΦ_g(q)` is not invertible (not a group action).
+/// Errors with [`crate::error::StepError::SingularJacobian`] if `DΦ_g(q)` is not invertible
+/// (not a group action).
 pub fn act_cotangent<G: FiniteAction>(
     action: &G,
     xi: &[f64],

@@ -111,7 +111,8 @@ impl SymmetryReport {
             .max_by(|a, b| a.max_relative.total_cmp(&b.max_relative))
     }
 
-    /// `Ok(self)` for a symmetry, otherwise [`Error::NotASymmetry`] with the worst defect.
+    /// `Ok(self)` for a symmetry, otherwise [`crate::error::SetupError::NotASymmetry`] with the
+    /// worst defect.
     pub fn into_result(self) -> Result<Self, Error> {
         match self.worst() {
             Some(w) if !self.is_symmetry() => Err(Error::Setup(SetupError::NotASymmetry {

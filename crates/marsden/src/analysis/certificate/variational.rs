@@ -76,8 +76,8 @@ impl Blocks<'_> {
 /// Writes `∂(q_{k+1}, p_{k+1})/∂(q_k, p_k)` (row-major 2n × 2n) of the step from `(t₀, q₀)` with
 /// converged control-point offsets `offsets = (Δ₁ … Δ_s)` into `jac`.
 ///
-/// Errors with [`Error::SingularJacobian`] if `∂R/∂z` is singular (the step is not locally
-/// unique, so its Jacobian is undefined).
+/// Errors with [`crate::error::StepError::SingularJacobian`] if `∂R/∂z` is singular (the step is
+/// not locally unique, so its Jacobian is undefined).
 pub fn step_jacobian<A: DiscreteAction, F: DiscreteForce>(
     action: &A,
     force: &F,

@@ -80,8 +80,9 @@ impl NoetherReport {
 
 /// The series `J_k = J_H(q_k, p_k)` at every stored sample, row-major `samples × m`.
 ///
-/// Errors if the action does not fit the trajectory's system ([`Error::SymmetryDimension`]) or
-/// its generators are not finite at the first sample ([`Error::InvalidGenerator`]).
+/// Errors if the action does not fit the trajectory's system
+/// ([`crate::error::InputError::SymmetryDimension`]) or its generators are not finite at the first
+/// sample ([`crate::error::InputError::InvalidGenerator`]).
 pub fn momentum_series<G: GroupAction>(
     action: &G,
     trajectory: &Trajectory,

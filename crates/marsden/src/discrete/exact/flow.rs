@@ -163,8 +163,9 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
     /// on rejection, double after a substep accepted before the last row.
     ///
     /// # Errors
-    /// [`Error::SingularLagrangian`] where `∂²L/∂v²` is singular, [`Error::FlowDidNotConverge`]
-    /// if a substep cannot be accepted after `max_halvings` successive halvings.
+    /// [`crate::error::SetupError::SingularLagrangian`] where `∂²L/∂v²` is singular,
+    /// [`crate::error::SetupError::FlowDidNotConverge`] if a substep cannot be accepted after
+    /// `max_halvings` successive halvings.
     pub fn advance(&self, t0: f64, h: f64, q0: &[f64], v0: &[f64]) -> Result<FlowEnd, Error> {
         let n = q0.len();
         let mut y: Vec<f64> = q0.iter().chain(v0).copied().chain([0.0]).collect();

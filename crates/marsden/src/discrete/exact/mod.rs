@@ -28,8 +28,8 @@
 //! with the flow's Jacobian `∂(q, v)(h)/∂(q₀, v₀) = [[A, B], [C, D]]` (central differences).
 //! The value and gradient are exact to the shooting's accuracy (round-off level); the Hessian
 //! only steers Newton's method. A failed boundary value problem evaluates to NaN, which the
-//! integrator reports as [`crate::error::Error::NonFinite`]; call [`ExactDiscreteLagrangian::boundary_value`]
-//! for the typed error.
+//! integrator reports as [`crate::error::StepError::NonFinite`]; call
+//! [`ExactDiscreteLagrangian::boundary_value`] for the typed error.
 //!
 //! [MW01]: Marsden & West, Acta Numerica 10 (2001).
 
@@ -116,8 +116,8 @@ impl<L: Lagrangian> ExactDiscreteLagrangian<L> {
     /// Solves the boundary value problem `q(t₀) = q₀`, `q(t₀ + h) = q₁`.
     ///
     /// # Errors
-    /// [`Error::ShootingDidNotConverge`] (e.g. beyond the first conjugate time), and the flow's
-    /// errors ([`EulerLagrangeFlow::advance`]).
+    /// [`crate::error::SetupError::ShootingDidNotConverge`] (e.g. beyond the first conjugate
+    /// time), and the flow's errors ([`EulerLagrangeFlow::advance`]).
     pub fn boundary_value(
         &self,
         t0: f64,

@@ -88,8 +88,8 @@ pub(crate) fn flow_derivatives<L: Lagrangian, F: Force>(
 /// `|Δv₀| ≤ 4ε (|v| + |q|/h)`.
 ///
 /// # Errors
-/// [`Error::ShootingDidNotConverge`] if Newton's method does not converge (or its Jacobian is
-/// singular: `h` at a conjugate time), and the flow's errors.
+/// [`crate::error::SetupError::ShootingDidNotConverge`] if Newton's method does not converge (or
+/// its Jacobian is singular: `h` at a conjugate time), and the flow's errors.
 pub fn solve<L: Lagrangian, F: Force>(
     flow: &EulerLagrangeFlow<L, F>,
     (t0, h): (f64, f64),

@@ -90,8 +90,9 @@ impl Galerkin {
     /// `P_degree` with `points` nodes of `family`.
     ///
     /// # Errors
-    /// [`Error::InvalidGalerkin`] if `degree ∉ 1..=MAX_DEGREE` or `points < degree`;
-    /// [`Error::InvalidQuadrature`] if the family has no rule with `points` nodes.
+    /// [`crate::error::InputError::InvalidGalerkin`] if `degree ∉ 1..=MAX_DEGREE` or
+    /// `points < degree`; [`crate::error::InputError::InvalidQuadrature`] if the family has no
+    /// rule with `points` nodes.
     pub fn new(degree: usize, family: QuadratureFamily, points: usize) -> Result<Self, Error> {
         let invalid = |reason: String| {
             Error::Input(InputError::InvalidGalerkin {

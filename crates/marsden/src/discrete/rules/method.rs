@@ -192,8 +192,9 @@ impl Method {
     /// Parses a method name (see the module docs).
     ///
     /// # Errors
-    /// [`Error::UnknownMethod`] with the valid grammar, or the rule's own error
-    /// ([`Error::InvalidGalerkin`], [`Error::InvalidQuadrature`]) for inconsistent parameters.
+    /// [`crate::error::InputError::UnknownMethod`] with the valid grammar, or the rule's own
+    /// error ([`crate::error::InputError::InvalidGalerkin`],
+    /// [`crate::error::InputError::InvalidQuadrature`]) for inconsistent parameters.
     pub fn parse(name: &str) -> Result<Self, Error> {
         let name = name.trim();
         if let Some(inner) = name.strip_suffix(')') {

@@ -74,8 +74,8 @@ impl Quadrature {
     /// The rule with `points` nodes of `family`.
     ///
     /// # Errors
-    /// [`Error::InvalidQuadrature`] if `points` is below the family's minimum (1 for Gauss, 2
-    /// for Lobatto) or above [`MAX_POINTS`].
+    /// [`crate::error::InputError::InvalidQuadrature`] if `points` is below the family's minimum
+    /// (1 for Gauss, 2 for Lobatto) or above [`MAX_POINTS`].
     pub fn new(family: QuadratureFamily, points: usize) -> Result<Self, Error> {
         if points < family.min_points() || points > MAX_POINTS {
             return Err(Error::Input(InputError::InvalidQuadrature {

@@ -42,8 +42,8 @@ impl NBody {
 
     /// Bodies of the given masses with gravitational constant `g` and Plummer softening length
     /// `softening`, checked: at least one body, every mass positive and finite, `g` finite
-    /// and positive, `softening` finite and non-negative (else [`Error::InvalidOption`] naming
-    /// `masses`, `G` or `softening`).
+    /// and positive, `softening` finite and non-negative (else
+    /// [`crate::error::InputError::InvalidOption`] naming `masses`, `G` or `softening`).
     ///
     /// ```
     /// use marsden::systems::NBody;
