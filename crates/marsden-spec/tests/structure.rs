@@ -405,4 +405,5 @@ fn lagrangians_without_the_separable_form_compose_their_duals_from_native_taylor
         1e-11,
         "time-dependent, composed against interpreted",
     );
+    assert!(bits(&a) != bits(&b), "the composed duals took these steps");
 }

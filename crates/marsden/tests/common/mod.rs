@@ -1,4 +1,5 @@
-//! Helpers shared by the reference-case tests.
+//! Helpers shared by the integration tests: the reference cases' Newton options and runs, and an
+//! observer of the stored samples only.
 // Tests may unwrap; reference values are quoted with all the digits the reference cases give.
 #![allow(
     clippy::unwrap_used,
@@ -7,7 +8,9 @@
     dead_code
 )]
 
-use marsden::{DiscreteAction, Integrator, NewtonOptions, State};
+use std::ops::ControlFlow;
+
+use marsden::{DiscreteAction, Integrator, NewtonOptions, Observer, State, StepView};
 
 /// Newton options for conservation tests: converge to round-off (reference cases §0, solver
 /// note). A residual tolerance of 1e-15 relative to the momenta is below what f64 can always
@@ -79,4 +82,18 @@ pub fn assert_close(a: f64, b: f64, tol: f64, what: &str) {
         "{what}: {a:.17e} vs {b:.17e} (diff {:.2e} > {tol:.0e})",
         (a - b).abs()
     );
+}
+
+/// Counts what it is shown, and asks to be shown only the stored samples (the run loop then
+/// hands the stepper the steps between samples in one call).
+pub struct SamplesOnly(pub usize);
+
+impl Observer for SamplesOnly {
+    fn observe(&mut self, _view: &StepView<'_>) -> ControlFlow<()> {
+        self.0 += 1;
+        ControlFlow::Continue(())
+    }
+    fn every_step(&self) -> bool {
+        false
+    }
 }

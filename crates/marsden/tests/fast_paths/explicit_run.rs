@@ -6,6 +6,7 @@
 // Tests may unwrap.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+use crate::common::SamplesOnly;
 use marsden::error::{StepError, StepFailure};
 use std::ops::ControlFlow;
 
@@ -174,18 +175,6 @@ fn a_blow_up_keeps_the_last_finite_state_and_names_the_step() {
     assert!(s2.q[0].is_finite() && s2.p[0].is_finite());
     assert_eq!(run.statistics().steps, failed_at);
     assert_eq!(run.statistics().failed_steps, 1);
-}
-
-/// Counts what it is shown, and asks to be shown only the stored samples.
-struct SamplesOnly(usize);
-impl marsden::Observer for SamplesOnly {
-    fn observe(&mut self, _view: &marsden::StepView<'_>) -> ControlFlow<()> {
-        self.0 += 1;
-        ControlFlow::Continue(())
-    }
-    fn every_step(&self) -> bool {
-        false
-    }
 }
 
 /// `simulate` with nobody watching each step (chunks between samples) and with a watcher

@@ -5,13 +5,14 @@
 
 use std::ops::ControlFlow;
 
+use crate::common::SamplesOnly;
 use marsden::analysis::diagnostics::{EnergyMonitor, EnergyReport};
 use marsden::discrete::legendre::legendre_plus;
 use marsden::integrator::maps::{discrete_hamiltonian_map, two_step_map};
 use marsden::systems::Pendulum;
 use marsden::{
-    Initial, Lagrangian, Midpoint, NewtonOptions, Observer, Problem, Rule, RunOptions, Scalar,
-    SolveOptions, StepView, Termination, TimeGrid,
+    Initial, Lagrangian, Midpoint, NewtonOptions, Problem, Rule, RunOptions, Scalar, SolveOptions,
+    StepView, Termination, TimeGrid,
 };
 
 #[test]
@@ -116,18 +117,6 @@ impl Lagrangian for Driven {
     fn lagrangian<S: Scalar>(&self, t: S, q: &[S], v: &[S]) -> S {
         let (q, v) = (q[0], v[0]);
         v * v * 0.5 - q * q * 0.5 + q * (t * 3.0).sin() + q.powi(4) * self.r
-    }
-}
-
-/// Counts what it is shown, and asks to be shown only the stored samples.
-struct SamplesOnly(usize);
-impl Observer for SamplesOnly {
-    fn observe(&mut self, _view: &StepView<'_>) -> ControlFlow<()> {
-        self.0 += 1;
-        ControlFlow::Continue(())
-    }
-    fn every_step(&self) -> bool {
-        false
     }
 }
 
