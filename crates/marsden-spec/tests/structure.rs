@@ -240,6 +240,73 @@ fn native_and_interpreted_tapes_give_identical_trajectories() {
     }
 }
 
+/// The compiled `∇²V` handed to the small separable kernels as its packed upper triangle
+/// (`Lagrangian::potential_hessian_packed`) has exactly the entries `potential_hessian` writes
+/// into the band storage, bit for bit, when its outputs are the whole triangle; a Hessian with
+/// an entry identically zero, or the interpreted tapes, decline (`false`), and the kernels then
+/// take the band storage. The pendulum typed as text runs the same either way (midpoint).
+#[test]
+fn packed_hessian_holds_the_band_storages_entries() {
+    let cases = [
+        ("0.5*th_dot^2 + 9.81*cos(th)", vec!["th"], true),
+        (
+            "0.5*(x_dot^2 + y_dot^2) + 1/sqrt(x^2 + y^2)",
+            vec!["x", "y"],
+            true,
+        ),
+        (
+            "0.5*(x_dot^2 + 2*y_dot^2) - x^2*y - exp(t*x)*y^3",
+            vec!["x", "y"],
+            true,
+        ),
+        (
+            "0.5*(a_dot^2 + b_dot^2 + c_dot^2) - a*b*c - cos(a + c) - b^2*c^2",
+            vec!["a", "b", "c"],
+            true,
+        ),
+        // ∂²V/∂x∂y ≡ 0: no packed triangle.
+        (
+            "0.5*(x_dot^2 + y_dot^2) - x^4 - cos(y)",
+            vec!["x", "y"],
+            false,
+        ),
+    ];
+    for (text, names, full) in cases {
+        let l = lagrangian(text, &names, &[]);
+        let n = l.dof();
+        let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.2 * i as f64).collect();
+        let mut band = Banded::new(n, n - 1);
+        l.potential_hessian(0.7, &q, &mut band);
+        let mut packed = vec![f64::NAN; n * (n + 1) / 2];
+        let jit = cfg!(all(
+            feature = "jit",
+            any(target_arch = "x86_64", target_arch = "aarch64")
+        ));
+        let given = l.potential_hessian_packed(0.7, &q, &mut packed);
+        assert_eq!(given, full && jit, "{text}");
+        if given {
+            let triangle = (0..n).flat_map(|i| (i..n).map(move |j| (i, j)));
+            for ((i, j), value) in triangle.zip(&packed) {
+                assert_eq!(
+                    value.to_bits(),
+                    band.get(i, j).to_bits(),
+                    "{text}: ({i}, {j})"
+                );
+            }
+        }
+        let interpreted = l.clone().interpreted();
+        assert!(
+            !interpreted.potential_hessian_packed(0.7, &q, &mut packed),
+            "{text}"
+        );
+    }
+    let pendulum = lagrangian("0.5*th_dot^2 + 9.81*cos(th)", &["th"], &[]);
+    let start = ([1.2].as_slice(), [0.3].as_slice());
+    let (a, _) = run(&pendulum, Midpoint, start, 2000);
+    let (b, _) = run(pendulum.clone().interpreted(), Midpoint, start, 2000);
+    assert_eq!(bits(&a), bits(&b), "pendulum: packed and band storage");
+}
+
 /// `steps` steps of the trapezoid rule in runs of `pieces` steps (`advance`), or one
 /// `Integrator::step` at a time when `pieces` is 0: the state, the outcome's message (empty
 /// when every step was taken) and the statistics' steps, explicit steps and gradients.

@@ -82,6 +82,9 @@ impl PartialEq for ExprLagrangian {
 /// interpreter is used).
 #[derive(Debug, Default)]
 struct NativeTapes {
+    /// Whether the Hessian tape's outputs are the whole upper triangle of `∇²V`, row by row
+    /// ([`Lagrangian::potential_hessian_packed`]'s layout).
+    hessian_packed: bool,
     #[cfg(feature = "jit")]
     gradient: OnceLock<Option<marsden_jit::CompiledTape>>,
     #[cfg(feature = "jit")]
@@ -179,6 +182,12 @@ fn native<'a>(
         .as_ref()
 }
 
+/// Whether `entries` are every `(i, j)`, `i ≤ j < n`, row by row.
+fn is_packed_triangle(entries: &[(usize, usize)], n: usize) -> bool {
+    let triangle = (0..n).flat_map(|i| (i..n).map(move |j| (i, j)));
+    entries.iter().copied().eq(triangle)
+}
+
 /// Whether native code is wanted: built with the `jit` feature and not switched off by
 /// `MARSDEN_JIT=0`.
 fn jit_wanted() -> bool {
@@ -195,7 +204,12 @@ impl ExprLagrangian {
     /// reads its structure.
     pub fn new(program: Program, dof: usize) -> Self {
         let separable = program.separable(dof).map(Arc::new);
-        let native = (separable.is_some() && jit_wanted()).then(Arc::default);
+        let native = separable.as_deref().filter(|_| jit_wanted()).map(|form| {
+            Arc::new(NativeTapes {
+                hessian_packed: is_packed_triangle(form.hessian_entries(), dof),
+                ..NativeTapes::default()
+            })
+        });
         let jet = match separable {
             Some(_) => None,
             None => NativeJet::of(&program, dof).map(Arc::new),
@@ -358,6 +372,24 @@ impl Lagrangian for ExprLagrangian {
             });
         }
         self.hessian_first_or_interpreted(t, q, hess);
+    }
+
+    /// The whole upper triangle of `∇²V` straight from the compiled Hessian, when its outputs
+    /// are that triangle (every entry not identically zero) and it has been compiled.
+    #[inline]
+    fn potential_hessian_packed(&self, t: f64, q: &[f64], packed: &mut [f64]) -> bool {
+        #[cfg(feature = "jit")]
+        if let Some(native) = self
+            .native
+            .as_deref()
+            .filter(|native| native.hessian_packed)
+            && let Some(Some(compiled)) = native.hessian.get()
+        {
+            compiled.eval_split(q, t, packed);
+            return true;
+        }
+        let _ = (t, q, packed);
+        false
     }
 
     /// The explicit run with the compiled gradient inside its loop (compiled now if this is

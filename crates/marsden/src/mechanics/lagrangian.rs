@@ -88,6 +88,19 @@ pub trait Lagrangian {
         hessian_by_ad(self, t, q, hess);
     }
 
+    /// `∇²V(t, q)` of a separable Lagrangian as its upper triangle row by row
+    /// (`∂²V/∂qᵢ∂qⱼ` for `i ≤ j`, `n(n + 1)/2` values) in `packed`, when the Lagrangian has it
+    /// in that form without going through the band storage of
+    /// [`Lagrangian::potential_hessian`] (compiled code that writes exactly these values);
+    /// returns whether it did. The small separable Newton steps (`n ≤ 4`) ask this first and
+    /// take `potential_hessian` when it returns `false`; both must give the same values.
+    /// Default: `false`, nothing written.
+    #[inline(always)]
+    fn potential_hessian_packed(&self, t: f64, q: &[f64], packed: &mut [f64]) -> bool {
+        let _ = (t, q, packed);
+        false
+    }
+
     /// The Lagrangian's own explicit run ([`crate::mechanics::kernel`]), if it has one: for a
     /// separable `L` with a diagonal mass, the trapezoid rule's runs then take their steps in
     /// it instead of the generic loop. It must give the generic loop's numbers bit for bit.
@@ -157,6 +170,10 @@ impl<L: Lagrangian + ?Sized> Lagrangian for &L {
     }
     fn potential_hessian(&self, t: f64, q: &[f64], hess: &mut Banded) {
         (**self).potential_hessian(t, q, hess)
+    }
+    #[inline(always)]
+    fn potential_hessian_packed(&self, t: f64, q: &[f64], packed: &mut [f64]) -> bool {
+        (**self).potential_hessian_packed(t, q, packed)
     }
     fn verlet_kernel(&self) -> Option<&dyn VerletKernel> {
         (**self).verlet_kernel()

@@ -89,22 +89,41 @@ impl<L: Lagrangian, const N: usize> Step<'_, L, N> {
         }
     }
 
-    /// `A = M/h + hα(1−α)∇²V` at `delta` (one Hessian of `V`, through the band storage of the
+    /// `A = M/h + hα(1−α)∇²V` at `delta` (one Hessian of `V`: its packed upper triangle if
+    /// [`Lagrangian::potential_hessian_packed`] gives it, else through the band storage of the
     /// workspace, which [`Lagrangian::potential_hessian`] fills).
     fn jacobian(&self, delta: &[f64; N], ws: &mut SeparableWorkspace) -> [[f64; N]; N] {
         let Frame { t0, h, .. } = self.frame;
+        let (t, q) = (t0 + self.alpha * h, self.node(delta));
+        let mut packed = [0.0; 10];
+        let packed = &mut packed[..N * (N + 1) / 2];
+        if self.l.potential_hessian_packed(t, &q, packed) {
+            return self.matrix(|i, j| packed[packed_index::<N>(i.min(j), i.max(j))]);
+        }
         ws.hess.reshape(N, N - 1);
-        self.l
-            .potential_hessian(t0 + self.alpha * h, &self.node(delta), &mut ws.hess);
+        self.l.potential_hessian(t, &q, &mut ws.hess);
+        self.matrix(|i, j| ws.hess.get(i, j))
+    }
+
+    /// `M/h + hα(1−α) H` for the entries `hess(i, j)` of `H = ∇²V`.
+    #[inline(always)]
+    fn matrix(&self, hess: impl Fn(usize, usize) -> f64) -> [[f64; N]; N] {
+        let h = self.frame.h;
         let c = h * self.alpha * (1.0 - self.alpha);
         let inv_h = 1.0 / h;
         std::array::from_fn(|i| {
             std::array::from_fn(|j| {
                 let m = if i == j { self.mass[i] } else { 0.0 };
-                m * inv_h + c * ws.hess.get(i, j)
+                m * inv_h + c * hess(i, j)
             })
         })
     }
+}
+
+/// Index of `(i, j)`, `i ≤ j`, in the upper triangle of an `N × N` matrix stored row by row.
+#[inline(always)]
+const fn packed_index<const N: usize>(i: usize, j: usize) -> usize {
+    i * (2 * N - i + 1) / 2 + (j - i)
 }
 
 fn solve<L: Lagrangian, const N: usize>(

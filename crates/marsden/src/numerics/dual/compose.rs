@@ -14,7 +14,8 @@
 //!
 //! and a first-order dual needs the gradient only. [`compose`] does this for the fixed-size
 //! types the small step kernels evaluate a Lagrangian at ([`super::SmallDual`],
-//! [`super::SmallGradient`]: n = 1 … 4 degrees of freedom); for any other scalar type it
+//! [`super::SmallGradient`]: n = 1 … 4 degrees of freedom), at the `2n + 1` inputs
+//! `[q, q̇, t]` of a kernel of that size; for any other scalar type or number of inputs it
 //! returns `None` and the caller evaluates the function itself. The values agree with the
 //! function's own dual evaluation to round-off (the sums are taken in another order).
 
@@ -40,9 +41,10 @@ pub enum Order {
     Second,
 }
 
-/// `f` at `inputs` (`m ≤ MAX_INPUTS` values) from `taylor(a, order, out)`, which writes
-/// [`Order`]'s Taylor data of `f` at the real parts `a` into `out`, when `S` is one of the
-/// small kernels' dual types; `None` for every other `S` (nothing is called).
+/// `f` at `inputs` from `taylor(a, order, out)`, which writes [`Order`]'s Taylor data of `f`
+/// at the real parts `a` into `out`, when `S` is one of the small kernels' dual types for `n`
+/// degrees of freedom and there are `m = 2n + 1` inputs; `None` otherwise (nothing is
+/// called).
 ///
 /// ```
 /// use marsden::numerics::dual::compose::{Order, compose};
@@ -61,21 +63,21 @@ pub fn compose<S: Scalar>(
     }
     let s = TypeId::of::<S>();
     if s == TypeId::of::<HyperDual64>() {
-        second::<1, HyperDual64, S>(inputs, taylor)
+        second::<1, 3, 10, HyperDual64, S>(inputs, taylor)
     } else if s == TypeId::of::<HyperDual2x64>() {
-        second::<2, HyperDual2x64, S>(inputs, taylor)
+        second::<2, 5, 21, HyperDual2x64, S>(inputs, taylor)
     } else if s == TypeId::of::<HyperDual3x64>() {
-        second::<3, HyperDual3x64, S>(inputs, taylor)
+        second::<3, 7, 36, HyperDual3x64, S>(inputs, taylor)
     } else if s == TypeId::of::<HyperDual4x64>() {
-        second::<4, HyperDual4x64, S>(inputs, taylor)
+        second::<4, 9, 55, HyperDual4x64, S>(inputs, taylor)
     } else if s == TypeId::of::<Dual2x64>() {
-        first::<1, Dual2x64, S>(inputs, taylor)
+        first::<1, 3, Dual2x64, S>(inputs, taylor)
     } else if s == TypeId::of::<Dual4x64>() {
-        first::<2, Dual4x64, S>(inputs, taylor)
+        first::<2, 5, Dual4x64, S>(inputs, taylor)
     } else if s == TypeId::of::<Dual6x64>() {
-        first::<3, Dual6x64, S>(inputs, taylor)
+        first::<3, 7, Dual6x64, S>(inputs, taylor)
     } else if s == TypeId::of::<Dual8x64>() {
-        first::<4, Dual8x64, S>(inputs, taylor)
+        first::<4, 9, Dual8x64, S>(inputs, taylor)
     } else {
         None
     }
@@ -85,12 +87,6 @@ pub fn compose<S: Scalar>(
 #[inline(always)]
 fn uncast<D: Scalar, S: Scalar>(value: D) -> Option<S> {
     (&value as &dyn Any).downcast_ref::<S>().copied()
-}
-
-/// Index of `∂ₖₗf` (`k ≤ l`) in [`Order::Second`]'s data of `m` inputs.
-#[inline(always)]
-fn hessian_index(m: usize, k: usize, l: usize) -> usize {
-    1 + m + k * (2 * m - k + 1) / 2 + (l - k)
 }
 
 /// A hyper-dual type built from its parts.
@@ -130,82 +126,122 @@ macro_rules! parts {
 parts!(hyper: [HyperDual2x64, 2; HyperDual3x64, 3; HyperDual4x64, 4],
        gradient: [Dual2x64, 1; Dual4x64, 2; Dual6x64, 3; Dual8x64, 4]);
 
-/// The second-order composition for a hyper-dual `D` with `N`-dimensional ε parts. Inputs
-/// whose ε parts are all zero (the time of a step, a constant) drop out of every sum.
+/// The second-order composition for a hyper-dual `D` with `N`-dimensional ε parts, at the
+/// `M = 2N + 1` inputs `[q, q̇, t]` of a kernel of that size (`None` for any other count),
+/// whose Taylor data has `T = 1 + M + M(M + 1)/2` values. Inputs whose ε parts are all zero
+/// (the time of a step, a constant) drop out of every sum.
 #[inline(always)]
-fn second<const N: usize, D: HyperParts<N>, S: Scalar>(
+fn second<const N: usize, const M: usize, const T: usize, D: HyperParts<N>, S: Scalar>(
     inputs: &[S],
     taylor: impl FnOnce(&[f64], Order, &mut [f64]),
 ) -> Option<S> {
-    let m = inputs.len();
-    let mut a = [0.0; MAX_INPUTS];
-    // The live inputs' slots and parts: ε₁ (b), ε₂ (c), ε₁ε₂ (d).
-    let (mut live, mut count) = ([0usize; MAX_INPUTS], 0);
-    let mut b = [[0.0; N]; MAX_INPUTS];
-    let mut c = [[0.0; N]; MAX_INPUTS];
-    let mut d = [[[0.0; N]; N]; MAX_INPUTS];
+    const { assert!(M == 2 * N + 1 && M <= MAX_INPUTS && T == 1 + M + M * (M + 1) / 2) };
+    let inputs: &[S; M] = inputs.try_into().ok()?;
+    let mut parts = Parts::<N, M> {
+        a: [0.0; M],
+        b: [[0.0; N]; M],
+        c: [[0.0; N]; M],
+        d: [[[0.0; N]; N]; M],
+        live: [false; M],
+    };
     for (k, input) in inputs.iter().enumerate() {
         let x = (input as &dyn Any).downcast_ref::<D>()?;
-        a[k] = x.value();
-        let bk: [f64; N] = std::array::from_fn(|i| x.eps1(i));
-        let ck: [f64; N] = std::array::from_fn(|j| x.eps2(j));
-        let dk: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| x.eps12(i, j)));
+        parts.a[k] = x.value();
+        parts.b[k] = std::array::from_fn(|i| x.eps1(i));
+        parts.c[k] = std::array::from_fn(|j| x.eps2(j));
+        parts.d[k] = std::array::from_fn(|i| std::array::from_fn(|j| x.eps12(i, j)));
         let zero = |v: &[f64]| v.iter().all(|&p| p == 0.0);
-        if !(zero(&bk) && zero(&ck) && zero(dk.as_flattened())) {
-            (live[count], b[count], c[count], d[count]) = (k, bk, ck, dk);
-            count += 1;
-        }
+        let (b, c, d) = (&parts.b[k], &parts.c[k], &parts.d[k]);
+        parts.live[k] = !(zero(b) && zero(c) && zero(d.as_flattened()));
     }
-    let mut data = [0.0; 1 + MAX_INPUTS + MAX_INPUTS * (MAX_INPUTS + 1) / 2];
-    taylor(&a[..m], Order::Second, &mut data);
-    let g: [f64; MAX_INPUTS] = std::array::from_fn(|r| data[1 + live[r]]);
-    let (mut e1, mut e2, mut e12) = ([0.0; N], [0.0; N], [[0.0; N]; N]);
-    for r in 0..count {
-        for i in 0..N {
-            e1[i] += g[r] * b[r][i];
-            e2[i] += g[r] * c[r][i];
-            for j in 0..N {
-                e12[i][j] += g[r] * d[r][i][j];
-            }
-        }
-    }
-    // e12 += Bᵀ H C over the live inputs: first hc = H C (count × N), row by row.
-    for r in 0..count {
-        let mut hc = [0.0; N];
-        for s in 0..count {
-            let (k, l) = (live[r].min(live[s]), live[r].max(live[s]));
-            let h = data[hessian_index(m, k, l)];
-            for j in 0..N {
-                hc[j] += h * c[s][j];
-            }
-        }
-        for i in 0..N {
-            for j in 0..N {
-                e12[i][j] += b[r][i] * hc[j];
-            }
-        }
-    }
+    let mut data = [0.0; T];
+    taylor(&parts.a, Order::Second, &mut data);
+    // The kernels' case: only the time is a plain number. Every bound of the sums is then a
+    // constant (the loops unroll, the packed Hessian's indices are known when compiled).
+    let (e1, e2, e12) = if parts.live[..M - 1].iter().all(|&l| l) && !parts.live[M - 1] {
+        parts.sums(&data, |k| k < M - 1)
+    } else {
+        parts.sums(&data, |k| parts.live[k])
+    };
     uncast(D::from_parts(data[0], e1, e2, e12))
 }
 
-/// The first-order composition for a dual `D` with `2N` parts.
+/// The inputs of [`second`]: values `a`, parts ε₁ (`b`), ε₂ (`c`), ε₁ε₂ (`d`), and whether
+/// any part is nonzero.
+struct Parts<const N: usize, const M: usize> {
+    a: [f64; M],
+    b: [[f64; N]; M],
+    c: [[f64; N]; M],
+    d: [[[f64; N]; N]; M],
+    live: [bool; M],
+}
+
+impl<const N: usize, const M: usize> Parts<N, M> {
+    /// The ε₁, ε₂ and ε₁ε₂ parts of the result from the Taylor data, summed over the inputs
+    /// `k` with `live(k)` in ascending order.
+    #[inline(always)]
+    fn sums(
+        &self,
+        data: &[f64],
+        live: impl Fn(usize) -> bool,
+    ) -> ([f64; N], [f64; N], [[f64; N]; N]) {
+        let (b, c, d) = (&self.b, &self.c, &self.d);
+        let (mut e1, mut e2, mut e12) = ([0.0; N], [0.0; N], [[0.0; N]; N]);
+        for k in (0..M).filter(|&k| live(k)) {
+            let g = data[1 + k];
+            for i in 0..N {
+                e1[i] += g * b[k][i];
+                e2[i] += g * c[k][i];
+                for j in 0..N {
+                    e12[i][j] += g * d[k][i][j];
+                }
+            }
+        }
+        // e12 += Bᵀ H C: the rows hc_k = Σₗ ∂ₖₗf c_l (l ascending) first.
+        for k in (0..M).filter(|&k| live(k)) {
+            let mut hc = [0.0; N];
+            for l in (0..M).filter(|&l| live(l)) {
+                let h = data[hessian_index(M, k.min(l), k.max(l))];
+                for j in 0..N {
+                    hc[j] += h * c[l][j];
+                }
+            }
+            for i in 0..N {
+                for j in 0..N {
+                    e12[i][j] += b[k][i] * hc[j];
+                }
+            }
+        }
+        (e1, e2, e12)
+    }
+}
+
+/// Index of `∂ₖₗf` (`k ≤ l`) in [`Order::Second`]'s data of `m` inputs.
 #[inline(always)]
-fn first<const N: usize, D: GradientParts<N>, S: Scalar>(
+const fn hessian_index(m: usize, k: usize, l: usize) -> usize {
+    1 + m + k * (2 * m - k + 1) / 2 + (l - k)
+}
+
+/// The first-order composition for a dual `D` with `2N` parts, at the `M = 2N + 1` inputs
+/// of a kernel of that size (`None` for any other count).
+#[inline(always)]
+fn first<const N: usize, const M: usize, D: GradientParts<N>, S: Scalar>(
     inputs: &[S],
     taylor: impl FnOnce(&[f64], Order, &mut [f64]),
 ) -> Option<S> {
-    let m = inputs.len();
-    let mut x = [D::from(0.0); MAX_INPUTS];
-    let mut a = [0.0; MAX_INPUTS];
+    const { assert!(M == 2 * N + 1 && M <= MAX_INPUTS) };
+    let inputs: &[S; M] = inputs.try_into().ok()?;
+    let mut x = [D::from(0.0); M];
+    let mut a = [0.0; M];
     for (k, input) in inputs.iter().enumerate() {
         x[k] = *(input as &dyn Any).downcast_ref::<D>()?;
         a[k] = x[k].value();
     }
     let mut data = [0.0; 1 + MAX_INPUTS];
-    taylor(&a[..m], Order::First, &mut data);
-    let gradient = &data[1..=m];
+    taylor(&a, Order::First, &mut data[..=M]);
+    let gradient = &data[1..=M];
     let value = D::with_parts(data[0], |p| {
-        (0..m).map(|k| gradient[k] * x[k].part(p)).sum()
+        (0..M).map(|k| gradient[k] * x[k].part(p)).sum()
     });
     uncast(value)
 }
@@ -214,14 +250,14 @@ fn first<const N: usize, D: GradientParts<N>, S: Scalar>(
 mod tests {
     use super::*;
 
-    /// A function of five inputs with products, quotients and elementary functions, every
-    /// input meeting every other.
+    /// A function of any number of inputs with products, quotients and elementary functions,
+    /// every input meeting its two neighbours (cyclically).
     fn f<S: Scalar>(x: &[S]) -> S {
-        let (a, b, c, d, e) = (x[0], x[1], x[2], x[3], x[4]);
-        a * a * b * c.sin()
-            + (a * d).exp() / (e * e + 1.0)
-            + (b - c).cos() * d.powi(3)
-            + (c * e + 2.0).ln() * a
+        let m = x.len();
+        (0..m).fold(S::from(0.0), |sum, k| {
+            let (a, b, c) = (x[k], x[(k + 1) % m], x[(k + 2) % m]);
+            sum + a * a * b * c.sin() + (a * b).exp() / (c * c + 1.0) + (b - c).cos() * a.powi(3)
+        })
     }
 
     /// The Taylor data of `f` at `a`, each entry by its own hyper-dual evaluation.
@@ -246,7 +282,7 @@ mod tests {
         }
     }
 
-    const A: [f64; 5] = [0.7, -0.4, 0.25, 1.1, -0.9];
+    const A: [f64; MAX_INPUTS] = [0.7, -0.4, 0.25, 1.1, -0.9, 0.3, -0.6, 0.85, 0.15];
 
     /// A made-up part, different for every input and index.
     fn part(k: usize, i: usize) -> f64 {
@@ -258,13 +294,22 @@ mod tests {
     }
 
     /// Every part of `f` composed from its Taylor data equals `f` evaluated at the hyper-dual
-    /// inputs themselves (every ε₁, ε₂ and ε₁ε₂ part of the inputs nonzero).
+    /// inputs themselves: every ε₁, ε₂ and ε₁ε₂ part of the inputs nonzero, and again with
+    /// input `dead` a plain number (as the time of a step is), which the composition skips.
     fn second_order_agrees<const N: usize, D: HyperParts<N>>() {
-        let x: Vec<D> = (0..A.len())
+        for dead in [None, Some(2 * N), Some(0)] {
+            second_order_agrees_with::<N, D>(dead);
+        }
+    }
+
+    fn second_order_agrees_with<const N: usize, D: HyperParts<N>>(dead: Option<usize>) {
+        let x: Vec<D> = (0..2 * N + 1)
             .map(|k| {
-                let e1 = std::array::from_fn(|i| part(k, i));
-                let e2 = std::array::from_fn(|j| part(k, j + 5));
-                let e12 = std::array::from_fn(|i| std::array::from_fn(|j| part(k, 3 * i + j + 1)));
+                let live = if dead == Some(k) { 0.0 } else { 1.0 };
+                let e1 = std::array::from_fn(|i| live * part(k, i));
+                let e2 = std::array::from_fn(|j| live * part(k, j + 5));
+                let e12 =
+                    std::array::from_fn(|i| std::array::from_fn(|j| live * part(k, 3 * i + j + 1)));
                 D::from_parts(A[k], e1, e2, e12)
             })
             .collect();
@@ -283,7 +328,7 @@ mod tests {
 
     /// The same for a first-order dual with `2N` parts.
     fn first_order_agrees<const N: usize, D: GradientParts<N>>() {
-        let x: Vec<D> = (0..A.len())
+        let x: Vec<D> = (0..2 * N + 1)
             .map(|k| D::with_parts(A[k], |p| part(k, p)))
             .collect();
         let direct = f(&x);
@@ -307,12 +352,15 @@ mod tests {
     }
 
     #[test]
-    fn other_types_and_too_many_inputs_are_left_to_the_caller() {
+    fn other_types_and_other_input_counts_are_left_to_the_caller() {
         let never = |_: &[f64], _: Order, _: &mut [f64]| panic!("not to be called");
         assert!(compose(&[1.0_f64; 3], never).is_none());
         let dual = num_dual::Dual64::new(1.0, 1.0);
         assert!(compose(&[dual; 3], never).is_none());
         let hyper = HyperDual64::new(1.0, 1.0, 0.0, 0.0);
-        assert!(compose(&[hyper; MAX_INPUTS + 1], never).is_none());
+        assert!(compose(&[hyper; 2], never).is_none());
+        assert!(compose(&[hyper; 4], never).is_none());
+        let gradient = Dual4x64::from_parts(1.0, [1.0, 0.0, 0.0, 0.0]);
+        assert!(compose(&[gradient; 3], never).is_none());
     }
 }
