@@ -123,14 +123,14 @@ impl NativeJet {
         self.native.get_or_init(both).as_ref()
     }
 
-    /// `L` at the small kernels' dual numbers `x = [q, q̇, t]` from the native Taylor data;
+    /// `L` at the small kernels' dual numbers `(t, q, q̇)` from the native Taylor data;
     /// `None` for other scalar types or without native code.
     #[inline]
-    fn compose<S: Scalar>(&self, x: &[S]) -> Option<S> {
+    fn compose<S: Scalar>(&self, t: S, q: &[S], v: &[S]) -> Option<S> {
         #[cfg(feature = "jit")]
         {
             let mut native = true;
-            let value = compose(x, |a, order, out| match (self.native(), order) {
+            let value = compose(q, v, t, |a, order, out| match (self.native(), order) {
                 (Some([first, _]), Order::First) => first.eval(a, out),
                 (Some([_, second]), Order::Second) => second.eval(a, out),
                 (None, _) => native = false,
@@ -139,7 +139,7 @@ impl NativeJet {
         }
         #[cfg(not(feature = "jit"))]
         {
-            let _ = (x, &self.jet);
+            let _ = (t, q, v, &self.jet);
             None
         }
     }
@@ -326,10 +326,10 @@ impl Lagrangian for ExprLagrangian {
 
     #[inline]
     fn lagrangian<S: Scalar>(&self, t: S, q: &[S], v: &[S]) -> S {
-        with_inputs(q, v, t, |x| {
-            let composed = self.jet.as_deref().and_then(|jet| jet.compose(x));
-            composed.unwrap_or_else(|| self.program.eval(x))
-        })
+        if let Some(value) = self.jet.as_deref().and_then(|jet| jet.compose(t, q, v)) {
+            return value;
+        }
+        with_inputs(q, v, t, |x| self.program.eval(x))
     }
 
     fn structure(&self) -> Structure {

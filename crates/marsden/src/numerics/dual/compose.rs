@@ -41,45 +41,75 @@ pub enum Order {
     Second,
 }
 
-/// `f` at `inputs` from `taylor(a, order, out)`, which writes [`Order`]'s Taylor data of `f`
-/// at the real parts `a` into `out`, when `S` is one of the small kernels' dual types for `n`
-/// degrees of freedom and there are `m = 2n + 1` inputs; `None` otherwise (nothing is
-/// called).
+/// `f` at the inputs `[q, q̇, t]` from `taylor(a, order, out)`, which writes [`Order`]'s
+/// Taylor data of `f` at their real parts `a` into `out`, when `S` is one of the small
+/// kernels' dual types for `n` degrees of freedom and `q`, `q̇` have length `n`; `None`
+/// otherwise (nothing is called). The inputs are read where they are, not copied into one
+/// array first.
 ///
 /// ```
 /// use marsden::numerics::dual::compose::{Order, compose};
 ///
 /// // f64 is no dual type of the small kernels: the caller evaluates f itself.
-/// let none = compose(&[1.0_f64, 2.0], |_, _: Order, _: &mut [f64]| unreachable!());
+/// let none = compose(&[1.0_f64], &[2.0], 0.0, |_, _: Order, _: &mut [f64]| unreachable!());
 /// assert_eq!(none, None);
 /// ```
 #[inline]
 pub fn compose<S: Scalar>(
-    inputs: &[S],
+    q: &[S],
+    v: &[S],
+    t: S,
     taylor: impl FnOnce(&[f64], Order, &mut [f64]),
 ) -> Option<S> {
-    if inputs.len() > MAX_INPUTS {
-        return None;
-    }
+    let x = Inputs { q, v, t };
     let s = TypeId::of::<S>();
     if s == TypeId::of::<HyperDual64>() {
-        second::<1, 3, 10, HyperDual64, S>(inputs, taylor)
+        second::<1, 3, 10, HyperDual64, S>(x, taylor)
     } else if s == TypeId::of::<HyperDual2x64>() {
-        second::<2, 5, 21, HyperDual2x64, S>(inputs, taylor)
+        second::<2, 5, 21, HyperDual2x64, S>(x, taylor)
     } else if s == TypeId::of::<HyperDual3x64>() {
-        second::<3, 7, 36, HyperDual3x64, S>(inputs, taylor)
+        second::<3, 7, 36, HyperDual3x64, S>(x, taylor)
     } else if s == TypeId::of::<HyperDual4x64>() {
-        second::<4, 9, 55, HyperDual4x64, S>(inputs, taylor)
+        second::<4, 9, 55, HyperDual4x64, S>(x, taylor)
     } else if s == TypeId::of::<Dual2x64>() {
-        first::<1, 3, Dual2x64, S>(inputs, taylor)
+        first::<1, 3, Dual2x64, S>(x, taylor)
     } else if s == TypeId::of::<Dual4x64>() {
-        first::<2, 5, Dual4x64, S>(inputs, taylor)
+        first::<2, 5, Dual4x64, S>(x, taylor)
     } else if s == TypeId::of::<Dual6x64>() {
-        first::<3, 7, Dual6x64, S>(inputs, taylor)
+        first::<3, 7, Dual6x64, S>(x, taylor)
     } else if s == TypeId::of::<Dual8x64>() {
-        first::<4, 9, Dual8x64, S>(inputs, taylor)
+        first::<4, 9, Dual8x64, S>(x, taylor)
     } else {
         None
+    }
+}
+
+/// The inputs `[q, q̇, t]` where the caller holds them.
+#[derive(Clone, Copy)]
+struct Inputs<'a, S> {
+    q: &'a [S],
+    v: &'a [S],
+    t: S,
+}
+
+impl<S: Scalar> Inputs<'_, S> {
+    /// Input `k` of `[q, q̇, t]` as `D` when `q` and `q̇` have length `N` and `S` is `D`.
+    #[inline(always)]
+    fn get<const N: usize, D: Scalar>(&self, k: usize) -> Option<&D> {
+        let x = if k < N {
+            self.q.get(k)?
+        } else if k < 2 * N {
+            self.v.get(k - N)?
+        } else {
+            &self.t
+        };
+        (x as &dyn Any).downcast_ref::<D>()
+    }
+
+    /// Whether `q` and `q̇` have length `N`.
+    #[inline(always)]
+    fn fits<const N: usize>(&self) -> bool {
+        self.q.len() == N && self.v.len() == N
     }
 }
 
@@ -127,16 +157,18 @@ parts!(hyper: [HyperDual2x64, 2; HyperDual3x64, 3; HyperDual4x64, 4],
        gradient: [Dual2x64, 1; Dual4x64, 2; Dual6x64, 3; Dual8x64, 4]);
 
 /// The second-order composition for a hyper-dual `D` with `N`-dimensional ε parts, at the
-/// `M = 2N + 1` inputs `[q, q̇, t]` of a kernel of that size (`None` for any other count),
+/// `M = 2N + 1` inputs `[q, q̇, t]` of a kernel of that size (`None` for other lengths),
 /// whose Taylor data has `T = 1 + M + M(M + 1)/2` values. Inputs whose ε parts are all zero
 /// (the time of a step, a constant) drop out of every sum.
 #[inline(always)]
 fn second<const N: usize, const M: usize, const T: usize, D: HyperParts<N>, S: Scalar>(
-    inputs: &[S],
+    inputs: Inputs<'_, S>,
     taylor: impl FnOnce(&[f64], Order, &mut [f64]),
 ) -> Option<S> {
     const { assert!(M == 2 * N + 1 && M <= MAX_INPUTS && T == 1 + M + M * (M + 1) / 2) };
-    let inputs: &[S; M] = inputs.try_into().ok()?;
+    if !inputs.fits::<N>() {
+        return None;
+    }
     let mut parts = Parts::<N, M> {
         a: [0.0; M],
         b: [[0.0; N]; M],
@@ -144,8 +176,8 @@ fn second<const N: usize, const M: usize, const T: usize, D: HyperParts<N>, S: S
         d: [[[0.0; N]; N]; M],
         live: [false; M],
     };
-    for (k, input) in inputs.iter().enumerate() {
-        let x = (input as &dyn Any).downcast_ref::<D>()?;
+    for k in 0..M {
+        let x = inputs.get::<N, D>(k)?;
         parts.a[k] = x.value();
         parts.b[k] = std::array::from_fn(|i| x.eps1(i));
         parts.c[k] = std::array::from_fn(|j| x.eps2(j));
@@ -223,18 +255,20 @@ const fn hessian_index(m: usize, k: usize, l: usize) -> usize {
 }
 
 /// The first-order composition for a dual `D` with `2N` parts, at the `M = 2N + 1` inputs
-/// of a kernel of that size (`None` for any other count).
+/// `[q, q̇, t]` of a kernel of that size (`None` for other lengths).
 #[inline(always)]
 fn first<const N: usize, const M: usize, D: GradientParts<N>, S: Scalar>(
-    inputs: &[S],
+    inputs: Inputs<'_, S>,
     taylor: impl FnOnce(&[f64], Order, &mut [f64]),
 ) -> Option<S> {
     const { assert!(M == 2 * N + 1 && M <= MAX_INPUTS) };
-    let inputs: &[S; M] = inputs.try_into().ok()?;
+    if !inputs.fits::<N>() {
+        return None;
+    }
     let mut x = [D::from(0.0); M];
     let mut a = [0.0; M];
-    for (k, input) in inputs.iter().enumerate() {
-        x[k] = *(input as &dyn Any).downcast_ref::<D>()?;
+    for k in 0..M {
+        x[k] = *inputs.get::<N, D>(k)?;
         a[k] = x[k].value();
     }
     let mut data = [0.0; 1 + MAX_INPUTS];
@@ -314,7 +348,7 @@ mod tests {
             })
             .collect();
         let direct = f(&x);
-        let composed: D = compose(&x, taylor).unwrap();
+        let composed: D = compose(&x[..N], &x[N..2 * N], x[2 * N], taylor).unwrap();
         assert!(close(composed.value(), direct.value()));
         for i in 0..N {
             assert!(close(composed.eps1(i), direct.eps1(i)), "ε₁ {i}");
@@ -332,7 +366,7 @@ mod tests {
             .map(|k| D::with_parts(A[k], |p| part(k, p)))
             .collect();
         let direct = f(&x);
-        let composed: D = compose(&x, taylor).unwrap();
+        let composed: D = compose(&x[..N], &x[N..2 * N], x[2 * N], taylor).unwrap();
         assert!(close(composed.value(), direct.value()));
         for p in 0..2 * N {
             assert!(close(composed.part(p), direct.part(p)), "part {p}");
@@ -354,13 +388,13 @@ mod tests {
     #[test]
     fn other_types_and_other_input_counts_are_left_to_the_caller() {
         let never = |_: &[f64], _: Order, _: &mut [f64]| panic!("not to be called");
-        assert!(compose(&[1.0_f64; 3], never).is_none());
+        assert!(compose(&[1.0_f64], &[1.0], 0.0, never).is_none());
         let dual = num_dual::Dual64::new(1.0, 1.0);
-        assert!(compose(&[dual; 3], never).is_none());
+        assert!(compose(&[dual], &[dual], dual, never).is_none());
         let hyper = HyperDual64::new(1.0, 1.0, 0.0, 0.0);
-        assert!(compose(&[hyper; 2], never).is_none());
-        assert!(compose(&[hyper; 4], never).is_none());
+        assert!(compose(&[hyper; 2], &[hyper; 2], hyper, never).is_none());
+        assert!(compose(&[hyper], &[], hyper, never).is_none());
         let gradient = Dual4x64::from_parts(1.0, [1.0, 0.0, 0.0, 0.0]);
-        assert!(compose(&[gradient; 3], never).is_none());
+        assert!(compose(&[gradient], &[gradient], gradient, never).is_none());
     }
 }
