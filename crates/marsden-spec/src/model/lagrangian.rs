@@ -10,7 +10,9 @@
 //! With the `jit` feature (default), those tapes are compiled to native code at their first use
 //! ([`marsden_jit`], the same values bit for bit), and so is the trapezoid rule's whole explicit
 //! run with `∇V` inside its loop ([`VerletKernel`], for a diagonal mass: the state stays in
-//! registers from step to step); where that is not possible (no code
+//! registers from step to step), and a compiled `∇²V` whose outputs are its whole upper
+//! triangle writes it straight into the small Newton step's array
+//! ([`Lagrangian::potential_hessian_packed`]); where that is not possible (no code
 //! generator for the machine), or with the environment variable `MARSDEN_JIT=0` when the
 //! Lagrangian is built, the tapes' interpreter evaluates them.
 //!
