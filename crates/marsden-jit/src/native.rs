@@ -137,7 +137,7 @@ type VerletEntry =
     unsafe extern "C" fn(*mut f64, *mut f64, *mut f64, *const f64, f64, f64, i64) -> i64;
 
 /// A velocity Störmer–Verlet run with a potential's gradient tape compiled into its loop
-/// ([`crate::verlet`]'s equations): the same numbers, bit for bit, as the generic loop of
+/// (`crate::verlet`'s equations): the same numbers, bit for bit, as the generic loop of
 /// `marsden::separable::explicit` calling the tape's interpreter once per step.
 pub struct CompiledVerlet {
     /// The function, a [`VerletEntry`].

@@ -17,7 +17,7 @@
 //! and returns the steps completed. Every operation is the one the generic Rust loop performs,
 //! in its order and rounding (no fused multiply–add), so the runs agree bit for bit.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: marsden#references
 
 use cranelift_codegen::ir::condcodes::{FloatCC, IntCC};
 use cranelift_codegen::ir::{AbiParam, InstBuilder, MemFlags, Value, types};

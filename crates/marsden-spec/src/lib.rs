@@ -26,7 +26,7 @@
 //! | stage 2: run spec | [`problem`] | every check → [`RunSpec`] (and [`SweepSpec`]); [`load`], [`from_toml_str`] |
 //! | errors | [`error`], [`source`] | [`Diagnostic`] pointing into the file, [`Error`] with its [`ErrorKind`] |
 //! | systems | [`catalog`], [`model`] | catalog systems by name; expressions as `Lagrangian`, `Force`, `Constraint`, momentum maps |
-//! | run | [`run`] | [`execute`] with [`Controls`] → [`Outcome`]: files, [`Samples`] in memory, [`Summary`] |
+//! | run | [`run`] | [`execute`](fn@execute) with [`Controls`] → [`Outcome`]: files, [`Samples`] in memory, [`Summary`] |
 //! | sweeps | [`run::sweep`] | members in parallel, one row each, `--shard` |
 //! | order study | [`order`] | methods × step sizes, errors against a reference, fitted orders |
 //! | texts | [`report`] | what `run`, `check` and `systems` print |

@@ -9,7 +9,7 @@
 //!   [`StepError`] says why. A failed run still hands back the trajectory computed up to the
 //!   failure (see [`crate::run::RunFailure`]).
 //!
-//! Every fallible function of the crate returns [`Error`], one of the three.
+//! Every fallible function of the crate returns [`Error`](enum@Error), one of the three.
 
 use thiserror::Error;
 

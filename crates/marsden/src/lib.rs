@@ -75,9 +75,32 @@
 //! | R12 | damped oscillator, midpoint forces | discrete energy balance `E_{k+1} − E_k = −c(q_{k+1} − q_k)²/h`; closed form | 1e-14 per step; 1e-12 |
 //! | R17 | symmetric rules | time reversibility; `det DF = 1`, `DFᵀJDF = J` | 1e-12 / 1e-11; 1e-8 |
 //!
-//! [MW01]: Marsden & West, *Discrete mechanics and variational integrators*, Acta Numerica 10
-//! (2001). [LMO08]: Leyendecker, Marsden, Ortiz, *Variational integrators for constrained
-//! dynamical systems*, ZAMM 88 (2008).
+//! ## References
+//!
+//! The works the documentation cites, by the key it cites them with:
+//!
+//! * **MW01**: J. E. Marsden, M. West, *Discrete mechanics and variational integrators*, Acta
+//!   Numerica 10 (2001).
+//! * **MR99**: Marsden & Ratiu, *Introduction to Mechanics and Symmetry*, 2nd ed. (1999).
+//! * **HLW03**: Hairer, Lubich, Wanner, Acta Numerica 12 (2003).
+//! * **HLW06**: Hairer, Lubich, Wanner, *Geometric Numerical Integration*, 2nd ed. (2006).
+//! * **LR04**: Leimkuhler, Reich, *Simulating Hamiltonian Dynamics* (2004).
+//! * **LMO08**: Leyendecker, Marsden, Ortiz, *Variational integrators for constrained dynamical
+//!   systems*, ZAMM 88 (2008).
+//! * **Jay96**: L. Jay, *Symplectic partitioned Runge–Kutta methods for constrained Hamiltonian
+//!   systems*, SIAM J. Numer. Anal. 33 (1996).
+//! * **Rei96**: S. Reich, *Symplectic integration of constrained Hamiltonian systems by composition
+//!   methods*, SIAM J. Numer. Anal. 33 (1996).
+//! * **OBS15**: Ober-Blöbaum & Saake, Adv. Comput. Math. 41 (2015).
+//! * **OB17**: Ober-Blöbaum, IMA J. Numer. Anal. 37 (2017).
+//! * **FGG21**: Fernández, Graiff Zurita, Grillo, *Error analysis of forced discrete mechanical
+//!   systems*, J. Geom. Mech. (2021).
+//! * **GW08**: Griewank & Walther, *Evaluating Derivatives*, 2nd ed. (2008).
+//! * **Sanz-Serna 2016**: J. M. Sanz-Serna, *Symplectic Runge–Kutta schemes for adjoint equations,
+//!   automatic differentiation, optimal control and more*, SIAM Review 58 (2016).
+//!
+//! [MW01]: crate#references
+//! [LMO08]: crate#references
 
 pub mod analysis;
 pub mod discrete;

@@ -32,7 +32,7 @@ pub const MULTIPLIERS_PNG: &str = "multipliers.png";
 
 /// Draws every plot the table's columns allow into `dir`, by the `trajectory.csv`
 /// convention: `t`; `q_<name>` paired with `p_<name>` (phase portrait, time series, and the
-/// configuration space when the names say where the points are, see [`plane_of`]); `energy`
+/// configuration space when the names say where the points are, see `plane_of`); `energy`
 /// (its relative error, when `opts.energy_conserved`);
 /// `J_<symmetry>` (momentum drift); `constraint_residual`; `lambda_<i>` (multipliers). A plot
 /// whose columns are absent is skipped; the reports say which files were written (for

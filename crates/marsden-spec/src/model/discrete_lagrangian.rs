@@ -14,7 +14,7 @@
 //! of the built-in rules: the midpoint rule's `L_d` written by hand reproduces
 //! `method = "midpoint"` (general path) bit for bit.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: marsden#references
 
 use marsden::{DiscreteLagrangian, Scalar};
 use marsden_expr::{DisplacementForm, Program};

@@ -8,7 +8,7 @@
 //! the exact derivatives of `f_H(q, FL(q, v))`. A force is therefore only a [`Force`] once it is
 //! attached to its Lagrangian ([`ExprForce::on`]).
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: marsden#references
 
 use marsden::forces::{FromHamiltonian, HamiltonianForce};
 use marsden::{Force, Lagrangian, Scalar};

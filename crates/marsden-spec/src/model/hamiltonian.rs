@@ -8,7 +8,7 @@
 //! Hamiltonian map of `L_d` is the same map of `T*Q` whichever of `L` and `H` was written
 //! ([MW01] Thm 1.5.2 and §2.6); the stored momenta are the `p` of `H`.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: marsden#references
 
 use marsden::Scalar;
 use marsden::hamiltonian::{Hamiltonian, HamiltonianLagrangian};

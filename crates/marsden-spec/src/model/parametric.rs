@@ -10,7 +10,7 @@
 //! state columns ([MW01] §1.5: the step is the solution of the discrete Euler–Lagrange
 //! equations; the implicit function theorem differentiates it).
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: marsden#references
 
 use marsden::Scalar;
 use marsden::numerics::scratch::with_slice;

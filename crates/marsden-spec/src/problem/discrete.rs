@@ -7,7 +7,7 @@
 //! no velocity to turn into a momentum, no energy, no continuous forces or constraints to
 //! discretize. Every key that would need one is refused here, naming the key.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: marsden#references
 
 use std::ops::Range;
 

@@ -8,7 +8,7 @@
 //! exact flow, so it serves as a reference for small unforced, unconstrained problems. This
 //! module adds the file-level error with a suggestion.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: marsden#references
 
 use marsden::error::InputError;
 use std::fmt;

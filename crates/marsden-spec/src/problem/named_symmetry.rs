@@ -15,7 +15,7 @@
 //! and angular momenta of the bodies, component by component. The generator lists written
 //! out are the same expressions, so a named symmetry and its list give identical runs.
 //!
-//! [MR99]: Marsden & Ratiu, *Introduction to Mechanics and Symmetry*, 2nd ed. (1999).
+//! [MR99]: marsden#references
 
 use toml::Spanned;
 

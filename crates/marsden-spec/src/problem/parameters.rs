@@ -166,11 +166,11 @@ fn masses(
     Ok(masses.clone())
 }
 
-/// The checked `coordinates` of [system] that the expression `key = text` is written in, or an
+/// The checked `coordinates` of `[system]` that the expression `key = text` is written in, or an
 /// error at the expression naming `key`, with `help` (how the expression names its inputs).
 ///
 /// # Errors
-/// No `coordinates` in [system], or a bad name in them ([`check_coordinates`]).
+/// No `coordinates` in `[system]`, or a bad name in them ([`check_coordinates`]).
 pub fn expression_coordinates(
     ck: &Checker<'_>,
     (key, text): (&str, &Spanned<String>),

@@ -14,7 +14,7 @@
 //! ```
 //!
 //! Member `k` is the problem file with the swept values replaced by member `k`'s
-//! ([`SweepSpec::values_of`]), validated like any file ([`member`]): a value the problem cannot
+//! ([`SweepSpec::values_of`]), validated like any file (`member`): a value the problem cannot
 //! take fails that member only.
 
 use std::ops::Range;

@@ -22,7 +22,7 @@
 //! `(t_k + h/2, (q_k + q_{k+1})/2)`: zero (to round-off) when `V` is a quadratic in `q` plus a
 //! term bilinear in `(t, q)` (e.g. `V = ½kq² − a t q`), `O(h³)` per step otherwise.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: marsden#references
 
 use std::ops::ControlFlow;
 

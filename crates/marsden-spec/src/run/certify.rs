@@ -23,8 +23,8 @@
 //! `Σ_j Σ_i |∂A/∂Q_{j,i} ξ_i(Q_j)|`, so a true symmetry shows round-off and a false one (a
 //! rotation under gravity) a defect of order one.
 //!
-//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [HLW06]: marsden#references
+//! [MW01]: marsden#references
 
 use marsden::analysis::certificate::{DifferentiableStep, symplectic_defect};
 use marsden::discrete::rules::Method as ChosenRule;

@@ -4,7 +4,7 @@
 //! same observer as every run, without an energy: there is no continuous `L` to define one.
 //! Momentum maps `J(q, p)` are monitored as usual.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: marsden#references
 
 use std::time::Instant;
 

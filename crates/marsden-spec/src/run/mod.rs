@@ -3,11 +3,11 @@
 //!
 //! | step | module | what |
 //! |---|---|---|
-//! | entry point | [`execute`] | the whole run ([`Store`]: files, memory or both) → [`Outcome`] |
+//! | entry point | [`execute`](fn@execute) | the whole run ([`Store`]: files, memory or both) → [`Outcome`] |
 //! | caller's hold | [`controls`] | [`Progress`] callback and stop flag ([`Controls`]) |
 //! | initial state | [`start`] | `p` from `v` (or back), projection, regularity, symmetry warnings |
 //! | before a run | [`step_system`] | the size of the step's Newton system, a warning when it is large |
-//! | generic runner | [`solve`] | `Problem` from any `Lagrangian`, `Force`, `Constraint`; the method's rule |
+//! | generic runner | [`solve`](fn@solve) | `Problem` from any `Lagrangian`, `Force`, `Constraint`; the method's rule |
 //! | forced runs | [`balance`] | the discrete energy balance of every step (R12) |
 //! | forced runs | [`noether_balance`] | the forced Noether balance of every symmetry (MW01 §3.2) |
 //! | on request | [`certify`] | symplecticity defect of the step map (on `T*N` when constrained), equivariance defect of `L_d` |

@@ -16,7 +16,7 @@
 //! applies to two-point rules only and sees every step (the core's
 //! [`BalanceMonitor`], wrapped around the run's own observer).
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: marsden#references
 
 use std::ops::ControlFlow;
 

@@ -1,5 +1,5 @@
 //! `[sensitivity]` of a run: the Jacobian `∂(q_k, p_k)/∂(q₀, p₀, θ)` at the stored steps and
-//! at the end, by a tangent run beside the file's run ([`marsden::sensitivity::tangent`]).
+//! at the end, by a tangent run beside the file's run ([`marsden::sensitivity::tangent`](fn@marsden::sensitivity::tangent)).
 //!
 //! The tangent run takes the same steps from the same initial state on the same grid; it uses
 //! the general Newton path (the fast paths of separable Lagrangians keep no stage offsets to
@@ -20,7 +20,7 @@
 //! Files: `sensitivity.npy` of shape `[samples, 2n, columns]`, or `sensitivity.csv` (one row
 //! per stored step: `t`, then the entries row by row, named `q_x/q0_x`) with `format = "csv"`.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: marsden#references
 
 use std::ops::ControlFlow;
 use std::path::Path;

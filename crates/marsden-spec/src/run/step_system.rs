@@ -12,7 +12,7 @@
 //! with the cube of the size or faster. Explicit steps (the trapezoid rule and its
 //! compositions on `½ vᵀMv − V`, unforced and unconstrained) solve nothing and get no remark.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: marsden#references
 
 use marsden::discrete::DiscreteAction as _;
 use marsden::integrator::StepShape;

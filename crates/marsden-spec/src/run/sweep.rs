@@ -86,7 +86,7 @@ pub struct SweepOptions {
 }
 
 /// Runs the members of `base`'s sweep selected by `options.shard` and writes the table
-/// (streamed, [`CHUNK`] members at a time), its summary and, with `[output] plots` on the
+/// (streamed, `CHUNK` members at a time), its summary and, with `[output] plots` on the
 /// whole sweep, `sweep.png`.
 ///
 /// # Errors

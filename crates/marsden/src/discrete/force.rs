@@ -9,7 +9,7 @@
 //! turns a Lagrangian force [`crate::mechanics::Force`] into a [`DiscreteForce`] with its own
 //! quadrature ([`crate::discrete::rules`]).
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use crate::mechanics::NoForce;
 use crate::scalar::Scalar;

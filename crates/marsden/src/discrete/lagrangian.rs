@@ -20,7 +20,7 @@
 //! as unknowns of the same Newton solve. Every `DiscreteLagrangian` is a `DiscreteAction` with no
 //! internal stages.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use crate::scalar::Scalar;
 
@@ -143,8 +143,8 @@ pub trait DiscreteAction {
     /// compositions of RATTLE steps, [Rei96]); `Err(reason)` when the rule has no constrained
     /// form of its order. Default: `Ok(0)` (two-point rules: SHAKE + RATTLE has their order 2).
     ///
-    /// [Jay96]: L. Jay, SIAM J. Numer. Anal. 33 (1996). [Rei96]: S. Reich, SIAM J. Numer. Anal.
-    /// 33 (1996).
+    /// [Jay96]: crate#references
+    /// [Rei96]: crate#references
     fn constrained_stages(&self) -> Result<usize, String> {
         Ok(0)
     }

@@ -6,7 +6,7 @@
 //!     D₂L_d(q_{k−1}, q_k) + D₁L_d(q_k, q_{k+1}) = 0.
 //! ```
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use super::force::DiscreteForce;
 use super::lagrangian::{DiscreteAction, DiscreteLagrangian, fixed_points};

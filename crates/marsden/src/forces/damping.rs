@@ -6,7 +6,7 @@
 //! with the midpoint rule the discrete work `⟨f_d⁻ + f_d⁺, v̄⟩ = −h v̄ᵀCv̄ ≤ 0` is non-positive
 //! too, `v̄ = (q_{k+1} − q_k)/h` (reference case R12).
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use crate::error::Error;
 use crate::mechanics::Force;

@@ -9,7 +9,7 @@
 //! exact derivatives of `f_H(q, FL(q, v))`. The reverse direction `f_H = f_L ∘ FH` needs the
 //! inverse Legendre transform and is given at `f64` by [`hamiltonian_form`].
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use crate::error::Error;
 use crate::error::InputError;

@@ -32,8 +32,7 @@
 //! `W_k = ⟨f_d⁻ + f_d⁺, (q_{k+1} − q_k)/h⟩` is the discrete work; the bracket vanishes for
 //! quadratic `V` (reference case R12). See [`crate::analysis::diagnostics::EnergyBalance`].
 //!
-//! [MW01]: Marsden & West, *Discrete mechanics and variational integrators*, Acta Numerica 10
-//! (2001).
+//! [MW01]: crate#references
 
 mod control;
 mod damping;

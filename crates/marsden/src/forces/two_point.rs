@@ -8,7 +8,7 @@
 //! that have internal control points (Galerkin), `f_d⁻` acts on `Q₀ = q_k`, `f_d⁺` on
 //! `Q_s = q_{k+1}` and nothing on the internal points.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use crate::discrete::DiscreteForce;
 use crate::numerics::scratch::{NODE, with_buffer};

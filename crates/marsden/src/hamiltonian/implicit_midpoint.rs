@@ -15,7 +15,7 @@
 //! Jacobian follows from the implicit function theorem at the converged `Δ`:
 //! `∂z₁/∂z₀ = I + (I − (h/2)DX_H)⁻¹ h DX_H`.
 //!
-//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
+//! [HLW06]: crate#references
 
 use super::{Hamiltonian, HamiltonianMethod, PhaseJet, vector_field};
 use crate::error::Error;

@@ -22,8 +22,8 @@
 //! evaluation returns NaN, which the integrators report as a non-finite step; use
 //! [`LegendreHamiltonian::try_value`] for a typed error.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001). [MR99]: Marsden & Ratiu, *Introduction to
-//! Mechanics and Symmetry*, 2nd ed. (1999).
+//! [MW01]: crate#references
+//! [MR99]: crate#references
 
 use super::Hamiltonian;
 use crate::error::Error;

@@ -15,8 +15,6 @@
 //! * [`LegendreHamiltonian`] (`H` from `L` by `FH`) and [`HamiltonianLagrangian`] (`L` from `H`
 //!   by `FL`), both generic over the scalar so they work with every method here;
 //! * Hamiltonians of the catalog systems (`catalog`).
-//!
-//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
 
 mod catalog;
 mod implicit_midpoint;
@@ -65,6 +63,8 @@ pub trait Hamiltonian {
 /// partitioned methods such as Störmer–Verlet exploit ([HLW06] §I.1.4, §II.2).
 ///
 /// Every `Separable` is a [`Hamiltonian`] (blanket implementation).
+///
+/// [HLW06]: crate#references
 pub trait Separable {
     /// Number of degrees of freedom `n`.
     fn dof(&self) -> usize;

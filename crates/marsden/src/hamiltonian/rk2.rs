@@ -10,7 +10,7 @@
 //! that lets the certificate of [`crate::analysis::certificate`] fail. Jacobian by the chain rule:
 //! `DF = I + h DX_H(z_½)(I + (h/2) DX_H(z₀))`.
 //!
-//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
+//! [HLW06]: crate#references
 
 use super::splitting::finish;
 use super::{Hamiltonian, HamiltonianMethod, PhaseJet};

@@ -19,8 +19,8 @@
 //! (reference cases §0, R2). The step map's Jacobian is the product of the stages' Jacobians
 //! `[[I, 0], [−bh∇²V, I]]` and `[[I, ah∇²T], [0, I]]`, with the Hessians by AD.
 //!
-//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006). [HLW03]: Hairer,
-//! Lubich, Wanner, Acta Numerica 12 (2003).
+//! [HLW06]: crate#references
+//! [HLW03]: crate#references
 
 use super::{HamiltonianMethod, Separable};
 use crate::error::Error;

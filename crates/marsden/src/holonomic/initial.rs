@@ -6,7 +6,7 @@
 //! nothing here moves data unless asked: [`project_position`] and [`project_momentum`] (and
 //! [`crate::mechanics::Initial::project_onto`]) are explicit, opt-in projections.
 //!
-//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
+//! [HLW06]: crate#references
 
 use crate::error::Error;
 use crate::error::{SetupError, StepError, StepFailure};

@@ -16,7 +16,7 @@
 //! ```
 //!
 //! The first line is solved by Newton's method for `(q_{k+1}, λ_k)` in one system
-//! ([`crate::integrator::equations`]); the projection is linear in `μ_k` for a constant mass matrix and solved by
+//! (`crate::integrator::equations`); the projection is linear in `μ_k` for a constant mass matrix and solved by
 //! Newton's method on `(v, μ)` in general ([`Rattle`]). Eliminating the momenta gives the
 //! constrained discrete Euler–Lagrange equations
 //! `D₂L_d(q_{k−1}, q_k) + D₁L_d(q_k, q_{k+1}) + f_d⁺ + f_d⁻ = h Dφ(q_k)ᵀ(λ_k + μ_{k−1})`: the
@@ -37,13 +37,17 @@
 //! With the constraint at the step end only, the constraint force is discretised at order 2
 //! whatever the rule. Rules with internal stages therefore impose `φ = 0` at their stage points
 //! too, one multiplier each ([`crate::discrete::DiscreteAction::constrained_stages`],
-//! [`crate::integrator::equations`]): the Lobatto rules become constrained Lobatto IIIA–IIIB
+//! `crate::integrator::equations`): the Lobatto rules become constrained Lobatto IIIA–IIIB
 //! ([Jay96]; [HLW06] §VII.1), order `2s − 2`; compositions impose it at every substep, so each
 //! substep is a SHAKE + RATTLE step on `T*N` and the composition keeps its order ([Rei96]). The
 //! Gauss rules need SPARK stage constraints (Jay 2007), not implemented: they are refused.
 //!
-//! [Jay96]: L. Jay, SIAM J. Numer. Anal. 33 (1996). [Rei96]: S. Reich, SIAM J. Numer. Anal. 33
-//! (1996).
+//! [MW01]: crate#references
+//! [LMO08]: crate#references
+//! [HLW06]: crate#references
+//! [LR04]: crate#references
+//! [Jay96]: crate#references
+//! [Rei96]: crate#references
 //!
 //! ## Initial data
 //!
@@ -53,11 +57,6 @@
 //! [`project_position`] (Newton on the minimum-norm correction; [`project_position_in_metric`] in
 //! the mass metric, which [`crate::mechanics::Initial::project_onto`] uses), [`project_momentum`] (the RATTLE
 //! projection) and [`crate::mechanics::Initial::project_onto`] for both.
-//!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LMO08]: Leyendecker, Marsden, Ortiz,
-//! *Variational integrators for constrained dynamical systems*, ZAMM 88 (2008). [HLW06]: Hairer,
-//! Lubich, Wanner, *Geometric Numerical Integration*, 2nd ed. (2006). [LR04]: Leimkuhler, Reich,
-//! *Simulating Hamiltonian Dynamics* (2004).
 
 mod distance;
 mod initial;

@@ -13,7 +13,7 @@
 //! first. (The step's own multipliers are those of a quadrature of the constraint force,
 //! [`crate::Integrator::end_multipliers`]; for RATTLE they approximate `λ(t)` only at order 1.)
 //!
-//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
+//! [HLW06]: crate#references
 
 use crate::error::{Error, SetupError};
 use crate::mechanics::{Constraint, Lagrangian, LagrangianJet, acceleration, constraint_jacobian};

@@ -20,8 +20,8 @@
 //! ([HLW06] §VII.1.4). [`Rattle::with_closed_form`] switches it off (the Newton form is the
 //! reference; a test checks both agree to round-off).
 //!
-//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006). [LMO08]:
-//! Leyendecker, Marsden, Ortiz, ZAMM 88 (2008).
+//! [HLW06]: crate#references
+//! [LMO08]: crate#references
 
 use crate::numerics::ad::{self, HessianParts, MultiFunction};
 use num_dual::{HyperDual64, HyperDualSVec64};

@@ -155,7 +155,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     /// trapezoid rule on separable Lagrangians ([`crate::separable::explicit`]), the Newton step with
     /// Jacobian `M/h + hα(1−α)∇²V` of the α rules on separable Lagrangians
     /// ([`crate::separable::alpha`]) — both only without forces and constraints — and the statically
-    /// sized Newton steps for small systems ([`crate::integrator::small::unconstrained`], [`crate::integrator::small::constrained`]).
+    /// sized Newton steps for small systems (`crate::integrator::small::unconstrained`, `crate::integrator::small::constrained`).
     /// The general path solves the same equations (tests: equal to round-off); switching is
     /// for testing and measurement.
     pub fn with_fast_paths(mut self, enabled: bool) -> Self {
@@ -163,9 +163,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         self.with_path()
     }
 
-    /// Whether the small kernels ([`crate::integrator::small::unconstrained`], [`crate::integrator::small::constrained`]) may run in code
+    /// Whether the small kernels (`crate::integrator::small::unconstrained`, `crate::integrator::small::constrained`) may run in code
     /// compiled for x86-64-v3 (AVX2, FMA) when the CPU has it (default: true; chosen at run
-    /// time, [`crate::integrator::small::dispatch`]). Both give the same bits; switch it off for tools that do not
+    /// time, `crate::integrator::small::dispatch`). Both give the same bits; switch it off for tools that do not
     /// decode every AVX instruction (valgrind 3.19) or to measure the difference.
     ///
     /// ```
@@ -191,7 +191,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     }
 
     /// Whether to add each step's increments to the state with compensated summation
-    /// (default: false; [`crate::integrator::compensated`]). For long runs of high-order rules, whose
+    /// (default: false; `crate::integrator::compensated`). For long runs of high-order rules, whose
     /// truncation error is below the rounding error of `q + Δ`: over 10⁵ steps of Kepler's
     /// problem gauss-4 keeps the angular momentum to 1.4e-15 instead of 1.6e-11. Costs one
     /// gradient of the discrete action per step (`⌈n/8⌉` dual evaluations of the action, so

@@ -28,7 +28,7 @@
 //! Constrained steps are not compensated: their momenta come out of the multipliers and the
 //! momentum projection, not from the sum above.
 //!
-//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration*, 2nd ed. (2006).
+//! [HLW06]: crate#references
 
 use crate::discrete::legendre::ActionAndForces;
 use crate::discrete::{DiscreteAction, DiscreteForce};

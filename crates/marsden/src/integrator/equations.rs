@@ -32,8 +32,10 @@
 //! are therefore subtracted from every offset inside the evaluation ([`StepFunction`]), which
 //! leaves the offsets' real parts untouched.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LMO08]: Leyendecker, Marsden, Ortiz, ZAMM 88 (2008).
-//! [Jay96]: L. Jay, SIAM J. Numer. Anal. 33 (1996). [Rei96]: S. Reich, SIAM J. Numer. Anal. 33 (1996).
+//! [MW01]: crate#references
+//! [LMO08]: crate#references
+//! [Jay96]: crate#references
+//! [Rei96]: crate#references
 
 use crate::discrete::lagrangian::fixed_points;
 use crate::discrete::{DiscreteAction, DiscreteForce};

@@ -10,7 +10,7 @@
 //! `p_k = D₂L_d(q_{k−1}, q_k)` (momentum matching), then one Hamiltonian step. For runs, use an
 //! [`Integrator`], which keeps its buffers and predictor between steps.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use crate::discrete::DiscreteLagrangian;
 use crate::discrete::legendre::legendre_plus;

@@ -5,7 +5,7 @@
 //! [`MomentumProjection`] (RATTLE, [`crate::holonomic::Rattle`]) is applied to the momenta after
 //! the SHAKE solve ([`crate::holonomic`] describes the constrained scheme).
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 mod build;
 pub(crate) mod compensated;

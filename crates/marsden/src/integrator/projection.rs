@@ -4,8 +4,7 @@
 //! ([`crate::discrete::DiscreteAction::end_weight`]) `μ_k / w` estimates the multiplier
 //! `λ(t_{k+1})` of the continuous equations (kept as [`Integrator::end_multipliers`]).
 //!
-//! [LMO08]: Leyendecker, Marsden, Ortiz, *Variational integrators for constrained dynamical
-//! systems*, ZAMM 88 (2008).
+//! [LMO08]: crate#references
 
 use super::Integrator;
 use crate::discrete::{DiscreteAction, DiscreteForce};

@@ -11,8 +11,8 @@
 //! constraint forces. The RATTLE momentum projection, the checks and projections of initial
 //! data, and ready-made constraints live in [`crate::holonomic`].
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LMO08]: Leyendecker, Marsden, Ortiz,
-//! *Variational integrators for constrained dynamical systems*, ZAMM 88 (2008).
+//! [MW01]: crate#references
+//! [LMO08]: crate#references
 
 use crate::scalar::Scalar;
 

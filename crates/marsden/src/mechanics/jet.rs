@@ -16,8 +16,8 @@
 //! [`check_structure`]: the AD jet would cost `O(n)` evaluations of `L`. Every separable
 //! Lagrangian, whatever its size, inverts the Legendre transform as `v = M⁻¹ p` ([`velocity`]).
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001). [HLW06]: Hairer, Lubich, Wanner, *Geometric
-//! Numerical Integration* (2006).
+//! [MW01]: crate#references
+//! [HLW06]: crate#references
 
 use crate::error::Error;
 use crate::error::SetupError;

@@ -19,7 +19,7 @@
 //! integrator calls a kernel for up to four degrees of freedom, the sizes whose generic loop
 //! takes exactly these times (larger systems repeat single steps, at times `t_{k−1} + h`).
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 /// Velocity Störmer–Verlet steps of a separable `L` with a diagonal mass, run by the
 /// Lagrangian's own code ([`crate::mechanics::Lagrangian::verlet_kernel`]).

@@ -5,7 +5,7 @@
 //! needs (momenta, energy, accelerations, discrete Lagrangians and their derivatives) is obtained
 //! from this one function by automatic differentiation; see [`crate::mechanics::jet`].
 //!
-//! [MW01]: J. E. Marsden, M. West, *Discrete mechanics and variational integrators*, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use super::kernel::VerletKernel;
 use crate::numerics::ad::{self, HessianParts, MultiFunction};
@@ -35,7 +35,7 @@ use crate::scalar::Scalar;
 /// ```
 ///
 /// Speed: for up to four degrees of freedom the step runs in code compiled for x86-64-v3 when
-/// the CPU has it ([`crate::integrator::small::dispatch`]), but only what is inlined into it; marking `lagrangian`
+/// the CPU has it (`crate::integrator::small::dispatch`), but only what is inlined into it; marking `lagrangian`
 /// `#[inline(always)]`, as the built-in systems do, makes sure yours is (same results either way).
 pub trait Lagrangian {
     /// The number of degrees of freedom, when the type fixes it (the catalog systems): the

@@ -8,16 +8,16 @@
 //!
 //! | method | default | override when |
 //! |---|---|---|
-//! | [`crate::mechanics::Lagrangian::potential_gradient`] | [`gradient_by_ad`](super::lagrangian::gradient_by_ad): AD of `−L(t, q, 0)` | AD is too slow (N-body: `O(n)` AD chunks of an `O(n²)` function) |
+//! | [`crate::mechanics::Lagrangian::potential_gradient`] | [`gradient_by_ad`]: AD of `−L(t, q, 0)` | AD is too slow (N-body: `O(n)` AD chunks of an `O(n²)` function) |
 //! | [`crate::mechanics::Lagrangian::potential_bandwidth`] | `None` (dense) | `V` is a sum of local terms (a chain: `Some(1)`) |
-//! | [`crate::mechanics::Lagrangian::potential_hessian`] | [`hessian_by_ad`](super::lagrangian::hessian_by_ad): dense AD Hessian | with a bandwidth, or a cheap closed form |
+//! | [`crate::mechanics::Lagrangian::potential_hessian`] | [`hessian_by_ad`]: dense AD Hessian | with a bandwidth, or a cheap closed form |
 //!
 //! A hand-written gradient must agree with the AD default (tests do this for every catalog
 //! system that overrides it). Both defaults differentiate `−L(t, q, 0)`, which is `V(t, q)`
 //! up to a constant exactly when the declared structure holds.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001). [HLW06]: Hairer, Lubich, Wanner, *Geometric
-//! Numerical Integration* (2006).
+//! [MW01]: crate#references
+//! [HLW06]: crate#references
 
 use super::lagrangian::{Lagrangian, gradient_by_ad, hessian_by_ad};
 use crate::numerics::banded::Banded;

@@ -5,7 +5,7 @@
 //! positions with velocities `(q₀, v₀)` or with momenta `(q₀, p₀)` — the two are related by the
 //! Legendre transform `p = ∂L/∂v` ([`crate::mechanics::momentum`], [`crate::mechanics::velocity`]).
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 /// A point of phase space `(t, q, p)`.
 #[derive(Debug, PartialEq)]

@@ -7,7 +7,7 @@
 //! | [`grid`] | `t_k = t₀ + k h`, storage stride |
 //! | [`observer`] | watching each step: monitors, writers, progress, stopping |
 //! | [`stepper`] | what the loop steps: the Lagrangian and the Hamiltonian integrators |
-//! | [`simulate`] | the one run loop |
+//! | [`simulate`](mod@simulate) | the one run loop |
 //! | [`trajectory`] | stored samples, per-step reports, why the run ended |
 
 pub mod grid;

@@ -10,13 +10,12 @@
 //! ```
 //!
 //! the transposed step Jacobians applied backwards: one vector–Jacobian product per step,
-//! whatever the number of inputs (the tangent run, [`super::tangent`], costs `2n + P` columns
+//! whatever the number of inputs (the tangent run, [`super::tangent`](fn@super::tangent), costs `2n + P` columns
 //! per step). The reverse sweep needs the states backwards; [`super::checkpoints`] stores every
 //! `m`-th one and recomputes the segment in between, so memory is `O(K/m + m)`.
 //!
-//! [GW08]: Griewank & Walther, *Evaluating Derivatives*, 2nd ed. (2008).
-//! [Sanz-Serna 2016]: J. M. Sanz-Serna, *Symplectic Runge–Kutta schemes for adjoint equations,
-//! automatic differentiation, optimal control and more*, SIAM Review 58 (2016).
+//! [GW08]: crate#references
+//! [Sanz-Serna 2016]: crate#references
 
 use std::ops::ControlFlow;
 

@@ -6,7 +6,7 @@
 //! exactly the run that was taken ([GW08] §12.3, *checkpointing*; here the uniform schedule:
 //! `⌈K/m⌉` checkpoints plus one segment of `m` states and Jacobians).
 //!
-//! [GW08]: Griewank & Walther, *Evaluating Derivatives*, 2nd ed. (2008).
+//! [GW08]: crate#references
 
 use std::ops::ControlFlow;
 

@@ -1,7 +1,7 @@
 //! The exact Jacobian of a constrained step (SHAKE + RATTLE) by the implicit function theorem.
 //!
 //! One step of [`Integrator`] with holonomic constraints `φ` and the [`Rattle`] projection
-//! ([`crate::holonomic`], [`crate::integrator::equations`]) solves, for the control points
+//! ([`crate::holonomic`], `crate::integrator::equations`) solves, for the control points
 //! `Q₁ … Q_s` (`Q₀ = q_k`), the multiplier `λ` and the stage multipliers `Λ₁ … Λ_c`,
 //!
 //! ```text
@@ -11,7 +11,7 @@
 //! ```
 //!
 //! sets `q_{k+1} = Q_s`, `p̃_{k+1} = ∂Φ/∂Q_s + F_s`, and projects `p̃_{k+1}` onto `T*N`
-//! ([`super::projection`]). Writing these equations as `R(y; q_k, p_k) = 0` with
+//! (`super::projection`). Writing these equations as `R(y; q_k, p_k) = 0` with
 //! `y = (Q₁, …, Q_s, λ, Λ)`, the implicit function theorem at the converged step gives
 //! ([MW01] §1.5, §3.5; [LMO08] §3)
 //!
@@ -27,7 +27,7 @@
 //! `−h ∂φ(X_i)/∂Q_j` in the `Λ_i` columns), the first derivatives of `F` and `φ` the rest.
 //! The offsets `Δ_j = Q_j − q_k` the integrator stores are shifted inside the evaluation so
 //! that the derivative of slot `j` is `∂/∂Q_j` at fixed other points, as in
-//! [`crate::integrator::equations`]. Without constraints (`d = 0`) this is the unconstrained
+//! `crate::integrator::equations`. Without constraints (`d = 0`) this is the unconstrained
 //! step Jacobian of [`crate::analysis::certificate::variational`].
 //!
 //! ## Tangent vectors of `T*N`
@@ -41,8 +41,9 @@
 //! Components normal to `T*N` (e.g. from finite differences of unprojected initial data) have
 //! no meaning for the constrained dynamics.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LMO08]: Leyendecker, Marsden, Ortiz, ZAMM
-//! 88 (2008). [LR04]: Leimkuhler, Reich, *Simulating Hamiltonian Dynamics* (2004).
+//! [MW01]: crate#references
+//! [LMO08]: crate#references
+//! [LR04]: crate#references
 
 use std::cell::RefCell;
 

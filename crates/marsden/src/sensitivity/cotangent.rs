@@ -32,8 +32,8 @@
 //! of the null space of that `2d × 2n` system (Gram–Schmidt), second derivatives by
 //! hyper-dual AD.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LR04]: Leimkuhler, Reich, *Simulating
-//! Hamiltonian Dynamics* (2004).
+//! [MW01]: crate#references
+//! [LR04]: crate#references
 
 use super::SensitiveStep;
 use super::projection::{AtTime, Component};

@@ -16,8 +16,8 @@
 //!
 //! - [`step`]: what a stepper offers ([`SensitiveStep`], a [`crate::analysis::certificate::DifferentiableStep`]
 //!   with parameter columns): one step with its Jacobian.
-//! - [`tangent`]: `S_k = ∂(q_k, p_k)/∂(q₀, p₀, θ)` forward along a run ([`Tangent`]).
-//! - [`adjoint`]: `dΛ/d(q₀, p₀, θ)` of `Λ = Σ_k ℓ_k(q_k, p_k)`, backwards ([`Gradient`]; watched:
+//! - [`tangent`](fn@tangent): `S_k = ∂(q_k, p_k)/∂(q₀, p₀, θ)` forward along a run ([`Tangent`]).
+//! - [`adjoint`](fn@adjoint): `dΛ/d(q₀, p₀, θ)` of `Λ = Σ_k ℓ_k(q_k, p_k)`, backwards ([`Gradient`]; watched:
 //!   [`adjoint_watched`]), over [`checkpoints`] so memory stays bounded.
 //! - [`constrained`]: the step Jacobian of a constrained run (SHAKE + RATTLE, multipliers
 //!   included; `projection` linearises the projection onto `T*N`).
@@ -27,7 +27,7 @@
 //! - [`cotangent`]: the symplecticity certificate of a constrained step, on `T*N` (a basis of
 //!   its tangent space pushed through the step Jacobian).
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 pub mod adjoint;
 pub mod checkpoints;

@@ -2,7 +2,7 @@
 
 use crate::error::{Error, InputError};
 
-/// Options of a tangent (forward) run, [`super::tangent`].
+/// Options of a tangent (forward) run, [`super::tangent`](fn@super::tangent).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct TangentOptions {
     /// Keep the Jacobian of every `every`-th state (the initial and the final state always);
@@ -10,7 +10,7 @@ pub struct TangentOptions {
     pub every: usize,
 }
 
-/// Options of an adjoint (reverse) gradient, [`super::adjoint`].
+/// Options of an adjoint (reverse) gradient, [`super::adjoint`](fn@super::adjoint).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct AdjointOptions {
     /// Store every `m`-th state in the forward sweep and recompute the `m` steps in between

@@ -5,7 +5,7 @@
 //! with `θ` as constants, under [`Rattle`]). For the derivative the model is read on `ℝⁿ⁺ᴾ`
 //! with `θ` as frozen coordinates ([`Frozen`]), so `θ` enters the step equations of
 //! [`super::constrained`] — the discrete action, the forces, `φ(Q₀)`, `φ(Q_s)`, `φ(X_i)` — and
-//! the projection's KKT system ([`super::projection`]) as `q_k` does, and the implicit function
+//! the projection's KKT system (`super::projection`) as `q_k` does, and the implicit function
 //! theorem gives `dy/dθ = −(∂R/∂y)⁻¹ ∂R/∂θ` with the same factored matrix as the state columns
 //! ([MW01] §1.5, §3.5; [LMO08] §3).
 //!
@@ -14,8 +14,8 @@
 //! derivatives of both constraints including their explicit dependence on `θ`,
 //! `Dφ δq + ∂φ/∂θ = 0` and `δ(Dφ(q; θ) FH(q, p; θ)) = 0`.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001). [LMO08]: Leyendecker, Marsden, Ortiz, ZAMM
-//! 88 (2008).
+//! [MW01]: crate#references
+//! [LMO08]: crate#references
 
 use super::constrained::{Model, constrained_jacobian};
 use super::parametric::{AtValues, Frozen, ParametricModel};

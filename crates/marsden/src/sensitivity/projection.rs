@@ -20,8 +20,8 @@
 //! exactly as `dq` does (their own columns; [`super::parametric_constrained`]). Second derivatives come from one hyper-dual evaluation of `L` over `(q, v)`
 //! and one of each constraint component over `q`.
 //!
-//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006). [LMO08]:
-//! Leyendecker, Marsden, Ortiz, ZAMM 88 (2008).
+//! [HLW06]: crate#references
+//! [LMO08]: crate#references
 
 use crate::error::{Error, StepError, StepFailure};
 use crate::mechanics::{Constraint, Lagrangian};

@@ -13,8 +13,8 @@
 //! For a conservative run the `(q₀, p₀)` block is symplectic, `Sᵀ J S = J`, because each factor
 //! is ([`crate::analysis::certificate`]).
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
-//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
+//! [MW01]: crate#references
+//! [HLW06]: crate#references
 
 use std::ops::ControlFlow;
 

@@ -25,7 +25,7 @@
 //! `separable_fast_path`); the counters `jacobian_factorizations` and `potential_gradients` of
 //! [`crate::integrator::Statistics`] show the reuse.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use super::alpha_small::solve_alpha_small;
 use super::step::{Frame, Mass, SeparableWorkspace, node};

@@ -30,7 +30,7 @@
 //! the run's steps in it when the mass is diagonal and `n ≤ 4` (the fixed-size loop it
 //! replaces), with the same numbers again; larger systems keep the generic loop.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use crate::mechanics::Lagrangian;
 use crate::mechanics::kernel::VerletKernel;

@@ -28,7 +28,7 @@
 //! discrete action. Tests compare the two to round-off. Up to four degrees of freedom the same
 //! arithmetic runs on stack arrays (`jacobian_small`, the same bits).
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use super::jacobian_small::{StepData, step_jacobian_small};
 use super::step::{Mass, node};
@@ -52,7 +52,7 @@ pub trait SeparableJacobian {
     ) -> Option<Result<(), f64>>;
 }
 
-/// The buffers of [`step_jacobian`] and the mass matrix, asked once.
+/// The buffers of `step_jacobian` and the mass matrix, asked once.
 #[derive(Debug, Clone, Default)]
 pub struct JacobianWorkspace {
     /// `None`: not asked yet; `Some(None)`: not separable.

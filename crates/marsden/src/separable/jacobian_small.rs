@@ -18,7 +18,7 @@
 //! below). `∇²V` still comes through the band storage that [`Lagrangian::potential_hessian`]
 //! fills.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use super::jacobian::mass_entry;
 use super::step::{Mass, node};

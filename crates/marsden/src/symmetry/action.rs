@@ -20,8 +20,8 @@
 //! fixed basis `e₀ … e_{m−1}` of `𝔤` (`m` = [`GroupAction::algebra_dim`]); `𝔤*` uses the dual
 //! basis, so a momentum map is a vector of `m` numbers.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001). [MR99]: Marsden & Ratiu, *Introduction to
-//! Mechanics and Symmetry*, 2nd ed. (1999).
+//! [MW01]: crate#references
+//! [MR99]: crate#references
 
 use crate::error::Error;
 use crate::error::{InputError, StepError, StepFailure};

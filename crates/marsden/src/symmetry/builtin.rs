@@ -11,7 +11,7 @@
 //! ([MR99] §9.2). All three actions are linear (affine), so the midpoint, trapezoid and α
 //! discrete Lagrangians of an invariant `L` are invariant too (reference cases §0).
 //!
-//! [MR99]: Marsden & Ratiu, *Introduction to Mechanics and Symmetry*, 2nd ed. (1999).
+//! [MR99]: crate#references
 
 use super::{FiniteAction, GroupAction};
 use crate::scalar::Scalar;

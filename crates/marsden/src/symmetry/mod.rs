@@ -114,7 +114,7 @@ pub trait DeclaresSymmetries {
 /// Equivariance defect `|J_H(Φ_g^{T*Q}(q, p)) − Ad*_{g⁻¹} J_H(q, p)|` (max-norm) for `g = exp(ξ)`
 /// (seed: *equivariance*; cotangent lifts make `J_H` equivariant, [MR99] Thm 12.1.4).
 ///
-/// [MR99]: Marsden & Ratiu, *Introduction to Mechanics and Symmetry*, 2nd ed. (1999).
+/// [MR99]: crate#references
 pub fn equivariance_defect<G: FiniteAction>(
     action: &G,
     xi: &[f64],

@@ -18,7 +18,7 @@
 //! [`crate::discrete::DiscreteLagrangian::discrete_lagrangian_offset`]) so that `D₂L_d` carries no
 //! `ε|q|/h` round-off; [`discrete_momentum`] takes `(q₀, q₁)` and forms `Δ` itself.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use super::GroupAction;
 use crate::discrete::DiscreteLagrangian;

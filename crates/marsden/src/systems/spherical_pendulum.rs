@@ -11,7 +11,8 @@
 //! `J_z = x p_y − y p_x`, which the constrained midpoint and trapezoid schemes conserve exactly
 //! (discrete Noether: `L_d` and `φ` are invariant and the constraint force `h q λ` is radial).
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001). [HLW06]: Hairer, Lubich, Wanner (2006).
+//! [MW01]: crate#references
+//! [HLW06]: crate#references
 
 use crate::error::Error;
 use crate::mechanics::{Constraint, Initial, Lagrangian, MassMatrix, Structure};

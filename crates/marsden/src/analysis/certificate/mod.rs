@@ -24,7 +24,7 @@
 //! [`crate::integrator::Integrator`] (unconstrained; forces are allowed and make the defect non-zero, as they
 //! should — a forced flow is not symplectic) and every [`crate::hamiltonian::HamiltonianIntegrator`].
 //!
-//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
+//! [HLW06]: crate#references
 
 pub mod variational;
 

@@ -1,7 +1,7 @@
 //! The exact Jacobian of a variational step by the implicit function theorem.
 //!
 //! The step `(q_k, p_k) ↦ (q_{k+1}, p_{k+1})` of [`crate::integrator::Integrator`] solves, for the offsets
-//! `z = (Δ₁, …, Δ_s)` of the control points `Q_j = q_k + Δ_j` (DESIGN.md §3, [`crate::integrator::equations`]),
+//! `z = (Δ₁, …, Δ_s)` of the control points `Q_j = q_k + Δ_j` (DESIGN.md §3, `crate::integrator::equations`),
 //!
 //! ```text
 //!     R₀(z; q_k, p_k) = p_k + ∂L_d/∂Q₀ + F₀ = 0,      R_j(z; q_k) = ∂L_d/∂Q_j + F_j = 0  (0 < j < s),
@@ -22,7 +22,7 @@
 //! force Jacobian; with `∂/∂Q_j = ∂/∂Δ_j` (j ≥ 1) and `∂/∂Q₀ = ∂/∂q − Σ_j ∂/∂Δ_j`, and since
 //! `∂/∂q_k` at fixed offsets is `∂/∂x₀` itself, all blocks follow by sums of Hessian rows.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use std::cell::RefCell;
 
@@ -263,8 +263,8 @@ where
 
 /// Every integrator type, so that a certificate or a tangent run can use the very integrator
 /// type of a run (one compiled integrator per rule and system); a step with active holonomic
-/// constraints is refused ([`constrained_step`]), and so is the explicit path of a composition
-/// ([`check_stage_offsets`]).
+/// constraints is refused (`constrained_step`), and so is the explicit path of a composition
+/// (`check_stage_offsets`).
 impl<A, F, C, P> DifferentiableStep for Integrator<A, F, C, P>
 where
     A: DiscreteAction,

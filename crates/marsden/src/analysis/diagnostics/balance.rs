@@ -23,7 +23,7 @@
 //! This module checks the identity step by step; the residual is at round-off plus the Newton
 //! residual. It applies to two-point rules (discrete forces on `q_k` and `q_{k+1}` only).
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use std::ops::ControlFlow;
 

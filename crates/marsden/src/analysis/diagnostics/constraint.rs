@@ -6,7 +6,7 @@
 //! ([HLW06] §VII.1); with the RATTLE projection the velocity residual is at the projection's
 //! tolerance too. Without the projection it is `O(h)` (SHAKE momenta are not tangent).
 //!
-//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
+//! [HLW06]: crate#references
 
 use std::ops::ControlFlow;
 

@@ -4,7 +4,7 @@
 //! For a symplectic integrator of order r on a conservative system the energy error stays
 //! `O(h^r)` without drift over exponentially long times ([HLW06] Thm. IX.8.1; reference case R8).
 //!
-//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
+//! [HLW06]: crate#references
 
 use std::ops::ControlFlow;
 

@@ -29,8 +29,7 @@
 //! step; for the midpoint rule it is exactly that (the bracket above). Its sum
 //! `Σ D_k = E_N − E_0 − Σ W_k` is the energy not accounted for by the work.
 //!
-//! [FGG21]: Fernández, Graiff Zurita, Grillo, *Error analysis of forced discrete mechanical
-//! systems*, J. Geom. Mech. (2021).
+//! [FGG21]: crate#references
 
 use crate::discrete::DiscreteForce;
 use crate::discrete::rules::Rule;

@@ -14,7 +14,7 @@
 //!   multiplier series, and a streaming [`ConstraintMonitor`].
 //! * The symplecticity certificate of the step map lives in [`crate::analysis::certificate`].
 //!
-//! [HLW06]: Hairer, Lubich, Wanner, *Geometric Numerical Integration* (2006).
+//! [HLW06]: crate#references
 
 pub mod balance;
 pub mod constraint;

@@ -8,7 +8,7 @@
 //! the series `J_k` of every declared momentum map and its maximum drift, in batch from a
 //! [`Trajectory`] or streaming as an [`Observer`]; see [`super::balance`] for forced systems.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use std::ops::ControlFlow;
 

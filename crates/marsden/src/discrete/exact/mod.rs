@@ -31,7 +31,7 @@
 //! integrator reports as [`crate::error::StepError::NonFinite`]; call
 //! [`ExactDiscreteLagrangian::boundary_value`] for the typed error.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 pub mod flow;
 pub mod shooting;
@@ -289,6 +289,8 @@ fn symmetrize(h: &mut [f64], m: usize) {
 
 /// `L_d(q₀, q₁) − L_d^E(q₀, q₁)`: the local (variational) error of a discrete Lagrangian
 /// ([MW01] §2.3). `L_d` has order `r` when this is `O(h^{r+1})` along solutions.
+///
+/// [MW01]: crate#references
 pub fn local_error<D: DiscreteLagrangian, L: Lagrangian>(
     ld: &D,
     exact: &ExactDiscreteLagrangian<L>,

@@ -6,7 +6,7 @@
 //! more iterations than with the exact Jacobian). The flow is [`EulerLagrangeFlow`]. For `h`
 //! below the first conjugate time the solution is unique near `(q₁ − q₀)/h` ([MW01] §1.6).
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 use super::flow::{EulerLagrangeFlow, FlowEnd};
 use crate::error::Error;

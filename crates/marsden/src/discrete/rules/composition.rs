@@ -35,8 +35,8 @@
 //! With holonomic constraints every substep is a full SHAKE + RATTLE step on `T*N` ([Rei96];
 //! [`DiscreteAction::constrained_stages`]), so the composition keeps the scheme's order.
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001). [Rei96]: S. Reich, *Symplectic integration
-//! of constrained Hamiltonian systems by composition methods*, SIAM J. Numer. Anal. 33 (1996).
+//! [MW01]: crate#references
+//! [Rei96]: crate#references
 // The published coefficients are quoted with all their digits.
 #![allow(clippy::excessive_precision)]
 
@@ -333,6 +333,8 @@ impl<D: DiscreteAction> DiscreteAction for ComposedLd<D> {
     /// its multiplier is the sum of the RATTLE multipliers `μ_i + λ_{i+1}` of the two substeps
     /// that meet there, so the positions and the end momenta are those of `m` SHAKE + RATTLE
     /// steps (each on `T*N`), and a symmetric composition keeps its order.
+    ///
+    /// [Rei96]: crate#references
     fn constrained_stages(&self) -> Result<usize, String> {
         let base = self.base.constrained_stages()?;
         Ok(self.gammas.len() * (base + 1) - 1)

@@ -11,7 +11,7 @@
 //! with quadrature nodes `c_i` and weights `b_i` ([`Quadrature`]). The discrete Lagrangian of the
 //! step is this action extremised over the interior control points; the integrator's step
 //! solves `∂L_d/∂Q_j = 0` (`0 < j < s`) in the same Newton system as the discrete Legendre
-//! transform ([`crate::integrator::equations`]). Where the interior points sit does not change `L_d` (the space of
+//! transform (`crate::integrator::equations`). Where the interior points sit does not change `L_d` (the space of
 //! polynomials with fixed end values is the same), so the equispaced times, which the
 //! predictor's first guess `Q_j ≈ q_k + d_j h v_k` assumes, are used. Written over offsets
 //! `Δ_j = Q_j − Q₀` (`Σ_j ℓ_j = 1`, `Σ_j ℓ_j' = 0`):
@@ -34,11 +34,11 @@
 //! ([`DiscreteAction::constrained_stages`]): the constrained Lobatto IIIA–IIIB method of [Jay96],
 //! which keeps the order `2s − 2`; the Gauss rules have no such form here and are refused.
 //!
-//! [Jay96]: L. Jay, *Symplectic partitioned Runge–Kutta methods for constrained Hamiltonian
-//! systems*, SIAM J. Numer. Anal. 33 (1996).
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001). [OBS15]: Ober-Blöbaum & Saake, Adv. Comput.
-//! Math. 41 (2015). [OB17]: Ober-Blöbaum, IMA J. Numer. Anal. 37 (2017). [HLW06]: Hairer,
-//! Lubich, Wanner, *Geometric Numerical Integration* (2006).
+//! [MW01]: crate#references
+//! [OBS15]: crate#references
+//! [OB17]: crate#references
+//! [HLW06]: crate#references
+//! [Jay96]: crate#references
 
 use crate::error::InputError;
 use std::sync::Arc;
@@ -166,6 +166,8 @@ impl GalerkinTable {
     }
 
     /// Classical order: `min(2s, quadrature order)` ([OBS15]).
+    ///
+    /// [OBS15]: crate#references
     pub fn order(&self) -> u32 {
         let quadrature_order = self.quadrature.exact_degree() + 1;
         (2 * self.degree).min(quadrature_order) as u32
@@ -258,6 +260,9 @@ impl<L: Lagrangian> DiscreteAction for GalerkinLd<L> {
     /// quadratures (Gauss) are refused above degree 1: with the constraint at the step ends only
     /// the constraint force is discretised at order 2 (SPARK stage constraints are not
     /// implemented).
+    ///
+    /// [Jay96]: crate#references
+    /// [HLW06]: crate#references
     fn constrained_stages(&self) -> Result<usize, String> {
         let (s, q) = (self.table.degree, &self.table.quadrature);
         if s == 1 {

@@ -16,7 +16,7 @@
 //! Midpoint is the α = ½ member of the generalised family and trapezoid the symmetrised α = 0
 //! member; they share one implementation each ([`AlphaLd`], [`SymmetrizedLd`]).
 //!
-//! [MW01]: Marsden & West, Acta Numerica 10 (2001).
+//! [MW01]: crate#references
 
 mod alpha;
 pub mod chosen;

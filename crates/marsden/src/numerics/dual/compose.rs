@@ -13,8 +13,8 @@
 //! ```
 //!
 //! and a first-order dual needs the gradient only. [`compose`] does this for the fixed-size
-//! types the small step kernels evaluate a Lagrangian at ([`super::SmallDual`],
-//! [`super::SmallGradient`]: n = 1 … 4 degrees of freedom), at the `2n + 1` inputs
+//! types the small step kernels evaluate a Lagrangian at (`super::SmallDual`,
+//! `super::SmallGradient`: n = 1 … 4 degrees of freedom), at the `2n + 1` inputs
 //! `[q, q̇, t]` of a kernel of that size; for any other scalar type or number of inputs it
 //! returns `None` and the caller evaluates the function itself. The values agree with the
 //! function's own dual evaluation to round-off (the sums are taken in another order).

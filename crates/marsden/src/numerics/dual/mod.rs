@@ -3,7 +3,7 @@
 //!
 //! num-dual's vector duals (`HyperDualSVec64<N, N>`, `DualSVec64<2N>`) keep each derivative part
 //! as an `Option` of a matrix, so that a constant costs nothing. In the small step kernels
-//! ([`crate::integrator::small::unconstrained`], [`crate::integrator::small::constrained`]) every part is always present, and the
+//! (`crate::integrator::small::unconstrained`, `crate::integrator::small::constrained`) every part is always present, and the
 //! branches on the options and the products that are not inlined are a large part of an
 //! evaluation (BENCHMARKS.md has the counts). The types here are num-dual's
 //! scalar [`num_dual::HyperDual`] and [`num_dual::Dual`] with the parts written out as fields

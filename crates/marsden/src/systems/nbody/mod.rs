@@ -7,7 +7,7 @@
 //! Coordinates are `(x₁, y₁, z₁, x₂, …)`. `L` below is the general (AD) form and the reference;
 //! the structure-aware paths use the hand-written gradient of [`gravity`] (direct summation,
 //! structure of arrays, vectorised), which tests compare with AD. Initial data can be read from
-//! the benchmark file format ([`file`]).
+//! the benchmark file format ([`file`](mod@file)).
 
 pub mod file;
 pub mod gravity;
