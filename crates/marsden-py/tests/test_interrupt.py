@@ -11,9 +11,12 @@ import textwrap
 import time
 
 SCRIPT = textwrap.dedent("""
-    import sys, time
+    import signal, sys, time
     import numpy as np
     import marsden
+    # Ctrl-C as in an interactive interpreter: a process started in the background by a shell
+    # without job control inherits SIGINT ignored, and Python then installs no handler.
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     p = marsden.Problem(lagrangian="0.5*theta_dot^2 + cos(theta)", coordinates=["theta"],
                         q0=[1.5], v0=[0.0], h=0.05, steps=10**9)
     short = marsden.Problem(lagrangian="0.5*theta_dot^2 + cos(theta)", coordinates=["theta"],
