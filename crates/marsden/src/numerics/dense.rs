@@ -200,6 +200,13 @@ pub fn max_norm(x: &[f64]) -> f64 {
     })
 }
 
+/// Index of entry `(i, j)`, `i ≤ j`, of a symmetric `n × n` matrix stored as its upper
+/// triangle row by row (`(0, 0), (0, 1), …, (0, n − 1), (1, 1), …`: `n(n + 1)/2` values).
+#[inline(always)]
+pub(crate) const fn packed_index(n: usize, i: usize, j: usize) -> usize {
+    i * (2 * n - i + 1) / 2 + (j - i)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -284,5 +291,20 @@ mod tests {
         let a = [1.0, 2.0, 2.0, 4.0];
         let err = Lu::new().factor(&a, 2).unwrap_err();
         assert_eq!(err.column, 1);
+    }
+
+    /// The packed upper triangle's indices run 0, 1, 2, … in row order, for every size.
+    #[test]
+    fn packed_index_counts_the_upper_triangle_row_by_row() {
+        for n in 1..=9 {
+            let mut next = 0;
+            for i in 0..n {
+                for j in i..n {
+                    assert_eq!(packed_index(n, i, j), next, "n = {n}, ({i}, {j})");
+                    next += 1;
+                }
+            }
+            assert_eq!(next, n * (n + 1) / 2);
+        }
     }
 }

@@ -17,7 +17,7 @@
 
 use super::step::{Frame, Mass, SeparableWorkspace, node};
 use crate::mechanics::Lagrangian;
-use crate::numerics::dense::{max_norm, solve_fixed};
+use crate::numerics::dense::{max_norm, packed_index, solve_fixed};
 use crate::numerics::newton::{Convergence, NewtonFailure, NewtonOptions, NewtonReport};
 
 /// The step for `n ≤ 4` with a diagonal mass; `None` for other systems.
@@ -98,7 +98,7 @@ impl<L: Lagrangian, const N: usize> Step<'_, L, N> {
         let mut packed = [0.0; 10];
         let packed = &mut packed[..N * (N + 1) / 2];
         if self.l.potential_hessian_packed(t, &q, packed) {
-            return self.matrix(|i, j| packed[packed_index::<N>(i.min(j), i.max(j))]);
+            return self.matrix(|i, j| packed[packed_index(N, i.min(j), i.max(j))]);
         }
         ws.hess.reshape(N, N - 1);
         self.l.potential_hessian(t, &q, &mut ws.hess);
@@ -118,12 +118,6 @@ impl<L: Lagrangian, const N: usize> Step<'_, L, N> {
             })
         })
     }
-}
-
-/// Index of `(i, j)`, `i ≤ j`, in the upper triangle of an `N × N` matrix stored row by row.
-#[inline(always)]
-const fn packed_index<const N: usize>(i: usize, j: usize) -> usize {
-    i * (2 * N - i + 1) / 2 + (j - i)
 }
 
 fn solve<L: Lagrangian, const N: usize>(

@@ -27,6 +27,7 @@ use super::fixed::{
     Dual2x64, Dual4x64, Dual6x64, Dual8x64, HyperDual2x64, HyperDual3x64, HyperDual4x64,
 };
 use super::{SmallDual, SmallGradient};
+use crate::numerics::dense::packed_index;
 use crate::scalar::Scalar;
 
 /// The most inputs [`compose`] takes (`[q, q̇, t]` of four degrees of freedom).
@@ -248,10 +249,11 @@ impl<const N: usize, const M: usize> Parts<N, M> {
     }
 }
 
-/// Index of `∂ₖₗf` (`k ≤ l`) in [`Order::Second`]'s data of `m` inputs.
+/// Index of `∂ₖₗf` (`k ≤ l`) in [`Order::Second`]'s data of `m` inputs: after the value and
+/// the gradient, the Hessian's packed upper triangle.
 #[inline(always)]
 const fn hessian_index(m: usize, k: usize, l: usize) -> usize {
-    1 + m + k * (2 * m - k + 1) / 2 + (l - k)
+    1 + m + packed_index(m, k, l)
 }
 
 /// The first-order composition for a dual `D` with `2N` parts, at the `M = 2N + 1` inputs
