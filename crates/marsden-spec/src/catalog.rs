@@ -5,10 +5,13 @@
 //!
 //! Defaults are read from the core types' `Default` impls, never repeated here.
 
-use marsden::Lagrangian;
+use marsden::mechanics::Structure;
+use marsden::mechanics::kernel::VerletKernel;
+use marsden::numerics::banded::Banded;
 use marsden::systems::{
     DoublePendulum, FreeFall, HarmonicOscillator, HenonHeiles, Kepler, NBody, Pendulum,
 };
+use marsden::{Lagrangian, Scalar};
 
 /// A catalog system, by name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -252,6 +255,68 @@ impl BuiltinSystem {
     }
 }
 
+/// `$body` with `$s` bound to the system inside `$self`, whichever it is.
+macro_rules! each {
+    ($self:expr, $s:ident => $body:expr) => {
+        match $self {
+            BuiltinSystem::HarmonicOscillator($s) => $body,
+            BuiltinSystem::FreeFall($s) => $body,
+            BuiltinSystem::Pendulum($s) => $body,
+            BuiltinSystem::DoublePendulum($s) => $body,
+            BuiltinSystem::Kepler($s) => $body,
+            BuiltinSystem::HenonHeiles($s) => $body,
+            BuiltinSystem::NBody($s) => $body,
+        }
+    };
+}
+
+/// Every catalog system as one Lagrangian type, forwarding each call to the system it holds:
+/// the same numbers as the system itself, at the cost of a branch per call and of what the
+/// optimiser no longer sees across it. For computations that cost far more than that per
+/// evaluation of `L` (`method = "exact"`'s shooting), so that they are compiled once for the
+/// catalog instead of once per system ([`crate::problem::LagrangianSpec::dispatch_shared`]).
+impl Lagrangian for BuiltinSystem {
+    #[inline]
+    fn dof(&self) -> usize {
+        each!(self, s => s.dof())
+    }
+
+    #[inline(always)]
+    fn lagrangian<S: Scalar>(&self, t: S, q: &[S], v: &[S]) -> S {
+        each!(self, s => s.lagrangian(t, q, v))
+    }
+
+    #[inline]
+    fn structure(&self) -> Structure {
+        each!(self, s => s.structure())
+    }
+
+    #[inline]
+    fn potential_gradient(&self, t: f64, q: &[f64], grad: &mut [f64], scratch: &mut Vec<f64>) {
+        each!(self, s => s.potential_gradient(t, q, grad, scratch))
+    }
+
+    #[inline]
+    fn potential_bandwidth(&self) -> Option<usize> {
+        each!(self, s => s.potential_bandwidth())
+    }
+
+    #[inline]
+    fn potential_hessian(&self, t: f64, q: &[f64], hess: &mut Banded) {
+        each!(self, s => s.potential_hessian(t, q, hess))
+    }
+
+    #[inline]
+    fn potential_hessian_packed(&self, t: f64, q: &[f64], packed: &mut [f64]) -> bool {
+        each!(self, s => s.potential_hessian_packed(t, q, packed))
+    }
+
+    #[inline]
+    fn verlet_kernel(&self) -> Option<&dyn VerletKernel> {
+        each!(self, s => s.verlet_kernel())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -291,6 +356,65 @@ mod tests {
                 "{}",
                 b.name()
             );
+        }
+    }
+
+    /// Everything the integrators ask of a Lagrangian, at a fixed state.
+    struct Probe;
+    impl WithLagrangian for Probe {
+        type Output = (usize, Vec<f64>, String, Option<usize>, bool);
+        fn call<L: Lagrangian>(self, l: &L) -> Self::Output {
+            let n = l.dof();
+            let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.2 * i as f64).collect();
+            let v: Vec<f64> = (0..n).map(|i| -0.7 + 0.3 * i as f64).collect();
+            let mut values = vec![l.lagrangian(0.4, &q, &v)];
+            let mut grad = vec![0.0; n];
+            l.potential_gradient(0.4, &q, &mut grad, &mut Vec::new());
+            values.extend(grad);
+            let mut hess = Banded::new(n, l.potential_bandwidth().unwrap_or(n));
+            l.potential_hessian(0.4, &q, &mut hess);
+            values.extend(
+                (0..n)
+                    .flat_map(|i| hess.columns(i).map(move |j| (i, j)))
+                    .map(|(i, j)| hess.get(i, j)),
+            );
+            let mut packed = vec![0.0; n * (n + 1) / 2];
+            let has_packed = l.potential_hessian_packed(0.4, &q, &mut packed);
+            values.extend(packed);
+            let structure = format!("{:?}", l.structure());
+            let kernel = l.verlet_kernel().is_some();
+            (
+                n,
+                values,
+                structure,
+                l.potential_bandwidth(),
+                has_packed || kernel,
+            )
+        }
+        fn discrete(self, _: &crate::model::ExprDiscreteLagrangian) -> Self::Output {
+            (0, Vec::new(), String::new(), None, false)
+        }
+    }
+
+    /// The shared catalog type answers every call as the system it holds does, bit for bit
+    /// (the `exact` runs of every catalog system go through it).
+    #[test]
+    fn the_shared_catalog_type_forwards_every_call_to_its_system() {
+        for b in Builtin::ALL {
+            let values: Vec<f64> = b.parameters().iter().map(|p| p.default * 1.3).collect();
+            let masses = if b.needs_masses() {
+                vec![1.0, 2.5]
+            } else {
+                Vec::new()
+            };
+            let system = b.build(&values, masses);
+            let own = system.dispatch(Probe);
+            let shared = Probe.call(&system);
+            assert_eq!(own.0, shared.0, "{}", b.name());
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&own.1), bits(&shared.1), "{}", b.name());
+            assert!(own.1.iter().all(|x| x.is_finite()), "{}", b.name());
+            assert_eq!((own.2, own.3, own.4), (shared.2, shared.3, shared.4));
         }
     }
 

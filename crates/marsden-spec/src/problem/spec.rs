@@ -125,6 +125,19 @@ impl LagrangianSpec {
         }
     }
 
+    /// Calls `f` as [`LagrangianSpec::dispatch`] does, but with one type for every catalog
+    /// system ([`BuiltinSystem`] itself, which forwards each call): `f` is compiled once for
+    /// the catalog instead of once per system. For computations whose every evaluation of `L`
+    /// costs far more than a branch.
+    pub fn dispatch_shared<W: WithLagrangian>(&self, f: W) -> W::Output {
+        match self {
+            LagrangianSpec::Builtin { system, .. } => f.call(system),
+            LagrangianSpec::Expression(l) => f.call(l),
+            LagrangianSpec::Hamiltonian(l) => f.call(l),
+            LagrangianSpec::Discrete(ld) => f.discrete(ld),
+        }
+    }
+
     /// `builtin <name>` or the expression text.
     pub fn describe(&self) -> String {
         match self {

@@ -37,7 +37,6 @@ use marsden::{
 };
 use serde::Serialize;
 
-use crate::problem::Method;
 use marsden::sensitivity::cotangent::step_defect_on_cotangent_bundle;
 
 /// `certificate { … }` of `summary.json`.
@@ -97,30 +96,17 @@ pub struct Ends<'a> {
 }
 
 /// The certificate of a run of `problem` (its Lagrangian, forces and constraints) with the
-/// file's `method` and step `h`, for the declared `symmetries` (named by `names`).
+/// file's `rule` and step `h`, for the declared `symmetries` (named by `names`); a run with
+/// `method = "exact"` has [`without_step_jacobian`] instead.
 ///
 /// The step map is that of `problem`'s own integrator type, the one the run compiled, so a
 /// certificate adds no integrator code to the build.
 pub fn certify<L: Lagrangian, F: Force, C: Constraint, G: GroupAction>(
     problem: &Problem<L, F, C>,
     (names, symmetries): (&[String], &[G]),
-    (method, newton, h): (&Method, NewtonOptions, f64),
+    (rule, newton, h): (&ChosenRule, NewtonOptions, f64),
     ends: &Ends<'_>,
 ) -> Certificate {
-    let Some(rule) = method.rule() else {
-        return Certificate {
-            symplecticity: Symplecticity {
-                start: None,
-                end: None,
-                start_absolute: None,
-                end_absolute: None,
-                expected_symplectic: !problem.force().is_active(),
-                note: Some("not available for method = \"exact\" (no step Jacobian)".to_owned()),
-                restricted_to: None,
-            },
-            equivariance: Vec::new(),
-        };
-    };
     Certify {
         problem,
         names,
@@ -130,6 +116,23 @@ pub fn certify<L: Lagrangian, F: Force, C: Constraint, G: GroupAction>(
         ends,
     }
     .call(rule)
+}
+
+/// The certificate of a run with `method = "exact"`, which has no step Jacobian to measure
+/// (`forced`: a force acts, so the map need not be symplectic).
+pub fn without_step_jacobian(forced: bool) -> Certificate {
+    Certificate {
+        symplecticity: Symplecticity {
+            start: None,
+            end: None,
+            start_absolute: None,
+            end_absolute: None,
+            expected_symplectic: !forced,
+            note: Some("not available for method = \"exact\" (no step Jacobian)".to_owned()),
+            restricted_to: None,
+        },
+        equivariance: Vec::new(),
+    }
 }
 
 struct Certify<'a, L, F, C, G> {

@@ -4,14 +4,15 @@
 use std::time::Instant;
 
 use marsden::discrete::exact::ExactDiscreteLagrangian;
+use marsden::discrete::rules::Method as Rule;
 use marsden::{
-    Constraint, Force, Integrator, Lagrangian, Observer, Problem, Rule as _, RunFailure,
-    SolveOptions, Statistics, Trajectory, simulate,
+    Constraint, Force, Integrator, Lagrangian, NewtonOptions, Observer, Problem, Rule as _,
+    RunFailure, SolveOptions, Statistics, Trajectory, simulate,
 };
 use marsden_io::RowSink;
 
 use super::balance::{BalanceSeries, BalanceSummary, Balanced, TimeDerivative};
-use super::certify::{Certificate, Ends, certify};
+use super::certify::{Certificate, Ends, certify, without_step_jacobian};
 use super::controls::Controls;
 use super::diagnostics::Diagnostics;
 use super::noether_balance::{NoetherBalance, NoetherBalanced};
@@ -68,6 +69,91 @@ pub fn solve<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
     }
 }
 
+/// How a run takes its steps, fixed by type so that each kind of run compiles only its own
+/// code: a rule of the core ([`ByRule`], compiled once per Lagrangian type) or the exact
+/// discrete Lagrangian by shooting ([`Exact`], compiled once for the whole catalog, through
+/// [`crate::problem::LagrangianSpec::dispatch_shared`]).
+pub trait Stepping: Copy {
+    /// The run of `problem` with the energy and Noether balances where they apply
+    /// ([`solve_balanced`]).
+    fn run<L: Lagrangian, F: Force, C: Constraint, M, O: Observer + ?Sized>(
+        self,
+        parts: (&Problem<L, F, C>, &[M]),
+        output: (usize, bool),
+        options: &SolveOptions,
+        observer: &mut O,
+    ) -> Balance
+    where
+        M: MomentumMap + GroupAction;
+
+    /// The certificates of a run that ended at `ends` (see [`certify`]).
+    fn certify<L: Lagrangian, F: Force, C: Constraint, G: GroupAction>(
+        self,
+        problem: &Problem<L, F, C>,
+        symmetries: (&[String], &[G]),
+        step: (NewtonOptions, f64),
+        ends: &Ends<'_>,
+    ) -> Certificate;
+}
+
+/// Steps by a rule of the core.
+#[derive(Debug, Clone, Copy)]
+pub struct ByRule<'a>(pub &'a Rule);
+
+/// Steps by `L_d^E`, the exact discrete Lagrangian by shooting (`method = "exact"`).
+#[derive(Debug, Clone, Copy)]
+pub struct Exact;
+
+impl Stepping for ByRule<'_> {
+    fn run<L: Lagrangian, F: Force, C: Constraint, M, O: Observer + ?Sized>(
+        self,
+        parts: (&Problem<L, F, C>, &[M]),
+        (every, time_dependent): (usize, bool),
+        options: &SolveOptions,
+        observer: &mut O,
+    ) -> Balance
+    where
+        M: MomentumMap + GroupAction,
+    {
+        solve_balanced(parts, (self.0, every, time_dependent), options, observer)
+    }
+
+    fn certify<L: Lagrangian, F: Force, C: Constraint, G: GroupAction>(
+        self,
+        problem: &Problem<L, F, C>,
+        symmetries: (&[String], &[G]),
+        (newton, h): (NewtonOptions, f64),
+        ends: &Ends<'_>,
+    ) -> Certificate {
+        certify(problem, symmetries, (self.0, newton, h), ends)
+    }
+}
+
+impl Stepping for Exact {
+    fn run<L: Lagrangian, F: Force, C: Constraint, M, O: Observer + ?Sized>(
+        self,
+        (problem, _): (&Problem<L, F, C>, &[M]),
+        _: (usize, bool),
+        options: &SolveOptions,
+        observer: &mut O,
+    ) -> Balance
+    where
+        M: MomentumMap + GroupAction,
+    {
+        (solve_exact(problem, options, observer), None)
+    }
+
+    fn certify<L: Lagrangian, F: Force, C: Constraint, G: GroupAction>(
+        self,
+        problem: &Problem<L, F, C>,
+        _: (&[String], &[G]),
+        _: (NewtonOptions, f64),
+        _: &Ends<'_>,
+    ) -> Certificate {
+        without_step_jacobian(problem.force().is_active())
+    }
+}
+
 /// `method = "exact"`: the integrator steps `L_d^E` of the problem's Lagrangian by shooting
 /// (forces and constraints were refused when the file was read).
 fn solve_exact<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
@@ -96,16 +182,13 @@ fn solve_exact<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
 /// `maps` ([`NoetherBalanced`]) on the way (the energy series keeps every `every`-th step).
 pub fn solve_balanced<L: Lagrangian, F: Force, C: Constraint, M, O: Observer + ?Sized>(
     (problem, maps): (&Problem<L, F, C>, &[M]),
-    (method, every, time_dependent): (&Method, usize, bool),
+    (rule, every, time_dependent): (&Rule, usize, bool),
     options: &SolveOptions,
     observer: &mut O,
 ) -> Balance
 where
     M: MomentumMap + GroupAction,
 {
-    let Some(rule) = method.rule() else {
-        return (solve_exact(problem, options, observer), None);
-    };
     use marsden::discrete::DiscreteAction as _;
     let l = problem.lagrangian();
     let two_point = rule.discretize(l).internal_stages() == 0;
@@ -149,12 +232,15 @@ pub struct Destination<'s> {
 /// # Errors
 /// Only if the core rejects the initial state (already checked by [`start::prepare`]); a
 /// failing run is a [`RunRecord`] with an error message, not an `Err`.
-pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap + GroupAction>(
+pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M, X: Stepping>(
     (lagrangian, force, constraint, maps): (&L, &F, &C, &[M]),
-    spec: &RunSpec,
+    (spec, stepping): (&RunSpec, X),
     destination: Destination<'_>,
     controls: &Controls<'_>,
-) -> Result<RunRecord, Diagnostic> {
+) -> Result<RunRecord, Diagnostic>
+where
+    M: MomentumMap + GroupAction,
+{
     let grid = spec.integrator.grid;
     let problem = start::constrained_problem(spec, lagrangian, constraint)?.with_force(force);
     let options = SolveOptions {
@@ -170,8 +256,8 @@ pub fn run_problem<L: Lagrangian, F: Force, C: Constraint, M: MomentumMap + Grou
         .monitoring_every_step(spec.analysis.every_step);
     let clock = Instant::now();
     let time_dependent = spec.system.depends_on_time();
-    let method = (&spec.integrator.method, spec.output.every, time_dependent);
-    let (result, balance) = solve_balanced((&problem, maps), method, &options, &mut observer);
+    let output = (spec.output.every, time_dependent);
+    let (result, balance) = stepping.run((&problem, maps), output, &options, &mut observer);
     let wall_seconds = clock.elapsed().as_secs_f64();
     let mut record = finish(observer, result, wall_seconds);
     if let Some((b, series, noether)) = balance {
@@ -258,19 +344,50 @@ impl Runner<'_> {
     /// # Errors
     /// As [`run_problem`].
     pub fn run(self) -> Result<RunRecord, Diagnostic> {
-        self.spec.system.lagrangian.dispatch(self)
+        let Runner {
+            spec,
+            destination,
+            controls,
+        } = self;
+        let lagrangian = &spec.system.lagrangian;
+        match spec.integrator.method.rule() {
+            Some(rule) => lagrangian.dispatch(Run {
+                spec,
+                destination,
+                controls,
+                stepping: ByRule(rule),
+            }),
+            // Shooting costs far more per step than a branch per evaluation of `L`: one compiled
+            // run for the whole catalog.
+            None => lagrangian.dispatch_shared(Run {
+                spec,
+                destination,
+                controls,
+                stepping: Exact,
+            }),
+        }
     }
 }
 
-impl WithLagrangian for Runner<'_> {
+/// A [`Runner`] with the kind of stepping fixed by type.
+struct Run<'a, X> {
+    spec: &'a RunSpec,
+    destination: Destination<'a>,
+    controls: &'a Controls<'a>,
+    stepping: X,
+}
+
+impl<X: Stepping> WithLagrangian for Run<'_, X> {
     type Output = Result<RunRecord, Diagnostic>;
     fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output {
         let s = &self.spec.system;
         let force = s.force.on(lagrangian);
         let parts = (lagrangian, &force, &s.constraint, s.symmetries.as_slice());
-        let mut record = run_problem(parts, self.spec, self.destination, self.controls)?;
+        let spec = (self.spec, self.stepping);
+        let mut record = run_problem(parts, spec, self.destination, self.controls)?;
         if self.spec.analysis.certify {
-            record.certificate = Some(certificate(self.spec, (lagrangian, &force), &record)?);
+            let parts = (lagrangian, &force);
+            record.certificate = Some(certificate(spec, parts, &record)?);
         }
         Ok(record)
     }
@@ -282,8 +399,8 @@ impl WithLagrangian for Runner<'_> {
 
 /// The certificates of `record`, a run of `spec` with `lagrangian` (from its initial state and
 /// its last good state).
-fn certificate<L: Lagrangian, F: Force>(
-    spec: &RunSpec,
+fn certificate<L: Lagrangian, F: Force, X: Stepping>(
+    (spec, stepping): (&RunSpec, X),
     (lagrangian, force): (&L, &F),
     record: &RunRecord,
 ) -> Result<Certificate, Diagnostic> {
@@ -306,10 +423,6 @@ fn certificate<L: Lagrangian, F: Force>(
         .map(|m| MomentumMap::name(m).to_owned())
         .collect();
     let i = &spec.integrator;
-    Ok(certify(
-        &problem,
-        (&names, &s.symmetries),
-        (&i.method, i.newton, i.grid.h),
-        &ends,
-    ))
+    let symmetries = (names.as_slice(), s.symmetries.as_slice());
+    Ok(stepping.certify(&problem, symmetries, (i.newton, i.grid.h), &ends))
 }
