@@ -25,6 +25,7 @@ use crate::mechanics::lagrangian::times_dof;
 use crate::mechanics::{Lagrangian, structure};
 use crate::numerics::ad::{self, HessianParts, MultiFunction};
 use crate::numerics::dense::{Lu, max_norm};
+use crate::numerics::scratch::with_slice;
 use crate::scalar::Scalar;
 
 /// `L` as a function of `z = (t, q, v)` for the AD drivers.
@@ -109,21 +110,35 @@ fn tangent_point(t: f64, q: &[f64], v: &[f64]) -> Vec<f64> {
         .collect()
 }
 
+/// `body` at `z = (t, q, v)`, held on the stack for small systems (these derivatives are taken
+/// at every evaluation of the Euler–Lagrange vector field by [`crate::discrete::exact`]).
+#[inline(always)]
+fn at_tangent_point<R>(t: f64, q: &[f64], v: &[f64], body: impl FnOnce(&[f64]) -> R) -> R {
+    let n = q.len();
+    with_slice(1 + 2 * n, t, |z| {
+        z[1..=n].copy_from_slice(q);
+        z[n + 1..].copy_from_slice(v);
+        body(z)
+    })
+}
+
 /// Legendre transform `p = ∂L/∂v (t, q, v)`, written into `p`.
 pub fn momentum<L: Lagrangian>(l: &L, t: f64, q: &[f64], v: &[f64], p: &mut [f64]) {
     if let Some(mass) = structure::large_separable(l) {
         return structure::momentum(&mass, v, p);
     }
     let n = l.dof();
-    let z = tangent_point(t, q, v);
-    ad::jacobian(&OnTangentBundle(l), &z, n + 1..2 * n + 1, &mut [0.0], p);
+    at_tangent_point(t, q, v, |z| {
+        ad::jacobian(&OnTangentBundle(l), z, n + 1..2 * n + 1, &mut [0.0], p)
+    });
 }
 
 /// `∂L/∂q (t, q, v)`, written into `out`.
 pub fn dl_dq<L: Lagrangian>(l: &L, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
     let n = l.dof();
-    let z = tangent_point(t, q, v);
-    ad::jacobian(&OnTangentBundle(l), &z, 1..n + 1, &mut [0.0], out);
+    at_tangent_point(t, q, v, |z| {
+        ad::jacobian(&OnTangentBundle(l), z, 1..n + 1, &mut [0.0], out)
+    });
 }
 
 /// Energy `E = ⟨∂L/∂v, v⟩ − L` at `(t, q, v)`.
