@@ -21,7 +21,10 @@
 //! [`crate::catalog::WithLagrangian`]: one monomorphised run per Lagrangian type. The file's
 //! method is itself the rule ([`marsden::discrete::rules::chosen`]), and the certificate, the
 //! tangent run and the order study build the run's own problem type, so each system's
-//! integrator is compiled once.
+//! integrator is compiled once. A run with `method = "exact"` is compiled once for the whole
+//! catalog ([`solve::Stepping`] fixes the kind of stepping by type;
+//! [`crate::problem::LagrangianSpec::dispatch_shared`]): its shooting evaluates `L` thousands
+//! of times per step, where a branch per evaluation costs little.
 
 pub mod balance;
 pub mod certify;
