@@ -169,10 +169,11 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
     pub fn advance(&self, t0: f64, h: f64, q0: &[f64], v0: &[f64]) -> Result<FlowEnd, Error> {
         let n = q0.len();
         let mut y: Vec<f64> = q0.iter().chain(v0).copied().chain([0.0]).collect();
+        let mut tableau = Tableau::new(self.options.max_rows);
         let pieces = self.options.substeps;
         let big = h / pieces as f64;
         for k in 0..pieces {
-            self.advance_controlled(t0 + k as f64 * big, big, &mut y)?;
+            self.advance_controlled(t0 + k as f64 * big, big, &mut y, &mut tableau)?;
         }
         Ok(FlowEnd {
             q: y[..n].to_vec(),
@@ -181,7 +182,13 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
         })
     }
 
-    fn advance_controlled(&self, t0: f64, h: f64, y: &mut [f64]) -> Result<(), Error> {
+    fn advance_controlled(
+        &self,
+        t0: f64,
+        h: f64,
+        y: &mut [f64],
+        tableau: &mut Tableau,
+    ) -> Result<(), Error> {
         let last = f64::from_bits(self.last_substep.load(Ordering::Relaxed));
         let mut piece = if last > 0.0 && last < h.abs() {
             last.copysign(h)
@@ -196,9 +203,10 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
             } else {
                 piece
             };
-            let (end, estimate, row) = self.extrapolate(t0 + done, step, y)?;
-            if estimate <= self.options.tolerance * max_norm(&end).max(1.0) {
-                y.copy_from_slice(&end);
+            let (estimate, row) = self.extrapolate(t0 + done, step, y, tableau)?;
+            let end = &tableau.end;
+            if estimate <= self.options.tolerance * max_norm(end).max(1.0) {
+                y.copy_from_slice(end);
                 done = if step == remaining { h } else { done + step };
                 self.last_substep
                     .store(step.abs().to_bits(), Ordering::Relaxed);
@@ -226,66 +234,87 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
         Ok(())
     }
 
-    /// Extrapolated modified-midpoint value over `[t, t + h]` from `y`, with the error estimate
-    /// `|T_jj − T_{j,j−1}|` and the index of the row where it was accepted (or of the last row,
-    /// with `max_rows`).
-    fn extrapolate(&self, t: f64, h: f64, y: &[f64]) -> Result<(Vec<f64>, f64, usize), Error> {
-        let mut f0 = vec![0.0; y.len()];
-        self.rhs(t, y, &mut f0)?;
-        let mut previous: Vec<Vec<f64>> = Vec::new();
-        let mut estimate = f64::INFINITY;
-        for j in 0..self.options.max_rows {
-            let mut row = Vec::with_capacity(j + 1);
-            row.push(self.modified_midpoint(t, h, y, &f0, 2 * (j + 1))?);
-            // Neville: T_{j,k} = T_{j,k−1} + (T_{j,k−1} − T_{j−1,k−1}) / ((n_j/n_{j−k})² − 1).
-            for k in 1..=j {
-                let ratio = (j + 1) as f64 / (j + 1 - k) as f64;
-                let factor = 1.0 / (ratio * ratio - 1.0);
-                let (newer, older) = (&row[k - 1], &previous[k - 1]);
-                let entry = newer
-                    .iter()
-                    .zip(older)
-                    .map(|(a, b)| a + (a - b) * factor)
-                    .collect();
-                row.push(entry);
-            }
-            if j >= 2 {
-                estimate = max_diff(&row[j], &row[j - 1]);
-                if estimate <= self.options.tolerance * max_norm(&row[j]).max(1.0) {
-                    return Ok((row.swap_remove(j), estimate, j));
-                }
-            }
-            previous = row;
-        }
-        let last = previous.pop().unwrap_or_else(|| y.to_vec());
-        Ok((last, estimate, self.options.max_rows))
-    }
-
-    /// Gragg's modified midpoint rule with `steps` (even) steps, with the final smoothing step.
-    fn modified_midpoint(
+    /// Extrapolated modified-midpoint value over `[t, t + h]` from `y`, written into
+    /// `tableau.end`, with the error estimate `|T_jj − T_{j,j−1}|` and the index of the row where
+    /// it was accepted (or of the last row, with `max_rows`).
+    fn extrapolate(
         &self,
         t: f64,
         h: f64,
         y: &[f64],
-        f0: &[f64],
+        tableau: &mut Tableau,
+    ) -> Result<(f64, usize), Error> {
+        let Tableau {
+            f0,
+            previous,
+            row,
+            midpoint,
+            end,
+        } = tableau;
+        f0.resize(y.len(), 0.0);
+        self.rhs(t, y, f0)?;
+        let mut estimate = f64::INFINITY;
+        let rows = self.options.max_rows;
+        for j in 0..rows {
+            self.modified_midpoint((t, h, y, f0), 2 * (j + 1), &mut row[0], midpoint)?;
+            // Neville: T_{j,k} = T_{j,k−1} + (T_{j,k−1} − T_{j−1,k−1}) / ((n_j/n_{j−k})² − 1).
+            for k in 1..=j {
+                let ratio = (j + 1) as f64 / (j + 1 - k) as f64;
+                let factor = 1.0 / (ratio * ratio - 1.0);
+                let (done, rest) = row.split_at_mut(k);
+                let (newer, older) = (&done[k - 1], &previous[k - 1]);
+                let entry = newer.iter().zip(older).map(|(a, b)| a + (a - b) * factor);
+                rest[0].clear();
+                rest[0].extend(entry);
+            }
+            if j >= 2 {
+                estimate = max_diff(&row[j], &row[j - 1]);
+                if estimate <= self.options.tolerance * max_norm(&row[j]).max(1.0) {
+                    end.clone_from(&row[j]);
+                    return Ok((estimate, j));
+                }
+            }
+            std::mem::swap(previous, row);
+        }
+        match previous.get(rows.wrapping_sub(1)) {
+            Some(last) => end.clone_from(last),
+            None => {
+                end.clear();
+                end.extend_from_slice(y);
+            }
+        }
+        Ok((estimate, rows))
+    }
+
+    /// Gragg's modified midpoint rule with `steps` (even) steps from `y` (where the vector field
+    /// is `f0`) over `[t, t + h]`, with the final smoothing step, written into `out`;
+    /// `scratch` holds the last two states and the vector field.
+    fn modified_midpoint(
+        &self,
+        (t, h, y, f0): (f64, f64, &[f64], &[f64]),
         steps: usize,
-    ) -> Result<Vec<f64>, Error> {
+        out: &mut Vec<f64>,
+        [prev, cur, f]: &mut [Vec<f64>; 3],
+    ) -> Result<(), Error> {
         let eta = h / steps as f64;
-        let mut prev = y.to_vec();
-        let mut cur: Vec<f64> = y.iter().zip(f0).map(|(a, f)| a + eta * f).collect();
-        let mut f = vec![0.0; y.len()];
+        prev.clear();
+        prev.extend_from_slice(y);
+        cur.clear();
+        cur.extend(y.iter().zip(f0).map(|(a, f)| a + eta * f));
+        f.clear();
+        f.resize(y.len(), 0.0);
         for m in 1..steps {
-            self.rhs(t + m as f64 * eta, &cur, &mut f)?;
+            self.rhs(t + m as f64 * eta, cur, f)?;
             for i in 0..y.len() {
                 let next = prev[i] + 2.0 * eta * f[i];
                 prev[i] = cur[i];
                 cur[i] = next;
             }
         }
-        self.rhs(t + h, &cur, &mut f)?;
-        Ok((0..y.len())
-            .map(|i| 0.5 * (cur[i] + prev[i] + eta * f[i]))
-            .collect())
+        self.rhs(t + h, cur, f)?;
+        out.clear();
+        out.extend((0..y.len()).map(|i| 0.5 * (cur[i] + prev[i] + eta * f[i])));
+        Ok(())
     }
 
     /// `(v, a, L)` at `(t, q, v)`.
@@ -347,6 +376,34 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
         }
         tail[n] = self.lagrangian.lagrangian(t, q, v);
         Ok(())
+    }
+}
+
+/// The extrapolation's storage, reused by every substep of one
+/// [`EulerLagrangeFlow::advance`] (no allocation per row or per midpoint sequence).
+#[derive(Debug)]
+struct Tableau {
+    /// The vector field at the substep's start.
+    f0: Vec<f64>,
+    /// Row `j − 1` of the tableau (its first `j` entries).
+    previous: Vec<Vec<f64>>,
+    /// Row `j` (its first `j + 1` entries).
+    row: Vec<Vec<f64>>,
+    /// The midpoint rule's last two states and vector field.
+    midpoint: [Vec<f64>; 3],
+    /// The extrapolated value.
+    end: Vec<f64>,
+}
+
+impl Tableau {
+    fn new(rows: usize) -> Self {
+        Self {
+            f0: Vec::new(),
+            previous: vec![Vec::new(); rows],
+            row: vec![Vec::new(); rows],
+            midpoint: Default::default(),
+            end: Vec::new(),
+        }
     }
 }
 
