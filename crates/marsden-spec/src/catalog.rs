@@ -281,6 +281,8 @@ impl Lagrangian for BuiltinSystem {
         each!(self, s => s.dof())
     }
 
+    // Always inlined: the shooting evaluates `L` at dual numbers thousands of times per step,
+    // and a call per evaluation cost `exact` a further 4 % (BENCHMARKS.md).
     #[inline(always)]
     fn lagrangian<S: Scalar>(&self, t: S, q: &[S], v: &[S]) -> S {
         each!(self, s => s.lagrangian(t, q, v))
@@ -362,7 +364,7 @@ mod tests {
     /// Everything the integrators ask of a Lagrangian, at a fixed state.
     struct Probe;
     impl WithLagrangian for Probe {
-        type Output = (usize, Vec<f64>, String, Option<usize>, bool);
+        type Output = (usize, Vec<f64>, String, Option<usize>, [bool; 2]);
         fn call<L: Lagrangian>(self, l: &L) -> Self::Output {
             let n = l.dof();
             let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.2 * i as f64).collect();
@@ -388,11 +390,11 @@ mod tests {
                 values,
                 structure,
                 l.potential_bandwidth(),
-                has_packed || kernel,
+                [has_packed, kernel],
             )
         }
         fn discrete(self, _: &crate::model::ExprDiscreteLagrangian) -> Self::Output {
-            (0, Vec::new(), String::new(), None, false)
+            (0, Vec::new(), String::new(), None, [false; 2])
         }
     }
 

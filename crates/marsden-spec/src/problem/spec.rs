@@ -132,9 +132,7 @@ impl LagrangianSpec {
     pub fn dispatch_shared<W: WithLagrangian>(&self, f: W) -> W::Output {
         match self {
             LagrangianSpec::Builtin { system, .. } => f.call(system),
-            LagrangianSpec::Expression(l) => f.call(l),
-            LagrangianSpec::Hamiltonian(l) => f.call(l),
-            LagrangianSpec::Discrete(ld) => f.discrete(ld),
+            _ => self.dispatch(f),
         }
     }
 

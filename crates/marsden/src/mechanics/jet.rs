@@ -71,15 +71,11 @@ impl LagrangianJet {
     /// Evaluates all first derivatives and the second derivatives in `v` at `(t, q, v)`.
     pub fn at<L: Lagrangian>(l: &L, t: f64, q: &[f64], v: &[f64]) -> Self {
         let n = l.dof();
-        let z = tangent_point(t, q, v);
         let mut parts = HessianParts::default();
-        ad::partial_hessian(
-            &OnTangentBundle(l),
-            &z,
-            n + 1..2 * n + 1,
-            0..2 * n + 1,
-            &mut parts,
-        );
+        at_tangent_point(t, q, v, |z| {
+            let (rows, cols) = (n + 1..2 * n + 1, 0..2 * n + 1);
+            ad::partial_hessian(&OnTangentBundle(l), z, rows, cols, &mut parts)
+        });
         let row = |a: usize, range: std::ops::Range<usize>| -> Vec<f64> {
             range.map(|j| parts.hess[a * (2 * n + 1) + j]).collect()
         };
@@ -102,16 +98,9 @@ impl LagrangianJet {
     }
 }
 
-/// `z = (t, q, v)`, the input of [`OnTangentBundle`].
-fn tangent_point(t: f64, q: &[f64], v: &[f64]) -> Vec<f64> {
-    std::iter::once(t)
-        .chain(q.iter().copied())
-        .chain(v.iter().copied())
-        .collect()
-}
-
-/// `body` at `z = (t, q, v)`, held on the stack for small systems (these derivatives are taken
-/// at every evaluation of the Euler–Lagrange vector field by [`crate::discrete::exact`]).
+/// `body` at `z = (t, q, v)`, the input of [`OnTangentBundle`], held on the stack for small
+/// systems (these derivatives are taken at every evaluation of the Euler–Lagrange vector field
+/// by [`crate::discrete::exact`]).
 #[inline(always)]
 fn at_tangent_point<R>(t: f64, q: &[f64], v: &[f64], body: impl FnOnce(&[f64]) -> R) -> R {
     let n = q.len();
