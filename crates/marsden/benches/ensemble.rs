@@ -1,4 +1,4 @@
-//! An ensemble of 10⁴ pendulums (issue 7): the same members on 1 and on 2 threads.
+//! An ensemble of 10⁴ pendulums: the same members on 1 and on 2 threads.
 //!
 //! `cargo bench -p marsden --bench ensemble`. Each iteration solves 10⁴ pendulums (initial
 //! angles spread over 0.1 … 2.6 rad) for 100 midpoint steps each, storing only the first and

@@ -1,4 +1,4 @@
-//! The speed-up of an ensemble on 2 threads over 1 (issue 7), measured in interleaved pairs.
+//! The speed-up of an ensemble on 2 threads over 1, measured in interleaved pairs.
 //!
 //! ```sh
 //! cargo run --release -p marsden --features tools --example ensemble_speedup [PAIRS]

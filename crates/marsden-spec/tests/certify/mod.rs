@@ -1,4 +1,4 @@
-//! Issue 17, certificates and symmetries from a problem file: named symmetries, the
+//! Certificates and symmetries from a problem file: named symmetries, the
 //! symplecticity and equivariance certificates (`[analysis] certify = true`) and the forced
 //! Noether balance, each read back from `summary.json`.
 

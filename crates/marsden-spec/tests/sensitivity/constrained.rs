@@ -50,7 +50,7 @@ fn relative_distance(a: &[f64], b: &[f64]) -> f64 {
     diff / b.iter().fold(0.0_f64, |m, y| m.max(y.abs()))
 }
 
-/// Issue 19's check for a constrained system: `∂(q, p)_final/∂g` equals the central difference
+/// The sensitivity check for a constrained system: `∂(q, p)_final/∂g` equals the central difference
 /// of two runs of the file at `g ± δ`, and `∂(q, p)_final/∂l` that of two runs of the file's
 /// model (compiled with `g, l` as inputs) at `l ± δ` from the same `(q₀, p₀)` — a file with
 /// another `l` would start off its sphere and be refused — each to 1e-6 relative.

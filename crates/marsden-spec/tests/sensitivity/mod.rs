@@ -169,7 +169,7 @@ parameters = ["mu"]
     )
 }
 
-/// Issue 19's check: `∂(q, p)_final/∂mu` of the file equals the central difference of two runs
+/// The sensitivity check: `∂(q, p)_final/∂mu` of the file equals the central difference of two runs
 /// at `mu ± δ` (δ = 1e-5), relative to the column's size, to 1e-6.
 #[test]
 fn kepler_d_final_d_mu_matches_a_central_difference_of_two_runs() {

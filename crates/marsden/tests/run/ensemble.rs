@@ -1,4 +1,4 @@
-//! Ensembles (issue 7): results in member order, independent of the number of threads, one
+//! Ensembles: results in member order, independent of the number of threads, one
 //! failing member reported without stopping the others.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
