@@ -3,9 +3,16 @@
 //! Physics is written once as a [`MultiFunction`] generic over [`Scalar`]; this module evaluates
 //! it at num-dual's statically sized dual numbers to obtain exact first and mixed second
 //! derivatives (forward mode). Sizes are dispatched once per call to a chunk width
-//! `C ∈ {1, 2, 4, 8}`; inputs wider than 8 are covered in blocks of 8 (as ForwardDiff.jl does), so
+//! `C ∈ {1, 2, 4}`; wider ranges are covered in blocks of 4 (chunked as ForwardDiff.jl does), so
 //! nothing here allocates on the heap for systems whose `(inputs, outputs)` fit the inline
 //! buffers, and large systems still work.
+//!
+//! Why no wider chunk: the mixed part of a hyper-dual number has `C²` entries, so covering an
+//! `n × n` block costs about `n²` multiply–adds per operation whatever `C` is; a wider chunk only
+//! saves repeating the value and first-order parts (`1 + 2C` per chunk pair) and the scalar
+//! work of `f` itself. An 8-wide chunk was a quarter of the optimised code of every program
+//! that differentiates a step (its operations unrolled over 64 entries, once per system and
+//! rule); BENCHMARKS.md ("Chunks of four") has what the wider chunk saved at run time.
 //!
 //! * [`jacobian`]: values and `∂out/∂x[cols]` with first-order duals `DualSVec64<C>`.
 //! * [`partial_hessian`]: additionally `∂out₀/∂x[rows]` and the mixed block
@@ -72,7 +79,6 @@ struct Widths<F>(std::marker::PhantomData<F>);
 impl<F: MultiFunction> Widths<F> {
     const TWO: bool = may_reach::<F>(2);
     const FOUR: bool = may_reach::<F>(3);
-    const EIGHT: bool = may_reach::<F>(5);
 }
 
 /// Whether a range of `len` inputs can occur for `F`.
@@ -100,8 +106,7 @@ pub fn jacobian<F: MultiFunction>(
         }
         1 => jacobian_chunked::<1, F>(f, x, cols, values, jac),
         2 if Widths::<F>::TWO => jacobian_chunked::<2, F>(f, x, cols, values, jac),
-        3 | 4 if Widths::<F>::FOUR => jacobian_chunked::<4, F>(f, x, cols, values, jac),
-        5.. if Widths::<F>::EIGHT => jacobian_chunked::<8, F>(f, x, cols, values, jac),
+        3.. if Widths::<F>::FOUR => jacobian_chunked::<4, F>(f, x, cols, values, jac),
         // Beyond `F::MAX_INPUTS`: one column at a time.
         _ => jacobian_chunked::<1, F>(f, x, cols, values, jac),
     }
@@ -124,8 +129,7 @@ pub fn partial_hessian<F: MultiFunction>(
         }
         1 => hessian_scalar(f, x, rows, cols, out),
         2 if Widths::<F>::TWO => hessian_chunked::<2, F>(f, x, rows, cols, out),
-        3 | 4 if Widths::<F>::FOUR => hessian_chunked::<4, F>(f, x, rows, cols, out),
-        5.. if Widths::<F>::EIGHT => hessian_chunked::<8, F>(f, x, rows, cols, out),
+        3.. if Widths::<F>::FOUR => hessian_chunked::<4, F>(f, x, rows, cols, out),
         // Beyond `F::MAX_INPUTS`: one row and column at a time.
         _ => hessian_chunked::<1, F>(f, x, rows, cols, out),
     }
@@ -434,7 +438,7 @@ mod tests {
         assert!((g[1].re - a * a).abs() < 1e-15 && (g[1].eps - 2.0 * a).abs() < 1e-15);
     }
 
-    /// A 20-input quadratic form forces the chunked (8-wide) path: 3×3 chunk pairs.
+    /// A 20-input quadratic form forces the chunked (4-wide) path: 5×5 chunk pairs.
     struct Quadratic;
     impl MultiFunction for Quadratic {
         fn inputs(&self) -> usize {
@@ -459,7 +463,7 @@ mod tests {
         let x: Vec<f64> = (0..20).map(|i| (i as f64 * 0.37).cos()).collect();
         let mut parts = HessianParts::default();
         partial_hessian(&Quadratic, &x, 0..20, 0..20, &mut parts);
-        assert_eq!(parts.evaluations, 9);
+        assert_eq!(parts.evaluations, 25);
         for i in 0..20 {
             for j in 0..20 {
                 let a = ((i + 2 * j) as f64).sin() + ((j + 2 * i) as f64).sin();
@@ -468,7 +472,7 @@ mod tests {
         }
         let mut values = [0.0];
         let mut jac = vec![0.0; 20];
-        assert_eq!(jacobian(&Quadratic, &x, 0..20, &mut values, &mut jac), 3);
+        assert_eq!(jacobian(&Quadratic, &x, 0..20, &mut values, &mut jac), 5);
         for (g, r) in jac.iter().zip(&parts.grad_rows) {
             assert!((g - r).abs() < 1e-13);
         }
