@@ -10,9 +10,9 @@
 //! Why no wider chunk: the mixed part of a hyper-dual number has `C²` entries, so covering an
 //! `n × n` block costs about `n²` multiply–adds per operation whatever `C` is; a wider chunk only
 //! saves repeating the value and first-order parts (`1 + 2C` per chunk pair) and the scalar
-//! work of `f` itself. An 8-wide chunk was a quarter of the optimised code of every program
-//! that differentiates a step (its operations unrolled over 64 entries, once per system and
-//! rule); BENCHMARKS.md ("Chunks of four") has what the wider chunk saved at run time.
+//! work of `f` itself. An 8-wide chunk (its operations unrolled over 64 entries, compiled once
+//! per system and rule) was a sixth of the `marsden` binary and ran slower than blocks of four
+//! where it was used (BENCHMARKS.md, "Chunks of four").
 //!
 //! * [`jacobian`]: values and `∂out/∂x[cols]` with first-order duals `DualSVec64<C>`.
 //! * [`partial_hessian`]: additionally `∂out₀/∂x[rows]` and the mixed block
