@@ -129,10 +129,16 @@ impl LagrangianSpec {
     /// system ([`BuiltinSystem`] itself, which forwards each call): `f` is compiled once for
     /// the catalog instead of once per system. For computations whose every evaluation of `L`
     /// costs far more than a branch.
+    ///
+    /// The other arms repeat [`LagrangianSpec::dispatch`]'s instead of calling it: a call
+    /// would compile `dispatch::<W>` whole, its catalog arm included, and with it `f` once per
+    /// system again (10 % more code in `marsden-spec`, BENCHMARKS.md).
     pub fn dispatch_shared<W: WithLagrangian>(&self, f: W) -> W::Output {
         match self {
             LagrangianSpec::Builtin { system, .. } => f.call(system),
-            _ => self.dispatch(f),
+            LagrangianSpec::Expression(l) => f.call(l),
+            LagrangianSpec::Hamiltonian(l) => f.call(l),
+            LagrangianSpec::Discrete(ld) => f.discrete(ld),
         }
     }
 
