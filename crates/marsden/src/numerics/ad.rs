@@ -438,19 +438,20 @@ mod tests {
         assert!((g[1].re - a * a).abs() < 1e-15 && (g[1].eps - 2.0 * a).abs() < 1e-15);
     }
 
-    /// A 20-input quadratic form forces the chunked (4-wide) path: 5×5 chunk pairs.
-    struct Quadratic;
+    /// An `n`-input quadratic form: `n ≥ 3` takes the chunked (4-wide) path, in `⌈n/4⌉²` chunk
+    /// pairs, the last chunk partial unless 4 divides `n`.
+    struct Quadratic(usize);
     impl MultiFunction for Quadratic {
         fn inputs(&self) -> usize {
-            20
+            self.0
         }
         fn outputs(&self) -> usize {
             1
         }
         fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
             let mut acc = S::from(0.0);
-            for i in 0..20 {
-                for j in 0..20 {
+            for i in 0..self.0 {
+                for j in 0..self.0 {
                     acc += x[i] * x[j] * ((i + 2 * j) as f64).sin();
                 }
             }
@@ -460,21 +461,30 @@ mod tests {
 
     #[test]
     fn chunked_hessian_equals_symmetrised_coefficients() {
-        let x: Vec<f64> = (0..20).map(|i| (i as f64 * 0.37).cos()).collect();
-        let mut parts = HessianParts::default();
-        partial_hessian(&Quadratic, &x, 0..20, 0..20, &mut parts);
-        assert_eq!(parts.evaluations, 25);
-        for i in 0..20 {
-            for j in 0..20 {
-                let a = ((i + 2 * j) as f64).sin() + ((j + 2 * i) as f64).sin();
-                assert!((parts.hess[i * 20 + j] - a).abs() < 1e-13, "({i},{j})");
+        // 7: a partial last chunk (4 + 3); 20: five full chunks.
+        for n in [7, 20] {
+            let x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).cos()).collect();
+            let mut parts = HessianParts::default();
+            partial_hessian(&Quadratic(n), &x, 0..n, 0..n, &mut parts);
+            let chunks = n.div_ceil(4);
+            assert_eq!(parts.evaluations, chunks * chunks, "n = {n}");
+            for i in 0..n {
+                for j in 0..n {
+                    let a = ((i + 2 * j) as f64).sin() + ((j + 2 * i) as f64).sin();
+                    assert!(
+                        (parts.hess[i * n + j] - a).abs() < 1e-13,
+                        "n = {n}, ({i},{j})"
+                    );
+                }
             }
-        }
-        let mut values = [0.0];
-        let mut jac = vec![0.0; 20];
-        assert_eq!(jacobian(&Quadratic, &x, 0..20, &mut values, &mut jac), 5);
-        for (g, r) in jac.iter().zip(&parts.grad_rows) {
-            assert!((g - r).abs() < 1e-13);
+            let mut values = [0.0];
+            let mut jac = vec![0.0; n];
+            let evaluations = jacobian(&Quadratic(n), &x, 0..n, &mut values, &mut jac);
+            assert_eq!(evaluations, chunks, "n = {n}");
+            assert_eq!(values[0], parts.values[0]);
+            for (g, r) in jac.iter().zip(&parts.grad_rows) {
+                assert!((g - r).abs() < 1e-13, "n = {n}");
+            }
         }
     }
 }
