@@ -25,6 +25,9 @@ mod discrete;
 mod examples;
 // `[system] hamiltonian`: the same map as the Lagrangian, refusals.
 mod hamiltonian;
+// Silent wrong answers guarded: failed shootings fail, symmetries checked beyond the start,
+// step systems larger than memory refused.
+mod honest;
 // Forces written in the momenta: f_L = f_H ∘ FL, refusals.
 mod momentum_forces;
 // `[analysis] every_step`: maxima over every step, or the number of samples said.

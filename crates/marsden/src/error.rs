@@ -316,6 +316,21 @@ pub enum SetupError {
         /// Final mismatch of the end position (max-norm).
         residual: f64,
     },
+    /// A step of the exact discrete Lagrangian `L_d^E` failed: its boundary value problem could
+    /// not be solved (the integrator sees a non-finite `L_d^E`; this is why).
+    #[error(
+        "the exact discrete Lagrangian could not be evaluated in step {step} (t = {t}): \
+         {reason}; take a smaller h (the shooting solves the boundary value problem of each \
+         step from the chord, and fails beyond the first conjugate time)"
+    )]
+    ExactStepFailed {
+        /// The step that failed.
+        step: usize,
+        /// Its start time.
+        t: f64,
+        /// The shooting's error.
+        reason: String,
+    },
     /// The extrapolation integrator of the Euler–Lagrange equations could not reach its
     /// tolerance even on very small substeps.
     #[error(

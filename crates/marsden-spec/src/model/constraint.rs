@@ -44,7 +44,7 @@ impl ExprConstraint {
     pub fn residual(&self, q: &[f64], scratch: &mut Vec<f64>) -> f64 {
         scratch.resize(self.count(), 0.0);
         self.constraint(q, scratch);
-        scratch.iter().fold(0.0, |m, x| m.max(x.abs()))
+        marsden::numerics::dense::max_norm(scratch)
     }
 }
 

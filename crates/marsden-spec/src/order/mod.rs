@@ -15,6 +15,8 @@
 pub mod runner;
 pub mod table;
 
+use marsden::Constraint as _;
+
 use crate::error::Diagnostic;
 use crate::problem::method::METHOD_NAMES;
 use crate::problem::{Method, RunSpec};
@@ -72,6 +74,9 @@ pub fn plan(spec: &RunSpec, request: &Request) -> Result<Plan, Diagnostic> {
         )
         .help("study a rule, e.g. `--methods midpoint,gauss-2`"));
     }
+    if spec.system.constraint.count() > 0 {
+        refuse_unconstrained_only(&methods)?;
+    }
     let grid = spec.integrator.grid;
     let t0 = grid.t0;
     let t_end = match request.t_end {
@@ -97,6 +102,25 @@ pub fn plan(spec: &RunSpec, request: &Request) -> Result<Plan, Diagnostic> {
         t0,
         t_end,
     })
+}
+
+/// The message `marsden run` gives for a method that cannot impose constraints (Gauss rules:
+/// no stage at the step's end), for the first such method of a study of a constrained file —
+/// before any run, instead of a failure at every step size.
+fn refuse_unconstrained_only(methods: &[Method]) -> Result<(), Diagnostic> {
+    match methods
+        .iter()
+        .find_map(|m| m.constraint_refusal().map(|reason| (m, reason)))
+    {
+        Some((method, reason)) => Err(Diagnostic::new(format!(
+            "the method `{method}` cannot be used with constraints"
+        ))
+        .note(reason)
+        .help(
+            "study constrained rules, e.g. `--methods midpoint,lobatto-3,triple-jump-4(trapezoid)`",
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Splits a comma-separated list; an empty list or an empty entry is an error.

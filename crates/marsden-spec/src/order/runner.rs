@@ -6,8 +6,8 @@
 //! small steps ([`marsden::studies::order::constrained_reference`]), with its accuracy estimate.
 
 use marsden::studies::order::{
-    CONSTRAINED_REFERENCE_METHOD, OrderOptions, OrderStudy, constrained_reference, measure_order,
-    reference_solution,
+    CONSTRAINED_REFERENCE_METHOD, OrderOptions, OrderStudy, REFERENCE_PIECES,
+    constrained_reference, measure_order, validated_reference,
 };
 use marsden::{Constraint, Force, Lagrangian, NewtonOptions, Problem};
 
@@ -27,6 +27,11 @@ pub struct Results {
     /// How the reference was computed.
     pub reference_source: String,
 }
+
+/// Largest difference, relative to `max(|q|, |p|, 1)`, between the two computations of the
+/// reference (whole interval, pieces) for it to count as exact: far below any error an order
+/// study measures, far above the flow's round-off (tolerance 1e-14 per substep).
+const REFERENCE_AGREEMENT: f64 = 1e-9;
 
 /// Steps of a constrained reference relative to the finest run of the study.
 const REFERENCE_REFINEMENT: usize = 4;
@@ -70,11 +75,24 @@ impl WithLagrangian for Study<'_> {
         let problem = start::constrained_problem(self.spec, lagrangian, &system.constraint)?
             .with_force(&force);
         let options = options(self.spec);
+        // A failure of the reference is the reference integrator's, not the file's: it says
+        // what happened to it and what to try, without blaming the Lagrangian.
         let failed = |e: marsden::Error| {
-            Error::failed(Diagnostic::new(format!(
-                "cannot compute the reference solution at T = {}: {e}",
-                self.plan.t_end
-            )))
+            Error::failed(
+                Diagnostic::new(format!(
+                    "cannot compute the reference solution at T = {}: the reference integration \
+                     failed ({e})",
+                    self.plan.t_end
+                ))
+                .note(
+                    "this is a failure of the reference (an extrapolated integration of the \
+                     Euler–Lagrange equations), not a finding about the problem: the runs' \
+                     errors cannot be measured without it",
+                )
+                .help(
+                    "study a shorter interval (--t-end), or compare the methods with `marsden run`",
+                ),
+            )
         };
         let (reference, reference_source) = if system.constraint.count() > 0 {
             let finest = self.plan.steps().last().copied().unwrap_or(1);
@@ -88,8 +106,24 @@ impl WithLagrangian for Study<'_> {
             );
             ((r.q, r.p), source)
         } else {
-            let reference = reference_solution(&problem, self.plan.t_end).map_err(failed)?;
-            (reference, "the extrapolated reference".to_owned())
+            let r = validated_reference(&problem, self.plan.t_end).map_err(failed)?;
+            let scale = r.q.iter().chain(&r.p).fold(1.0_f64, |m, x| m.max(x.abs()));
+            if !(r.difference <= REFERENCE_AGREEMENT * scale) {
+                return Err(Error::failed(
+                    Diagnostic::new(format!(
+                        "the reference solution at T = {} is not reliable: computed over the \
+                         whole interval and in {REFERENCE_PIECES} pieces it differs by {:.3e}",
+                        self.plan.t_end, r.difference
+                    ))
+                    .note("the errors of the runs cannot be measured against it")
+                    .help("study a shorter interval (--t-end)"),
+                ));
+            }
+            let source = format!(
+                "the extrapolated reference (two computations agree to {:.1e})",
+                r.difference
+            );
+            ((r.q, r.p), source)
         };
         let studies = self
             .plan

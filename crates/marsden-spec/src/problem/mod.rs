@@ -93,6 +93,35 @@ impl RunSpec {
     }
 }
 
+/// Refuses what a sweep's members cannot give: `[sensitivity]`, `[analysis] certify` and
+/// `every_step` describe one run's outputs, and a sweep writes one row per member — dropped
+/// silently they would look done.
+fn refuse_in_sweep(ck: &Checker<'_>, raw: &raw::RawProblem) -> Result<(), Diagnostic> {
+    let analysis = raw.analysis.as_ref().map(|a| a.get_ref());
+    let found = [
+        raw.sensitivity
+            .as_ref()
+            .map(|s| ("[sensitivity]", s.span())),
+        analysis
+            .and_then(|a| a.certify.as_ref())
+            .filter(|c| *c.get_ref())
+            .map(|c| ("`certify = true`", c.span())),
+        analysis
+            .and_then(|a| a.every_step.as_ref())
+            .filter(|c| *c.get_ref())
+            .map(|c| ("`every_step = true`", c.span())),
+    ];
+    match found.into_iter().flatten().next() {
+        Some((what, span)) => Err(ck
+            .error(
+                Some(span),
+                format!("{what} cannot be used in a file with [sweep]: a sweep writes one row per member"),
+            )
+            .help("remove it to run the sweep, or remove [sweep] to run one member with it")),
+        None => Ok(()),
+    }
+}
+
 /// Validates the text of a problem file (stage 1 then stage 2), its `[sweep]` included.
 ///
 /// # Errors
@@ -183,6 +212,9 @@ fn validate_raw(
         }
         false => None,
     };
+    if sweep.is_some() {
+        refuse_in_sweep(&ck, raw)?;
+    }
     let sensitivity = sensitivity::sensitivity(&ck, raw.sensitivity.as_ref(), &system)?;
     let system_table = raw.system.as_ref().map(|s| s.get_ref());
     let lagrangian_span = system_table
@@ -192,9 +224,15 @@ fn validate_raw(
                 .or(s.discrete_lagrangian.as_ref())
         })
         .map(|v| v.span());
+    let method_span = raw
+        .integrator
+        .as_ref()
+        .and_then(|i| i.get_ref().method.as_ref())
+        .map(|m| m.span());
     let spans = SpecSpans {
         lagrangian: lagrangian_span,
         initial_data: Some(initial_spans.data),
+        method: method_span,
     };
     Ok(RunSpec {
         source,

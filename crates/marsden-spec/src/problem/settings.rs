@@ -146,7 +146,10 @@ pub fn constraints_at_start(
                         program.text()
                     ),
                 )
-                .help("start on the constraint manifold φ(q) = 0 (to about 1e-9)"));
+                .help(
+                    "start on the constraint manifold φ(q) = 0 (to about 1e-9), or set \
+                     `project = true` in [initial] to move the start onto it",
+                ));
         }
     }
     Ok(())

@@ -90,6 +90,8 @@ pub struct SpecSpans {
     pub lagrangian: Option<Range<usize>>,
     /// The `v` or `p` vector.
     pub initial_data: Option<Range<usize>>,
+    /// The `[integrator] method` value.
+    pub method: Option<Range<usize>>,
 }
 
 /// The Lagrangian: a catalog system or an expression.

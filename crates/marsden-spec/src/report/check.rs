@@ -38,8 +38,33 @@ pub fn render(spec: &RunSpec, start: &Start) -> String {
     initial(&mut out, spec, start);
     integrator(&mut out, spec);
     output(&mut out, spec);
+    sweep(&mut out, spec);
     out.0.push_str("ok: the problem file is valid\n");
     out.0
+}
+
+/// The `[sweep]`: what varies, how many members, the first and last values (nothing without
+/// one).
+fn sweep(out: &mut Lines, spec: &RunSpec) {
+    let Some(sweep) = &spec.sweep else { return };
+    let count = sweep.count();
+    let first = sweep.values_of(0);
+    let last = sweep.values_of(count.saturating_sub(1));
+    let show = |values: &[f64]| {
+        let items: Vec<String> = values.iter().map(|v| v.to_string()).collect();
+        items.join(", ")
+    };
+    out.line(
+        "sweep",
+        format!(
+            "{} members over {}: first ({}), last ({}); the run is the sweep (one row per \
+             member)",
+            count,
+            sweep.label(),
+            show(&first),
+            show(&last)
+        ),
+    );
 }
 
 fn texts(set: &ProgramSet) -> Vec<String> {

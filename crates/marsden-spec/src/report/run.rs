@@ -30,14 +30,14 @@ pub fn render(outcome: &Outcome) -> String {
             Some(_) => "the file's own L_d".to_owned(),
             None => crate::problem::method::order_text(s.order),
         },
-        s.h
+        num(s.h)
     );
     let per_step = if s.steps > 0 {
         s.wall_seconds / s.steps as f64
     } else {
         0.0
     };
-    let span = format!("t = {} → {}", s.t_initial, s.t_final);
+    let span = format!("t = {} → {}", num(s.t_initial), num(s.t_final));
     match &s.error {
         None if s.status == RunStatus::Interrupted => line(
             &mut out,
@@ -69,13 +69,19 @@ pub fn render(outcome: &Outcome) -> String {
         ),
     }
     let mean = s.newton.iterations_total as f64 / s.steps.max(1) as f64;
+    let explicit = s.steps > 0 && s.newton.explicit_steps == s.steps;
     line(
         &mut out,
         "newton",
-        format!(
-            "{mean:.2} iterations/step (max {}), tolerance {:e}",
-            s.newton.iterations_max, s.newton.tolerance
-        ),
+        match explicit {
+            true => {
+                "none: every step explicit (Störmer–Verlet form, no system to solve)".to_owned()
+            }
+            false => format!(
+                "{mean:.2} iterations/step (max {}), tolerance {:e}",
+                s.newton.iterations_max, s.newton.tolerance
+            ),
+        },
     );
     energy_lines(&mut out, s);
     let over = over_samples(s);
@@ -84,9 +90,13 @@ pub fn render(outcome: &Outcome) -> String {
             &mut out,
             "momentum",
             format!(
-                "{name}: J0 = {}, max |ΔJ| = {}{over}",
-                m.initial,
-                sci(m.max_abs_drift)
+                "{name}: J0 = {}, max |ΔJ| = {}{over}{}",
+                num(m.initial),
+                sci(m.max_abs_drift),
+                match m.symmetry {
+                    true => "",
+                    false => " (not a symmetry: monitored, not conserved)",
+                }
             ),
         );
     }
@@ -153,7 +163,7 @@ fn energy_lines(out: &mut String, s: &crate::run::Summary) {
             "energy",
             format!(
                 "E0 = {}, max |ΔE/E0| = {}, final {}, drift {} per unit time{over}",
-                e.initial,
+                num(e.initial),
                 sci(e.max_rel_error),
                 sci(e.final_rel_error),
                 sci(e.drift_per_unit_time)
@@ -164,7 +174,7 @@ fn energy_lines(out: &mut String, s: &crate::run::Summary) {
             "energy",
             format!(
                 "balance ({why}): E0 = {}, E_N − E0 = {}, work {}{}, unaccounted {} (max {} per step)",
-                e.initial,
+                num(e.initial),
                 sci(b.energy_change),
                 sci(b.total_work),
                 b.total_time_work.map_or(String::new(), |w| format!(
@@ -181,7 +191,7 @@ fn energy_lines(out: &mut String, s: &crate::run::Summary) {
             format!(
                 "not conserved ({why}): E0 = {}; no energy error to report, and no balance \
                  for a method with internal stages",
-                e.initial,
+                num(e.initial),
             ),
         ),
     }
@@ -221,7 +231,13 @@ fn certificate_lines(out: &mut String, s: &crate::run::Summary) {
 
 /// ` (over N stored samples)` when the maxima did not see every step, else nothing.
 fn over_samples(s: &crate::run::Summary) -> String {
-    match s.energy.samples {
+    // A file's own `L_d` has no energy to count samples by: its momenta and constraints are
+    // monitored at the stored rows.
+    let monitored = match s.energy_not_available {
+        Some(_) => usize::try_from(s.output.rows).unwrap_or(usize::MAX),
+        None => s.energy.samples,
+    };
+    match monitored {
         n if n < s.steps + 1 => format!(" (over {n} stored samples)"),
         _ => String::new(),
     }
@@ -229,6 +245,16 @@ fn over_samples(s: &crate::run::Summary) -> String {
 
 fn line(out: &mut String, label: &str, text: String) {
     let _ = writeln!(out, "  {label:<11} {text}");
+}
+
+/// A number as Rust prints it (shortest round trip, `0.8`, `-0.0707372`), or in exponent form
+/// beyond 1e15 or below 1e-5 in magnitude: `1e300` is not printed as 301 digits.
+pub fn num(x: f64) -> String {
+    let a = x.abs();
+    match a != 0.0 && a.is_finite() && !(1e-5..1e15).contains(&a) {
+        true => format!("{x:e}"),
+        false => format!("{x}"),
+    }
 }
 
 /// `1.27e-3`, `0`.
@@ -260,5 +286,23 @@ mod tests {
         assert_eq!(sci(0.0), "0");
         assert_eq!(seconds(2.5e-6), "2.50 µs");
         assert_eq!(seconds(0.25), "250.0 ms");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::num;
+
+    /// Huge and tiny numbers in exponent form (a value of 1e300 was printed as 301 digits);
+    /// ordinary ones as Rust's shortest round trip.
+    #[test]
+    fn numbers_beyond_1e15_are_printed_in_exponent_form() {
+        assert_eq!(num(1e300), "1e300");
+        assert_eq!(num(-2.5e16), "-2.5e16");
+        assert_eq!(num(3e-9), "3e-9");
+        assert_eq!(num(-0.0707372), "-0.0707372");
+        assert_eq!(num(5000.0), "5000");
+        assert_eq!(num(0.0), "0");
+        assert_eq!(num(f64::NAN), "NaN");
     }
 }

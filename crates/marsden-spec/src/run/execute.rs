@@ -166,6 +166,7 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
         written.push(file.clone());
     }
     let mut summary = Summary::new(spec, &record, columns, written);
+    summary.set_symmetry_checks(&start.symmetries);
     let (block, jacobians) = sensitivity.map_or((None, None), |d| (Some(d.summary), d.samples));
     summary.sensitivity = block;
     if !store.files() {

@@ -54,8 +54,26 @@ pub fn redraw(dir: &Path) -> Result<Vec<PlotReport>, Error> {
         return draw_sweep(dir).map(|r| vec![r]);
     }
     let (sketch, angles, conserved) = read_run(dir)?;
-    plot_run(&sketch.table, dir, &options(&sketch, angles, conserved))
-        .map_err(|e| Error::failed(Diagnostic::new(format!("cannot draw the plots: {e}"))))
+    let mut reports = plot_run(&sketch.table, dir, &options(&sketch, angles, conserved))
+        .map_err(|e| Error::failed(Diagnostic::new(format!("cannot draw the plots: {e}"))))?;
+    if had_energy_balance(dir)
+        && let Some(last) = reports.last_mut()
+    {
+        last.notes.push(format!(
+            "{} is not redrawn: the balance of every step is not stored in the run's files \
+             (run the problem again to draw it)",
+            super::balance::ENERGY_BALANCE_PNG
+        ));
+    }
+    Ok(reports)
+}
+
+/// Whether the run in `dir` had an energy balance (a forced run): its `summary.json` says so.
+fn had_energy_balance(dir: &Path) -> bool {
+    std::fs::read_to_string(dir.join(super::output::SUMMARY_JSON))
+        .ok()
+        .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok())
+        .is_some_and(|summary| summary["energy_balance"].is_object())
 }
 
 /// File name of a sweep's table.

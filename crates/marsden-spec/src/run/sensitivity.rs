@@ -362,7 +362,9 @@ pub fn describe(summary: &SensitivitySummary) -> String {
         .note
         .as_ref()
         .map_or(String::new(), |n| format!(" ({n})"));
-    let largest = (summary.final_jacobian.iter().flatten()).fold(0.0_f64, |m, x| m.max(x.abs()));
+    let largest = (summary.final_jacobian.iter().flatten()).fold(0.0_f64, |m, x| {
+        marsden::numerics::dense::max_or_nan(m, x.abs())
+    });
     format!(
         "sensitivity: ∂(q, p)/∂({}), {}×{} at {} stored steps; final max |entry| \
          {largest:.3e}{note}",

@@ -173,7 +173,42 @@ fn solve_exact<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
         .with_compensated_summation(options.compensated);
     integrator.set_velocity_hint(problem.initial_velocity());
     let (start, grid) = (problem.start().clone(), problem.grid());
-    simulate(&mut integrator, start, grid, &options.run, observer).into_result()
+    simulate(&mut integrator, start, grid, &options.run, observer)
+        .into_result()
+        .map_err(|failure| explain_exact_failure(l, failure, grid.h))
+}
+
+/// A failed step of `L_d^E` is reported by the integrator as a non-finite value (the shooting
+/// evaluates to NaN when its boundary value problem has no solution): the shooting's own error
+/// at the last good state, from the chord `q₁ = q_k + h v_k` ([`ExactDiscreteLagrangian::boundary_value`]),
+/// says why.
+fn explain_exact_failure<L: Lagrangian>(
+    l: &L,
+    mut failure: Box<RunFailure>,
+    h: f64,
+) -> Box<RunFailure> {
+    let marsden::Error::Step(step) = &failure.error else {
+        return failure;
+    };
+    let trajectory = &failure.trajectory;
+    let Some(last) = trajectory.len().checked_sub(1) else {
+        return failure;
+    };
+    let (t, q, p) = (trajectory.t(last), trajectory.q(last), trajectory.p(last));
+    let mut v = vec![0.0; q.len()];
+    if marsden::mechanics::velocity(l, t, q, p, &mut v).is_err() {
+        return failure;
+    }
+    let q1: Vec<f64> = q.iter().zip(&v).map(|(q, v)| q + h * v).collect();
+    let exact = ExactDiscreteLagrangian::new(l);
+    if let Err(why) = exact.boundary_value(t, h, q, &q1) {
+        failure.error = marsden::Error::Setup(marsden::error::SetupError::ExactStepFailed {
+            step: step.step,
+            t: step.t,
+            reason: why.to_string(),
+        });
+    }
+    failure
 }
 
 /// [`solve`], and for an active force or a Lagrangian depending on `t` (`time_dependent`) and

@@ -2,6 +2,7 @@
 //! from `p` by its inverse) and checked for regularity — before any file is written.
 
 use marsden::error::SetupError;
+use marsden::symmetry::check::Sample;
 use marsden::{Constraint, Initial, Lagrangian, Problem, mechanics};
 
 use crate::catalog::WithLagrangian;
@@ -24,6 +25,8 @@ pub struct Start {
     pub energy: f64,
     /// Remarks that do not stop the run (printed on stderr).
     pub warnings: Vec<String>,
+    /// What the check of each declared symmetry found (in the file's order).
+    pub symmetries: Vec<SymmetryCheck>,
 }
 
 /// Builds the problem once to complete and check the initial state.
@@ -42,6 +45,8 @@ impl WithLagrangian for Prepare<'_> {
 
     fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output {
         let spec = self.0;
+        let memory = super::step_system::available_memory();
+        super::step_system::fits_in_memory(spec, lagrangian, memory)?;
         let problem = constrained_problem(spec, lagrangian, &spec.system.constraint)?;
         let start = problem.start();
         let v = problem.initial_velocity().to_vec();
@@ -49,7 +54,7 @@ impl WithLagrangian for Prepare<'_> {
         if !energy.is_finite() {
             return Err(non_finite_energy(spec, energy));
         }
-        let mut warnings = non_symmetries(lagrangian, spec, (start.t, &start.q, &v));
+        let (symmetries, mut warnings) = non_symmetries(lagrangian, spec, (start.t, &start.q, &v));
         warnings.extend(constraint_non_symmetries(spec, (start.t, &start.q, &v)));
         warnings.extend(super::step_system::large_step_system(spec, lagrangian));
         Ok(Start {
@@ -59,6 +64,7 @@ impl WithLagrangian for Prepare<'_> {
             p: start.p.clone(),
             energy,
             warnings,
+            symmetries,
         })
     }
 
@@ -76,14 +82,76 @@ impl WithLagrangian for Prepare<'_> {
         };
         let n = marsden::DiscreteLagrangian::dof(ld);
         let (t, q) = (spec.initial.t0, &spec.initial.q);
+        regular_discrete(ld, spec, (t, q, p))?;
+        let (symmetries, warnings) = discrete_non_symmetries(ld, spec, (t, q, p));
         Ok(Start {
             t,
             q: q.clone(),
             v: vec![f64::NAN; n],
             p: p.clone(),
             energy: f64::NAN,
-            warnings: discrete_non_symmetries(ld, spec, (t, q, p)),
+            warnings,
+            symmetries,
         })
+    }
+}
+
+/// `L_d` as a function of `(q₀, q₁)` for the AD drivers.
+struct DiscreteAt<'a, D> {
+    ld: &'a D,
+    t: f64,
+    h: f64,
+}
+
+impl<D: marsden::DiscreteLagrangian> marsden::numerics::ad::MultiFunction for DiscreteAt<'_, D> {
+    fn inputs(&self) -> usize {
+        2 * self.ld.dof()
+    }
+    fn outputs(&self) -> usize {
+        1
+    }
+    fn eval<S: marsden::Scalar>(&self, x: &[S], out: &mut [S]) {
+        let n = self.ld.dof();
+        out[0] = self
+            .ld
+            .discrete_lagrangian(self.t, self.h, &x[..n], &x[n..]);
+    }
+}
+
+/// Refuses a file's own `L_d` whose mixed derivative `D₁₂L_d` is singular at the first step
+/// `(q₀, q₀ + h p₀)`: the step `p₀ = −D₁L_d(q₀, q₁)` then does not determine `q₁` (MW01 §1.3:
+/// a regular discrete Lagrangian has an invertible `D₁₂L_d`), as a singular `∂²L/∂q̇²` is
+/// refused for a continuous `L`. `L_d = 0` would otherwise "complete" with a constant trajectory.
+fn regular_discrete<D: marsden::DiscreteLagrangian>(
+    ld: &D,
+    spec: &RunSpec,
+    (t, q, p): (f64, &[f64], &[f64]),
+) -> Result<(), Diagnostic> {
+    use marsden::numerics::ad::{HessianParts, partial_hessian};
+    use marsden::numerics::dense::{Lu, max_norm};
+    let n = q.len();
+    let h = spec.integrator.grid.h;
+    let x: Vec<f64> = q
+        .iter()
+        .chain(q)
+        .zip(0..)
+        .map(|(x, i)| match i < n {
+            true => *x,
+            false => x + h * p[i - n],
+        })
+        .collect();
+    let mut parts = HessianParts::default();
+    partial_hessian(&DiscreteAt { ld, t, h }, &x, 0..n, n..2 * n, &mut parts);
+    let scale = max_norm(&parts.hess);
+    match Lu::new().factor(&parts.hess, n) {
+        Ok(()) if scale.is_finite() => Ok(()),
+        _ => Err(Diagnostic::new(format!(
+            "the discrete Lagrangian is not regular at the first step: its mixed derivative \
+             D₁₂L_d(q₀, q₀ + h p₀) is singular (largest entry {scale:.3e}), so \
+             p₀ = −D₁L_d(q₀, q₁) does not determine q₁"
+        ))
+        .at(spec.source.locate_opt(spec.spans.lagrangian.clone()))
+        .help("L_d must depend on q₀ and q₁ together, e.g. h*(0.5*((x_1 - x_0)/h)^2 - V((x_0 + x_1)/2))")),
     }
 }
 
@@ -225,57 +293,169 @@ fn constraint_non_symmetries(spec: &RunSpec, (t, q, v): (f64, &[f64], &[f64])) -
         .collect()
 }
 
-/// A warning for each declared symmetry that is not one of a file's own `L_d` at the first
-/// step's sample `(q₀, q₀ + h p₀)` (any pair of points tests the invariance; `p₀` stands in for
-/// the velocity, which an `L_d` alone does not define): `⟨dL_d, ξ_{Q×Q}⟩ ≠ 0` by the core's
-/// check, so the discrete momentum map is monitored but not conserved.
+/// The check of each declared symmetry of a file's own `L_d` at the first step's sample
+/// `(q₀, q₀ + h p₀)` and the samples near it ([`nearby_samples`]; any pair of points tests the
+/// invariance, and `p₀` stands in for the velocity, which an `L_d` alone does not define), with
+/// the warning for each that is not one (`⟨dL_d, ξ_{Q×Q}⟩ ≠ 0` by the core's check).
 fn discrete_non_symmetries<D: marsden::DiscreteLagrangian>(
     ld: &D,
     spec: &RunSpec,
-    (t, q, p): (f64, &[f64], &[f64]),
-) -> Vec<String> {
-    use marsden::symmetry::check::{DEFAULT_TOLERANCE, Sample, check_discrete};
-    let samples = [Sample::new(t, q, p)];
+    state: (f64, &[f64], &[f64]),
+) -> (Vec<SymmetryCheck>, Vec<String>) {
+    use marsden::symmetry::check::{DEFAULT_TOLERANCE, check_discrete};
     let h = spec.integrator.grid.h;
-    spec.system
-        .symmetries
-        .iter()
-        .filter_map(|s| check_discrete(ld, s, h, &samples, DEFAULT_TOLERANCE).ok())
-        .filter(|report| !report.is_symmetry())
-        .map(|report| {
-            let defect = report.worst().map_or(f64::NAN, |w| w.max_defect);
-            format!(
-                "\"{}\" is not a symmetry of the discrete Lagrangian: ⟨dL_d, ξ_Q×Q⟩ = \
-                 {defect:.3e} at the first step (q0, q0 + h p0), so J_{} is monitored but not \
-                 conserved",
-                report.symmetry, report.symmetry
-            )
-        })
+    let samples = nearby_samples(state, |s| {
+        let q1: Vec<f64> = s.q.iter().zip(&s.v).map(|(q, v)| q + h * v).collect();
+        ld.discrete_lagrangian(s.t, h, &s.q, &q1).is_finite()
+    });
+    let mut checks = Vec::new();
+    let mut warnings = Vec::new();
+    if samples.is_empty() {
+        return unchecked(spec, "L_d is not finite at or near the first step");
+    }
+    for symmetry in &spec.system.symmetries {
+        let Ok(report) = check_discrete(ld, symmetry, h, &samples, DEFAULT_TOLERANCE) else {
+            continue;
+        };
+        let check = SymmetryCheck::of_report(&report);
+        let defect = report.worst().map_or(f64::NAN, |w| w.max_defect);
+        warnings.extend(check.warning(defect));
+        checks.push(check);
+    }
+    (checks, warnings)
+}
+
+/// How many states near the initial one a declared symmetry is checked at, beside it.
+pub const NEARBY_STATES: usize = 8;
+
+/// Relative size of the neighbourhood: each coordinate moves by up to this fraction of
+/// `max(|q|, 1)`, each velocity by this fraction of `max(|v|, 1)`.
+const NEARBY_RADIUS: f64 = 0.05;
+
+/// The states a declared symmetry is checked at: the initial state and [`NEARBY_STATES`]
+/// reproducible pseudo-random states around it, where `finite` holds (a state outside the
+/// Lagrangian's domain says nothing about its invariance). A single state cannot tell a symmetry
+/// from a coincidence: `L = ½ẋ² − ½x²` has `∂L/∂x = 0` at `x = 0`, and translations are no
+/// symmetry of it.
+pub fn nearby_samples(
+    (t, q, v): (f64, &[f64], &[f64]),
+    finite: impl Fn(&Sample) -> bool,
+) -> Vec<Sample> {
+    let n = q.len();
+    let q_scale = NEARBY_RADIUS * q.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
+    let v_scale = NEARBY_RADIUS * v.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
+    let offsets = Sample::random(n, NEARBY_STATES, 0x5EED_0F_5EED, 1.0);
+    std::iter::once(Sample::new(t, q, v))
+        .chain(offsets.into_iter().map(|o| Sample {
+            t,
+            q: q.iter().zip(&o.q).map(|(x, r)| x + q_scale * r).collect(),
+            v: v.iter().zip(&o.v).map(|(x, r)| x + v_scale * r).collect(),
+        }))
+        .filter(|s| finite(s))
         .collect()
 }
 
-/// A warning for each declared symmetry that is not one of the Lagrangian at the initial state
-/// (`⟨dL, ξ_TQ⟩ ≠ 0`, by the core's check): its momentum map is then monitored but not
-/// conserved.
+/// Symmetries that could not be checked at any state: none is called one (its momentum map is
+/// monitored, and nothing says it is conserved), with a warning saying why.
+fn unchecked(spec: &RunSpec, why: &str) -> (Vec<SymmetryCheck>, Vec<String>) {
+    let checks = (spec.system.symmetries.iter())
+        .map(|s| SymmetryCheck {
+            name: crate::model::MomentumMap::name(s).to_owned(),
+            of: "L",
+            states: 0,
+            max_relative_defect: f64::NAN,
+            is_symmetry: false,
+        })
+        .collect::<Vec<_>>();
+    let warnings = checks
+        .iter()
+        .map(|c| {
+            format!(
+                "\"{}\" could not be checked as a symmetry ({why}): J_{} is monitored, not \
+                 known to be conserved",
+                c.name, c.name
+            )
+        })
+        .collect();
+    (checks, warnings)
+}
+
+/// What the check of one declared symmetry found, for the summary and the printed report.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SymmetryCheck {
+    /// The symmetry's name.
+    pub name: String,
+    /// What was checked: `"L"` or `"L_d"`.
+    pub of: &'static str,
+    /// The states it was checked at (the initial one and those near it).
+    pub states: usize,
+    /// The largest relative defect `|⟨dL, ξ⟩| / Σ|∂L/∂xᵢ ξᵢ|` over them.
+    pub max_relative_defect: f64,
+    /// Whether it is a symmetry at every state (its momentum map is then conserved).
+    pub is_symmetry: bool,
+}
+
+impl SymmetryCheck {
+    fn of_report(report: &marsden::symmetry::check::SymmetryReport) -> Self {
+        let worst = report.worst().map_or(0.0, |w| w.max_relative);
+        SymmetryCheck {
+            name: report.symmetry.clone(),
+            of: report.of,
+            states: report.samples,
+            max_relative_defect: worst,
+            is_symmetry: report.is_symmetry(),
+        }
+    }
+
+    /// The warning for a declared symmetry that is not one (`None` for a symmetry).
+    pub fn warning(&self, defect: f64) -> Option<String> {
+        let what = match self.of {
+            "L_d" => "the discrete Lagrangian: ⟨dL_d, ξ_Q×Q⟩",
+            _ => "the Lagrangian: ⟨dL, ξ_TQ⟩",
+        };
+        (!self.is_symmetry).then(|| {
+            format!(
+                "\"{}\" is not a symmetry of {what} = {defect:.3e} (checked at the initial \
+                 state and {} states near it), so J_{} is monitored but not conserved",
+                self.name,
+                self.states.saturating_sub(1),
+                self.name
+            )
+        })
+    }
+}
+
+/// The check of each declared symmetry of the Lagrangian at the initial state and the states
+/// near it ([`nearby_samples`]), with the warning for each that is not one (`⟨dL, ξ_TQ⟩ ≠ 0`
+/// by the core's check): its momentum map is then monitored but not conserved.
 fn non_symmetries<L: Lagrangian>(
     lagrangian: &L,
     spec: &RunSpec,
-    (t, q, v): (f64, &[f64], &[f64]),
-) -> Vec<String> {
-    use marsden::symmetry::check::{DEFAULT_TOLERANCE, Sample, check_lagrangian};
-    let samples = [Sample::new(t, q, v)];
-    spec.system
-        .symmetries
-        .iter()
-        .filter_map(|s| check_lagrangian(lagrangian, s, &samples, DEFAULT_TOLERANCE).ok())
-        .filter(|report| !report.is_symmetry())
-        .map(|report| {
-            let defect = report.worst().map_or(f64::NAN, |w| w.max_defect);
-            format!(
-                "\"{}\" is not a symmetry of the Lagrangian: ⟨dL, ξ_TQ⟩ = {defect:.3e} at the \
-                 initial state, so J_{} is monitored but not conserved",
-                report.symmetry, report.symmetry
-            )
-        })
-        .collect()
+    state: (f64, &[f64], &[f64]),
+) -> (Vec<SymmetryCheck>, Vec<String>) {
+    use marsden::symmetry::check::{DEFAULT_TOLERANCE, check_lagrangian};
+    let samples = nearby_samples(state, |s| {
+        let value = lagrangian.lagrangian(s.t, &s.q, &s.v);
+        let mut p = vec![0.0; s.q.len()];
+        mechanics::momentum(lagrangian, s.t, &s.q, &s.v, &mut p);
+        value.is_finite() && p.iter().all(|x| x.is_finite())
+    });
+    let mut checks = Vec::new();
+    let mut warnings = Vec::new();
+    if samples.is_empty() {
+        return unchecked(
+            spec,
+            "the Lagrangian is not finite at or near the initial state",
+        );
+    }
+    for symmetry in &spec.system.symmetries {
+        let Ok(report) = check_lagrangian(lagrangian, symmetry, &samples, DEFAULT_TOLERANCE) else {
+            continue;
+        };
+        let check = SymmetryCheck::of_report(&report);
+        let defect = report.worst().map_or(f64::NAN, |w| w.max_defect);
+        warnings.extend(check.warning(defect));
+        checks.push(check);
+    }
+    (checks, warnings)
 }

@@ -18,6 +18,7 @@ use marsden::discrete::DiscreteAction as _;
 use marsden::integrator::StepShape;
 use marsden::{Constraint as _, Lagrangian, Rule as _};
 
+use crate::error::Diagnostic;
 use crate::problem::RunSpec;
 
 /// Unknowns per step above which the method is said to be slow: a step of this size already
@@ -48,6 +49,60 @@ pub fn step_unknowns<L: Lagrangian>(spec: &RunSpec, lagrangian: &L) -> Option<us
         stages,
     };
     Some(shape.unknowns())
+}
+
+/// Memory assumed available when the system does not say (`/proc/meminfo` unreadable).
+const ASSUMED_MEMORY: u64 = 8 << 30;
+
+/// Bytes the dense Newton system of `unknowns` unknowns holds at once: the Jacobian and its LU
+/// factors, two `unknowns × unknowns` matrices of `f64`.
+pub fn step_system_bytes(unknowns: usize) -> u64 {
+    let u = unknowns as u64;
+    u.saturating_mul(u).saturating_mul(2 * 8)
+}
+
+/// The memory a run may take: `MemAvailable` of `/proc/meminfo`, or [`ASSUMED_MEMORY`].
+pub fn available_memory() -> u64 {
+    std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|text| {
+            let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+            let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+            Some(kib.saturating_mul(1024))
+        })
+        .unwrap_or(ASSUMED_MEMORY)
+}
+
+/// Refuses a method whose step system cannot be held in `memory` bytes (the allocation would
+/// abort the process): the size and what solves a smaller system, before anything is written.
+///
+/// # Errors
+/// The diagnostic naming the unknowns, the bytes needed and the bytes available.
+pub fn fits_in_memory<L: Lagrangian>(
+    spec: &RunSpec,
+    lagrangian: &L,
+    memory: u64,
+) -> Result<(), Diagnostic> {
+    let Some(unknowns) = step_unknowns(spec, lagrangian) else {
+        return Ok(());
+    };
+    let needed = step_system_bytes(unknowns);
+    if needed <= memory {
+        return Ok(());
+    }
+    let gib = |bytes: u64| bytes as f64 / f64::from(1u32 << 30);
+    Err(Diagnostic::new(format!(
+        "the method `{}` solves a dense Newton system of {unknowns} unknowns every step: its \
+         Jacobian and LU factors need {:.1} GiB, more than the {:.1} GiB of memory available",
+        spec.integrator.method,
+        gib(needed),
+        gib(memory)
+    ))
+    .at(spec.source.locate_opt(spec.spans.method.clone()))
+    .help(
+        "choose a composition of fewer substeps (triple-jump-4 instead of triple-jump-10), \
+         gauss-s or lobatto-s with a smaller s, or midpoint/trapezoid (a system of n unknowns)",
+    ))
 }
 
 /// A warning if `spec`'s method solves more than [`LARGE_STEP_SYSTEM`] unknowns per step.

@@ -163,6 +163,12 @@ pub struct MomentumSummary {
     pub initial: f64,
     /// `max |J_k − J_0|` over the stored states.
     pub max_abs_drift: f64,
+    /// Whether the declared action was found to be a symmetry (of `L`, or of a file's own
+    /// `L_d`) at every state it was checked at: only then is `J` conserved.
+    pub symmetry: bool,
+    /// What was checked: `"L at the initial state and 8 states near it: largest relative
+    /// defect 1.2e-17"`.
+    pub checked: String,
 }
 
 /// `constraints { … }`.
@@ -188,6 +194,9 @@ pub struct NewtonSummary {
     pub tolerance: f64,
     /// Iteration limit per step.
     pub max_iterations: usize,
+    /// Steps taken by an explicit formula (Störmer–Verlet and its compositions): no Newton
+    /// system was solved for them.
+    pub explicit_steps: usize,
 }
 
 /// `final_state { … }`.
@@ -247,6 +256,26 @@ pub(super) fn as_object<S: serde::Serializer, V: Serialize>(
 }
 
 impl Summary {
+    /// Records what the check of each declared symmetry found (in the file's order).
+    pub fn set_symmetry_checks(&mut self, checks: &[super::start::SymmetryCheck]) {
+        for ((name, m), check) in self.momenta.iter_mut().zip(checks) {
+            if *name != check.name {
+                continue;
+            }
+            m.symmetry = check.is_symmetry;
+            if check.states == 0 {
+                m.checked = format!("{} could not be checked at any state", check.of);
+                continue;
+            }
+            m.checked = format!(
+                "{} at the initial state and {} states near it: largest relative defect {:.1e}",
+                check.of,
+                check.states.saturating_sub(1),
+                check.max_relative_defect
+            );
+        }
+    }
+
     /// The summary of `record`, a run of `spec`.
     pub fn new(
         spec: &RunSpec,
@@ -265,6 +294,8 @@ impl Summary {
                 let value = MomentumSummary {
                     initial: m.initial,
                     max_abs_drift: m.max_abs_drift,
+                    symmetry: true,
+                    checked: "not checked".to_owned(),
                 };
                 (s.name().to_owned(), value)
             })
@@ -311,6 +342,7 @@ impl Summary {
             },
             newton: NewtonSummary {
                 iterations_total: record.statistics.newton_iterations,
+                explicit_steps: record.statistics.explicit_steps,
                 iterations_max: record.statistics.max_newton_iterations,
                 tolerance: integrator.newton.residual_tolerance,
                 max_iterations: integrator.newton.max_iterations,

@@ -128,9 +128,7 @@ pub fn execute(
         }
     }
     let (members_run, failed_count, interrupted) = writer.counts();
-    let mut files = writer
-        .finish(sweep.count(), base.integrator.grid.steps)
-        .map_err(failed)?;
+    let mut files = writer.finish(sweep.count(), base).map_err(failed)?;
     let mut warnings = Vec::new();
     if base.output.plots && options.shard == Shard::ALL && members_run > 0 {
         match super::plots::draw_sweep(&dir) {

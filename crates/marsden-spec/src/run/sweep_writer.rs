@@ -14,8 +14,8 @@ use serde_json::json;
 use super::shard::Shard;
 use super::summary::RunStatus;
 use super::sweep_table::{self, Preserved, SweepColumns, SweepRow};
-use crate::problem::Format;
 use crate::problem::spec::ENERGY_NOT_AVAILABLE;
+use crate::problem::{Format, RunSpec};
 
 /// The failures' messages kept for `summary.json` (the table has them all).
 pub const FAILURES_KEPT: usize = 100;
@@ -127,7 +127,7 @@ impl SweepWriter {
     ///
     /// # Errors
     /// A file cannot be written, as text naming it.
-    pub fn finish(mut self, total: usize, steps: usize) -> Result<Vec<String>, String> {
+    pub fn finish(mut self, total: usize, base: &RunSpec) -> Result<Vec<String>, String> {
         match &mut self.table {
             Table::Csv(w) => w
                 .flush()
@@ -136,15 +136,17 @@ impl SweepWriter {
         }
         let json_name = format!("summary{}.json", self.shard.suffix());
         let text =
-            serde_json::to_string_pretty(&self.summary(total, steps)).map_err(|e| e.to_string())?;
+            serde_json::to_string_pretty(&self.summary(total, base)).map_err(|e| e.to_string())?;
         let path = self.dir.join(&json_name);
         std::fs::write(&path, text + "\n").map_err(|e| cannot("write", &path, &e))?;
         Ok(vec![self.table_name.clone(), json_name])
     }
 
     /// `summary.json` of a sweep: counts, the worst energy error (or balance defect), the
-    /// table's name and columns, the first failures.
-    fn summary(&self, total: usize, steps: usize) -> serde_json::Value {
+    /// table's name and columns, the first failures, and what every member shares: the
+    /// method, `h` and the swept values of the first and last members.
+    fn summary(&self, total: usize, base: &RunSpec) -> serde_json::Value {
+        let steps = base.integrator.grid.steps;
         let status = match (self.failed, self.interrupted) {
             (0, 0) => "completed",
             (0, _) => "interrupted",
@@ -176,6 +178,16 @@ impl SweepWriter {
             "failed": self.failed,
             "interrupted": self.interrupted,
             "steps": steps,
+            "method": base.method_name(),
+            "order": base.method_order(),
+            "h": base.integrator.grid.h,
+            "t0": base.integrator.grid.t0,
+            "values": base.sweep.as_ref().map(|s| {
+                json!({
+                    "first": s.values_of(0),
+                    "last": s.values_of(s.count().saturating_sub(1)),
+                })
+            }),
             "table": self.table_name,
             "columns": columns,
             "first_failures": failures,

@@ -1,6 +1,6 @@
 //! Discrete mechanics: discrete Lagrangians, their derivatives and discrete Legendre transforms.
 //!
-//! Seed: *discrete variational mechanics*. A discrete Lagrangian `L_d(q₀, q₁, h) ≈ ∫₀ʰ L dt`
+//! Concept of the notes (MW01): *discrete variational mechanics*. A discrete Lagrangian `L_d(q₀, q₁, h) ≈ ∫₀ʰ L dt`
 //! replaces the action of one step; the discrete action `Σ L_d(q_k, q_{k+1})` is made
 //! stationary, which gives the discrete Euler–Lagrange (DEL) equations
 //!

@@ -1,6 +1,6 @@
 //! Hamiltonian forces `f_H(t, q, p)` and their Lagrangian form `f_L = f_H ∘ FL`.
 //!
-//! Seed: *forced Hamiltonian systems* and *Legendre transform with forces*. A Hamiltonian force
+//! Concept of the notes (MW01): *forced Hamiltonian systems* and *Legendre transform with forces*. A Hamiltonian force
 //! `f_H: T*Q → T*Q` enters only the momentum equation, `ṗ = −∂H/∂q + f_H(q, p)`, and it is the
 //! same physical force as the Lagrangian force `f_L = f_H ∘ FL`, i.e.
 //! `f_L(t, q, v) = f_H(t, q, ∂L/∂v(t, q, v))` ([MW01] §3.1). [`FromHamiltonian`] is that

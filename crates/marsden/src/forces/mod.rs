@@ -1,6 +1,6 @@
 //! Ready-made external forces and the ways to combine and convert them.
 //!
-//! Seed: *forced Lagrangian systems*, *forced Hamiltonian systems*, *discrete variational
+//! Concept of the notes (MW01): *forced Lagrangian systems*, *forced Hamiltonian systems*, *discrete variational
 //! mechanics with forces*. A Lagrangian force `f_L(t, q, v)` ([`crate::mechanics::Force`]) enters the
 //! Lagrange–d'Alembert principle `δ∫L dt + ∫⟨f_L, δq⟩ dt = 0`, i.e. the forced Euler–Lagrange
 //! equations `∂L/∂q − d/dt ∂L/∂v + f_L = 0` ([MW01] §3.1). A rule discretises it by its own

@@ -1,6 +1,6 @@
 //! User-written discrete forces `f_d^±(q₀, q₁)` as a first-class input.
 //!
-//! Seed: *discrete variational mechanics with forces*. The discrete Lagrange–d'Alembert
+//! Concept of the notes (MW01): *discrete variational mechanics with forces*. The discrete Lagrange–d'Alembert
 //! principle only needs the two discrete forces `f_d⁻(q₀, q₁) ∈ T*_{q₀}Q` and
 //! `f_d⁺(q₀, q₁) ∈ T*_{q₁}Q` ([MW01] §3.2); they need not come from a quadrature of a continuous
 //! force. Implement [`TwoPointForce`] and wrap it in [`TwoPoint`] to hand it to an

@@ -1,6 +1,6 @@
 //! Derivatives of a Hamiltonian by AD: `∇H`, `∇²H`, Hamilton's vector field and its Jacobian.
 //!
-//! Seed: *Hamiltonian mechanics*. With `z = (q, p)` and `J = [[0, I], [−I, 0]]`, Hamilton's
+//! Concept of the notes (MW01): *Hamiltonian mechanics*. With `z = (q, p)` and `J = [[0, I], [−I, 0]]`, Hamilton's
 //! equations are `ż = X_H(z) = J∇H(z)`, i.e. `q̇ = ∂H/∂p`, `ṗ = −∂H/∂q`, and the Jacobian of the
 //! vector field is `DX_H = J∇²H`. One hyper-dual evaluation of `H` gives value, gradient and
 //! Hessian together ([`crate::numerics::ad::partial_hessian`]).

@@ -1,7 +1,7 @@
 //! The Legendre correspondence both ways, as adapters that are themselves generic over the
 //! scalar: [`LegendreHamiltonian`] (`H` from `L`) and [`HamiltonianLagrangian`] (`L` from `H`).
 //!
-//! Seed: *Legendre transforms*. For a hyperregular `L` the fibre derivative `FL(q, v) =
+//! Concept of the notes (MW01): *Legendre transforms*. For a hyperregular `L` the fibre derivative `FL(q, v) =
 //! (q, ∂L/∂v)` is a diffeomorphism with inverse `FH`, and ([MW01] §1.4, [MR99] §7.4)
 //!
 //! ```text

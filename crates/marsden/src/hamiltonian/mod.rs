@@ -2,7 +2,7 @@
 //! AD, symplectic integrators for `H` given directly, and the Legendre correspondence with
 //! Lagrangians.
 //!
-//! Seed: *Hamiltonian mechanics* (`X_H = (∂H/∂p, −∂H/∂q)`, `ι_{X_H}Ω = dH`, symplectic flow),
+//! Concept of the notes (MW01): *Hamiltonian mechanics* (`X_H = (∂H/∂p, −∂H/∂q)`, `ι_{X_H}Ω = dH`, symplectic flow),
 //! *Legendre transforms* (`FL`, `FH = (FL)⁻¹` for hyperregular systems, `E = H ∘ FL`,
 //! `J_L = FL*J_H`). The pieces:
 //!

@@ -1,7 +1,7 @@
 //! Holonomic constraints `φ(q) = 0`: the SHAKE step, the RATTLE momentum projection, checks and
 //! projections of initial data, and ready-made distance constraints.
 //!
-//! Seed: *constrained Lagrangian systems*. Motion on `N = φ⁻¹(0) ⊂ Q` extremises the augmented
+//! Concept of the notes (MW01): *constrained Lagrangian systems*. Motion on `N = φ⁻¹(0) ⊂ Q` extremises the augmented
 //! action `∫ L − ⟨λ, φ(q)⟩ dt`, i.e. `∂L/∂q − d/dt ∂L/∂v = Dφ(q)ᵀλ`, `φ(q) = 0`.
 //!
 //! ## The constrained scheme

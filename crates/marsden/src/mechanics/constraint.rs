@@ -1,6 +1,6 @@
 //! Holonomic constraints `φ(q) = 0`, written once over the scalar type.
 //!
-//! Seed: *constrained Lagrangian systems*. The constrained discrete Euler–Lagrange equations in
+//! Concept of the notes (MW01): *constrained Lagrangian systems*. The constrained discrete Euler–Lagrange equations in
 //! SHAKE form (DESIGN.md §3, [MW01] §3.5, [LMO08])
 //!
 //! ```text

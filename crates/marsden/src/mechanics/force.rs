@@ -1,6 +1,6 @@
 //! External forces: Lagrangian forces `f_L(t, q, v)` and their discrete counterparts `f_d^±`.
 //!
-//! Seed: *forced Lagrangian systems* and *discrete variational mechanics with forces*. The
+//! Concept of the notes (MW01): *forced Lagrangian systems* and *discrete variational mechanics with forces*. The
 //! Lagrange–d'Alembert principle `δ∫L dt + ∫⟨f_L, δq⟩ dt = 0` is discretised as
 //! `δΣL_d + Σ(⟨f_d⁻, δq_k⟩ + ⟨f_d⁺, δq_{k+1}⟩) = 0`, which gives the forced discrete Legendre
 //! transforms (DESIGN.md §3)

@@ -1,6 +1,6 @@
 //! Continuous mechanics of a [`Lagrangian`] by automatic differentiation.
 //!
-//! Seed: *Legendre transforms*. With `z = (t, q, v)` one hyper-dual evaluation of `L` gives
+//! Concept of the notes (MW01): *Legendre transforms*. With `z = (t, q, v)` one hyper-dual evaluation of `L` gives
 //! `∂L/∂q`, `∂L/∂v` and the block `∂²L/∂v∂(t, q, v)`, from which ([MW01] §1.2–1.4, [HLW06] §VI.1):
 //!
 //! * the Legendre transform `FL(q, v) = (q, ∂L/∂v)` ([`momentum`]);
@@ -271,7 +271,7 @@ pub fn check_structure<L: Lagrangian>(l: &L, t: f64, q: &[f64], v: &[f64]) -> Re
         a.iter()
             .zip(b)
             .map(|(x, y)| (x - y).abs())
-            .fold(0.0, f64::max)
+            .fold(0.0, crate::numerics::dense::max_or_nan)
     };
     if dense.len() != jet.n * jet.n {
         return Err(mismatch(

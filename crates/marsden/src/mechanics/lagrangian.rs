@@ -1,6 +1,6 @@
 //! The continuous system: a Lagrangian `L(t, q, v)` written once, generic over the scalar.
 //!
-//! Seed: *Lagrangian mechanics* — `L: TQ → ℝ`, the action `∫ L(q, q̇) dt`, Hamilton's principle
+//! Concept of the notes (MW01): *Lagrangian mechanics* — `L: TQ → ℝ`, the action `∫ L(q, q̇) dt`, Hamilton's principle
 //! and its Euler–Lagrange equations `∂L/∂q − d/dt ∂L/∂q̇ = 0` ([MW01] §1.2). Everything the crate
 //! needs (momenta, energy, accelerations, discrete Lagrangians and their derivatives) is obtained
 //! from this one function by automatic differentiation; see [`crate::mechanics::jet`].

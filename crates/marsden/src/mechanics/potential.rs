@@ -33,7 +33,7 @@ pub fn gradient_defect<L: Lagrangian + ?Sized>(l: &L, t: f64, q: &[f64]) -> f64 
     hand.iter()
         .zip(&by_ad)
         .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max)
+        .fold(0.0, crate::numerics::dense::max_or_nan)
         / scale
 }
 

@@ -187,6 +187,17 @@ fn eliminate(a: &mut [f64], b: &mut [f64], n: usize) -> Result<(), SingularMatri
     Ok(())
 }
 
+/// `max(a, b)`, or NaN if either is NaN: the fold of a maximum that must not skip a NaN
+/// (`f64::max` returns the other argument, so a NaN defect or residual would look like 0).
+#[inline]
+pub fn max_or_nan(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.max(b)
+    }
+}
+
 /// Max-norm of a vector; NaN if any entry is NaN (`f64::max` alone would skip it, and a NaN
 /// residual would then look converged).
 #[inline]

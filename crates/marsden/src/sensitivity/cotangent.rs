@@ -150,7 +150,10 @@ pub fn restricted_defect(jac: &[f64], basis: &[Vec<f64>]) -> (f64, f64) {
             }
         }
     }
-    let scale = images.iter().map(|w| dot(w, w)).fold(0.0, f64::max);
+    let scale = images
+        .iter()
+        .map(|w| dot(w, w))
+        .fold(0.0, crate::numerics::dense::max_or_nan);
     (worst, worst / scale.max(f64::MIN_POSITIVE))
 }
 

@@ -165,7 +165,7 @@ fn solve<L: Lagrangian, const N: usize>(
             }));
         }
         report.iterations += 1;
-        let size = update.iter().fold(0.0_f64, |m, u| m.max(u.abs()));
+        let size = max_norm(&update);
         delta.iter_mut().zip(&update).for_each(|(d, u)| *d += u);
         let znorm = delta.iter().fold(q_scale, |m, d| m.max(d.abs()));
         convergence.record_update(size, znorm);

@@ -114,6 +114,62 @@ pub fn reference_solution<L: Lagrangian, F: Force, C: Constraint>(
     Ok((end.q, p))
 }
 
+/// The exact solution at `t_end` computed twice — over the whole interval at once (the adaptive
+/// flow picks its own substeps), and in [`REFERENCE_PIECES`] consecutive pieces (other substeps,
+/// other round-off) — with their difference as its accuracy estimate: a reference that diverged
+/// or lost its accuracy shows as a large difference instead of passing for the exact solution.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ValidatedReference {
+    /// `q(T)` (the whole-interval computation).
+    pub q: Vec<f64>,
+    /// `p(T)`.
+    pub p: Vec<f64>,
+    /// `max |(q, p)_whole − (q, p)_pieces|`, NaN if either is not finite.
+    pub difference: f64,
+}
+
+/// The pieces of the second computation of [`validated_reference`].
+pub const REFERENCE_PIECES: usize = 8;
+
+/// [`reference_solution`] validated against a second computation in [`REFERENCE_PIECES`]
+/// pieces (see [`ValidatedReference`]).
+///
+/// # Errors
+/// The flow's errors, from either computation.
+pub fn validated_reference<L: Lagrangian, F: Force, C: Constraint>(
+    problem: &Problem<L, F, C>,
+    t_end: f64,
+) -> Result<ValidatedReference, Error> {
+    let (q, p) = reference_solution(problem, t_end)?;
+    let start = problem.start();
+    let flow = EulerLagrangeFlow::new(problem.lagrangian())
+        .with_force(problem.force())
+        .with_options(FlowOptions::default())?;
+    let (mut t, mut y, mut v) = (
+        start.t,
+        start.q.clone(),
+        problem.initial_velocity().to_vec(),
+    );
+    let piece = (t_end - start.t) / REFERENCE_PIECES as f64;
+    for k in 0..REFERENCE_PIECES {
+        let next = match k + 1 == REFERENCE_PIECES {
+            true => t_end,
+            false => start.t + piece * (k + 1) as f64,
+        };
+        let end = flow.advance(t, next - t, &y, &v)?;
+        (t, y, v) = (next, end.q, end.v);
+    }
+    let mut p_pieces = vec![0.0; y.len()];
+    crate::mechanics::momentum(problem.lagrangian(), t_end, &y, &v, &mut p_pieces);
+    let difference = q
+        .iter()
+        .zip(&y)
+        .chain(p.iter().zip(&p_pieces))
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, crate::numerics::dense::max_or_nan);
+    Ok(ValidatedReference { q, p, difference })
+}
+
 /// A reference of a constrained problem computed by a constrained method of high order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ConstrainedReference {

@@ -1,6 +1,6 @@
 //! Lie group actions on configuration space, given by their infinitesimal generators.
 //!
-//! Seed: *the Lagrangian momentum map*, *Hamiltonian momentum maps*. A left action
+//! Concept of the notes (MW01): *the Lagrangian momentum map*, *Hamiltonian momentum maps*. A left action
 //! `Φ: G × Q → Q` of a Lie group with Lie algebra `𝔤` has, for every `ξ ∈ 𝔤`, the infinitesimal
 //! generator
 //!

@@ -6,7 +6,7 @@
 //! | [`AxisRotation`] | `SO(2)` about an axis | `ω × qᵢ` (planar: `(−yᵢ, xᵢ)`) | `ω·Σᵢ qᵢ × pᵢ` |
 //! | [`Rotations`] | `SO(3)`, diagonal | `ê_a qᵢ = e_a × qᵢ` (hat map) | total angular momentum `Σᵢ qᵢ × pᵢ` |
 //!
-//! Seed: *Examples* (`ℝ³` acting by translation, `SO(3)` acting by rotation). The hat map
+//! Concept of the notes (MW01): *Examples* (`ℝ³` acting by translation, `SO(3)` acting by rotation). The hat map
 //! `ω ↦ ω̂`, `ω̂ x = ω × x`, identifies `ℝ³ ≅ so(3)`; then `Ad_g ω = Rω` and `Ad*_{g⁻¹} μ = Rμ`
 //! ([MR99] §9.2). All three actions are linear (affine), so the midpoint, trapezoid and α
 //! discrete Lagrangians of an invariant `L` are invariant too (reference cases §0).

@@ -1,7 +1,7 @@
 //! Is a declared action a symmetry? Infinitesimal invariance at sampled states, with the size
 //! of the defect.
 //!
-//! Seed: *symmetries of the Lagrangian* (`⟨dL, ξ_TQ⟩ = 0`), *discrete Noether* (`L_d` invariant
+//! Concept of the notes (MW01): *symmetries of the Lagrangian* (`⟨dL, ξ_TQ⟩ = 0`), *discrete Noether* (`L_d` invariant
 //! ⟹ `⟨dL_d, ξ_{Q×Q}⟩ = 0`) and *Hamiltonian momentum maps* (`⟨dH, ξ_T*Q⟩ = 0`). At each
 //! sample the directional derivative `⟨dF, ξ⟩ = Σᵢ ∂F/∂xᵢ ξᵢ` is computed exactly by AD; its
 //! size is compared with the size of the terms that should cancel, `Σᵢ |∂F/∂xᵢ ξᵢ|`, so the

@@ -1,7 +1,7 @@
 //! Symmetries: Lie group actions, their momentum maps, and the checks that a declared action
 //! really is a symmetry.
 //!
-//! Seed: *Hamiltonian momentum maps*, *the Lagrangian momentum map*, *Noether's theorem* (continuous
+//! Concept of the notes (MW01): *Hamiltonian momentum maps*, *the Lagrangian momentum map*, *Noether's theorem* (continuous
 //! and discrete), *equivariance*. The pieces:
 //!
 //! * [`GroupAction`] (infinitesimal generators `ξ_Q(q)`, generic over the scalar) and

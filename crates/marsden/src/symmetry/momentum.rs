@@ -1,6 +1,6 @@
 //! Momentum maps: continuous (`J_L`, `J_H`) and discrete (`J^±_{L_d}`).
 //!
-//! Seed: *the Lagrangian momentum map*, *Hamiltonian momentum maps*, *discrete Lagrangian
+//! Concept of the notes (MW01): *the Lagrangian momentum map*, *Hamiltonian momentum maps*, *discrete Lagrangian
 //! Noether's theorem*. In the dual basis of `𝔤*` (component `a` is the pairing with `e_a`):
 //!
 //! ```text

@@ -1,6 +1,6 @@
 //! Certificates of structure: is the computed step map symplectic?
 //!
-//! Seed: *discrete Lagrangian time evolution* (`F_{L_d}` preserves the discrete symplectic form)
+//! Concept of the notes (MW01): *discrete Lagrangian time evolution* (`F_{L_d}` preserves the discrete symplectic form)
 //! and *Hamiltonian mechanics* (the flow preserves `Ω = dq ∧ dp`). A map `F: (q, p) ↦ (q₁, p₁)`
 //! of `ℝ²ⁿ` is symplectic iff its Jacobian satisfies
 //!

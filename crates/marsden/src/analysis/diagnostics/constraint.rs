@@ -73,7 +73,7 @@ impl Evaluator {
                     .sum::<f64>()
                     .abs()
             })
-            .fold(0.0, f64::max))
+            .fold(0.0, crate::numerics::dense::max_or_nan))
     }
 }
 
@@ -138,7 +138,7 @@ pub fn residuals_at<C: Constraint>(constraint: &C, q: &[f64], v: &[f64]) -> (f64
     let rate = g
         .chunks_exact(n)
         .map(|row| row.iter().zip(v).map(|(a, b)| a * b).sum::<f64>().abs())
-        .fold(0.0, f64::max);
+        .fold(0.0, crate::numerics::dense::max_or_nan);
     (max_norm(&phi), rate)
 }
 

@@ -203,9 +203,23 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
             } else {
                 piece
             };
-            let (estimate, row) = self.extrapolate(t0 + done, step, y, tableau)?;
+            // A substep too long for the equations (the modified midpoint's intermediate
+            // states run off to where `L` is singular or not finite) is rejected and halved
+            // like an inaccurate one; only the smallest substeps' failures are the flow's.
+            let (estimate, row) = match self.extrapolate(t0 + done, step, y, tableau) {
+                Ok(found) => found,
+                Err(e)
+                    if rejections >= self.options.max_halvings
+                        || negligible(step, t0 + done, h) =>
+                {
+                    return Err(e);
+                }
+                Err(_) => (f64::INFINITY, 0),
+            };
             let end = &tableau.end;
-            if estimate <= self.options.tolerance * max_norm(end).max(1.0) {
+            // Relative to the substep's start, not its end: an end that ran away (a diverging
+            // extrapolation) would otherwise make its own tolerance large enough to pass.
+            if estimate <= self.options.tolerance * max_norm(y).max(1.0) {
                 y.copy_from_slice(end);
                 done = if step == remaining { h } else { done + step };
                 self.last_substep
@@ -269,7 +283,7 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
             }
             if j >= 2 {
                 estimate = max_diff(&row[j], &row[j - 1]);
-                if estimate <= self.options.tolerance * max_norm(&row[j]).max(1.0) {
+                if estimate <= self.options.tolerance * max_norm(y).max(1.0) {
                     end.clone_from(&row[j]);
                     return Ok((estimate, j));
                 }
@@ -411,7 +425,7 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
     a.iter()
         .zip(b)
         .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
+        .fold(0.0, crate::numerics::dense::max_or_nan)
 }
 
 /// A substep too small to advance the time: `|step| ≤ 64 ε · max(|t|, |h|)`.

@@ -1,6 +1,6 @@
 //! The exact discrete Lagrangian `L_d^E(q₀, q₁, h) = ∫₀ʰ L(q₀₁(t), q̇₀₁(t)) dt`.
 //!
-//! Seed: *correspondence between discrete and continuous mechanics* ([MW01] §1.6). Along the
+//! Concept of the notes (MW01): *correspondence between discrete and continuous mechanics* ([MW01] §1.6). Along the
 //! solution `q₀₁` of the Euler–Lagrange boundary value problem `q₀₁(0) = q₀`, `q₀₁(h) = q₁`,
 //! the action is Hamilton's principal function, and its discrete Legendre transforms are the
 //! continuous ones at the ends:
@@ -313,7 +313,12 @@ impl<L: Lagrangian> DiscreteLagrangian for ExactDiscreteLagrangian<L> {
         let re = |x: &[S]| -> Vec<f64> { x.iter().map(|v| v.re()).collect() };
         let (a, b) = (re(q0), re(q1));
         let Ok(jet) = self.jet(t0, h, (&a, &b), S::NDERIV >= 2) else {
-            return S::from(f64::NAN);
+            // NaN in the value *and every derivative*: `S::from(NaN)` alone has zero
+            // derivatives, and a step's residual (made of derivatives) would read 0, i.e.
+            // converged, on a boundary value problem that has no solution.
+            return q0.iter().chain(q1).fold(S::from(f64::NAN), |s, x| {
+                s + (*x - S::from(x.re())) * f64::NAN
+            });
         };
         if S::NDERIV == 0 {
             return S::from(jet.value);

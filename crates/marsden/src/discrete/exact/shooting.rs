@@ -41,7 +41,7 @@ fn velocity_scale(q0: &[f64], q1: &[f64], h: f64, v: &[f64]) -> f64 {
         .iter()
         .zip(q1)
         .map(|(a, b)| (b - a).abs())
-        .fold(0.0, f64::max)
+        .fold(0.0, crate::numerics::dense::max_or_nan)
         / h.abs();
     let positions = max_norm(q0).max(max_norm(q1)).max(1.0) / h.abs();
     chord.max(max_norm(v)).max(positions)

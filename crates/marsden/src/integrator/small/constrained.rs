@@ -19,7 +19,7 @@
 use super::{SPECULATE, SmallKernel, first_derivatives};
 use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::mechanics::Constraint;
-use crate::numerics::dense::solve_in_place;
+use crate::numerics::dense::{max_norm, solve_in_place};
 use crate::numerics::dual::{SmallDual, SmallGradient};
 use crate::numerics::newton::{Convergence, NewtonFailure, NewtonOptions, NewtonReport};
 
@@ -195,7 +195,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallKernel
                 self.evaluate::<N, D>(&x[..m])
             };
             report.evaluations += 1;
-            report.residual = e.residual[..m].iter().fold(0.0_f64, |s, r| s.max(r.abs()));
+            report.residual = max_norm(&e.residual[..m]);
             match convergence.check(&report, p_scale.max(e.term_scale)) {
                 Ok(false) => {}
                 verdict => {
@@ -222,7 +222,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallKernel
                 });
             }
             report.iterations += 1;
-            let size = update[..m].iter().fold(0.0_f64, |s, u| s.max(u.abs()));
+            let size = max_norm(&update[..m]);
             x[..m].iter_mut().zip(&update).for_each(|(a, u)| *a += u);
             let xnorm = x[..m].iter().fold(q_scale, |s, a| s.max(a.abs()));
             convergence.record_update(size, xnorm);

@@ -18,7 +18,7 @@
 
 use super::{SPECULATE, SmallKernel, first_derivatives};
 use crate::discrete::{DiscreteAction, DiscreteForce};
-use crate::numerics::dense::solve_fixed;
+use crate::numerics::dense::{max_norm, solve_fixed};
 use crate::numerics::dual::{SmallDual, SmallGradient};
 use crate::numerics::newton::{Convergence, NewtonFailure, NewtonOptions, NewtonReport};
 
@@ -138,7 +138,7 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallKernel for SmallStep<'_, A, F> {
                 self.evaluate::<N, D>(&delta)
             };
             report.evaluations += 1;
-            report.residual = e.residual.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
+            report.residual = max_norm(&e.residual);
             // Relative to the size of the residual's terms, as in `StepSystem`.
             if convergence.check(&report, p_scale.max(term_scale))? {
                 z[..N].copy_from_slice(&delta);
@@ -156,7 +156,7 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallKernel for SmallStep<'_, A, F> {
             })?;
             report.iterations += 1;
             report.factorizations += 1;
-            let size = update.iter().fold(0.0_f64, |m, u| m.max(u.abs()));
+            let size = max_norm(&update);
             delta.iter_mut().zip(&update).for_each(|(d, u)| *d += u);
             let znorm = delta.iter().fold(q_scale, |m, d| m.max(d.abs()));
             convergence.record_update(size, znorm);

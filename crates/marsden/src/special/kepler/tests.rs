@@ -14,7 +14,7 @@ fn max_diff<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
     a.iter()
         .zip(b)
         .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
+        .fold(0.0, crate::numerics::dense::max_or_nan)
 }
 
 fn rotate(v: [f64; 2], angle: f64) -> [f64; 2] {

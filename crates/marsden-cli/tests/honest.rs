@@ -1,0 +1,339 @@
+//! Silent wrong answers users met, each guarded: a run never reports a state, a conservation
+//! or a "completed" status it does not have.
+
+use crate::util::{assert_close, fixture, marsden, number};
+
+/// `method = "exact"` with a step too long for its shooting: the boundary value problem of
+/// `L_d^E` has no solution near the chord's guess, so the step fails (status "failed", exit 1,
+/// the message says why) instead of returning the initial state as "completed".
+#[test]
+fn exact_step_whose_shooting_fails_is_a_failure_not_the_initial_state() {
+    for name in [
+        "exact_long_step.toml",
+        "exact_spring_pendulum_long_step.toml",
+    ] {
+        let run = marsden("run", &fixture(name), &[]);
+        assert_eq!(run.code, 1, "{name}: {}\n{}", run.stdout, run.stderr);
+        let s = run.summary();
+        assert_eq!(s["status"], "failed", "{name}");
+        assert_eq!(number(&s, "steps"), 0.0, "{name}: no step was taken");
+        let error = s["error"].as_str().unwrap_or_default();
+        assert!(
+            error.contains("shooting") || error.contains("not finite"),
+            "{name}: {error}"
+        );
+        // Only the initial state was written.
+        assert_eq!(
+            crate::util::column(&run.trajectory(), "t").len(),
+            1,
+            "{name}"
+        );
+    }
+}
+
+/// The same pendulum over the same T = 4 in steps the shooting solves: the exact flow,
+/// θ(4) from the closed form (Jacobi elliptic functions, `marsden::special::pendulum`).
+#[test]
+fn exact_method_in_short_steps_reaches_the_closed_form_state() {
+    let run = marsden("run", &fixture("exact_short_steps.toml"), &[]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let s = run.summary();
+    assert_eq!(s["status"], "completed");
+    let exact = marsden::special::pendulum::Pendulum::new(1.5, 0.0, 1.0).unwrap();
+    let (theta, thetadot) = exact.state(4.0).unwrap();
+    assert!((theta + 1.4391).abs() < 1e-4, "closed form θ(4) = {theta}");
+    let q = s["final_state"]["q"][0].as_f64().unwrap();
+    let p = s["final_state"]["p"][0].as_f64().unwrap();
+    assert_close(q, theta, 1e-9, "θ(4)");
+    assert_close(p, thetadot, 1e-9, "p(4)");
+}
+
+/// A generator that annihilates `dL` at the initial state only (`L = ½ẋ² − ½x²`, translation,
+/// `x₀ = 0`) is checked at states near it too, and the run says it is no symmetry: a warning,
+/// `symmetry = false` and what was checked in summary.json, and the printed line.
+#[test]
+fn a_symmetry_true_only_at_the_initial_state_is_reported_as_none() {
+    for (name, map) in [
+        ("symmetry_only_at_start.toml", "P"),
+        ("symmetry_magnetic_translation.toml", "Px"),
+    ] {
+        let run = marsden("run", &fixture(name), &[]);
+        assert_eq!(run.code, 0, "{name}: {}", run.stderr);
+        assert!(
+            run.stderr
+                .contains(&format!("\"{map}\" is not a symmetry of the Lagrangian"))
+                && run.stderr.contains("8 states near it"),
+            "{name}: {}",
+            run.stderr
+        );
+        let m = &run.summary()["momenta"][map];
+        assert_eq!(m["symmetry"], false, "{name}: {m}");
+        assert!(
+            m["checked"]
+                .as_str()
+                .unwrap()
+                .starts_with("L at the initial state and 8 states"),
+            "{m}"
+        );
+        assert!(
+            run.stdout
+                .contains("not a symmetry: monitored, not conserved"),
+            "{}",
+            run.stdout
+        );
+    }
+}
+
+/// A true symmetry (Kepler's rotation) passes the same check at every state: no warning,
+/// `symmetry = true`, a relative defect at round-off.
+#[test]
+fn a_true_symmetry_passes_the_check_at_every_state() {
+    let run = marsden("run", &fixture("kepler_symmetry.toml"), &[]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(!run.stderr.contains("is not a symmetry"), "{}", run.stderr);
+    let s = run.summary();
+    let (_, m) = s["momenta"].as_object().unwrap().iter().next().unwrap();
+    assert_eq!(m["symmetry"], true, "{m}");
+    let checked = m["checked"].as_str().unwrap();
+    let defect: f64 = checked.rsplit(' ').next().unwrap().parse().unwrap();
+    assert!(defect <= 1e-14, "{checked}");
+    assert!(!run.stdout.contains("not a symmetry"), "{}", run.stdout);
+}
+
+/// A step system larger than memory (a 10-fold triple jump of gauss-10 on 50 coordinates:
+/// 40 500 unknowns, a 13 GB Jacobian) is refused before anything is allocated or written:
+/// exit 2, the size, the alternatives, a caret at the method; `check` says the same.
+#[test]
+fn a_step_system_larger_than_memory_is_refused_with_its_size() {
+    let tmp = tempfile::tempdir().unwrap();
+    let names: Vec<String> = (1..=50).map(|i| format!("x{i}")).collect();
+    let kinetic: Vec<String> = names.iter().map(|x| format!("{x}_dot^2")).collect();
+    let potential: Vec<String> = names.iter().map(|x| format!("{x}^2")).collect();
+    let text = format!(
+        "[system]\ncoordinates = [{}]\nlagrangian = \"0.5*({}) - 0.5*({})\"\n\
+         [initial]\nq = [{}]\nv = [{}]\n[integrator]\nmethod = \"triple-jump-10(gauss-10)\"\n\
+         h = 0.1\nsteps = 10\n",
+        names
+            .iter()
+            .map(|x| format!("\"{x}\""))
+            .collect::<Vec<_>>()
+            .join(", "),
+        kinetic.join(" + "),
+        potential.join(" + "),
+        vec!["0.1"; 50].join(", "),
+        vec!["0.0"; 50].join(", "),
+    );
+    let file = tmp.path().join("huge.toml");
+    std::fs::write(&file, text).unwrap();
+    for command in ["run", "check"] {
+        let run = marsden(command, &file, &[]);
+        assert_eq!(run.code, 2, "{command}: {}", run.stderr);
+        for fragment in ["40500 unknowns", "GiB", "triple-jump-4", "^"] {
+            assert!(
+                run.stderr.contains(fragment),
+                "{command}: {fragment}: {}",
+                run.stderr
+            );
+        }
+        assert!(!run.out.exists(), "nothing written");
+    }
+}
+
+/// `marsden order` on a constrained file with a Gauss rule is refused before any run, with the
+/// message `marsden run` gives (no row of "failed" at every step size).
+#[test]
+fn order_refuses_a_gauss_rule_on_a_constrained_file_up_front() {
+    let tmp = tempfile::tempdir().unwrap();
+    let path = fixture("cartesian_pendulum.toml");
+    let args = [
+        "order",
+        path.to_str().unwrap(),
+        "--methods",
+        "midpoint,gauss-2",
+    ];
+    let output = crate::util::marsden_in(tmp.path(), &args);
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("the method `gauss-2` cannot be used with constraints"),
+        "{stderr}"
+    );
+    assert!(String::from_utf8(output.stdout).unwrap().is_empty());
+}
+
+/// A `discrete_lagrangian` run with a symmetry, every 10th step stored: the momentum line counts
+/// the rows it was monitored at (101), not the energy samples a file's own `L_d` does not have.
+#[test]
+fn a_discrete_lagrangian_run_counts_its_monitored_rows() {
+    let run = marsden("run", &fixture("discrete_rotation.toml"), &[]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let line = run
+        .stdout
+        .lines()
+        .find(|l| l.trim_start().starts_with("momentum"))
+        .unwrap_or_else(|| panic!("{}", run.stdout));
+    assert!(line.contains("(over 101 stored samples)"), "{line}");
+}
+
+/// An explicit run (Kepler, trapezoid: Störmer–Verlet) says it solved no Newton system, instead
+/// of "0.00 iterations/step (max 0)"; summary.json counts its explicit steps.
+#[test]
+fn an_explicit_run_says_it_solved_no_newton_system() {
+    let file = crate::util::repo_root().join("examples/henon_heiles.toml");
+    let run = marsden("run", &file, &["--steps", "100"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(
+        run.stdout.contains("none: every step explicit"),
+        "{}",
+        run.stdout
+    );
+    assert_eq!(number(&run.summary(), "newton.explicit_steps"), 100.0);
+}
+
+/// `[sensitivity]`, `certify` and `every_step` in a sweep file were ignored with exit 0: they are
+/// refused with a caret at the option.
+#[test]
+fn options_a_sweep_cannot_give_are_refused() {
+    for (name, what) in [
+        ("sweep_with_sensitivity.toml", "[sensitivity]"),
+        ("sweep_with_certify.toml", "`certify = true`"),
+        ("sweep_with_every_step.toml", "`every_step = true`"),
+    ] {
+        crate::util::assert_rejected(
+            name,
+            &[
+                &format!("{what} cannot be used in a file with [sweep]"),
+                "^",
+            ],
+        );
+    }
+}
+
+/// `discrete_lagrangian = "0"` "completed" with a constant trajectory: a singular `D₁₂L_d` is
+/// refused at the start, as a singular `∂²L/∂q̇²` is.
+#[test]
+fn a_singular_discrete_lagrangian_is_refused_at_the_start() {
+    crate::util::assert_rejected(
+        "discrete_lagrangian_zero.toml",
+        &["the discrete Lagrangian is not regular", "D₁₂L_d", "^"],
+    );
+}
+
+/// The order study's reference for a stiff spring pendulum over T = 1.8 is computed twice
+/// (whole interval, pieces) and agrees with itself; midpoint then measures order 2 and gauss-2
+/// order 4 (R5/R6), instead of a reference that diverged and blamed the Lagrangian.
+#[test]
+fn order_study_reference_is_validated() {
+    let tmp = tempfile::tempdir().unwrap();
+    let path = fixture("spring_pendulum_k20.toml");
+    let args = [
+        "order",
+        path.to_str().unwrap(),
+        "--methods",
+        "midpoint,gauss-2",
+        "--h",
+        "0.05,0.025,0.0125,0.00625",
+        "--t-end",
+        "1.8",
+    ];
+    let output = crate::util::marsden_in(tmp.path(), &args);
+    let stdout = String::from_utf8(output.stdout).unwrap();
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert_eq!(output.status.code(), Some(0), "{stderr}");
+    assert!(stdout.contains("two computations agree"), "{stdout}");
+    for (method, expected) in [("midpoint", 2.0), ("gauss-2", 4.0)] {
+        let cells: Vec<&str> = stdout
+            .lines()
+            .map(|l| l.split_whitespace().collect::<Vec<_>>())
+            .find(|c| c.first() == Some(&method))
+            .unwrap_or_else(|| panic!("no row for {method}:\n{stdout}"));
+        let fitted: f64 = cells.last().unwrap().parse().unwrap();
+        assert!(
+            (fitted - expected).abs() <= 0.3,
+            "{method}: {fitted}\n{stdout}"
+        );
+    }
+}
+
+/// A parameter sensitivity with a force written in the momenta is refused with the reason and
+/// the velocity form to write instead (it once failed with "unknown name `p_x`").
+#[test]
+fn a_momentum_force_with_parameter_sensitivities_says_what_to_write() {
+    crate::util::assert_rejected(
+        "sensitivity_momentum_force.toml",
+        &["forces written in the momenta", "x_dot", "^"],
+    );
+}
+
+/// `check` on a sweep file says it is a sweep (members, what varies), and a sweep's
+/// summary.json names the method, `h` and the swept values every member shares.
+#[test]
+fn sweeps_say_what_they_sweep_in_check_and_summary() {
+    let check = marsden("check", &fixture("pendulum_sweep.toml"), &[]);
+    assert_eq!(check.code, 0, "{}", check.stderr);
+    let line = check
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("sweep"))
+        .unwrap_or_else(|| panic!("{}", check.stdout));
+    assert!(
+        line.contains("8 members") && line.contains("first (0.2)"),
+        "{line}"
+    );
+    let run = marsden("run", &fixture("pendulum_sweep.toml"), &[]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let s = run.summary();
+    assert_eq!(s["kind"], "sweep");
+    assert_eq!(s["method"], "midpoint");
+    assert_eq!(number(&s, "h"), 0.05);
+    assert_eq!(s["values"]["first"][0].as_f64(), Some(0.2));
+    assert_eq!(s["values"]["last"][0].as_f64(), Some(1.6));
+}
+
+/// Under `ulimit -f` the run died by SIGXFSZ with no message and no summary: the write fails
+/// like a full disk, the run says so (exit 1) and summary.json records the failure.
+#[cfg(unix)]
+#[test]
+fn a_file_size_limit_fails_the_write_with_a_summary() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let file = crate::util::repo_root().join("examples/pendulum.toml");
+    let script = format!(
+        "ulimit -f 64; exec '{}' run '{}' --steps 200000 --out '{}'",
+        env!("CARGO_BIN_EXE_marsden"),
+        file.display(),
+        out.display()
+    );
+    let output = std::process::Command::new("bash")
+        .args(["-c", &script])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("writing the trajectory failed"), "{stderr}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["status"], "failed");
+    assert!(
+        summary["error"]
+            .as_str()
+            .unwrap()
+            .contains("writing the trajectory failed"),
+        "{summary}"
+    );
+}
+
+/// `marsden plot DIR` of a forced run says that it cannot redraw `energy_balance.png` (its
+/// series is not in the run's files) instead of saying nothing.
+#[test]
+fn plot_says_it_cannot_redraw_the_energy_balance() {
+    let run = marsden("run", &fixture("damped.toml"), &[]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let output = crate::util::marsden_in(run.tmp.path(), &["plot", run.out.to_str().unwrap()]);
+    let stdout = String::from_utf8(output.stdout).unwrap();
+    assert_eq!(output.status.code(), Some(0));
+    assert!(
+        stdout.contains("energy_balance.png is not redrawn"),
+        "{stdout}"
+    );
+}
