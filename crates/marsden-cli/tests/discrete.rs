@@ -38,8 +38,19 @@ fn assert_bit_for_bit(user: &Run, rule: &Run) -> usize {
         }
         rows = x.len();
     }
-    for field in ["final_state", "momenta", "steps", "status"] {
+    for field in ["final_state", "steps", "status"] {
         assert_eq!(s[field], r[field], "summary.{field}");
+    }
+    // The momentum maps bit for bit; what their symmetry was checked against differs (the
+    // file's `L_d`, the rule's `L`).
+    let (maps, rule_maps) = (s["momenta"].as_object().unwrap(), &r["momenta"]);
+    for (name, m) in maps {
+        for field in ["initial", "max_abs_drift", "symmetry"] {
+            assert_eq!(
+                m[field], rule_maps[name][field],
+                "summary.momenta.{name}.{field}"
+            );
+        }
     }
     rows
 }

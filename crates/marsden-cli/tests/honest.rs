@@ -337,3 +337,56 @@ fn plot_says_it_cannot_redraw_the_energy_balance() {
         "{stdout}"
     );
 }
+
+/// `hamiltonian = "0.25*p_x^4"` at p = 1 was refused as "not regular" at v = 0: the state's
+/// velocity is v = ∂H/∂p = 1, where ∂²H/∂p² = 3. It runs; the free motion keeps p = 1 and
+/// moves x by v·t = 1 over t = 1.
+#[test]
+fn a_hamiltonian_regular_at_the_state_but_not_at_rest_runs() {
+    let run = marsden("run", &fixture("hamiltonian_quartic.toml"), &[]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let s = run.summary();
+    assert_close(
+        s["final_state"]["p"][0].as_f64().unwrap(),
+        1.0,
+        1e-12,
+        "p(1)",
+    );
+    assert_close(
+        s["final_state"]["q"][0].as_f64().unwrap(),
+        1.0,
+        1e-12,
+        "x(1)",
+    );
+}
+
+/// `marsden plot` on a CSV run whose trajectory is gone names the missing trajectory.csv
+/// (it once said "cannot open q.npy").
+#[test]
+fn plot_of_a_csv_run_without_its_trajectory_names_the_file() {
+    let run = marsden("run", &fixture("damped.toml"), &[]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    std::fs::remove_file(run.out.join("trajectory.csv")).unwrap();
+    let output = crate::util::marsden_in(run.tmp.path(), &["plot", run.out.to_str().unwrap()]);
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("has no trajectory.csv"), "{stderr}");
+}
+
+/// `marsden plot` on a directory whose trajectory.csv is `/dev/zero` (no line ends) is refused
+/// with the file named, instead of reading until memory runs out.
+#[cfg(unix)]
+#[test]
+fn plot_refuses_a_trajectory_without_line_ends() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("run");
+    std::fs::create_dir(&dir).unwrap();
+    std::os::unix::fs::symlink("/dev/zero", dir.join("trajectory.csv")).unwrap();
+    let output = crate::util::marsden_in(tmp.path(), &["plot", dir.to_str().unwrap()]);
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("trajectory.csv") && stderr.contains("longer than"),
+        "{stderr}"
+    );
+}

@@ -1,7 +1,7 @@
 //! Reading a finished (or interrupted) run's CSV back into a [`Table`].
 
 use std::fs::File;
-use std::io::{BufRead, BufReader};
+use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 
 use super::number::parse_f64;
@@ -59,6 +59,10 @@ pub fn read_csv_thinned(
     thinner.finish_table()
 }
 
+/// The longest line read (16 MiB: a row of ten thousand columns is under 300 kB); a file
+/// without line ends (`/dev/zero`) is refused instead of read until memory runs out.
+pub const MAX_LINE: u64 = 16 << 20;
+
 fn parse_error(path: &Path, line: u64, message: String) -> Error {
     Error::Parse {
         path: path.to_path_buf(),
@@ -81,11 +85,19 @@ fn stream_csv<S: RowSink>(
     // Reads one line without its end; returns (any bytes read, the line had an end).
     let mut next_line = |line: &mut String, line_no: &mut u64| -> Result<(bool, bool)> {
         line.clear();
-        let n = reader
+        let n = (&mut reader)
+            .take(MAX_LINE)
             .read_line(line)
             .map_err(|e| Error::io("read", path, e))?;
         *line_no += 1;
         let ended = line.ends_with('\n');
+        if !ended && n as u64 == MAX_LINE {
+            return Err(parse_error(
+                path,
+                *line_no,
+                format!("a line longer than {MAX_LINE} bytes: not a trajectory this crate wrote"),
+            ));
+        }
         let trimmed = line.trim_end_matches(['\n', '\r']).len();
         line.truncate(trimmed);
         Ok((n > 0, ended))

@@ -361,7 +361,17 @@ where
     Ok(())
 }
 
+/// Writes the PNG; a write that fails part-way (a full disk) removes what it left, so no empty
+/// or truncated picture stands where a plot should be.
 fn write_png(path: &Path, rgb: &[u8], w: u32, h: u32) -> Result<()> {
+    let written = encode_png(path, rgb, w, h);
+    if written.is_err() {
+        let _ = std::fs::remove_file(path);
+    }
+    written
+}
+
+fn encode_png(path: &Path, rgb: &[u8], w: u32, h: u32) -> Result<()> {
     let file = File::create(path).map_err(|e| Error::io("create", path, e))?;
     let mut encoder = png::Encoder::new(BufWriter::new(file), w, h);
     encoder.set_color(png::ColorType::Rgb);

@@ -108,7 +108,8 @@ impl WithLagrangian for Study<'_> {
         } else {
             let r = validated_reference(&problem, self.plan.t_end).map_err(failed)?;
             let scale = r.q.iter().chain(&r.p).fold(1.0_f64, |m, x| m.max(x.abs()));
-            if !(r.difference <= REFERENCE_AGREEMENT * scale) {
+            let agrees = r.difference <= REFERENCE_AGREEMENT * scale;
+            if !agrees {
                 return Err(Error::failed(
                     Diagnostic::new(format!(
                         "the reference solution at T = {} is not reliable: computed over the \

@@ -287,11 +287,6 @@ mod tests {
         assert_eq!(seconds(2.5e-6), "2.50 µs");
         assert_eq!(seconds(0.25), "250.0 ms");
     }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::num;
 
     /// Huge and tiny numbers in exponent form (a value of 1e300 was printed as 301 digits);
     /// ordinary ones as Rust's shortest round trip.

@@ -248,6 +248,13 @@ fn read_run(dir: &Path) -> Result<(Thinned, Vec<String>, bool), Error> {
             )));
         }
     };
+    if json["output"]["format"].as_str() == Some("csv") {
+        return Err(bad(format!(
+            "{} has no {TRAJECTORY_CSV}, which its {SUMMARY_JSON} says the run wrote \
+             (format \"csv\"): was it moved or deleted?",
+            dir.display()
+        )));
+    }
     let columns = strings(&json["output"]["columns"]);
     let layout = layout_from_columns(&columns)
         .map_err(|e| bad(format!("{}: output.columns: {e}", summary.display())))?;
@@ -259,7 +266,18 @@ fn read_run(dir: &Path) -> Result<(Thinned, Vec<String>, bool), Error> {
 /// The column names on the first line of a CSV file.
 fn csv_header(path: &Path) -> std::io::Result<Vec<String>> {
     use std::io::BufRead;
+    use std::io::Read;
     let mut line = String::new();
-    std::io::BufReader::new(std::fs::File::open(path)?).read_line(&mut line)?;
+    let file = std::fs::File::open(path)?;
+    let n = std::io::BufReader::new(file)
+        .take(marsden_io::csv::MAX_LINE)
+        .read_line(&mut line)?;
+    if n as u64 == marsden_io::csv::MAX_LINE && !line.ends_with('\n') {
+        return Err(std::io::Error::other(format!(
+            "{}: its first line is longer than {} bytes: not a trajectory",
+            path.display(),
+            marsden_io::csv::MAX_LINE
+        )));
+    }
     Ok(line.trim_end().split(',').map(str::to_owned).collect())
 }

@@ -318,11 +318,22 @@ fn discrete_non_symmetries<D: marsden::DiscreteLagrangian>(
             continue;
         };
         let check = SymmetryCheck::of_report(&report);
-        let defect = report.worst().map_or(f64::NAN, |w| w.max_defect);
-        warnings.extend(check.warning(defect));
+        let initial = check_discrete(ld, symmetry, h, &samples[..1], DEFAULT_TOLERANCE);
+        let defects = (
+            largest_defect(initial.ok().as_ref()),
+            largest_defect(Some(&report)),
+        );
+        warnings.extend(check.warning(defects));
         checks.push(check);
     }
     (checks, warnings)
+}
+
+/// The largest absolute defect of a check's generators (NaN without a report).
+fn largest_defect(report: Option<&marsden::symmetry::check::SymmetryReport>) -> f64 {
+    report
+        .and_then(|r| r.worst())
+        .map_or(f64::NAN, |w| w.max_defect)
 }
 
 /// How many states near the initial one a declared symmetry is checked at, beside it.
@@ -344,7 +355,7 @@ pub fn nearby_samples(
     let n = q.len();
     let q_scale = NEARBY_RADIUS * q.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
     let v_scale = NEARBY_RADIUS * v.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
-    let offsets = Sample::random(n, NEARBY_STATES, 0x5EED_0F_5EED, 1.0);
+    let offsets = Sample::random(n, NEARBY_STATES, 0x005E_ED0F_5EED, 1.0);
     std::iter::once(Sample::new(t, q, v))
         .chain(offsets.into_iter().map(|o| Sample {
             t,
@@ -407,16 +418,17 @@ impl SymmetryCheck {
         }
     }
 
-    /// The warning for a declared symmetry that is not one (`None` for a symmetry).
-    pub fn warning(&self, defect: f64) -> Option<String> {
-        let what = match self.of {
-            "L_d" => "the discrete Lagrangian: ⟨dL_d, ξ_Q×Q⟩",
-            _ => "the Lagrangian: ⟨dL, ξ_TQ⟩",
+    /// The warning for a declared symmetry that is not one (`None` for a symmetry), with the
+    /// defect at the initial state and the largest over the states near it.
+    pub fn warning(&self, (initial, worst): (f64, f64)) -> Option<String> {
+        let (what, at) = match self.of {
+            "L_d" => ("the discrete Lagrangian: ⟨dL_d, ξ_Q×Q⟩", "the first step"),
+            _ => ("the Lagrangian: ⟨dL, ξ_TQ⟩", "the initial state"),
         };
         (!self.is_symmetry).then(|| {
             format!(
-                "\"{}\" is not a symmetry of {what} = {defect:.3e} (checked at the initial \
-                 state and {} states near it), so J_{} is monitored but not conserved",
+                "\"{}\" is not a symmetry of {what} = {initial:.3e} at {at}, up to \
+                 {worst:.3e} at the {} states near it, so J_{} is monitored but not conserved",
                 self.name,
                 self.states.saturating_sub(1),
                 self.name
@@ -453,8 +465,12 @@ fn non_symmetries<L: Lagrangian>(
             continue;
         };
         let check = SymmetryCheck::of_report(&report);
-        let defect = report.worst().map_or(f64::NAN, |w| w.max_defect);
-        warnings.extend(check.warning(defect));
+        let initial = check_lagrangian(lagrangian, symmetry, &samples[..1], DEFAULT_TOLERANCE);
+        let defects = (
+            largest_defect(initial.ok().as_ref()),
+            largest_defect(Some(&report)),
+        );
+        warnings.extend(check.warning(defects));
         checks.push(check);
     }
     (checks, warnings)

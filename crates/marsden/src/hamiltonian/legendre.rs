@@ -129,6 +129,12 @@ fn solve_fibre<F: Fibre>(
     };
     let (mut lu, mut scratch) = (Lu::new(), Vec::with_capacity(n));
     let mut residual = newton.evaluate();
+    // `y = 0` may be where `∂²f/∂y²` is singular though the solution is regular (H = p⁴/4:
+    // ∂²H/∂p² = 0 at rest only): start from `y = w` then, exact for a unit mass.
+    if lu.factor(&newton.parts.hess, n).is_err() && w.iter().any(|x| *x != 0.0) {
+        newton.z[n + 1..].copy_from_slice(w);
+        residual = newton.evaluate();
+    }
     let failure = |residual| {
         Error::Setup(SetupError::InverseLegendre {
             t,
@@ -275,5 +281,14 @@ impl<H: Hamiltonian> Lagrangian for HamiltonianLagrangian<H> {
     }
     fn lagrangian<S: Scalar>(&self, t: S, q: &[S], v: &[S]) -> S {
         conjugate(&HFibre(&self.hamiltonian), t, q, v)
+    }
+
+    /// `v = ∂H/∂p(t, q, p)`: the inverse Legendre transform of this `L` is `FH` itself.
+    fn velocity_guess(&self, t: f64, q: &[f64], p: &[f64], v: &mut [f64]) {
+        let jet = super::jet::PhaseJet::at(&self.hamiltonian, t, q, p);
+        let n = q.len();
+        if jet.grad.len() == 2 * n && jet.grad[n..].iter().all(|x| x.is_finite()) {
+            v.copy_from_slice(&jet.grad[n..]);
+        }
     }
 }

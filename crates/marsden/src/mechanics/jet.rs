@@ -219,6 +219,10 @@ pub fn velocity<L: Lagrangian>(
         return structure::velocity(&mass, t, q, p, v);
     }
     let n = l.dof();
+    if v.iter().all(|x| *x == 0.0) {
+        // No guess given: the Lagrangian's own, where it has one (`∂H/∂p` for a Hamiltonian's).
+        l.velocity_guess(t, q, p, v);
+    }
     let tol = 1e-14 * max_norm(p).max(1.0);
     let mut r = vec![0.0; n];
     let mut scratch = Vec::with_capacity(n);

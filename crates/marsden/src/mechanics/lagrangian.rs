@@ -108,6 +108,14 @@ pub trait Lagrangian {
     fn verlet_kernel(&self) -> Option<&dyn VerletKernel> {
         None
     }
+
+    /// A starting guess for the inverse Legendre transform `v = FL⁻¹(t, q, p)` (written into
+    /// `v`), where the Lagrangian knows a better one than `v = 0`: a Lagrangian built from a
+    /// Hamiltonian gives `v = ∂H/∂p`, the exact answer, since `∂²L/∂v²` may be singular at
+    /// `v = 0` where it is not at the state itself (`H = p⁴/4`). Default: leaves `v` as it is.
+    fn velocity_guess(&self, t: f64, q: &[f64], p: &[f64], v: &mut [f64]) {
+        let _ = (t, q, p, v);
+    }
 }
 
 /// What is known about the form of a Lagrangian.
@@ -177,6 +185,9 @@ impl<L: Lagrangian + ?Sized> Lagrangian for &L {
     }
     fn verlet_kernel(&self) -> Option<&dyn VerletKernel> {
         (**self).verlet_kernel()
+    }
+    fn velocity_guess(&self, t: f64, q: &[f64], p: &[f64], v: &mut [f64]) {
+        (**self).velocity_guess(t, q, p, v)
     }
 }
 

@@ -86,15 +86,6 @@ impl JacobianWorkspace {
     }
 }
 
-/// `M_ij` of the constant mass.
-pub(super) fn mass_entry(mass: &Mass, n: usize, i: usize, j: usize) -> f64 {
-    match mass {
-        Mass::Diagonal(d) if i == j => d[i],
-        Mass::Diagonal(_) => 0.0,
-        Mass::Dense(m) => m[i * n + j],
-    }
-}
-
 /// The step Jacobian of the module documentation for the rule with `nodes` `(c_i, w_i)`; `None`
 /// if `l` is not separable, `Some(Err(pivot))` if `A` is singular. Systems of up to four degrees
 /// of freedom take the same arithmetic on stack arrays ([`super::jacobian_small`]).
@@ -153,7 +144,7 @@ pub(super) fn banded<L: Lagrangian>(
     if let Some(Some(mass)) = &ws.mass {
         for i in 0..n {
             for j in ws.a.columns(i) {
-                let m = mass_entry(mass, n, i, j) / h;
+                let m = mass.entry(n, i, j) / h;
                 ws.a.set(i, j, m);
                 ws.k.set(i, j, m);
             }

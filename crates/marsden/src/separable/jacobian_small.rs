@@ -20,7 +20,6 @@
 //!
 //! [MW01]: crate#references
 
-use super::jacobian::mass_entry;
 use super::step::{Mass, node};
 use crate::mechanics::Lagrangian;
 use crate::numerics::banded::Banded;
@@ -96,7 +95,7 @@ fn assemble<L: Lagrangian, const N: usize>(
     };
     for i in 0..N {
         for j in band::<N>(i, b) {
-            let m = mass_entry(mass, N, i, j) / h;
+            let m = mass.entry(N, i, j) / h;
             blocks.a[i][j] = m;
             blocks.k[i][j] = m;
         }

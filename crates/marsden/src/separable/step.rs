@@ -46,6 +46,15 @@ pub(super) enum Mass {
 }
 
 impl Mass {
+    /// `M_ij` of the `n × n` mass.
+    pub(super) fn entry(&self, n: usize, i: usize, j: usize) -> f64 {
+        match self {
+            Mass::Diagonal(d) if i == j => d[i],
+            Mass::Diagonal(_) => 0.0,
+            Mass::Dense(m) => m[i * n + j],
+        }
+    }
+
     /// `out = M x / h`.
     pub(super) fn apply_over_h(&self, x: &[f64], h: f64, out: &mut [f64]) {
         let inv_h = 1.0 / h;
