@@ -1,0 +1,308 @@
+//! A short SQP iteration ([NW06] ch. 18) around the Clarabel subproblem ([`crate::qp`]).
+//!
+//! * Hessian: the exact Hessian of the Lagrangian `f + λᵀc` from automatic differentiation,
+//!   plus `δI`. The subproblem is taken with the smallest `δ` (starting from a quarter of the
+//!   last one) for which Clarabel solves it and the step has positive curvature
+//!   `dᵀ(H + δI)d ≥ κ dᵀd`; otherwise `δ` grows tenfold. Near a strict local minimum `δ = 0`
+//!   passes, so the steps are Newton steps on the KKT conditions (fast local convergence).
+//! * Globalisation: the ℓ1 merit `φ = f + μ‖c‖₁` with `μ ≥ ‖λ‖∞ + ρ`, Armijo backtracking,
+//!   and one second-order correction when the full step is refused (against the Maratos
+//!   effect, [NW06] §15.6).
+//! * Stopping: at iterate `z` with the subproblem's multipliers, the KKT residual
+//!   `max(‖g + Jᵀλ + ∂bounds‖∞, max |μ_i slack_i|)` and the violation `‖c‖∞` below their
+//!   tolerances. Bounds are linear, so every iterate keeps them.
+//!
+//! [NW06]: crate#references
+
+use crate::qp::{QpOutcome, QpSolution, Subproblem};
+use crate::solution::{Failure, Iteration, Status};
+use crate::transcription::Evaluation;
+
+/// What the SQP iteration needs of a program.
+pub trait Program {
+    /// Values and first derivatives at `z`.
+    fn evaluate(&self, z: &[f64]) -> Evaluation;
+    /// The upper triangle of the Hessian of `f + λᵀc`.
+    fn hessian(&self, z: &[f64], lambda: &[f64]) -> Vec<(usize, usize, f64)>;
+    /// Number of constraints.
+    fn rows(&self) -> usize;
+}
+
+/// Options of the SQP iteration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SqpOptions {
+    /// Tolerance on the KKT residual (default 1e-8).
+    pub kkt_tolerance: f64,
+    /// Tolerance on `max |c_i|` (default 1e-10).
+    pub constraint_tolerance: f64,
+    /// Iteration budget (default 200).
+    pub max_iterations: usize,
+}
+
+impl Default for SqpOptions {
+    fn default() -> Self {
+        Self {
+            kkt_tolerance: 1e-8,
+            constraint_tolerance: 1e-10,
+            max_iterations: 200,
+        }
+    }
+}
+
+/// The end of an SQP iteration: status, last iterate and its multipliers.
+pub struct SqpOutcome {
+    /// How it ended.
+    pub status: Status,
+    /// The last iterate.
+    pub z: Vec<f64>,
+    /// The multipliers of the constraints at it.
+    pub lambda: Vec<f64>,
+    /// The program's values there.
+    pub evaluation: Evaluation,
+    /// KKT residual there.
+    pub kkt: f64,
+    /// One record per iteration.
+    pub history: Vec<Iteration>,
+}
+
+/// Simple bounds on the unknowns, `lower ≤ z ≤ upper` (infinite: none).
+pub struct VariableBounds {
+    /// Lower bounds.
+    pub lower: Vec<f64>,
+    /// Upper bounds.
+    pub upper: Vec<f64>,
+}
+
+const ARMIJO: f64 = 1e-4;
+const MIN_STEP: f64 = 1e-12;
+const CURVATURE: f64 = 1e-10;
+const MAX_DELTA: f64 = 1e12;
+
+/// Runs SQP from `z` (projected into the bounds first).
+pub fn solve<P: Program>(
+    program: &P,
+    mut z: Vec<f64>,
+    bounds: &VariableBounds,
+    options: &SqpOptions,
+) -> SqpOutcome {
+    for (zi, (&lo, &hi)) in z.iter_mut().zip(bounds.lower.iter().zip(&bounds.upper)) {
+        *zi = zi.clamp(lo, hi);
+    }
+    let mut e = program.evaluate(&z);
+    let mut lambda = vec![0.0; program.rows()];
+    let (mut mu, mut delta) = (0.0_f64, 0.0_f64);
+    let mut history = Vec::new();
+    let finish = |status, z, lambda, e, kkt, history| SqpOutcome {
+        status,
+        z,
+        lambda,
+        evaluation: e,
+        kkt,
+        history,
+    };
+    let mut kkt = f64::INFINITY;
+    for _ in 0..options.max_iterations {
+        if !e.is_finite() {
+            return finish(
+                Status::Failed(Failure::NonFinite),
+                z,
+                lambda,
+                e,
+                kkt,
+                history,
+            );
+        }
+        let hessian = program.hessian(&z, &lambda);
+        if hessian.iter().any(|h| !h.2.is_finite()) {
+            return finish(
+                Status::Failed(Failure::NonFinite),
+                z,
+                lambda,
+                e,
+                kkt,
+                history,
+            );
+        }
+        let (upper, lower) = step_bounds(&z, bounds);
+        let rhs: Vec<f64> = e.constraints.iter().map(|c| -c).collect();
+        let sub = Subproblem {
+            hessian: &hessian,
+            gradient: &e.gradient,
+            jacobian: &e.jacobian,
+            rows: program.rows(),
+            rhs: &rhs,
+            upper: &upper,
+            lower: &lower,
+        };
+        delta = if delta < 1e-8 { 0.0 } else { delta / 4.0 };
+        let qp = loop {
+            match sub.solve(delta) {
+                QpOutcome::Solved(s) if curvature_ok(&hessian, delta, &s.step) => break s,
+                QpOutcome::Infeasible => {
+                    return finish(Status::Infeasible, z, lambda, e, kkt, history);
+                }
+                QpOutcome::Solved(_) | QpOutcome::Failed(_) if delta < MAX_DELTA => {
+                    delta = (10.0 * delta).max(1e-6);
+                }
+                QpOutcome::Solved(_) => {
+                    let status = "negative curvature".to_string();
+                    let failure = Failure::Subproblem {
+                        status,
+                        regularization: delta,
+                    };
+                    return finish(Status::Failed(failure), z, lambda, e, kkt, history);
+                }
+                QpOutcome::Failed(status) => {
+                    let failure = Failure::Subproblem {
+                        status,
+                        regularization: delta,
+                    };
+                    return finish(Status::Failed(failure), z, lambda, e, kkt, history);
+                }
+            }
+        };
+        lambda.clone_from(&qp.lambda);
+        kkt = kkt_residual(&e, &qp, (&upper, &lower));
+        let violation = max_abs(&e.constraints);
+        let mut record = Iteration {
+            cost: e.cost,
+            violation,
+            kkt,
+            step: 0.0,
+            regularization: delta,
+        };
+        if kkt <= options.kkt_tolerance && violation <= options.constraint_tolerance {
+            history.push(record);
+            return finish(Status::Converged, z, lambda, e, kkt, history);
+        }
+        mu = mu.max(max_abs(&qp.lambda) * 1.1 + 1e-6);
+        let accepted = line_search(program, (&z, &e), &qp.step, &sub, delta, mu);
+        match accepted {
+            Ok((step, z_new, e_new)) => {
+                record.step = step;
+                history.push(record);
+                z = z_new;
+                e = e_new;
+            }
+            Err(step) => {
+                history.push(record);
+                let failure = Failure::LineSearch { step };
+                return finish(Status::Failed(failure), z, lambda, e, kkt, history);
+            }
+        }
+    }
+    finish(Status::IterationLimit, z, lambda, e, kkt, history)
+}
+
+/// The bounds of the step `d` at `z`: `d_i ≤ hi_i − z_i`, `d_i ≥ lo_i − z_i` (finite ones).
+fn step_bounds(z: &[f64], bounds: &VariableBounds) -> (Vec<(usize, f64)>, Vec<(usize, f64)>) {
+    let upper = (0..z.len())
+        .filter(|&i| bounds.upper[i].is_finite())
+        .map(|i| (i, bounds.upper[i] - z[i]))
+        .collect();
+    let lower = (0..z.len())
+        .filter(|&i| bounds.lower[i].is_finite())
+        .map(|i| (i, bounds.lower[i] - z[i]))
+        .collect();
+    (upper, lower)
+}
+
+/// `dᵀ(H + δI)d ≥ κ dᵀd`, with `H` given by its upper triangle.
+fn curvature_ok(hessian: &[(usize, usize, f64)], delta: f64, d: &[f64]) -> bool {
+    let dd: f64 = d.iter().map(|x| x * x).sum();
+    let dhd: f64 = hessian
+        .iter()
+        .map(|&(r, c, v)| {
+            if r == c {
+                v * d[r] * d[r]
+            } else {
+                2.0 * v * d[r] * d[c]
+            }
+        })
+        .sum();
+    dhd + delta * dd >= CURVATURE * dd
+}
+
+/// `max(‖g + Jᵀλ + Σ μ⁺e_i − Σ μ⁻e_i‖∞, max |μ_i · slack_i|)` at the iterate.
+fn kkt_residual(e: &Evaluation, qp: &QpSolution, (upper, lower): BoundsRef<'_>) -> f64 {
+    let mut r = e.gradient.clone();
+    for &(row, col, v) in &e.jacobian {
+        r[col] += v * qp.lambda[row];
+    }
+    let mut complementarity = 0.0_f64;
+    for (&(i, slack), &m) in upper.iter().zip(&qp.upper) {
+        r[i] += m;
+        complementarity = complementarity.max((m * slack).abs());
+    }
+    for (&(i, slack), &m) in lower.iter().zip(&qp.lower) {
+        r[i] -= m;
+        complementarity = complementarity.max((m * slack).abs());
+    }
+    max_abs(&r).max(complementarity)
+}
+
+type BoundsRef<'a> = (&'a [(usize, f64)], &'a [(usize, f64)]);
+
+fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+fn l1(v: &[f64]) -> f64 {
+    v.iter().map(|x| x.abs()).sum()
+}
+
+/// Armijo backtracking on `φ = f + μ‖c‖₁` along `d`, with one second-order correction when
+/// the full step is refused. `Ok((α, z⁺, e⁺))`, or `Err(α)` with the last step tried.
+fn line_search<P: Program>(
+    program: &P,
+    (z, e): (&[f64], &Evaluation),
+    d: &[f64],
+    sub: &Subproblem<'_>,
+    delta: f64,
+    mu: f64,
+) -> Result<(f64, Vec<f64>, Evaluation), f64> {
+    let merit = |e: &Evaluation| e.cost + mu * l1(&e.constraints);
+    let phi0 = merit(e);
+    let slope = dot(&e.gradient, d) - mu * l1(&e.constraints);
+    let slope = slope.min(0.0);
+    let at = |alpha: f64, d: &[f64]| -> Vec<f64> {
+        z.iter().zip(d).map(|(zi, di)| zi + alpha * di).collect()
+    };
+    let trial = at(1.0, d);
+    let e_trial = program.evaluate(&trial);
+    if e_trial.is_finite() && merit(&e_trial) <= phi0 + ARMIJO * slope {
+        return Ok((1.0, trial, e_trial));
+    }
+    // Second-order correction: J d̂ = J d − c(z + d), same Hessian and bounds.
+    if e_trial.is_finite() {
+        let mut rhs = vec![0.0; sub.rows];
+        for &(row, col, v) in sub.jacobian {
+            rhs[row] += v * d[col];
+        }
+        rhs.iter_mut()
+            .zip(&e_trial.constraints)
+            .for_each(|(r, c)| *r -= c);
+        let corrected = Subproblem { rhs: &rhs, ..*sub };
+        if let QpOutcome::Solved(s) = corrected.solve(delta) {
+            let trial = at(1.0, &s.step);
+            let e_soc = program.evaluate(&trial);
+            if e_soc.is_finite() && merit(&e_soc) <= phi0 + ARMIJO * slope {
+                return Ok((1.0, trial, e_soc));
+            }
+        }
+    }
+    let mut alpha = 0.5;
+    while alpha >= MIN_STEP {
+        let trial = at(alpha, d);
+        let e_trial = program.evaluate(&trial);
+        if e_trial.is_finite() && merit(&e_trial) <= phi0 + ARMIJO * alpha * slope {
+            return Ok((alpha, trial, e_trial));
+        }
+        alpha *= 0.5;
+    }
+    Err(alpha)
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}

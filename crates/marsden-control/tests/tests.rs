@@ -1,0 +1,7 @@
+//! The tests of marsden-control, one binary; a file per area.
+
+mod derivatives;
+mod errors;
+mod linear_quadratic;
+mod reproduction;
+mod swing_up;
