@@ -34,6 +34,7 @@ pub struct Subproblem<'a> {
 }
 
 /// What the solver returned.
+#[derive(Debug, Clone)]
 pub struct QpSolution {
     /// The step `d`.
     pub step: Vec<f64>,

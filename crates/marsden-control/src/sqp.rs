@@ -1,7 +1,7 @@
 //! A short SQP iteration ([NW06] ch. 18) around the Clarabel subproblem ([`crate::qp`]).
 //!
 //! * Hessian: the exact Hessian of the Lagrangian `f + λᵀc` from automatic differentiation,
-//!   plus `δI`. The subproblem is taken with the smallest `δ` (starting from a quarter of the
+//!   plus `δI`. The subproblem is taken with the smallest `δ` (starting from a tenth of the
 //!   last one) for which Clarabel solves it and the step has positive curvature
 //!   `dᵀ(H + δI)d ≥ κ dᵀd`; otherwise `δ` grows tenfold. Near a strict local minimum `δ = 0`
 //!   passes, so the steps are Newton steps on the KKT conditions (fast local convergence).
@@ -90,7 +90,7 @@ pub fn solve<P: Program>(
     }
     let mut e = program.evaluate(&z);
     let mut lambda = vec![0.0; program.rows()];
-    let (mut mu, mut delta) = (0.0_f64, 0.0_f64);
+    let mut delta = 0.0_f64;
     let mut history = Vec::new();
     let finish = |status, z, lambda, e, kkt, history| SqpOutcome {
         status,
@@ -134,32 +134,32 @@ pub fn solve<P: Program>(
             upper: &upper,
             lower: &lower,
         };
-        delta = if delta < 1e-8 { 0.0 } else { delta / 4.0 };
+        delta = if delta < 1e-8 { 0.0 } else { delta / 10.0 };
         let qp = loop {
-            match sub.solve(delta) {
-                QpOutcome::Solved(s) if curvature_ok(&hessian, delta, &s.step) => break s,
-                QpOutcome::Infeasible => {
-                    return finish(Status::Infeasible, z, lambda, e, kkt, history);
-                }
-                QpOutcome::Solved(_) | QpOutcome::Failed(_) if delta < MAX_DELTA => {
-                    delta = (10.0 * delta).max(1e-6);
-                }
-                QpOutcome::Solved(_) => {
-                    let status = "negative curvature".to_string();
-                    let failure = Failure::Subproblem {
-                        status,
-                        regularization: delta,
-                    };
-                    return finish(Status::Failed(failure), z, lambda, e, kkt, history);
-                }
-                QpOutcome::Failed(status) => {
-                    let failure = Failure::Subproblem {
-                        status,
-                        regularization: delta,
-                    };
-                    return finish(Status::Failed(failure), z, lambda, e, kkt, history);
-                }
+            let outcome = sub.solve(delta);
+            if let QpOutcome::Solved(s) = &outcome
+                && curvature_ok(&hessian, delta, &s.step)
+            {
+                break s.clone();
             }
+            if delta < MAX_DELTA {
+                // The solver's infeasibility certificate is trusted only for a strongly convex
+                // subproblem (feasibility does not depend on the Hessian).
+                delta = (10.0 * delta).max(1e-6);
+                continue;
+            }
+            let status = match outcome {
+                QpOutcome::Infeasible => Status::Infeasible,
+                QpOutcome::Solved(_) => Status::Failed(Failure::Subproblem {
+                    status: "negative curvature".to_string(),
+                    regularization: delta,
+                }),
+                QpOutcome::Failed(status) => Status::Failed(Failure::Subproblem {
+                    status,
+                    regularization: delta,
+                }),
+            };
+            return finish(status, z, lambda, e, kkt, history);
         };
         lambda.clone_from(&qp.lambda);
         kkt = kkt_residual(&e, &qp, (&upper, &lower));
@@ -175,7 +175,7 @@ pub fn solve<P: Program>(
             history.push(record);
             return finish(Status::Converged, z, lambda, e, kkt, history);
         }
-        mu = mu.max(max_abs(&qp.lambda) * 1.1 + 1e-6);
+        let mu = penalty(&e, &qp, &hessian, delta);
         let accepted = line_search(program, (&z, &e), &qp.step, &sub, delta, mu);
         match accepted {
             Ok((step, z_new, e_new)) => {
@@ -192,6 +192,35 @@ pub fn solve<P: Program>(
         }
     }
     finish(Status::IterationLimit, z, lambda, e, kkt, history)
+}
+
+/// The ℓ1 penalty of this iteration: at least `‖λ‖∞` (exactness of the merit at a KKT point)
+/// and at least `(gᵀd + ½dᵀ(H + δI)d) / ((1 − ρ)‖c‖₁)` with `ρ = ½` ([NW06] (18.36)), so that
+/// `d` descends the merit. Not kept monotone: a large penalty from a first step far from the
+/// solution would otherwise hold the later steps short.
+fn penalty(e: &Evaluation, qp: &QpSolution, hessian: &[(usize, usize, f64)], delta: f64) -> f64 {
+    let d = &qp.step;
+    let c1 = l1(&e.constraints);
+    let by_multipliers = 1.1 * max_abs(&qp.lambda) + 1e-8;
+    if c1 == 0.0 {
+        return by_multipliers;
+    }
+    let quadratic = 0.5 * (quadratic_form(hessian, d) + delta * dot(d, d));
+    by_multipliers.max((dot(&e.gradient, d) + quadratic) / (0.5 * c1))
+}
+
+/// `dᵀHd` with `H` given by its upper triangle.
+fn quadratic_form(hessian: &[(usize, usize, f64)], d: &[f64]) -> f64 {
+    hessian
+        .iter()
+        .map(|&(r, c, v)| {
+            if r == c {
+                v * d[r] * d[r]
+            } else {
+                2.0 * v * d[r] * d[c]
+            }
+        })
+        .sum()
 }
 
 /// The bounds of the step `d` at `z`: `d_i ≤ hi_i − z_i`, `d_i ≥ lo_i − z_i` (finite ones).
