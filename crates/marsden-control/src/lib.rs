@@ -58,6 +58,9 @@
 //!   control: an analysis*, ESAIM: COCV 17 (2011) 322–352.
 //! * **NW06**: J. Nocedal, S. J. Wright, *Numerical Optimization*, 2nd ed. (2006).
 //! * **BH75**: A. E. Bryson, Y.-C. Ho, *Applied Optimal Control* (1975).
+//! * **GW08**: Griewank & Walther, *Evaluating Derivatives*, 2nd ed. (2008).
+//! * **Sanz-Serna 2016**: J. M. Sanz-Serna, *Symplectic Runge–Kutta schemes for adjoint
+//!   equations, automatic differentiation, optimal control and more*, SIAM Review 58 (2016).
 //!
 //! [OJM11]: crate#references
 
