@@ -1,9 +1,9 @@
 //! A short SQP iteration ([NW06] ch. 18) around the Clarabel subproblem ([`crate::qp`]).
 //!
 //! * Hessian: the exact Hessian of the Lagrangian `f + λᵀc` from automatic differentiation,
-//!   plus `δI`. The subproblem is taken with the smallest `δ` (starting from a tenth of the
-//!   last one) for which Clarabel solves it and the step has positive curvature
-//!   `dᵀ(H + δI)d ≥ κ dᵀd`; otherwise `δ` grows tenfold. Near a strict local minimum `δ = 0`
+//!   plus `δI`. Each iteration tries `δ = 0` first, then (as IPOPT does) a third of the last
+//!   nonzero `δ`, growing eightfold, until Clarabel solves the subproblem and the step has
+//!   positive curvature `dᵀ(H + δI)d ≥ κ dᵀd`. Near a strict local minimum `δ = 0`
 //!   passes, so the steps are Newton steps on the KKT conditions (fast local convergence).
 //! * Globalisation: the ℓ1 merit `φ = f + μ‖c‖₁` with `μ ≥ ‖λ‖∞ + ρ`, Armijo backtracking,
 //!   and one second-order correction when the full step is refused (against the Maratos
@@ -90,7 +90,8 @@ pub fn solve<P: Program>(
     }
     let mut e = program.evaluate(&z);
     let mut lambda = vec![0.0; program.rows()];
-    let mut delta = 0.0_f64;
+    // The last nonzero regularisation (0: none needed yet).
+    let mut last_delta = 0.0_f64;
     let mut history = Vec::new();
     let finish = |status, z, lambda, e, kkt, history| SqpOutcome {
         status,
@@ -134,7 +135,7 @@ pub fn solve<P: Program>(
             upper: &upper,
             lower: &lower,
         };
-        delta = if delta < 1e-8 { 0.0 } else { delta / 10.0 };
+        let mut delta = 0.0;
         let qp = loop {
             let outcome = sub.solve(delta);
             if let QpOutcome::Solved(s) = &outcome
@@ -145,7 +146,12 @@ pub fn solve<P: Program>(
             if delta < MAX_DELTA {
                 // The solver's infeasibility certificate is trusted only for a strongly convex
                 // subproblem (feasibility does not depend on the Hessian).
-                delta = (10.0 * delta).max(1e-6);
+                delta = match (delta, last_delta) {
+                    (0.0, 0.0) => 1e-6,
+                    (0.0, last) => (last / 3.0).max(1e-6),
+                    (d, _) => 8.0 * d,
+                };
+                last_delta = delta;
                 continue;
             }
             let status = match outcome {

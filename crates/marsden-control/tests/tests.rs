@@ -1,5 +1,6 @@
 //! The tests of marsden-control, one binary; a file per area.
 
+mod bounds;
 mod costates;
 mod derivatives;
 mod errors;
