@@ -69,7 +69,7 @@ where
         Some(guess) => guess.q.clone(),
         None => default_nodes(problem, rule),
     };
-    let mut z = vec![0.0; layout.len()];
+    let mut z = vec![0.0; layout.unknowns()];
     for (k, q) in nodes.iter().enumerate() {
         z[layout.q(k)..layout.q(k) + layout.n].copy_from_slice(q);
     }

@@ -119,8 +119,8 @@ where
     /// Per-unknown bounds from the control and state bounds.
     fn variable_bounds(&self, layout: &Layout) -> VariableBounds {
         let mut bounds = VariableBounds {
-            lower: vec![f64::NEG_INFINITY; layout.len()],
-            upper: vec![f64::INFINITY; layout.len()],
+            lower: vec![f64::NEG_INFINITY; layout.unknowns()],
+            upper: vec![f64::INFINITY; layout.unknowns()],
         };
         for k in 0..=layout.steps {
             let q = layout.q(k);

@@ -230,7 +230,7 @@ fn quadratic_form(hessian: &[(usize, usize, f64)], d: &[f64]) -> f64 {
 }
 
 /// The bounds of the step `d` at `z`: `d_i ≤ hi_i − z_i`, `d_i ≥ lo_i − z_i` (finite ones).
-fn step_bounds(z: &[f64], bounds: &VariableBounds) -> (Vec<(usize, f64)>, Vec<(usize, f64)>) {
+fn step_bounds(z: &[f64], bounds: &VariableBounds) -> (Vec<Bound>, Vec<Bound>) {
     let upper = (0..z.len())
         .filter(|&i| bounds.upper[i].is_finite())
         .map(|i| (i, bounds.upper[i] - z[i]))
@@ -276,7 +276,10 @@ fn kkt_residual(e: &Evaluation, qp: &QpSolution, (upper, lower): BoundsRef<'_>) 
     max_abs(&r).max(complementarity)
 }
 
-type BoundsRef<'a> = (&'a [(usize, f64)], &'a [(usize, f64)]);
+/// `(variable, bound on the step)`.
+type Bound = (usize, f64);
+
+type BoundsRef<'a> = (&'a [Bound], &'a [Bound]);
 
 fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, x| m.max(x.abs()))

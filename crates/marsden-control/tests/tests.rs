@@ -1,9 +1,6 @@
 //! The tests of marsden-control, one binary; a file per area.
 
-mod bounds;
-mod costates;
-mod derivatives;
-mod errors;
-mod linear_quadratic;
-mod reproduction;
-mod swing_up;
+// Tests may unwrap (helpers too, not only the `#[test]` functions).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+mod cases;

@@ -49,7 +49,7 @@ impl Layout {
         k * (self.n + self.m) + self.n
     }
     /// Length of `z`.
-    pub fn len(&self) -> usize {
+    pub fn unknowns(&self) -> usize {
         self.steps * (self.n + self.m) + self.n
     }
     /// Length of a step's block `(q_k, u_k, q_{k+1})`.

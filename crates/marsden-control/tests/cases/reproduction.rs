@@ -10,7 +10,7 @@ use marsden::{
 };
 use marsden_control::{FrozenControl, InputMap, SampledControl, Solution, SqpOptions, Status};
 
-use crate::swing_up::swing_up;
+use super::swing_up::swing_up;
 
 const STEPS: usize = 60;
 

@@ -1,4 +1,4 @@
-//! Control bounds: the double integrator of [`crate::linear_quadratic`] with `|u| ≤ a`.
+//! Control bounds: the double integrator of [`super::linear_quadratic`] with `|u| ≤ a`.
 //!
 //! Pontryagin's principle makes `u` the saturation of an affine function, `u = sat_a(c₁ + c₂t)`
 //! ([BH75] §3.8), and the problem is symmetric under `t ↦ 1 − t`, `q ↦ 1 − q`, so

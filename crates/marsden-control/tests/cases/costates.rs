@@ -15,7 +15,7 @@ use marsden::systems::Pendulum;
 use marsden::{Integrator, Midpoint, Rule, State, TimeGrid};
 use marsden_control::{InputMap, SampledControl, SqpOptions, Status};
 
-use crate::swing_up::swing_up;
+use super::swing_up::swing_up;
 
 #[test]
 fn del_multipliers_equal_the_discrete_adjoint_of_the_forced_step() {

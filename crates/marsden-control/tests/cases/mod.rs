@@ -1,0 +1,9 @@
+//! The areas of the tests, a file each.
+
+mod bounds;
+mod costates;
+mod derivatives;
+mod errors;
+mod linear_quadratic;
+mod reproduction;
+mod swing_up;
