@@ -78,6 +78,28 @@ const MIN_STEP: f64 = 1e-12;
 const CURVATURE: f64 = 1e-10;
 const MAX_DELTA: f64 = 1e12;
 
+/// The state of the iteration: the iterate, its multipliers and values, the record so far.
+struct Iterate {
+    z: Vec<f64>,
+    lambda: Vec<f64>,
+    e: Evaluation,
+    kkt: f64,
+    history: Vec<Iteration>,
+}
+
+impl Iterate {
+    fn finish(self, status: Status) -> SqpOutcome {
+        SqpOutcome {
+            status,
+            z: self.z,
+            lambda: self.lambda,
+            evaluation: self.e,
+            kkt: self.kkt,
+            history: self.history,
+        }
+    }
+}
+
 /// Runs SQP from `z` (projected into the bounds first).
 pub fn solve<P: Program>(
     program: &P,
@@ -88,116 +110,103 @@ pub fn solve<P: Program>(
     for (zi, (&lo, &hi)) in z.iter_mut().zip(bounds.lower.iter().zip(&bounds.upper)) {
         *zi = zi.clamp(lo, hi);
     }
-    let mut e = program.evaluate(&z);
-    let mut lambda = vec![0.0; program.rows()];
+    let mut it = Iterate {
+        e: program.evaluate(&z),
+        z,
+        lambda: vec![0.0; program.rows()],
+        kkt: f64::INFINITY,
+        history: Vec::new(),
+    };
     // The last nonzero regularisation (0: none needed yet).
     let mut last_delta = 0.0_f64;
-    let mut history = Vec::new();
-    let finish = |status, z, lambda, e, kkt, history| SqpOutcome {
-        status,
-        z,
-        lambda,
-        evaluation: e,
-        kkt,
-        history,
-    };
-    let mut kkt = f64::INFINITY;
     for _ in 0..options.max_iterations {
-        if !e.is_finite() {
-            return finish(
-                Status::Failed(Failure::NonFinite),
-                z,
-                lambda,
-                e,
-                kkt,
-                history,
-            );
+        let hessian = program.hessian(&it.z, &it.lambda);
+        if !it.e.is_finite() || hessian.iter().any(|h| !h.2.is_finite()) {
+            return it.finish(Status::Failed(Failure::NonFinite));
         }
-        let hessian = program.hessian(&z, &lambda);
-        if hessian.iter().any(|h| !h.2.is_finite()) {
-            return finish(
-                Status::Failed(Failure::NonFinite),
-                z,
-                lambda,
-                e,
-                kkt,
-                history,
-            );
-        }
-        let (upper, lower) = step_bounds(&z, bounds);
-        let rhs: Vec<f64> = e.constraints.iter().map(|c| -c).collect();
+        let (upper, lower) = step_bounds(&it.z, bounds);
+        let rhs: Vec<f64> = it.e.constraints.iter().map(|c| -c).collect();
         let sub = Subproblem {
             hessian: &hessian,
-            gradient: &e.gradient,
-            jacobian: &e.jacobian,
+            gradient: &it.e.gradient,
+            jacobian: &it.e.jacobian,
             rows: program.rows(),
             rhs: &rhs,
             upper: &upper,
             lower: &lower,
         };
-        let mut delta = 0.0;
-        let qp = loop {
-            let outcome = sub.solve(delta);
-            if let QpOutcome::Solved(s) = &outcome
-                && curvature_ok(&hessian, delta, &s.step)
-            {
-                break s.clone();
-            }
-            if delta < MAX_DELTA {
-                // The solver's infeasibility certificate is trusted only for a strongly convex
-                // subproblem (feasibility does not depend on the Hessian).
-                delta = match (delta, last_delta) {
-                    (0.0, 0.0) => 1e-6,
-                    (0.0, last) => (last / 3.0).max(1e-6),
-                    (d, _) => 8.0 * d,
-                };
-                last_delta = delta;
-                continue;
-            }
-            let status = match outcome {
-                QpOutcome::Infeasible => Status::Infeasible,
-                QpOutcome::Solved(_) => Status::Failed(Failure::Subproblem {
-                    status: "negative curvature".to_string(),
-                    regularization: delta,
-                }),
-                QpOutcome::Failed(status) => Status::Failed(Failure::Subproblem {
-                    status,
-                    regularization: delta,
-                }),
-            };
-            return finish(status, z, lambda, e, kkt, history);
+        let (qp, delta) = match regularised_step(&sub, &mut last_delta) {
+            Ok(step) => step,
+            Err(status) => return it.finish(status),
         };
-        lambda.clone_from(&qp.lambda);
-        kkt = kkt_residual(&e, &qp, (&upper, &lower));
-        let violation = max_abs(&e.constraints);
+        it.lambda.clone_from(&qp.lambda);
+        it.kkt = kkt_residual(&it.e, &qp, (&upper, &lower));
+        let violation = max_abs(&it.e.constraints);
         let mut record = Iteration {
-            cost: e.cost,
+            cost: it.e.cost,
             violation,
-            kkt,
+            kkt: it.kkt,
             step: 0.0,
             regularization: delta,
         };
-        if kkt <= options.kkt_tolerance && violation <= options.constraint_tolerance {
-            history.push(record);
-            return finish(Status::Converged, z, lambda, e, kkt, history);
+        if it.kkt <= options.kkt_tolerance && violation <= options.constraint_tolerance {
+            it.history.push(record);
+            return it.finish(Status::Converged);
         }
-        let mu = penalty(&e, &qp, &hessian, delta);
-        let accepted = line_search(program, (&z, &e), &qp.step, &sub, delta, mu);
+        let mu = penalty(&it.e, &qp, &hessian, delta);
+        let accepted = line_search(program, (&it.z, &it.e), &qp.step, &sub, delta, mu);
         match accepted {
-            Ok((step, z_new, e_new)) => {
+            Ok((step, z, e)) => {
                 record.step = step;
-                history.push(record);
-                z = z_new;
-                e = e_new;
+                it.history.push(record);
+                (it.z, it.e) = (z, e);
             }
             Err(step) => {
-                history.push(record);
-                let failure = Failure::LineSearch { step };
-                return finish(Status::Failed(failure), z, lambda, e, kkt, history);
+                it.history.push(record);
+                return it.finish(Status::Failed(Failure::LineSearch { step }));
             }
         }
     }
-    finish(Status::IterationLimit, z, lambda, e, kkt, history)
+    it.finish(Status::IterationLimit)
+}
+
+/// The subproblem's solution with the smallest regularisation `δ` that gives a step of
+/// positive curvature: `δ = 0`, then a third of the last nonzero `δ` (at least 1e-6), growing
+/// eightfold up to `MAX_DELTA`. The solver's infeasibility certificate is trusted only there,
+/// for a strongly convex subproblem (feasibility does not depend on the Hessian).
+fn regularised_step(
+    sub: &Subproblem<'_>,
+    last_delta: &mut f64,
+) -> Result<(QpSolution, f64), Status> {
+    let mut delta = 0.0;
+    loop {
+        let outcome = sub.solve(delta);
+        if let QpOutcome::Solved(s) = &outcome
+            && curvature_ok(sub.hessian, delta, &s.step)
+        {
+            return Ok((s.clone(), delta));
+        }
+        if delta < MAX_DELTA {
+            delta = match (delta, *last_delta) {
+                (0.0, 0.0) => 1e-6,
+                (0.0, last) => (last / 3.0).max(1e-6),
+                (d, _) => 8.0 * d,
+            };
+            *last_delta = delta;
+            continue;
+        }
+        return Err(match outcome {
+            QpOutcome::Infeasible => Status::Infeasible,
+            QpOutcome::Solved(_) => Status::Failed(Failure::Subproblem {
+                status: "negative curvature".to_string(),
+                regularization: delta,
+            }),
+            QpOutcome::Failed(status) => Status::Failed(Failure::Subproblem {
+                status,
+                regularization: delta,
+            }),
+        });
+    }
 }
 
 /// The ℓ1 penalty of this iteration: at least `‖λ‖∞` (exactness of the merit at a KKT point)
