@@ -6,4 +6,5 @@ mod derivatives;
 mod errors;
 mod linear_quadratic;
 mod reproduction;
+mod status;
 mod swing_up;
