@@ -4,6 +4,7 @@ mod bounds;
 mod costates;
 mod derivatives;
 mod errors;
+mod final_cost;
 mod linear_quadratic;
 mod reproduction;
 mod status;
