@@ -1,0 +1,50 @@
+//! DMOC solve times: the pendulum swing-up and the cart-pole swing-up, midpoint rule, from the
+//! default guess (`q` linear between the rest states, `u = 0`) to the default tolerances
+//! (KKT 1e-8, constraints 1e-10).
+//!
+//! * `swing_up_n100`: `L = θ̇²/2 + cos θ`, torque `u`, rest at `θ = 0` to rest at `θ = π`,
+//!   `T = 6`, cost `∫ u²/2`, N = 100.
+//! * `cart_pole`: the catalog's cart-pole (`PendulumOnCart`: `M = 1`, `m = 0.1`, `l = 0.5`,
+//!   `g = 9.8`, the parameters of Barto, Sutton & Anderson 1983), force `u` on the cart,
+//!   rest at `(x, θ) = (0, 0)` to rest at `(0, π)` in `T = 2`, cost `∫ u²/2`, for
+//!   N = 50, 100, 200, 400 (the growth of the solve time with N; N = 200 is the headline).
+//!
+//! Run (fat LTO, slow to build): `flock /work/release.lock cargo bench -p marsden-control`.
+
+use std::f64::consts::PI;
+
+use marsden::Midpoint;
+use marsden::systems::{Pendulum, PendulumOnCart};
+use marsden_control::{Boundary, Effort, InputMap, OptimalControl, SqpOptions};
+
+fn main() {
+    divan::main();
+}
+
+#[divan::bench(sample_count = 10)]
+fn swing_up_n100() -> f64 {
+    let problem = OptimalControl::new(
+        Pendulum::default(),
+        InputMap::full(1),
+        Effort::default(),
+        (0.0, 6.0, 100),
+        Boundary::rest(&[0.0]),
+        Boundary::rest(&[PI]),
+    );
+    let solution = problem.and_then(|p| p.solve(&Midpoint, &SqpOptions::default()));
+    divan::black_box(solution.map_or(f64::NAN, |s| s.cost))
+}
+
+#[divan::bench(args = [50, 100, 200, 400], sample_count = 5)]
+fn cart_pole(steps: usize) -> f64 {
+    let problem = OptimalControl::new(
+        PendulumOnCart::default(),
+        InputMap::new(&[0]),
+        Effort::default(),
+        (0.0, 2.0, steps),
+        Boundary::rest(&[0.0, 0.0]),
+        Boundary::rest(&[0.0, PI]),
+    );
+    let solution = problem.and_then(|p| p.solve(&Midpoint, &SqpOptions::default()));
+    divan::black_box(solution.map_or(f64::NAN, |s| s.cost))
+}

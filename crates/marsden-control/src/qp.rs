@@ -1,0 +1,132 @@
+//! The SQP subproblem, solved by Clarabel (a sparse interior-point solver for convex conic
+//! programs):
+//!
+//! ```text
+//!     minimise ½ dᵀ(H + δI)d + gᵀd   subject to   J d = r,   lo − z ≤ d ≤ hi − z,
+//! ```
+//!
+//! in Clarabel's form `min ½dᵀPd + gᵀd, A d + s = b, s ∈ {0}^rows × ℝ₊^bounds`, with `P` the
+//! upper triangle in compressed sparse columns. Clarabel's duals `y` satisfy
+//! `P d + g + Aᵀy = 0`: the rows of `J` give the multipliers `λ` of the Lagrangian
+//! `f + λᵀc` directly.
+
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{
+    DefaultSettings, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus, ZeroConeT,
+};
+
+/// The data of one subproblem (everything but the regularisation `δ`).
+pub struct Subproblem<'a> {
+    /// The upper triangle of `H` as `(row, column, value)`.
+    pub hessian: &'a [(usize, usize, f64)],
+    /// The cost gradient `g`.
+    pub gradient: &'a [f64],
+    /// The constraint Jacobian `J` as `(row, column, value)`.
+    pub jacobian: &'a [(usize, usize, f64)],
+    /// Number of rows of `J`.
+    pub rows: usize,
+    /// The right-hand side `r` (`−c` for the SQP step).
+    pub rhs: &'a [f64],
+    /// `(variable, upper)`: `d_i ≤ upper`.
+    pub upper: &'a [(usize, f64)],
+    /// `(variable, lower)`: `d_i ≥ lower`.
+    pub lower: &'a [(usize, f64)],
+}
+
+/// What the solver returned.
+#[derive(Debug, Clone)]
+pub struct QpSolution {
+    /// The step `d`.
+    pub step: Vec<f64>,
+    /// Multipliers of `J d = r`.
+    pub lambda: Vec<f64>,
+    /// Multipliers of the upper bounds (≥ 0), in the order of [`Subproblem::upper`].
+    pub upper: Vec<f64>,
+    /// Multipliers of the lower bounds (≥ 0), in the order of [`Subproblem::lower`].
+    pub lower: Vec<f64>,
+}
+
+/// How a subproblem ended.
+pub enum QpOutcome {
+    /// Solved (to full or reduced accuracy).
+    Solved(QpSolution),
+    /// The constraints are inconsistent.
+    Infeasible,
+    /// Anything else, in the solver's words.
+    Failed(String),
+}
+
+impl Subproblem<'_> {
+    /// Solves the subproblem with `H + δI`.
+    pub fn solve(&self, delta: f64) -> QpOutcome {
+        let nx = self.gradient.len();
+        let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
+        for &(r, c, v) in self.hessian {
+            rows.push(r);
+            cols.push(c);
+            vals.push(v);
+        }
+        for i in 0..nx {
+            rows.push(i);
+            cols.push(i);
+            vals.push(delta);
+        }
+        let p = CscMatrix::new_from_triplets(nx, nx, rows, cols, vals);
+        let bound_rows = self.upper.len() + self.lower.len();
+        let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
+        for &(r, c, v) in self.jacobian {
+            rows.push(r);
+            cols.push(c);
+            vals.push(v);
+        }
+        let mut b = self.rhs.to_vec();
+        for (j, &(i, hi)) in self.upper.iter().enumerate() {
+            rows.push(self.rows + j);
+            cols.push(i);
+            vals.push(1.0);
+            b.push(hi);
+        }
+        for (j, &(i, lo)) in self.lower.iter().enumerate() {
+            rows.push(self.rows + self.upper.len() + j);
+            cols.push(i);
+            vals.push(-1.0);
+            b.push(-lo);
+        }
+        let a = CscMatrix::new_from_triplets(self.rows + bound_rows, nx, rows, cols, vals);
+        let mut cones = vec![ZeroConeT(self.rows)];
+        if bound_rows > 0 {
+            cones.push(NonnegativeConeT(bound_rows));
+        }
+        let settings = DefaultSettings {
+            verbose: false,
+            max_iter: 200,
+            tol_gap_abs: 1e-12,
+            tol_gap_rel: 1e-12,
+            tol_feas: 1e-12,
+            tol_ktratio: 1e-9,
+            ..DefaultSettings::default()
+        };
+        let mut solver = match DefaultSolver::new(&p, self.gradient, &a, &b, &cones, settings) {
+            Ok(solver) => solver,
+            Err(e) => return QpOutcome::Failed(e.to_string()),
+        };
+        solver.solve();
+        let s = &solver.solution;
+        match s.status {
+            SolverStatus::Solved | SolverStatus::AlmostSolved => {
+                let (lambda, bounds) = s.z.split_at(self.rows);
+                let (upper, lower) = bounds.split_at(self.upper.len());
+                QpOutcome::Solved(QpSolution {
+                    step: s.x.clone(),
+                    lambda: lambda.to_vec(),
+                    upper: upper.to_vec(),
+                    lower: lower.to_vec(),
+                })
+            }
+            SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
+                QpOutcome::Infeasible
+            }
+            status => QpOutcome::Failed(format!("{status:?}")),
+        }
+    }
+}

@@ -1,0 +1,90 @@
+//! What a solve returns: the status, the optimal (or last) trajectory, controls, momenta,
+//! costates and the convergence history.
+
+/// How a solve ended. Anything but [`Status::Converged`] comes with the last iterate.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Status {
+    /// The KKT residual and the constraint violation are below their tolerances.
+    Converged,
+    /// The iteration stopped for the reason given.
+    Failed(Failure),
+    /// The linearised constraints have no solution within the bounds (the QP solver proved it).
+    Infeasible,
+    /// The iteration budget was spent first.
+    IterationLimit,
+}
+
+/// Why an iteration failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Failure {
+    /// A cost, constraint or derivative was not finite at the iterate.
+    NonFinite,
+    /// The line search found no decrease of the merit function down to the smallest step.
+    LineSearch {
+        /// The last step length tried.
+        step: f64,
+    },
+    /// The QP solver did not solve a subproblem even with the largest regularisation.
+    Subproblem {
+        /// The solver's status, in its words.
+        status: String,
+        /// The regularisation of the Hessian tried last.
+        regularization: f64,
+    },
+}
+
+/// One SQP iteration, as recorded in [`Solution::history`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Iteration {
+    /// The cost at the iterate.
+    pub cost: f64,
+    /// `max |c_i|` at the iterate.
+    pub violation: f64,
+    /// The KKT (stationarity and complementarity) residual at the iterate with the
+    /// subproblem's multipliers.
+    pub kkt: f64,
+    /// The step length the line search accepted (0 on the last, converged record).
+    pub step: f64,
+    /// The regularisation `δ` added to the Hessian of the subproblem.
+    pub regularization: f64,
+}
+
+/// The result of a DMOC solve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Solution {
+    /// How the solve ended.
+    pub status: Status,
+    /// The discrete cost `J_d` at the returned iterate.
+    pub cost: f64,
+    /// SQP iterations taken.
+    pub iterations: usize,
+    /// The KKT residual at the returned iterate.
+    pub kkt_residual: f64,
+    /// `max |c_i|` at the returned iterate.
+    pub constraint_violation: f64,
+    /// `t_0 … t_N`.
+    pub t: Vec<f64>,
+    /// `q_0 … q_N`.
+    pub q: Vec<Vec<f64>>,
+    /// `p_0 … p_N` by the forced discrete Legendre transforms: `p_0 = −D₁L_d(q_0, q_1) − f_d⁻_0`,
+    /// `p_k = D₂L_d(q_{k−1}, q_k) + f_d⁺_{k−1}` for `k ≥ 1`.
+    pub p: Vec<Vec<f64>>,
+    /// `u_0 … u_{N−1}` (`u_k` on `[t_k, t_{k+1}]`).
+    pub u: Vec<Vec<f64>>,
+    /// The multipliers of the DEL constraints at the nodes `k = 1 … N−1` (the discrete
+    /// costates), with the sign of the Lagrangian `J_d + Σ λᵀ c`.
+    pub costates: Vec<Vec<f64>>,
+    /// The multipliers of the fixed start components (positions, then rates).
+    pub start_multipliers: Vec<f64>,
+    /// The multipliers of the fixed end components (positions, then rates).
+    pub end_multipliers: Vec<f64>,
+    /// One record per iteration.
+    pub history: Vec<Iteration>,
+}
+
+impl Solution {
+    /// Whether the solve converged.
+    pub fn converged(&self) -> bool {
+        self.status == Status::Converged
+    }
+}

@@ -1,0 +1,355 @@
+//! A short SQP iteration ([NW06] ch. 18) around the Clarabel subproblem ([`crate::qp`]).
+//!
+//! * Hessian: the exact Hessian of the Lagrangian `f + λᵀc` from automatic differentiation,
+//!   plus `δI`. Each iteration tries `δ = 0` first, then (as IPOPT does) a third of the last
+//!   nonzero `δ`, growing eightfold, until Clarabel solves the subproblem and the step has
+//!   positive curvature `dᵀ(H + δI)d ≥ κ dᵀd`. Near a strict local minimum `δ = 0`
+//!   passes, so the steps are Newton steps on the KKT conditions (fast local convergence).
+//! * Globalisation: the ℓ1 merit `φ = f + μ‖c‖₁` with `μ ≥ ‖λ‖∞ + ρ`, Armijo backtracking,
+//!   and one second-order correction when the full step is refused (against the Maratos
+//!   effect, [NW06] §15.6).
+//! * Stopping: at iterate `z` with the subproblem's multipliers, the KKT residual
+//!   `max(‖g + Jᵀλ + ∂bounds‖∞, max |μ_i slack_i|)` and the violation `‖c‖∞` below their
+//!   tolerances. Bounds are linear, so every iterate keeps them.
+//!
+//! [NW06]: crate#references
+
+use crate::qp::{QpOutcome, QpSolution, Subproblem};
+use crate::solution::{Failure, Iteration, Status};
+use crate::transcription::Evaluation;
+
+/// What the SQP iteration needs of a program.
+pub trait Program {
+    /// Values and first derivatives at `z`.
+    fn evaluate(&self, z: &[f64]) -> Evaluation;
+    /// The upper triangle of the Hessian of `f + λᵀc`.
+    fn hessian(&self, z: &[f64], lambda: &[f64]) -> Vec<(usize, usize, f64)>;
+    /// Number of constraints.
+    fn rows(&self) -> usize;
+}
+
+/// Options of the SQP iteration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SqpOptions {
+    /// Tolerance on the KKT residual (default 1e-8).
+    pub kkt_tolerance: f64,
+    /// Tolerance on `max |c_i|` (default 1e-10).
+    pub constraint_tolerance: f64,
+    /// Iteration budget (default 200).
+    pub max_iterations: usize,
+}
+
+impl Default for SqpOptions {
+    fn default() -> Self {
+        Self {
+            kkt_tolerance: 1e-8,
+            constraint_tolerance: 1e-10,
+            max_iterations: 200,
+        }
+    }
+}
+
+/// The end of an SQP iteration: status, last iterate and its multipliers.
+pub struct SqpOutcome {
+    /// How it ended.
+    pub status: Status,
+    /// The last iterate.
+    pub z: Vec<f64>,
+    /// The multipliers of the constraints at it.
+    pub lambda: Vec<f64>,
+    /// The program's values there.
+    pub evaluation: Evaluation,
+    /// KKT residual there.
+    pub kkt: f64,
+    /// One record per iteration.
+    pub history: Vec<Iteration>,
+}
+
+/// Simple bounds on the unknowns, `lower ≤ z ≤ upper` (infinite: none).
+pub struct VariableBounds {
+    /// Lower bounds.
+    pub lower: Vec<f64>,
+    /// Upper bounds.
+    pub upper: Vec<f64>,
+}
+
+const ARMIJO: f64 = 1e-4;
+const MIN_STEP: f64 = 1e-12;
+const CURVATURE: f64 = 1e-10;
+const MAX_DELTA: f64 = 1e12;
+
+/// The state of the iteration: the iterate, its multipliers and values, the record so far.
+struct Iterate {
+    z: Vec<f64>,
+    lambda: Vec<f64>,
+    e: Evaluation,
+    kkt: f64,
+    history: Vec<Iteration>,
+}
+
+impl Iterate {
+    fn finish(self, status: Status) -> SqpOutcome {
+        SqpOutcome {
+            status,
+            z: self.z,
+            lambda: self.lambda,
+            evaluation: self.e,
+            kkt: self.kkt,
+            history: self.history,
+        }
+    }
+}
+
+/// Runs SQP from `z` (projected into the bounds first).
+pub fn solve<P: Program>(
+    program: &P,
+    mut z: Vec<f64>,
+    bounds: &VariableBounds,
+    options: &SqpOptions,
+) -> SqpOutcome {
+    for (zi, (&lo, &hi)) in z.iter_mut().zip(bounds.lower.iter().zip(&bounds.upper)) {
+        *zi = zi.clamp(lo, hi);
+    }
+    let mut it = Iterate {
+        e: program.evaluate(&z),
+        z,
+        lambda: vec![0.0; program.rows()],
+        kkt: f64::INFINITY,
+        history: Vec::new(),
+    };
+    // The last nonzero regularisation (0: none needed yet).
+    let mut last_delta = 0.0_f64;
+    for _ in 0..options.max_iterations {
+        let hessian = program.hessian(&it.z, &it.lambda);
+        if !it.e.is_finite() || hessian.iter().any(|h| !h.2.is_finite()) {
+            return it.finish(Status::Failed(Failure::NonFinite));
+        }
+        let (upper, lower) = step_bounds(&it.z, bounds);
+        let rhs: Vec<f64> = it.e.constraints.iter().map(|c| -c).collect();
+        let sub = Subproblem {
+            hessian: &hessian,
+            gradient: &it.e.gradient,
+            jacobian: &it.e.jacobian,
+            rows: program.rows(),
+            rhs: &rhs,
+            upper: &upper,
+            lower: &lower,
+        };
+        let (qp, delta) = match regularised_step(&sub, &mut last_delta) {
+            Ok(step) => step,
+            Err(status) => return it.finish(status),
+        };
+        it.lambda.clone_from(&qp.lambda);
+        it.kkt = kkt_residual(&it.e, &qp, (&upper, &lower));
+        let violation = max_abs(&it.e.constraints);
+        let mut record = Iteration {
+            cost: it.e.cost,
+            violation,
+            kkt: it.kkt,
+            step: 0.0,
+            regularization: delta,
+        };
+        if it.kkt <= options.kkt_tolerance && violation <= options.constraint_tolerance {
+            it.history.push(record);
+            return it.finish(Status::Converged);
+        }
+        let mu = penalty(&it.e, &qp, &hessian, delta);
+        let accepted = line_search(program, (&it.z, &it.e), &qp.step, &sub, delta, mu);
+        match accepted {
+            Ok((step, z, e)) => {
+                record.step = step;
+                it.history.push(record);
+                (it.z, it.e) = (z, e);
+            }
+            Err(step) => {
+                it.history.push(record);
+                return it.finish(Status::Failed(Failure::LineSearch { step }));
+            }
+        }
+    }
+    it.finish(Status::IterationLimit)
+}
+
+/// The subproblem's solution with the smallest regularisation `δ` that gives a step of
+/// positive curvature: `δ = 0`, then a third of the last nonzero `δ` (at least 1e-6), growing
+/// eightfold up to `MAX_DELTA`. The solver's infeasibility certificate is trusted only there,
+/// for a strongly convex subproblem (feasibility does not depend on the Hessian).
+fn regularised_step(
+    sub: &Subproblem<'_>,
+    last_delta: &mut f64,
+) -> Result<(QpSolution, f64), Status> {
+    let mut delta = 0.0;
+    loop {
+        let outcome = sub.solve(delta);
+        if let QpOutcome::Solved(s) = &outcome
+            && curvature_ok(sub.hessian, delta, &s.step)
+        {
+            return Ok((s.clone(), delta));
+        }
+        if delta < MAX_DELTA {
+            delta = match (delta, *last_delta) {
+                (0.0, 0.0) => 1e-6,
+                (0.0, last) => (last / 3.0).max(1e-6),
+                (d, _) => 8.0 * d,
+            };
+            *last_delta = delta;
+            continue;
+        }
+        return Err(match outcome {
+            QpOutcome::Infeasible => Status::Infeasible,
+            QpOutcome::Solved(_) => Status::Failed(Failure::Subproblem {
+                status: "negative curvature".to_string(),
+                regularization: delta,
+            }),
+            QpOutcome::Failed(status) => Status::Failed(Failure::Subproblem {
+                status,
+                regularization: delta,
+            }),
+        });
+    }
+}
+
+/// The ℓ1 penalty of this iteration: at least `‖λ‖∞` (exactness of the merit at a KKT point)
+/// and at least `(gᵀd + ½dᵀ(H + δI)d) / ((1 − ρ)‖c‖₁)` with `ρ = ½` ([NW06] (18.36)), so that
+/// `d` descends the merit. Not kept monotone: a large penalty from a first step far from the
+/// solution would otherwise hold the later steps short.
+fn penalty(e: &Evaluation, qp: &QpSolution, hessian: &[(usize, usize, f64)], delta: f64) -> f64 {
+    let d = &qp.step;
+    let c1 = l1(&e.constraints);
+    let by_multipliers = 1.1 * max_abs(&qp.lambda) + 1e-8;
+    if c1 == 0.0 {
+        return by_multipliers;
+    }
+    let quadratic = 0.5 * (quadratic_form(hessian, d) + delta * dot(d, d));
+    by_multipliers.max((dot(&e.gradient, d) + quadratic) / (0.5 * c1))
+}
+
+/// `dᵀHd` with `H` given by its upper triangle.
+fn quadratic_form(hessian: &[(usize, usize, f64)], d: &[f64]) -> f64 {
+    hessian
+        .iter()
+        .map(|&(r, c, v)| {
+            if r == c {
+                v * d[r] * d[r]
+            } else {
+                2.0 * v * d[r] * d[c]
+            }
+        })
+        .sum()
+}
+
+/// The bounds of the step `d` at `z`: `d_i ≤ hi_i − z_i`, `d_i ≥ lo_i − z_i` (finite ones).
+fn step_bounds(z: &[f64], bounds: &VariableBounds) -> (Vec<Bound>, Vec<Bound>) {
+    let upper = (0..z.len())
+        .filter(|&i| bounds.upper[i].is_finite())
+        .map(|i| (i, bounds.upper[i] - z[i]))
+        .collect();
+    let lower = (0..z.len())
+        .filter(|&i| bounds.lower[i].is_finite())
+        .map(|i| (i, bounds.lower[i] - z[i]))
+        .collect();
+    (upper, lower)
+}
+
+/// `dᵀ(H + δI)d ≥ κ dᵀd`, with `H` given by its upper triangle.
+fn curvature_ok(hessian: &[(usize, usize, f64)], delta: f64, d: &[f64]) -> bool {
+    let dd: f64 = d.iter().map(|x| x * x).sum();
+    let dhd: f64 = hessian
+        .iter()
+        .map(|&(r, c, v)| {
+            if r == c {
+                v * d[r] * d[r]
+            } else {
+                2.0 * v * d[r] * d[c]
+            }
+        })
+        .sum();
+    dhd + delta * dd >= CURVATURE * dd
+}
+
+/// `max(‖g + Jᵀλ + Σ μ⁺e_i − Σ μ⁻e_i‖∞, max |μ_i · slack_i|)` at the iterate.
+fn kkt_residual(e: &Evaluation, qp: &QpSolution, (upper, lower): BoundsRef<'_>) -> f64 {
+    let mut r = e.gradient.clone();
+    for &(row, col, v) in &e.jacobian {
+        r[col] += v * qp.lambda[row];
+    }
+    let mut complementarity = 0.0_f64;
+    for (&(i, slack), &m) in upper.iter().zip(&qp.upper) {
+        r[i] += m;
+        complementarity = complementarity.max((m * slack).abs());
+    }
+    for (&(i, slack), &m) in lower.iter().zip(&qp.lower) {
+        r[i] -= m;
+        complementarity = complementarity.max((m * slack).abs());
+    }
+    max_abs(&r).max(complementarity)
+}
+
+/// `(variable, bound on the step)`.
+type Bound = (usize, f64);
+
+type BoundsRef<'a> = (&'a [Bound], &'a [Bound]);
+
+fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+fn l1(v: &[f64]) -> f64 {
+    v.iter().map(|x| x.abs()).sum()
+}
+
+/// Armijo backtracking on `φ = f + μ‖c‖₁` along `d`, with one second-order correction when
+/// the full step is refused. `Ok((α, z⁺, e⁺))`, or `Err(α)` with the last step tried.
+fn line_search<P: Program>(
+    program: &P,
+    (z, e): (&[f64], &Evaluation),
+    d: &[f64],
+    sub: &Subproblem<'_>,
+    delta: f64,
+    mu: f64,
+) -> Result<(f64, Vec<f64>, Evaluation), f64> {
+    let merit = |e: &Evaluation| e.cost + mu * l1(&e.constraints);
+    let phi0 = merit(e);
+    let slope = dot(&e.gradient, d) - mu * l1(&e.constraints);
+    let slope = slope.min(0.0);
+    let at = |alpha: f64, d: &[f64]| -> Vec<f64> {
+        z.iter().zip(d).map(|(zi, di)| zi + alpha * di).collect()
+    };
+    let trial = at(1.0, d);
+    let e_trial = program.evaluate(&trial);
+    if e_trial.is_finite() && merit(&e_trial) <= phi0 + ARMIJO * slope {
+        return Ok((1.0, trial, e_trial));
+    }
+    // Second-order correction: J d̂ = J d − c(z + d), same Hessian and bounds.
+    if e_trial.is_finite() {
+        let mut rhs = vec![0.0; sub.rows];
+        for &(row, col, v) in sub.jacobian {
+            rhs[row] += v * d[col];
+        }
+        rhs.iter_mut()
+            .zip(&e_trial.constraints)
+            .for_each(|(r, c)| *r -= c);
+        let corrected = Subproblem { rhs: &rhs, ..*sub };
+        if let QpOutcome::Solved(s) = corrected.solve(delta) {
+            let trial = at(1.0, &s.step);
+            let e_soc = program.evaluate(&trial);
+            if e_soc.is_finite() && merit(&e_soc) <= phi0 + ARMIJO * slope {
+                return Ok((1.0, trial, e_soc));
+            }
+        }
+    }
+    let mut alpha = 0.5;
+    while alpha >= MIN_STEP {
+        let trial = at(alpha, d);
+        let e_trial = program.evaluate(&trial);
+        if e_trial.is_finite() && merit(&e_trial) <= phi0 + ARMIJO * alpha * slope {
+            return Ok((alpha, trial, e_trial));
+        }
+        alpha *= 0.5;
+    }
+    Err(alpha)
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}

@@ -1,0 +1,379 @@
+//! The nonlinear program of DMOC ([OJM11] §3): unknowns, constraints, cost and their
+//! derivatives.
+//!
+//! Unknowns in time order, `z = (q_0, u_0, q_1, u_1, …, u_{N−1}, q_N)`, so that step `k` reads
+//! the contiguous block `(q_k, u_k, q_{k+1})` and every matrix is banded in `k`. With
+//! `m_k = D₁L_d(q_k, q_{k+1}) + f_d⁻_k` and `P_k = D₂L_d(q_k, q_{k+1}) + f_d⁺_k` the
+//! constraints are, in this row order,
+//!
+//! ```text
+//!     q_0,i − a_i = 0                       (fixed start positions)
+//!     −m_0,i − p⁰_i = 0                     (fixed start momenta; p⁰ = ∂L/∂v(t_0, q_0, v⁰) for velocities)
+//!     P_{k−1} + m_k = 0,     k = 1 … N−1    (forced DEL: the core's step equations)
+//!     q_N,i − b_i = 0                       (fixed end positions)
+//!     P_{N−1},i − p^N_i = 0                 (fixed end momenta)
+//! ```
+//!
+//! and the cost is `Σ_k C_d,k + Φ(q_N, P_{N−1})`. The multipliers of the DEL rows are the
+//! discrete costates.
+//!
+//! [OJM11]: crate#references
+
+pub mod step;
+
+use marsden::numerics::ad::{self, HessianParts};
+use marsden::{DiscreteAction, DiscreteForce, Lagrangian, TimeGrid};
+
+use crate::model::FinalCost;
+use crate::problem::{Boundary, Rate};
+use step::{BoundaryMomentum, StepFunction, StepParts, Weighted};
+
+/// Where the unknowns sit in `z`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Layout {
+    /// Degrees of freedom `n`.
+    pub n: usize,
+    /// Controls `m`.
+    pub m: usize,
+    /// Steps `N`.
+    pub steps: usize,
+}
+
+impl Layout {
+    /// Index of `q_k`.
+    pub fn q(&self, k: usize) -> usize {
+        k * (self.n + self.m)
+    }
+    /// Index of `u_k`.
+    pub fn u(&self, k: usize) -> usize {
+        k * (self.n + self.m) + self.n
+    }
+    /// Length of `z`.
+    pub fn unknowns(&self) -> usize {
+        self.steps * (self.n + self.m) + self.n
+    }
+    /// Length of a step's block `(q_k, u_k, q_{k+1})`.
+    pub fn block(&self) -> usize {
+        2 * self.n + self.m
+    }
+}
+
+/// The fixed components of one boundary and the rows they occupy.
+#[derive(Debug, Clone)]
+struct End {
+    /// `(component, value)` of the fixed positions.
+    q: Vec<(usize, f64)>,
+    /// `(component, value)` of the fixed rates.
+    rate: Vec<(usize, f64)>,
+    /// The rate is a velocity: the target momentum is `∂L/∂v(t, q, v)`.
+    velocity: Option<Vec<f64>>,
+    /// First row of the positions; the rates follow.
+    row: usize,
+}
+
+impl End {
+    fn of(boundary: &Boundary, row: usize) -> Self {
+        let fixed = |values: &[Option<f64>]| -> Vec<(usize, f64)> {
+            values
+                .iter()
+                .enumerate()
+                .filter_map(|(i, v)| v.map(|v| (i, v)))
+                .collect()
+        };
+        let rate = fixed(boundary.rate_values());
+        let velocity = match &boundary.rate {
+            Rate::Velocity(_) if !rate.is_empty() => Some(rate.iter().map(|&(_, v)| v).collect()),
+            _ => None,
+        };
+        Self {
+            q: fixed(&boundary.q),
+            rate,
+            velocity,
+            row,
+        }
+    }
+    fn rows(&self) -> usize {
+        self.q.len() + self.rate.len()
+    }
+    /// The row of rate component `i`, if it is fixed.
+    fn rate_row(&self, i: usize) -> Option<usize> {
+        let start = self.row + self.q.len();
+        self.rate
+            .iter()
+            .position(|&(c, _)| c == i)
+            .map(|j| start + j)
+    }
+}
+
+/// The program's values and first derivatives at a point.
+#[derive(Debug, Clone, Default)]
+pub struct Evaluation {
+    /// The cost.
+    pub cost: f64,
+    /// Its gradient (dense).
+    pub gradient: Vec<f64>,
+    /// The constraints.
+    pub constraints: Vec<f64>,
+    /// Their Jacobian as `(row, column, value)`.
+    pub jacobian: Vec<(usize, usize, f64)>,
+    /// `m_k` and `P_k` of every step (`2n` per step), for the momenta of the result.
+    pub momenta: Vec<f64>,
+}
+
+impl Evaluation {
+    /// Whether every value is finite.
+    pub fn is_finite(&self) -> bool {
+        self.cost.is_finite()
+            && self.gradient.iter().all(|v| v.is_finite())
+            && self.constraints.iter().all(|v| v.is_finite())
+            && self.jacobian.iter().all(|e| e.2.is_finite())
+    }
+}
+
+/// The transcribed program of a two-point rule.
+pub struct Transcription<'a, L, A, FD, CD, P> {
+    lagrangian: &'a L,
+    parts: StepParts<'a, A, FD, CD, P>,
+    /// The last step's parts (with `Φ`).
+    last: StepParts<'a, A, FD, CD, P>,
+    grid: TimeGrid,
+    /// Where the unknowns sit.
+    pub layout: Layout,
+    start: End,
+    end: End,
+    /// First DEL row.
+    del_row: usize,
+    /// Number of constraints.
+    pub rows: usize,
+}
+
+impl<'a, L, A, FD, CD, P> Transcription<'a, L, A, FD, CD, P>
+where
+    L: Lagrangian,
+    A: DiscreteAction,
+    FD: DiscreteForce,
+    CD: DiscreteAction,
+    P: FinalCost,
+{
+    /// The program of `parts` on `grid` with the given boundaries.
+    pub fn new(
+        lagrangian: &'a L,
+        parts: StepParts<'a, A, FD, CD, P>,
+        final_cost: &'a P,
+        grid: TimeGrid,
+        (start, end): (&Boundary, &Boundary),
+    ) -> Self {
+        let layout = Layout {
+            n: parts.n,
+            m: parts.m,
+            steps: grid.steps,
+        };
+        let start = End::of(start, 0);
+        let del_row = start.rows();
+        let end = End::of(end, del_row + (grid.steps - 1) * parts.n);
+        let rows = end.row + end.rows();
+        let mut last = parts;
+        last.final_cost = Some(final_cost);
+        let mut parts = parts;
+        parts.final_cost = None;
+        Self {
+            lagrangian,
+            parts,
+            last,
+            grid,
+            layout,
+            start,
+            end,
+            del_row,
+            rows,
+        }
+    }
+
+    fn step(&self, k: usize) -> StepFunction<'a, A, FD, CD, P> {
+        let parts = if k + 1 == self.grid.steps {
+            self.last
+        } else {
+            self.parts
+        };
+        StepFunction {
+            parts,
+            t0: self.grid.time(k),
+            h: self.grid.h,
+        }
+    }
+
+    /// The row and sign of component `i` of `m_k` (start momentum or the DEL at node `k`).
+    fn minus_row(&self, k: usize, i: usize) -> Option<(usize, f64)> {
+        if k == 0 {
+            self.start.rate_row(i).map(|r| (r, -1.0))
+        } else {
+            Some((self.del_row + (k - 1) * self.layout.n + i, 1.0))
+        }
+    }
+
+    /// The row and sign of component `i` of `P_k` (the DEL at node `k + 1` or end momentum).
+    fn plus_row(&self, k: usize, i: usize) -> Option<(usize, f64)> {
+        if k + 1 == self.grid.steps {
+            self.end.rate_row(i).map(|r| (r, 1.0))
+        } else {
+            Some((self.del_row + k * self.layout.n + i, 1.0))
+        }
+    }
+
+    /// The two boundaries with their node and time.
+    fn ends(&self) -> [(&End, usize, f64); 2] {
+        [
+            (&self.start, 0, self.grid.t0),
+            (&self.end, self.grid.steps, self.grid.t_end()),
+        ]
+    }
+
+    /// Values and first derivatives at `z`.
+    pub fn evaluate(&self, z: &[f64]) -> Evaluation {
+        let Layout { n, .. } = self.layout;
+        let b = self.layout.block();
+        let mut e = Evaluation {
+            cost: 0.0,
+            gradient: vec![0.0; z.len()],
+            constraints: vec![0.0; self.rows],
+            jacobian: Vec::with_capacity(self.grid.steps * 2 * n * b + 4 * n * n),
+            momenta: vec![0.0; 2 * n * self.grid.steps],
+        };
+        let (mut values, mut jac) = (vec![0.0; 2 * n + 1], vec![0.0; (2 * n + 1) * b]);
+        for k in 0..self.grid.steps {
+            let col = self.layout.q(k);
+            ad::jacobian(&self.step(k), &z[col..col + b], 0..b, &mut values, &mut jac);
+            e.momenta[2 * n * k..2 * n * (k + 1)].copy_from_slice(&values[..2 * n]);
+            for out in 0..2 * n {
+                let target = match out < n {
+                    true => self.minus_row(k, out),
+                    false => self.plus_row(k, out - n),
+                };
+                if let Some((row, sign)) = target {
+                    e.constraints[row] += sign * values[out];
+                    let entries = jac[out * b..(out + 1) * b].iter();
+                    e.jacobian
+                        .extend(entries.enumerate().map(|(j, &d)| (row, col + j, sign * d)));
+                }
+            }
+            e.cost += values[2 * n];
+            let grad = &jac[2 * n * b..];
+            e.gradient[col..col + b]
+                .iter_mut()
+                .zip(grad)
+                .for_each(|(g, d)| *g += d);
+        }
+        for (end, node, t) in self.ends() {
+            let col = self.layout.q(node);
+            for (j, &(i, a)) in end.q.iter().enumerate() {
+                e.constraints[end.row + j] = z[col + i] - a;
+                e.jacobian.push((end.row + j, col + i, 1.0));
+            }
+            self.rate_targets(end, (t, &z[col..col + n]), col, &mut e);
+        }
+        e
+    }
+
+    /// Subtracts the target momenta of the fixed rate components (and their derivatives in `q`
+    /// for velocities).
+    fn rate_targets(&self, end: &End, (t, q): (f64, &[f64]), col: usize, e: &mut Evaluation) {
+        let n = self.layout.n;
+        let first = end.row + end.q.len();
+        match &end.velocity {
+            None => {
+                for (j, &(_, p)) in end.rate.iter().enumerate() {
+                    e.constraints[first + j] -= p;
+                }
+            }
+            Some(v) => {
+                let momentum = BoundaryMomentum {
+                    lagrangian: self.lagrangian,
+                    t,
+                    v: v.clone(),
+                };
+                let (mut p, mut dp) = (vec![0.0; n], vec![0.0; n * n]);
+                ad::jacobian(&momentum, q, 0..n, &mut p, &mut dp);
+                for i in 0..n {
+                    e.constraints[first + i] -= p[i];
+                    let row = dp[i * n..(i + 1) * n].iter().enumerate();
+                    e.jacobian
+                        .extend(row.map(|(j, &d)| (first + i, col + j, -d)));
+                }
+            }
+        }
+    }
+
+    /// The upper triangle of the Hessian of `cost + λᵀ constraints` at `z`, as
+    /// `(row, column, value)` with `row ≤ column`.
+    pub fn hessian(&self, z: &[f64], lambda: &[f64]) -> Vec<(usize, usize, f64)> {
+        let Layout { n, .. } = self.layout;
+        let b = self.layout.block();
+        let mut parts = HessianParts::default();
+        let mut out = Vec::with_capacity(self.grid.steps * b * (b + 1) / 2);
+        let mut weights = vec![0.0; 2 * n + 1];
+        for k in 0..self.grid.steps {
+            for (i, w) in weights.iter_mut().enumerate().take(2 * n) {
+                let target = match i < n {
+                    true => self.minus_row(k, i),
+                    false => self.plus_row(k, i - n),
+                };
+                *w = target.map_or(0.0, |(row, sign)| sign * lambda[row]);
+            }
+            weights[2 * n] = 1.0;
+            let step = self.step(k);
+            let weighted = Weighted {
+                f: &step,
+                weights: &weights,
+            };
+            let col = self.layout.q(k);
+            ad::partial_hessian(&weighted, &z[col..col + b], 0..b, 0..b, &mut parts);
+            push_upper(&parts.hess, b, col, &mut out);
+        }
+        for (end, node, t) in self.ends() {
+            let Some(v) = &end.velocity else { continue };
+            let first = end.row + end.q.len();
+            let w: Vec<f64> = (0..n).map(|i| -lambda[first + i]).collect();
+            let momentum = BoundaryMomentum {
+                lagrangian: self.lagrangian,
+                t,
+                v: v.clone(),
+            };
+            let weighted = Weighted {
+                f: &momentum,
+                weights: &w,
+            };
+            let col = self.layout.q(node);
+            ad::partial_hessian(&weighted, &z[col..col + n], 0..n, 0..n, &mut parts);
+            push_upper(&parts.hess, n, col, &mut out);
+        }
+        out
+    }
+
+    /// The DEL rows' multipliers (the discrete costates), node by node (`N − 1` nodes).
+    pub fn costates(&self, lambda: &[f64]) -> Vec<Vec<f64>> {
+        let n = self.layout.n;
+        (1..self.grid.steps)
+            .map(|k| lambda[self.del_row + (k - 1) * n..self.del_row + k * n].to_vec())
+            .collect()
+    }
+
+    /// The multipliers of the start rows and of the end rows.
+    pub fn boundary_multipliers(&self, lambda: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        (
+            lambda[..self.del_row].to_vec(),
+            lambda[self.end.row..self.rows].to_vec(),
+        )
+    }
+}
+
+/// Appends the upper triangle of a dense `b × b` block placed at `(col, col)`.
+fn push_upper(hess: &[f64], b: usize, col: usize, out: &mut Vec<(usize, usize, f64)>) {
+    for r in 0..b {
+        for c in r..b {
+            let v = hess[r * b + c];
+            if v != 0.0 {
+                out.push((col + r, col + c, v));
+            }
+        }
+    }
+}

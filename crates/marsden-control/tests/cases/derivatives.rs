@@ -1,0 +1,103 @@
+//! The AD derivatives of the program against central differences (trep's `check_*` pattern):
+//! cost gradient, constraint Jacobian and Hessian of the Lagrangian, for midpoint and
+//! trapezoid, on a problem that exercises every term: a cart-pole (configuration-dependent
+//! mass), a force nonlinear in `q`, `v` and `u`, a running cost in all of them, a final cost
+//! in `(q_N, p_N)`, a start velocity (the target momentum `∂L/∂v(q_0, v_0)` depends on `q_0`)
+//! and an end with free components.
+
+use marsden::systems::PendulumOnCart;
+use marsden::{Midpoint, Rule, Scalar, Trapezoid};
+use marsden_control::{Boundary, ControlForce, FinalCost, OptimalControl, Rate, RunningCost};
+
+struct Actuator;
+
+impl ControlForce for Actuator {
+    fn controls(&self) -> usize {
+        2
+    }
+    fn force<S: Scalar>(&self, _t: S, q: &[S], v: &[S], u: &[S], out: &mut [S]) {
+        out[0] = u[0] - v[0] * 0.3 + u[1] * q[1].sin();
+        out[1] = u[1] * q[1].cos() - v[1] * v[1] * 0.1 + u[0] * u[1] * 0.2;
+    }
+}
+
+struct Running;
+
+impl RunningCost for Running {
+    fn cost<S: Scalar>(&self, t: S, q: &[S], v: &[S], u: &[S]) -> S {
+        u[0] * u[0] * 0.5
+            + u[1] * u[1] * (t + 1.0)
+            + q[1].cos() * v[0] * 0.2
+            + v[1] * v[1] * q[0] * 0.1
+    }
+}
+
+struct Terminal;
+
+impl FinalCost for Terminal {
+    fn cost<S: Scalar>(&self, q: &[S], p: &[S]) -> S {
+        q[0] * q[1] + p[0] * p[1] * 0.5 + p[1].sin()
+    }
+}
+
+fn problem() -> OptimalControl<PendulumOnCart, Actuator, Running, Terminal> {
+    let start = Boundary::velocity(&[0.1, 0.4], &[0.5, -0.7]);
+    let end = Boundary {
+        q: vec![None, Some(2.0)],
+        rate: Rate::Momentum(vec![Some(0.3), None]),
+    };
+    OptimalControl::new(
+        PendulumOnCart::default(),
+        Actuator,
+        Running,
+        (0.2, 1.0, 4),
+        start,
+        end,
+    )
+    .unwrap()
+    .with_final_cost(Terminal)
+}
+
+/// Deterministic values in [−1, 1] (a linear congruential generator).
+fn values(count: usize, seed: u64) -> Vec<f64> {
+    let mut state = seed;
+    (0..count)
+        .map(|_| {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        })
+        .collect()
+}
+
+fn check<R: Rule>(rule: &R) {
+    let p = problem();
+    let (unknowns, rows) = p.sizes();
+    assert_eq!((unknowns, rows), (4 * 4 + 2, 3 * 2 + 4 + 2));
+    let z = values(unknowns, 7);
+    let lambda = values(rows, 11);
+    let c = p.check_derivatives(rule, &z, &lambda, 1e-5).unwrap();
+    println!("{}: {c:?}", rule.name());
+    assert!(c.scale > 0.1, "the check compared nothing: {c:?}");
+    for (what, error) in [
+        ("gradient", c.gradient),
+        ("jacobian", c.jacobian),
+        ("hessian", c.hessian),
+    ] {
+        assert!(
+            error <= 1e-7 * c.scale.max(1.0),
+            "{what}: {error:e} ({c:?})"
+        );
+    }
+}
+
+#[test]
+fn midpoint_derivatives_match_central_differences() {
+    check(&Midpoint);
+}
+
+#[test]
+fn trapezoid_derivatives_match_central_differences() {
+    check(&Trapezoid);
+}

@@ -1,0 +1,11 @@
+//! The areas of the tests, a file each.
+
+mod bounds;
+mod costates;
+mod derivatives;
+mod errors;
+mod final_cost;
+mod linear_quadratic;
+mod reproduction;
+mod status;
+mod swing_up;
