@@ -156,7 +156,7 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
     let sensitivity = derivatives(
         spec,
         (&record, &start),
-        store.files().then_some(&dir),
+        (store.files().then_some(&dir), store.memory()),
         controls,
     );
     if let Some(Derivatives {
@@ -198,12 +198,13 @@ struct Derivatives {
 }
 
 /// `[sensitivity]`: the tangent run beside a completed run (watched by the run's `controls`:
-/// Ctrl-C and the progress bar), its file written into `dir`; `None` without
-/// `[sensitivity]`. A failure is reported in the summary's block.
+/// Ctrl-C and the progress bar), its Jacobians streamed into the file in `dir` as the run
+/// reaches them (and kept in memory only with `keep`); `None` without `[sensitivity]`. A failure
+/// is reported in the summary's block.
 fn derivatives(
     spec: &RunSpec,
     (record, start): (&RunRecord, &start::Start),
-    dir: Option<&PathBuf>,
+    (dir, keep): (Option<&PathBuf>, bool),
     controls: &Controls<'_>,
 ) -> Option<Derivatives> {
     let asked = spec.sensitivity.as_ref()?;
@@ -222,28 +223,49 @@ fn derivatives(
     if record.error.is_some() || record.interrupted {
         return Some(failed("the run did not complete".to_owned()));
     }
-    let found = match sensitivity::compute_with(spec, asked, start, controls) {
+    let names = sensitivity::names(spec, asked);
+    let mut writer = match dir {
+        Some(dir) => {
+            match sensitivity::SensitivityWriter::create(dir, spec.output.format, &names) {
+                Ok(w) => Some(w),
+                Err(e) => return Some(failed(format!("writing the sensitivities failed: {e}"))),
+            }
+        }
+        None => None,
+    };
+    let (mut kept, mut write_error) = (Vec::new(), None);
+    let mut sink = |t: f64, jacobian: &[f64]| {
+        if keep {
+            kept.push((t, jacobian.to_vec()));
+        }
+        if let (Some(w), None) = (writer.as_mut(), &write_error)
+            && let Err(e) = w.write(t, jacobian)
+        {
+            write_error = Some(e);
+        }
+    };
+    let found = match sensitivity::compute_streamed(spec, asked, start, controls, &mut sink) {
         Ok(found) => found,
         Err(e) => return Some(failed(e)),
     };
-    let Some(dir) = dir else {
-        return Some(Derivatives {
-            summary: found.summary,
-            file: None,
-            samples: Some(found.samples),
-        });
-    };
-    let (summary, file) = match sensitivity::write(dir, spec.output.format, &found) {
-        Ok(file) => (found.summary, Some(file)),
-        Err(e) => {
-            let mut summary = found.summary;
+    let mut summary = found.summary;
+    let file = match (writer, write_error) {
+        (Some(w), None) => match w.finish() {
+            Ok(file) => Some(file),
+            Err(e) => {
+                summary.error = Some(format!("writing the sensitivities failed: {e}"));
+                None
+            }
+        },
+        (_, Some(e)) => {
             summary.error = Some(format!("writing the sensitivities failed: {e}"));
-            (summary, None)
+            None
         }
+        (None, None) => None,
     };
     Some(Derivatives {
         summary,
         file,
-        samples: Some(found.samples),
+        samples: keep.then_some(kept),
     })
 }

@@ -22,13 +22,14 @@
 //!
 //! [MW01]: marsden#references
 
+use std::cell::RefCell;
 use std::ops::ControlFlow;
 use std::path::Path;
 use std::time::Instant;
 
 use marsden::sensitivity::{
     ConstrainedParametricIntegrator, ParametricIntegrator, SensitiveStep, Tangent, TangentOptions,
-    tangent_watched,
+    TangentSample, tangent_streamed,
 };
 use marsden::{Constraint as _, Lagrangian, State, Termination, TimeGrid};
 use marsden_io::{CsvWriter, NpyShape, NpyWriter};
@@ -92,7 +93,8 @@ pub fn compute(
 
 /// Runs the tangent run of `spec` from `start`, showing its progress to `controls` and stopping
 /// when its flag is set (looked at every [`CHECK_EVERY`] steps): a stopped run gives the
-/// Jacobians of the steps it took, with the summary's `error` saying where it stopped.
+/// Jacobians of the steps it took, with the summary's `error` saying where it stopped. The
+/// stored Jacobians are kept in memory ([`compute_streamed`] hands them on instead).
 ///
 /// # Errors
 /// The core's error (a step that failed, a rule whose step cannot be differentiated), as text.
@@ -102,6 +104,27 @@ pub fn compute_with(
     start: &Start,
     controls: &Controls<'_>,
 ) -> Result<Sensitivities, String> {
+    let mut samples = Vec::new();
+    let mut keep = |t: f64, jacobian: &[f64]| samples.push((t, jacobian.to_vec()));
+    let mut found = compute_streamed(spec, asked, start, controls, &mut keep)?;
+    found.samples = samples;
+    Ok(found)
+}
+
+/// [`compute_with`], handing each stored Jacobian to `sink` as the tangent run reaches it
+/// (`(t_k, J_k)`, `J_k` row-major `2n × columns` of the asked columns) instead of keeping it:
+/// a run of 10⁶ stored steps holds two Jacobians, not all of them. The result's `samples` is
+/// empty; its summary counts what was handed on.
+///
+/// # Errors
+/// The core's error (a step that failed, a rule whose step cannot be differentiated), as text.
+pub fn compute_streamed(
+    spec: &RunSpec,
+    asked: &SensitivitySpec,
+    start: &Start,
+    controls: &Controls<'_>,
+    sink: &mut dyn FnMut(f64, &[f64]),
+) -> Result<Sensitivities, String> {
     let state = State {
         t: start.t,
         q: start.q.clone(),
@@ -110,7 +133,13 @@ pub fn compute_with(
     let Some(rule) = spec.integrator.method.rule() else {
         return Err("method = \"exact\" has no step Jacobian to propagate; choose a rule".into());
     };
-    let watched = Watched::new(spec, controls);
+    let picker = Picker::of(spec, asked);
+    let handed = std::cell::Cell::new(0_usize);
+    let mut forward = |sample: &TangentSample| {
+        handed.set(handed.get() + 1);
+        sink(sample.state.t, &picker.pick(&sample.jacobian));
+    };
+    let watched = Watched::new(spec, controls, &mut forward);
     let run = match &asked.model {
         Some(model) => WithParameters {
             spec,
@@ -129,7 +158,7 @@ pub fn compute_with(
         }),
     }?;
     watched.report(run_steps(&run, spec.integrator.grid.steps), true);
-    let mut found = select(spec, asked, &run);
+    let mut found = select(spec, asked, &picker, &run, handed.get());
     if let Termination::Stopped { steps } = run.termination {
         found.summary.error = Some(format!(
             "the tangent run was stopped after {steps} of {} steps; the Jacobians are those of \
@@ -140,6 +169,39 @@ pub fn compute_with(
     Ok(found)
 }
 
+/// The asked columns of the tangent run's Jacobians (`(q₀, p₀)` with `initial = true`, then the
+/// parameters), picked out of its full `2n × (2n + P)` Jacobians.
+struct Picker {
+    rows: usize,
+    columns: usize,
+    picked: Vec<usize>,
+}
+
+impl Picker {
+    fn of(spec: &RunSpec, asked: &SensitivitySpec) -> Self {
+        let n = spec.system.dof();
+        let columns = 2 * n + asked.parameters.len();
+        let mut picked: Vec<usize> = Vec::new();
+        if asked.initial {
+            picked.extend(0..2 * n);
+        }
+        picked.extend(2 * n..columns);
+        Self {
+            rows: 2 * n,
+            columns,
+            picked,
+        }
+    }
+
+    /// The picked columns of `jacobian`, row-major `2n × picked`.
+    fn pick(&self, jacobian: &[f64]) -> Vec<f64> {
+        (0..self.rows)
+            .flat_map(|r| self.picked.iter().map(move |&c| (r, c)))
+            .map(|(r, c)| jacobian[r * self.columns + c])
+            .collect()
+    }
+}
+
 /// Steps taken by a tangent run of `total` steps.
 fn run_steps(run: &Tangent, total: usize) -> usize {
     match run.termination {
@@ -148,19 +210,25 @@ fn run_steps(run: &Tangent, total: usize) -> usize {
     }
 }
 
-/// The caller's controls as a tangent run sees them.
+/// The caller's controls as a tangent run sees them, and where its stored samples go.
 struct Watched<'c, 'a> {
     controls: &'c Controls<'a>,
     total: usize,
     clock: Instant,
+    sink: RefCell<&'c mut dyn FnMut(&TangentSample)>,
 }
 
 impl<'c, 'a> Watched<'c, 'a> {
-    fn new(spec: &RunSpec, controls: &'c Controls<'a>) -> Self {
+    fn new(
+        spec: &RunSpec,
+        controls: &'c Controls<'a>,
+        sink: &'c mut dyn FnMut(&TangentSample),
+    ) -> Self {
         Self {
             controls,
             total: spec.integrator.grid.steps,
             clock: Instant::now(),
+            sink: RefCell::new(sink),
         }
     }
 
@@ -195,47 +263,50 @@ impl<'c, 'a> Watched<'c, 'a> {
             }
         };
         let grid: &TimeGrid = &spec.integrator.grid;
-        tangent_watched(stepper, state, grid, &options(spec), watch)
+        let mut sink = self.sink.borrow_mut();
+        tangent_streamed(stepper, state, grid, &options(spec), watch, &mut **sink)
     }
 }
 
-/// The columns asked for, with their names.
-fn select(spec: &RunSpec, asked: &SensitivitySpec, run: &Tangent) -> Sensitivities {
+/// The summary of the asked columns: names, the final Jacobian, the number of samples handed on.
+fn select(
+    spec: &RunSpec,
+    asked: &SensitivitySpec,
+    picker: &Picker,
+    run: &Tangent,
+    samples: usize,
+) -> Sensitivities {
+    let last = picker.pick(&run.jacobian);
+    let width = picker.picked.len();
+    let mut summary = names(spec, asked);
+    summary.final_jacobian = last.chunks(width.max(1)).map(<[f64]>::to_vec).collect();
+    summary.samples = samples;
+    Sensitivities {
+        summary,
+        samples: Vec::new(),
+    }
+}
+
+/// The summary's names of the asked derivatives (rows `q_x`, `p_x`; columns `q0_x`, `p0_x`,
+/// then the parameters), before anything is computed; no Jacobian yet.
+pub fn names(spec: &RunSpec, asked: &SensitivitySpec) -> SensitivitySummary {
     let coordinates = &spec.system.coordinates;
-    let n = run.n;
-    let mut picked: Vec<usize> = Vec::new();
     let mut columns = Vec::new();
     if asked.initial {
-        picked.extend(0..2 * n);
         columns.extend(coordinates.iter().map(|c| format!("q0_{c}")));
         columns.extend(coordinates.iter().map(|c| format!("p0_{c}")));
     }
-    picked.extend(2 * n..run.columns);
     columns.extend(asked.parameters.iter().cloned());
     let rows: Vec<String> = (coordinates.iter().map(|c| format!("q_{c}")))
         .chain(coordinates.iter().map(|c| format!("p_{c}")))
         .collect();
-    let pick = |jac: &[f64]| -> Vec<f64> {
-        (0..2 * n)
-            .flat_map(|r| picked.iter().map(move |&c| (r, c)))
-            .map(|(r, c)| jac[r * run.columns + c])
-            .collect()
-    };
-    let last = pick(&run.jacobian);
-    let samples: Vec<(f64, Vec<f64>)> = (run.samples.iter())
-        .map(|s| (s.state.t, pick(&s.jacobian)))
-        .collect();
-    let width = picked.len();
-    Sensitivities {
-        summary: SensitivitySummary {
-            rows,
-            columns,
-            final_jacobian: last.chunks(width.max(1)).map(<[f64]>::to_vec).collect(),
-            samples: samples.len(),
-            error: None,
-            note: (spec.system.constraint.count() > 0).then(|| ON_TANGENT_VECTORS.to_owned()),
-        },
-        samples,
+    SensitivitySummary {
+        rows,
+        columns,
+        final_jacobian: Vec::new(),
+        samples: 0,
+        error: None,
+        note: (spec.system.constraint.count() > 0).then(|| ON_TANGENT_VECTORS.to_owned()),
     }
 }
 
@@ -316,35 +387,80 @@ impl WithParameters<'_> {
 /// # Errors
 /// An I/O error, as text.
 pub fn write(dir: &Path, format: Format, found: &Sensitivities) -> Result<String, String> {
-    let width = found.summary.rows.len() * found.summary.columns.len();
-    match format {
-        Format::Npy => {
-            let shape = NpyShape::Stack {
-                rows: found.summary.rows.len(),
-                columns: found.summary.columns.len(),
-            };
-            let mut w = NpyWriter::create(dir.join(SENSITIVITY_NPY), shape).map_err(text)?;
-            for (_, jac) in &found.samples {
-                w.write_row(jac).map_err(text)?;
+    let mut writer = SensitivityWriter::create(dir, format, &found.summary)?;
+    for (t, jac) in &found.samples {
+        writer.write(*t, jac)?;
+    }
+    writer.finish()
+}
+
+/// The sensitivity file of a run, written a stored step at a time: `sensitivity.npy` of shape
+/// `[samples, 2n, columns]`, or `sensitivity.csv` (`t`, then the entries row by row).
+pub enum SensitivityWriter {
+    /// `sensitivity.npy`.
+    Npy(NpyWriter<std::fs::File>),
+    /// `sensitivity.csv`, and a row buffer.
+    Csv(CsvWriter<std::fs::File>, Vec<f64>),
+}
+
+impl SensitivityWriter {
+    /// Creates the file for Jacobians of the summary's rows and columns.
+    ///
+    /// # Errors
+    /// An I/O error, as text.
+    pub fn create(
+        dir: &Path,
+        format: Format,
+        summary: &SensitivitySummary,
+    ) -> Result<Self, String> {
+        let (rows, columns) = (summary.rows.len(), summary.columns.len());
+        match format {
+            Format::Npy => {
+                let shape = NpyShape::Stack { rows, columns };
+                let w = NpyWriter::create(dir.join(SENSITIVITY_NPY), shape).map_err(text)?;
+                Ok(Self::Npy(w))
             }
-            w.finish().map_err(text)?;
-            Ok(SENSITIVITY_NPY.to_owned())
+            Format::Csv => {
+                let mut header = vec!["t".to_owned()];
+                for r in &summary.rows {
+                    header.extend(summary.columns.iter().map(|c| format!("{r}/{c}")));
+                }
+                let w = CsvWriter::create(dir.join(SENSITIVITY_CSV), &header).map_err(text)?;
+                Ok(Self::Csv(w, Vec::with_capacity(rows * columns + 1)))
+            }
         }
-        Format::Csv => {
-            let mut header = vec!["t".to_owned()];
-            for r in &found.summary.rows {
-                header.extend(found.summary.columns.iter().map(|c| format!("{r}/{c}")));
-            }
-            let mut w = CsvWriter::create(dir.join(SENSITIVITY_CSV), &header).map_err(text)?;
-            let mut row = Vec::with_capacity(width + 1);
-            for (t, jac) in &found.samples {
+    }
+
+    /// Appends the Jacobian of the stored step at `t`.
+    ///
+    /// # Errors
+    /// An I/O error, as text.
+    pub fn write(&mut self, t: f64, jacobian: &[f64]) -> Result<(), String> {
+        match self {
+            Self::Npy(w) => w.write_row(jacobian).map_err(text),
+            Self::Csv(w, row) => {
                 row.clear();
-                row.push(*t);
-                row.extend_from_slice(jac);
-                w.write_row(&row).map_err(text)?;
+                row.push(t);
+                row.extend_from_slice(jacobian);
+                w.write_row(row).map_err(text)
             }
-            w.finish().map_err(text)?;
-            Ok(SENSITIVITY_CSV.to_owned())
+        }
+    }
+
+    /// Closes the file; returns its name.
+    ///
+    /// # Errors
+    /// An I/O error, as text.
+    pub fn finish(self) -> Result<String, String> {
+        match self {
+            Self::Npy(mut w) => {
+                w.finish().map_err(text)?;
+                Ok(SENSITIVITY_NPY.to_owned())
+            }
+            Self::Csv(mut w, _) => {
+                w.finish().map_err(text)?;
+                Ok(SENSITIVITY_CSV.to_owned())
+            }
         }
     }
 }

@@ -61,3 +61,46 @@ fn r1_stop_flag_set_from_the_progress_callback_ends_the_tangent_run_at_512_steps
         }
     }
 }
+
+/// The Jacobians are handed on as the tangent run reaches them, not kept: every stored step
+/// reaches the sink once, in order of time, and the result holds none of them (a run of 10⁶
+/// stored steps kept 366 MB before). The streamed values are those `compute_with` keeps, bit for
+/// bit; a files-only run writes them and keeps nothing in memory.
+#[test]
+fn r1_jacobians_are_streamed_to_the_sink_not_kept() {
+    use marsden_spec::run::sensitivity::compute_streamed;
+    let spec =
+        RunSpec::from_toml_str(OSCILLATOR, "sensitivity.toml").unwrap_or_else(|d| panic!("{d}"));
+    let start = prepare(&spec).unwrap_or_else(|d| panic!("{d}"));
+    let asked = spec.sensitivity.as_ref().unwrap();
+    let mut streamed = Vec::new();
+    let mut sink = |t: f64, jacobian: &[f64]| streamed.push((t, jacobian.to_vec()));
+    let found = compute_streamed(&spec, asked, &start, &Controls::none(), &mut sink).unwrap();
+    assert!(
+        found.samples.is_empty(),
+        "kept {} samples",
+        found.samples.len()
+    );
+    let kept = compute_with(&spec, asked, &start, &Controls::none()).unwrap();
+    assert_eq!(found.summary.samples, kept.samples.len());
+    assert_eq!(streamed, kept.samples);
+    assert!(streamed.windows(2).all(|w| w[0].0 < w[1].0));
+
+    let dir = tempfile::tempdir().unwrap();
+    let overrides = marsden_spec::Overrides {
+        out: Some(dir.path().join("out")),
+        ..marsden_spec::Overrides::default()
+    };
+    let text = format!("{OSCILLATOR}\n[output]\nformat = \"npy\"\nplots = false\n");
+    let spec = marsden_spec::from_toml_str(&text, "sensitivity.toml", &overrides)
+        .unwrap_or_else(|d| panic!("{d}"));
+    let files =
+        marsden_spec::execute(&spec, marsden_spec::Store::Files, &Controls::none()).unwrap();
+    assert!(
+        files.sensitivity.is_none(),
+        "a files-only run keeps no Jacobians"
+    );
+    let written = marsden_io::read_npy(dir.path().join("out/sensitivity.npy")).unwrap();
+    let flat: Vec<f64> = kept.samples.iter().flat_map(|(_, j)| j.clone()).collect();
+    assert_eq!(written.data, flat);
+}

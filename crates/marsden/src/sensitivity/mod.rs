@@ -45,4 +45,4 @@ pub use options::{AdjointOptions, TangentOptions};
 pub use parametric::{ParametricIntegrator, ParametricModel};
 pub use parametric_constrained::ConstrainedParametricIntegrator;
 pub use step::SensitiveStep;
-pub use tangent::{Tangent, TangentSample, tangent, tangent_watched};
+pub use tangent::{Tangent, TangentSample, tangent, tangent_streamed, tangent_watched};

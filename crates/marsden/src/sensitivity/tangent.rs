@@ -103,7 +103,30 @@ pub fn tangent_watched<D, W>(
     start: State,
     grid: &TimeGrid,
     options: &TangentOptions,
+    watch: W,
+) -> Result<Tangent, Error>
+where
+    D: SensitiveStep + ?Sized,
+    W: FnMut(usize) -> ControlFlow<()>,
+{
+    let mut samples = Vec::new();
+    let mut run = tangent_streamed(stepper, start, grid, options, watch, &mut |sample| {
+        samples.push(sample.clone());
+    })?;
+    run.samples = samples;
+    Ok(run)
+}
+
+/// [`tangent_watched`] handing each kept sample to `sink` as it is reached instead of keeping
+/// it: a long run's Jacobians go to a file at the pace of the run, and memory holds two of
+/// them (the returned [`Tangent`] has no `samples`).
+pub fn tangent_streamed<D, W>(
+    stepper: &mut D,
+    start: State,
+    grid: &TimeGrid,
+    options: &TangentOptions,
     mut watch: W,
+    sink: &mut dyn FnMut(&TangentSample),
 ) -> Result<Tangent, Error>
 where
     D: SensitiveStep + ?Sized,
@@ -113,33 +136,29 @@ where
     let (m, columns) = (2 * n, 2 * n + stepper.parameters());
     Error::check_len("q0", &start.q, n)?;
     Error::check_len("p0", &start.p, n)?;
-    let mut s: Vec<f64> = (0..m * columns)
+    let s: Vec<f64> = (0..m * columns)
         .map(|k| f64::from(u8::from(k / columns == k % columns)))
         .collect();
     let (mut step, mut next) = (vec![0.0; m * columns], vec![0.0; m * columns]);
     let keep = |k: usize| options.every > 0 && (k.is_multiple_of(options.every) || k == grid.steps);
-    let mut samples = Vec::new();
+    let mut current = TangentSample {
+        step: 0,
+        state: start,
+        jacobian: s,
+    };
     if keep(0) {
-        samples.push(TangentSample {
-            step: 0,
-            state: start.clone(),
-            jacobian: s.clone(),
-        });
+        sink(&current);
     }
-    let mut state = start;
     let mut termination = Termination::Completed;
     for k in 0..grid.steps {
-        stepper.step_with_sensitivity(&mut state, grid.h, &mut step)?;
-        state.t = grid.time(k + 1);
-        propagate(&step, &s, m, columns, &mut next);
-        std::mem::swap(&mut s, &mut next);
+        stepper.step_with_sensitivity(&mut current.state, grid.h, &mut step)?;
+        current.state.t = grid.time(k + 1);
+        current.step = k + 1;
+        propagate(&step, &current.jacobian, m, columns, &mut next);
+        std::mem::swap(&mut current.jacobian, &mut next);
         let stop = watch(k + 1).is_break();
         if keep(k + 1) || (stop && options.every > 0) {
-            samples.push(TangentSample {
-                step: k + 1,
-                state: state.clone(),
-                jacobian: s.clone(),
-            });
+            sink(&current);
         }
         if stop {
             termination = Termination::Stopped { steps: k + 1 };
@@ -149,9 +168,9 @@ where
     Ok(Tangent {
         n,
         columns,
-        state,
-        jacobian: s,
-        samples,
+        state: current.state,
+        jacobian: current.jacobian,
+        samples: Vec::new(),
         termination,
     })
 }
