@@ -17,6 +17,15 @@ use crate::error::{Error, InputError};
 /// Relative tolerance of the symmetry and triangle-inequality checks (round-off of typed input).
 const CHECK_TOLERANCE: f64 = 1e-12;
 
+/// Which principal moments an inertia accepts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Moments {
+    /// Those of a mass distribution: positive, satisfying the triangle inequalities.
+    Physical,
+    /// Any positive moments (test problems of Euler's equations).
+    Any,
+}
+
 /// A validated inertia tensor `J` with what the step needs: `J⁻¹` and `J_d = ½ tr(J) I − J`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Inertia {
@@ -48,11 +57,34 @@ impl Inertia {
     /// symmetric (to 1e-12 relative), positive definite, and its eigenvalues satisfy the
     /// triangle inequalities; [`InputError::NonFinite`] for a non-finite entry.
     pub fn matrix(rows: &[f64; 9]) -> Result<Self, Error> {
-        Self::validated(0, rows)
+        Self::validated(0, rows, Moments::Physical)
     }
 
-    /// [`Inertia::matrix`] for body number `body` (the index reported in errors).
-    pub fn validated(body: usize, rows: &[f64; 9]) -> Result<Self, Error> {
+    /// [`Inertia::principal`] without the triangle inequalities: any positive definite `J`, such
+    /// as the test body `J = diag(2, 1, 2/3)` of [HLW06] §VII.5 (R19), which no mass distribution
+    /// has (`2 > 1 + 2/3`). Euler's equations are well posed for it; `J_d` is indefinite, so the
+    /// discrete Lagrangian is not convex, but the step's Cayley equation stays regular for small
+    /// `h|Ω|`.
+    ///
+    /// # Errors
+    /// [`InputError::InvalidInertia`] unless all are positive; [`InputError::NonFinite`].
+    ///
+    /// [HLW06]: crate#references
+    pub fn principal_unphysical(moments: [f64; 3]) -> Result<Self, Error> {
+        let rows = [
+            moments[0], 0.0, 0.0, //
+            0.0, moments[1], 0.0, //
+            0.0, 0.0, moments[2],
+        ];
+        Self::validated(0, &rows, Moments::Any)
+    }
+
+    /// The inertia of body number `body` (the index reported in errors) from a symmetric matrix,
+    /// with or without the triangle inequalities.
+    ///
+    /// # Errors
+    /// As [`Inertia::matrix`].
+    pub fn validated(body: usize, rows: &[f64; 9], moments: Moments) -> Result<Self, Error> {
         Error::check_finite("inertia", rows)?;
         let matrix = Mat3::from_row_slice(rows);
         let scale = matrix.amax();
@@ -85,7 +117,7 @@ impl Inertia {
         }
         // Sorted ascending, the only inequality that can fail is J₃ ≤ J₁ + J₂.
         let excess = principal[2] - principal[0] - principal[1];
-        if excess > CHECK_TOLERANCE * principal[2] {
+        if moments == Moments::Physical && excess > CHECK_TOLERANCE * principal[2] {
             return Err(invalid(
                 format!(
                     "the principal moments violate the triangle inequality: {} > {} + {} \
@@ -95,9 +127,9 @@ impl Inertia {
                 principal,
             ));
         }
-        let inverse = matrix.try_inverse().ok_or_else(|| {
-            invalid("singular (not positive definite)".into(), principal)
-        })?;
+        let inverse = matrix
+            .try_inverse()
+            .ok_or_else(|| invalid("singular (not positive definite)".into(), principal))?;
         let nonstandard = 0.5 * matrix.trace() * Mat3::identity() - matrix;
         Ok(Self {
             matrix,

@@ -41,13 +41,10 @@ pub fn solve_cayley(
     options: &NewtonOptions,
 ) -> Result<(Vec3, NewtonReport), NewtonFailure> {
     let linear = 2.0 * j - hat(a);
-    let mut f = linear
-        .lu()
-        .solve(a)
-        .ok_or(NewtonFailure::Singular {
-            iteration: 0,
-            pivot: linear.determinant(),
-        })?;
+    let mut f = linear.lu().solve(a).ok_or(NewtonFailure::Singular {
+        iteration: 0,
+        pivot: linear.determinant(),
+    })?;
     let scale = a.amax();
     let mut convergence = Convergence::new(options);
     let mut report = NewtonReport::default();
@@ -58,13 +55,10 @@ pub fn solve_cayley(
         if convergence.check(&report, scale)? {
             return Ok((f, report));
         }
-        let update = jacobian
-            .lu()
-            .solve(&-phi)
-            .ok_or(NewtonFailure::Singular {
-                iteration: report.iterations,
-                pivot: jacobian.determinant(),
-            })?;
+        let update = jacobian.lu().solve(&-phi).ok_or(NewtonFailure::Singular {
+            iteration: report.iterations,
+            pivot: jacobian.determinant(),
+        })?;
         f += update;
         report.iterations += 1;
         report.factorizations += 1;

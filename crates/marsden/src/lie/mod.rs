@@ -19,7 +19,7 @@
 //! ```
 //! use marsden::lie::{body::{Inertia, RigidBody}, potential::NoPotential, so3,
 //!     state::{BodyInitial, RigidState, RigidSystem}, lgvi::{Lgvi, LgviOptions}, invariants};
-//! let body = RigidBody::fixed_point(Inertia::principal([2.0, 1.0, 2.0 / 3.0])?);
+//! let body = RigidBody::fixed_point(Inertia::principal_unphysical([2.0, 1.0, 2.0 / 3.0])?);
 //! let system = RigidSystem::new(vec![body], NoPotential);
 //! let pi0 = so3::Vec3::new(1.1_f64.cos(), 0.0, 1.1_f64.sin());
 //! let state = RigidState::new(&system, 0.0, &[BodyInitial::rotating(&so3::Mat3::identity(), &pi0)])?;
