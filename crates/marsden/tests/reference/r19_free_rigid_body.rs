@@ -28,6 +28,7 @@ fn r19_moser_veselov_keeps_energy_casimir_and_spatial_momentum() {
         dc = dc.max((invariants::casimir(s, 0) - 1.0).abs());
         dl = dl.max((invariants::spatial_angular_momentum(s) - l0).amax());
     }
+    eprintln!("R19: max |H − H₀| {de:.2e}, ||Π|² − 1| {dc:.2e}, |RΠ − RΠ₀| {dl:.2e}");
     assert!(de <= 1e-12, "energy drift {de:.2e}");
     assert!(dc <= 1e-12, "|Π|² drift {dc:.2e}");
     assert!(dl <= 1e-12, "RΠ drift {dl:.2e}");
