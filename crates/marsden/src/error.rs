@@ -74,6 +74,38 @@ pub enum InputError {
         /// Valid range.
         reason: &'static str,
     },
+    /// An inertia tensor of a rigid body is not symmetric, not positive definite, or its
+    /// principal moments violate a triangle inequality (`J₁ ≤ J₂ + J₃` and cyclic).
+    #[error(
+        "the inertia of rigid body {body} is not valid: {reason} (matrix, row-major: {matrix:?}; \
+         principal moments {principal:?})"
+    )]
+    InvalidInertia {
+        /// Index of the body.
+        body: usize,
+        /// What is wrong, with the offending numbers.
+        reason: String,
+        /// The inertia matrix given, row-major.
+        matrix: [f64; 9],
+        /// Its eigenvalues (principal moments), ascending (NaN when not symmetric).
+        principal: [f64; 3],
+    },
+    /// A matrix given as an attitude is not a rotation: `max |RᵀR − I|` above the tolerance,
+    /// or `det R < 0`.
+    #[error(
+        "{what} is not a rotation matrix: max |RᵀR − I| = {defect:.3e} (tolerance \
+         {tolerance:.1e}), det R = {determinant}"
+    )]
+    NotARotation {
+        /// Which input.
+        what: &'static str,
+        /// The orthogonality defect `max |RᵀR − I|`.
+        defect: f64,
+        /// Its determinant.
+        determinant: f64,
+        /// The largest defect accepted.
+        tolerance: f64,
+    },
     /// A quadrature rule was asked for with an impossible number of points.
     #[error("no {family} quadrature with {points} points: valid choices are {valid}")]
     InvalidQuadrature {

@@ -14,9 +14,11 @@ mod constraints;
 mod fast_paths;
 /// The Hamiltonian side: the same system as L and as H, the Legendre adapters.
 mod hamiltonian;
+/// Rigid bodies on SO(3): so(3) and Cayley, the body moment by AD, the exact free body, free and coupled bodies, failures.
+mod lie;
 /// Continuous mechanics and the catalog: AD against finite differences, Legendre transform, accelerations, hand-written potential derivatives, forces.
 mod mechanics;
-/// The reference cases R1–R17 (closed forms, unit values, exact solutions, orders), one file per case, named after it.
+/// The reference cases R1–R20 (closed forms, unit values, exact solutions, orders), one file per case, named after it.
 mod reference;
 /// Rules of high order: compositions and Galerkin methods on long runs, with forces and constraints.
 mod rules;

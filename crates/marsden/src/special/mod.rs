@@ -8,12 +8,14 @@
 //! * [`pendulum`]: the exact motion of the planar pendulum `θ̈ = −ω² sin θ` (libration,
 //!   separatrix and rotation);
 //! * [`kepler`]: Kepler's equation and the exact propagation of bound two-body orbits;
-//! * [`oscillator`]: the harmonic and the damped harmonic oscillator.
+//! * [`oscillator`]: the harmonic and the damped harmonic oscillator;
+//! * [`euler_top`]: the free asymmetric rigid body (Euler's equations) by elliptic functions.
 //!
 //! Every fallible routine returns [`SpecialError`] for invalid input (non-finite numbers,
 //! parameters outside the domain, unbound or degenerate orbits) instead of panicking.
 
 pub mod elliptic;
+pub mod euler_top;
 pub mod kepler;
 pub mod oscillator;
 pub mod pendulum;

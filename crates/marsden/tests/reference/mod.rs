@@ -1,4 +1,4 @@
-//! The reference cases R1–R17 (closed forms, unit values, exact solutions, orders), one file per case, named after it.
+//! The reference cases R1–R20 (closed forms, unit values, exact solutions, orders), one file per case, named after it.
 
 mod r01_midpoint_oscillator;
 mod r02_trapezoid_stormer_verlet;
@@ -14,3 +14,5 @@ mod r10_kepler;
 mod r12_damped_oscillator;
 mod r17_certificate_symplecticity;
 mod r17_reversibility_symplecticity;
+mod r19_free_rigid_body;
+mod r20_heavy_top;
