@@ -1,6 +1,7 @@
-//! Problems, runs, observers, ensembles, input files and bad input.
+//! Problems, runs, observers, events, ensembles, input files and bad input.
 
 mod bad_input;
 mod ensemble;
+mod events;
 mod maps_and_runs;
 mod nbody_file;
