@@ -435,6 +435,26 @@ pub enum StepError {
         /// Residual (max-norm) at the last iterate.
         residual: f64,
     },
+    /// An event function ([`crate::run::events`]) returned a non-finite value, at a state of
+    /// the run or at a point of the step's interpolant.
+    EventNotFinite {
+        /// Index of the event in the detector's list.
+        event: usize,
+        /// Where it was evaluated.
+        at: f64,
+        /// The value it returned.
+        value: f64,
+    },
+    /// The root of an event function inside a step was not located to the tolerance within
+    /// the evaluation budget ([`crate::numerics::brent`]).
+    EventNotLocated {
+        /// Index of the event in the detector's list.
+        event: usize,
+        /// Lower end of the last bracket.
+        low: f64,
+        /// Upper end of the last bracket.
+        high: f64,
+    },
 }
 
 impl std::fmt::Display for StepFailure {
@@ -480,6 +500,16 @@ impl std::fmt::Display for StepFailure {
                  {residual:.3e} after {iterations} Newton iterations (the KKT matrix \
                  [[∂²L/∂v², Dφᵀ], [Dφ, 0]] may be singular: redundant constraints or a singular \
                  Lagrangian)"
+            ),
+            StepError::EventNotFinite { event, at, value } => write!(
+                f,
+                "event {event} is not finite in step {step} (t = {t}): g = {value} at \
+                 t = {at}"
+            ),
+            StepError::EventNotLocated { event, low, high } => write!(
+                f,
+                "the crossing of event {event} in step {step} (t = {t}) was not located: it \
+                 lies in [{low}, {high}]"
             ),
         }
     }

@@ -114,6 +114,8 @@
 //! * **GW08**: Griewank & Walther, *Evaluating Derivatives*, 2nd ed. (2008).
 //! * **Sanz-Serna 2016**: J. M. Sanz-Serna, *Symplectic Runge–Kutta schemes for adjoint equations,
 //!   automatic differentiation, optimal control and more*, SIAM Review 58 (2016).
+//! * **Bre73**: R. P. Brent, *Algorithms for Minimization without Derivatives*, Prentice-Hall
+//!   (1973), chapter 4 (the root finder `zeroin`).
 //!
 //! [MW01]: crate#references
 //! [LMO08]: crate#references

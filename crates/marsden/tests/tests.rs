@@ -22,7 +22,7 @@ mod mechanics;
 mod reference;
 /// Rules of high order: compositions and Galerkin methods on long runs, with forces and constraints.
 mod rules;
-/// Problems, runs, observers, ensembles, input files and bad input.
+/// Problems, runs, observers, events, checkpoints, ensembles, input files and bad input.
 mod run;
 /// Derivatives through the simulation: tangent maps, finite differences of whole runs, adjoints.
 mod sensitivity;

@@ -70,6 +70,6 @@ pub use initial::{
 };
 pub use multipliers::multipliers_at;
 pub use rattle::{
-    MomentumProjection, NoProjection, ProjectionFailure, ProjectionReport, ProjectionStatistics,
-    Rattle,
+    MomentumProjection, NoProjection, ProjectionCarry, ProjectionFailure, ProjectionReport,
+    ProjectionStatistics, Rattle,
 };

@@ -55,6 +55,24 @@ pub trait MomentumProjection {
     ) -> Result<ProjectionReport, ProjectionFailure>;
     /// The multipliers `ν` of the last successful projection (`p ← p − Dφ(q)ᵀν`, length d).
     fn multipliers(&self) -> &[f64];
+    /// What the projection carries from one step to the next (its starting guess and last
+    /// multipliers), for a checkpoint of the integrator
+    /// ([`crate::integrator::IntegratorCheckpoint`]). Default: nothing.
+    fn carried(&self) -> ProjectionCarry {
+        ProjectionCarry::default()
+    }
+    /// Takes back what [`MomentumProjection::carried`] gave. Default: nothing to take.
+    fn restore_carried(&mut self, _carry: &ProjectionCarry) {}
+}
+
+/// What a projection carries from one step to the next, as plain numbers.
+#[derive(Debug, Clone, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ProjectionCarry {
+    /// The velocities `v = FH(q, p)` of the last projection: the next one's starting guess.
+    pub velocity: Vec<f64>,
+    /// The multipliers `ν` of the last projection.
+    pub multipliers: Vec<f64>,
 }
 
 /// How a projection went.
@@ -417,6 +435,18 @@ impl<L: Lagrangian, C: Constraint> MomentumProjection for Rattle<L, C> {
 
     fn multipliers(&self) -> &[f64] {
         &self.ws.nu
+    }
+
+    fn carried(&self) -> ProjectionCarry {
+        ProjectionCarry {
+            velocity: self.ws.v.clone(),
+            multipliers: self.ws.nu.clone(),
+        }
+    }
+
+    fn restore_carried(&mut self, carry: &ProjectionCarry) {
+        self.ws.v.clone_from(&carry.velocity);
+        self.ws.nu.clone_from(&carry.multipliers);
     }
 }
 

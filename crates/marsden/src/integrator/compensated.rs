@@ -51,7 +51,36 @@ pub(crate) struct Compensation {
     increment: Vec<f64>,
 }
 
+/// The rounding errors compensated summation carries to the next step, and the state they
+/// belong to.
+#[derive(Debug, Clone, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct CompensationCarry {
+    q_error: Vec<f64>,
+    p_error: Vec<f64>,
+    last_q: Vec<f64>,
+    last_p: Vec<f64>,
+}
+
 impl Compensation {
+    /// What is carried to the next step, as plain numbers (a checkpoint).
+    pub fn carried(&self) -> CompensationCarry {
+        CompensationCarry {
+            q_error: self.q_error.clone(),
+            p_error: self.p_error.clone(),
+            last_q: self.last_q.clone(),
+            last_p: self.last_p.clone(),
+        }
+    }
+
+    /// Takes back what [`Compensation::carried`] gave.
+    pub fn restore_carried(&mut self, carry: &CompensationCarry) {
+        self.q_error.clone_from(&carry.q_error);
+        self.p_error.clone_from(&carry.p_error);
+        self.last_q.clone_from(&carry.last_q);
+        self.last_p.clone_from(&carry.last_p);
+    }
+
     /// Adds `Δ` to `q` and `δp` (from [`momentum_increment`]) to `p` with compensated
     /// summation. The carried errors are dropped first if `(q, p)` is not the state the last
     /// update left (the caller started elsewhere or changed the state between steps).

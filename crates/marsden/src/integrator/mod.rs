@@ -8,6 +8,7 @@
 //! [MW01]: crate#references
 
 mod build;
+mod checkpoint;
 pub(crate) mod compensated;
 pub(crate) mod equations;
 mod explicit;
@@ -20,6 +21,7 @@ mod projection;
 mod report;
 pub(crate) mod small;
 
+pub use checkpoint::IntegratorCheckpoint;
 pub use equations::StepShape;
 pub use report::{Statistics, StepReport};
 

@@ -17,6 +17,7 @@ use crate::separable::{Frame, SeparableWorkspace};
 
 /// Which solver takes the steps of an integrator.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) enum Path {
     /// The explicit form of the action (velocity Störmer–Verlet and its compositions,
     /// [`crate::separable::explicit`]): unforced, unconstrained, not compensated.

@@ -9,7 +9,8 @@ use super::equations::StepShape;
 /// falling back to linear, constant, and for a fresh start `Δ_j = c_j h v_k` with the velocity
 /// hint (or 0). Multipliers start from their last values. The history is a flat ring of three
 /// solutions (no allocation per step).
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct Predictor {
     /// Three solutions back to back.
     ring: Vec<f64>,

@@ -2,6 +2,7 @@
 
 /// What one step cost and how well it converged.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct StepReport {
     /// Newton updates applied.
     pub iterations: usize,
@@ -11,6 +12,7 @@ pub struct StepReport {
 
 /// Work counters accumulated over the integrator's life (pinned by tests).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Statistics {
     /// Steps completed.
     pub steps: usize,

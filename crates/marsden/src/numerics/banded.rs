@@ -105,7 +105,8 @@ impl Banded {
 
 /// LU factors `P A = L U` of a [`Banded`] matrix, by rows of width `3b + 1` (row `i` holds
 /// columns `i − b … i + 2b`: the band plus the fill of pivoting).
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BandLu {
     n: usize,
     b: usize,

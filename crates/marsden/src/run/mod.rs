@@ -6,10 +6,12 @@
 //! | [`problem`] | system + initial data + grid, validated once; `solve` |
 //! | [`grid`] | `t_k = t₀ + k h`, storage stride |
 //! | [`observer`] | watching each step: monitors, writers, progress, stopping |
+//! | [`events`] | zero crossings of `g(t, q, v, p)` located inside the step: recorded, or ending the run |
 //! | [`stepper`] | what the loop steps: the Lagrangian and the Hamiltonian integrators |
 //! | [`simulate`](mod@simulate) | the one run loop |
 //! | [`trajectory`] | stored samples, per-step reports, why the run ended |
 
+pub mod events;
 pub mod grid;
 pub mod observer;
 pub mod problem;

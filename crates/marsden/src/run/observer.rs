@@ -2,6 +2,7 @@
 
 use std::ops::ControlFlow;
 
+use super::trajectory::Termination;
 use crate::integrator::StepReport;
 
 /// What an observer sees after each completed step.
@@ -41,6 +42,13 @@ pub trait Observer {
     /// report, a stop flag, a sampling stride of its own). Default: `usize::MAX` (none).
     fn cadence(&self) -> usize {
         usize::MAX
+    }
+    /// Why the run ends, asked once when [`Observer::observe`] returned
+    /// `ControlFlow::Break(())`. Default: `None`, which the run loop records as
+    /// [`Termination::Stopped`]; an event detector names its event
+    /// ([`Termination::Event`]) or the failure to locate it ([`Termination::Failed`]).
+    fn termination(&self) -> Option<Termination> {
+        None
     }
 }
 

@@ -81,7 +81,9 @@ where
             traj.push_sample(k, (state.t, &state.q, &state.p), multipliers, last_report);
         }
         if stop {
-            traj.termination = Termination::Stopped { steps: k };
+            traj.termination = observer
+                .termination()
+                .unwrap_or(Termination::Stopped { steps: k });
             break;
         }
     }

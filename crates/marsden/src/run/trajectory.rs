@@ -16,6 +16,16 @@ pub enum Termination {
     },
     /// A step failed; the trajectory holds everything up to the last good state.
     Failed(Error),
+    /// A stopping event fired ([`crate::run::events`]): the run ends with the step inside
+    /// which the event was located; the event's own record holds the located state.
+    Event {
+        /// Index of the event in the detector's list.
+        event: usize,
+        /// Steps completed (the event lies inside the last one).
+        steps: usize,
+        /// The located time of the event (`t_{steps−1} ≤ t ≤ t_steps`).
+        t: f64,
+    },
 }
 
 /// Stored samples of a run (every `stride`-th step, plus the first and the last state).

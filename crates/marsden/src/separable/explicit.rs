@@ -109,6 +109,16 @@ fn all_finite(a: &[f64], b: &[f64]) -> bool {
     a.iter().chain(b).all(|x| x.is_finite())
 }
 
+/// The gradient `∇V(t, q)` an explicit step leaves for the next one (its first half-kick).
+#[derive(Debug, Clone, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct ExplicitCarry {
+    grad: Vec<f64>,
+    q: Vec<f64>,
+    t: f64,
+    valid: bool,
+}
+
 /// Buffers of the explicit step and the gradient that ended the last step.
 #[derive(Debug, Clone, Default)]
 pub struct ExplicitWorkspace {
@@ -144,6 +154,28 @@ impl ExplicitWorkspace {
         self.cache_q.copy_from_slice(q);
         self.cache_t = t;
         self.cache_valid = true;
+    }
+
+    /// The gradient this workspace carries to the next step, as plain numbers (a checkpoint).
+    pub(crate) fn carried(&self) -> ExplicitCarry {
+        ExplicitCarry {
+            grad: self.grad.clone(),
+            q: self.cache_q.clone(),
+            t: self.cache_t,
+            valid: self.cache_valid,
+        }
+    }
+
+    /// Takes back what [`ExplicitWorkspace::carried`] gave (buffers sized for its `n`).
+    pub(crate) fn restore_carried(&mut self, carry: &ExplicitCarry) {
+        let n = carry.grad.len();
+        self.resize(n);
+        if carry.q.len() == n {
+            self.grad.copy_from_slice(&carry.grad);
+            self.cache_q.copy_from_slice(&carry.q);
+            self.cache_t = carry.t;
+            self.cache_valid = carry.valid;
+        }
     }
 
     /// Whether the cached gradient was taken at `(t, q)`.

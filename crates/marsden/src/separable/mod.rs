@@ -22,6 +22,8 @@ pub mod jacobian;
 mod jacobian_small;
 mod step;
 
+pub(crate) use explicit::ExplicitCarry;
 pub use explicit::{ExplicitRun, ExplicitStep, ExplicitWorkspace};
 pub use jacobian::{JacobianWorkspace, SeparableJacobian};
+pub(crate) use step::SeparableCarry;
 pub use step::{Frame, SeparableStep, SeparableWorkspace};

@@ -112,7 +112,33 @@ impl Default for SeparableWorkspace {
     }
 }
 
+/// The factored Jacobian a separable step leaves for the next one, and its last contraction
+/// rate: what decides whether the next step reuses it.
+#[derive(Debug, Clone, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct SeparableCarry {
+    lu: BandLu,
+    lu_h: Option<f64>,
+    theta: f64,
+}
+
 impl SeparableWorkspace {
+    /// What this workspace carries to the next step, as plain numbers (a checkpoint).
+    pub(crate) fn carried(&self) -> SeparableCarry {
+        SeparableCarry {
+            lu: self.lu.clone(),
+            lu_h: self.lu_h,
+            theta: self.theta,
+        }
+    }
+
+    /// Takes back what [`SeparableWorkspace::carried`] gave.
+    pub(crate) fn restore_carried(&mut self, carry: &SeparableCarry) {
+        self.lu.clone_from(&carry.lu);
+        self.lu_h = carry.lu_h;
+        self.theta = carry.theta;
+    }
+
     /// Whether the action's Lagrangian is separable (asks `step` once, then remembers).
     pub fn applies(&mut self, step: &dyn SeparableStep) -> bool {
         let mass = self.mass.get_or_insert_with(|| {

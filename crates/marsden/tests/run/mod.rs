@@ -1,6 +1,8 @@
-//! Problems, runs, observers, ensembles, input files and bad input.
+//! Problems, runs, observers, events, checkpoints, ensembles, input files and bad input.
 
 mod bad_input;
+mod checkpoint;
 mod ensemble;
+mod events;
 mod maps_and_runs;
 mod nbody_file;

@@ -1,0 +1,312 @@
+//! The event detector: an observer that watches every step for sign changes of its events and
+//! locates them inside the step.
+
+use std::ops::ControlFlow;
+
+use super::interpolant::HermiteStep;
+use super::legendre::LegendreMaps;
+use super::{Action, Direction, Event, EventFunction, EventRecord};
+use crate::error::{Error, InputError, StepError};
+use crate::mechanics::Lagrangian;
+use crate::numerics::brent::{self, BrentOptions, RootError};
+use crate::run::observer::{Observer, StepView};
+use crate::run::trajectory::Termination;
+
+/// Evaluations of `g` allowed to locate one crossing (Brent's method needs about ten on smooth
+/// functions; bisection of a step to round-off needs 53).
+const MAX_EVALUATIONS: usize = 200;
+
+/// A state of the run with its velocities.
+#[derive(Debug, Clone)]
+struct Point {
+    step: usize,
+    t: f64,
+    q: Vec<f64>,
+    v: Vec<f64>,
+    p: Vec<f64>,
+}
+
+impl Point {
+    fn empty(n: usize) -> Self {
+        Self {
+            step: 0,
+            t: f64::NAN,
+            q: vec![0.0; n],
+            v: vec![0.0; n],
+            p: vec![0.0; n],
+        }
+    }
+}
+
+/// A sign change found at the end of a step, located.
+#[derive(Debug, Clone, Copy)]
+struct Crossing {
+    event: usize,
+    direction: Direction,
+    t: f64,
+}
+
+/// Watches a run for the zero crossings of its [`Event`]s (see the [module](super) docs):
+/// pass it to [`crate::Problem::solve_with`] or [`crate::run::simulate()`], then read
+/// [`EventDetector::records`].
+#[derive(Debug)]
+pub struct EventDetector<'l, L, G> {
+    legendre: LegendreMaps<'l, L>,
+    events: Vec<Event<G>>,
+    /// The state before the step being looked at, and the new one.
+    before: Point,
+    after: Point,
+    /// `g` of every event at `before` and at `after`.
+    g_before: Vec<f64>,
+    g_after: Vec<f64>,
+    /// Crossings of each event so far.
+    crossings: Vec<usize>,
+    records: Vec<EventRecord>,
+    /// Why the run ends, once it must.
+    ending: Option<Termination>,
+    /// A point of the interpolant.
+    probe: Point,
+}
+
+impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
+    /// A detector of `events` on the runs of `lagrangian` (whose Legendre transform gives the
+    /// velocities the events read).
+    ///
+    /// # Errors
+    /// [`InputError::InvalidOption`] for a count of 0; the error of a singular declared mass
+    /// matrix.
+    pub fn new(lagrangian: &'l L, events: Vec<Event<G>>) -> Result<Self, Error> {
+        if events.iter().any(|e| e.count == Some(0)) {
+            return Err(Error::Input(InputError::InvalidOption {
+                name: "count",
+                value: 0.0,
+                reason: "an event's count is the number of the crossing that stops the run (or \
+                         of the last one recorded): at least 1",
+            }));
+        }
+        let n = lagrangian.dof();
+        let m = events.len();
+        Ok(Self {
+            legendre: LegendreMaps::new(lagrangian)?,
+            events,
+            before: Point::empty(n),
+            after: Point::empty(n),
+            g_before: vec![0.0; m],
+            g_after: vec![0.0; m],
+            crossings: vec![0; m],
+            records: Vec::new(),
+            ending: None,
+            probe: Point::empty(n),
+        })
+    }
+
+    /// The crossings located so far, in the order of their times.
+    pub fn records(&self) -> &[EventRecord] {
+        &self.records
+    }
+
+    /// The records, the detector consumed.
+    pub fn into_records(self) -> Vec<EventRecord> {
+        self.records
+    }
+
+    /// The events watched.
+    pub fn events(&self) -> &[Event<G>] {
+        &self.events
+    }
+
+    /// `after` ← the view's state with its velocities, and `g_after` ← `g` there.
+    fn take(&mut self, view: &StepView<'_>) -> Result<(), Error> {
+        let after = &mut self.after;
+        after.step = view.step;
+        after.t = view.t;
+        after.q.copy_from_slice(view.q);
+        after.p.copy_from_slice(view.p);
+        // The previous velocities are the general inverse's first guess.
+        after.v.copy_from_slice(&self.before.v);
+        let step = view.step.saturating_sub(1);
+        self.legendre
+            .velocity(after.t, &after.q, &after.p, &mut after.v)?;
+        for (i, event) in self.events.iter().enumerate() {
+            let g = event.function.value(after.t, &after.q, &after.v, &after.p);
+            if !g.is_finite() {
+                let cause = StepError::EventNotFinite {
+                    event: i,
+                    at: after.t,
+                    value: g,
+                };
+                return Err(Error::step(step, self.before.t, cause));
+            }
+            self.g_after[i] = g;
+        }
+        Ok(())
+    }
+
+    /// The crossings of the step from `before` to `after`, located, earliest first.
+    fn crossings_in_step(&mut self) -> Result<Vec<Crossing>, Error> {
+        let mut found = Vec::new();
+        for i in 0..self.events.len() {
+            let (g0, g1) = (self.g_before[i], self.g_after[i]);
+            if !self.events[i].direction.crosses(g0, g1) {
+                continue;
+            }
+            let direction = if g0 < 0.0 {
+                Direction::Up
+            } else {
+                Direction::Down
+            };
+            let t = self.locate(i)?;
+            found.push(Crossing {
+                event: i,
+                direction,
+                t,
+            });
+        }
+        found.sort_by(|a, b| a.t.total_cmp(&b.t));
+        Ok(found)
+    }
+
+    /// The root of event `i`'s `g` along the interpolant of the step, by Brent's method.
+    fn locate(&mut self, i: usize) -> Result<f64, Error> {
+        let (before, after) = (&self.before, &self.after);
+        let h = after.t - before.t;
+        let step = HermiteStep {
+            t0: before.t,
+            h,
+            q0: &before.q,
+            v0: &before.v,
+            q1: &after.q,
+            v1: &after.v,
+        };
+        let (legendre, probe, function) =
+            (&self.legendre, &mut self.probe, &self.events[i].function);
+        let g = |t: f64| {
+            step.at(t, &mut probe.q, &mut probe.v);
+            legendre.momentum(t, &probe.q, &probe.v, &mut probe.p);
+            function.value(t, &probe.q, &probe.v, &probe.p)
+        };
+        let options = BrentOptions {
+            x_tolerance: 4.0 * f64::EPSILON * before.t.abs().max(after.t.abs()).max(h),
+            max_evaluations: MAX_EVALUATIONS,
+        };
+        let ends = ((before.t, self.g_before[i]), (after.t, self.g_after[i]));
+        let failure = |cause| Error::step(before.step, before.t, cause);
+        match brent::find_root(g, ends.0, ends.1, &options) {
+            Ok(root) => Ok(root.x),
+            Err(RootError::NonFinite { x, value }) => Err(failure(StepError::EventNotFinite {
+                event: i,
+                at: x,
+                value,
+            })),
+            Err(RootError::Budget { low, high, .. }) => Err(failure(StepError::EventNotLocated {
+                event: i,
+                low,
+                high,
+            })),
+            // Not reached: the ends were checked to be finite and of opposite signs.
+            Err(RootError::NotBracketed { .. }) => Err(failure(StepError::EventNotLocated {
+                event: i,
+                low: before.t,
+                high: after.t,
+            })),
+        }
+    }
+
+    /// The record of a crossing: the stored state at an end of the step, else the point of the
+    /// interpolant.
+    fn record(&mut self, crossing: Crossing) -> EventRecord {
+        let point = if crossing.t == self.after.t {
+            &self.after
+        } else if crossing.t == self.before.t {
+            &self.before
+        } else {
+            let step = HermiteStep {
+                t0: self.before.t,
+                h: self.after.t - self.before.t,
+                q0: &self.before.q,
+                v0: &self.before.v,
+                q1: &self.after.q,
+                v1: &self.after.v,
+            };
+            let probe = &mut self.probe;
+            step.at(crossing.t, &mut probe.q, &mut probe.v);
+            self.legendre
+                .momentum(crossing.t, &probe.q, &probe.v, &mut probe.p);
+            probe
+        };
+        EventRecord {
+            event: crossing.event,
+            direction: crossing.direction,
+            step: self.after.step,
+            t: crossing.t,
+            q: point.q.clone(),
+            v: point.v.clone(),
+            p: point.p.clone(),
+        }
+    }
+
+    /// Records the step's crossings in time order, until (and including) the one that stops.
+    fn act(&mut self, crossings: Vec<Crossing>) {
+        for crossing in crossings {
+            let i = crossing.event;
+            self.crossings[i] += 1;
+            let (action, count) = (self.events[i].action, self.events[i].count);
+            let nth = self.crossings[i];
+            match action {
+                Action::Record if count.is_none_or(|n| nth <= n) => {
+                    let record = self.record(crossing);
+                    self.records.push(record);
+                }
+                Action::Record => {}
+                Action::Stop => {
+                    let record = self.record(crossing);
+                    self.records.push(record);
+                    if nth == count.unwrap_or(1) {
+                        self.ending = Some(Termination::Event {
+                            event: i,
+                            steps: self.after.step,
+                            t: crossing.t,
+                        });
+                        return;
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl<L: Lagrangian, G: EventFunction> Observer for EventDetector<'_, L, G> {
+    fn start(&mut self, initial: &StepView<'_>) {
+        self.records.clear();
+        self.crossings.iter_mut().for_each(|c| *c = 0);
+        self.ending = None;
+        self.before.v.iter_mut().for_each(|v| *v = 0.0);
+        if let Err(error) = self.take(initial) {
+            self.ending = Some(Termination::Failed(error));
+        }
+        std::mem::swap(&mut self.before, &mut self.after);
+        std::mem::swap(&mut self.g_before, &mut self.g_after);
+    }
+
+    fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()> {
+        if self.ending.is_some() {
+            return ControlFlow::Break(());
+        }
+        let located = self.take(view).and_then(|()| self.crossings_in_step());
+        match located {
+            Ok(crossings) if !crossings.is_empty() => self.act(crossings),
+            Ok(_) => {}
+            Err(error) => self.ending = Some(Termination::Failed(error)),
+        }
+        std::mem::swap(&mut self.before, &mut self.after);
+        std::mem::swap(&mut self.g_before, &mut self.g_after);
+        match self.ending {
+            Some(_) => ControlFlow::Break(()),
+            None => ControlFlow::Continue(()),
+        }
+    }
+
+    fn termination(&self) -> Option<Termination> {
+        self.ending.clone()
+    }
+}

@@ -1,0 +1,241 @@
+//! Events located inside the step (`marsden::run::events`): crossing times against closed forms
+//! (the pendulum's period 4K(k)/ω, reference case R8's system; Kepler's period, R10's), their
+//! order of convergence, stopping, counts, and runs without events unchanged bit for bit.
+
+use marsden::error::{Error, StepError};
+use marsden::run::events::{Direction, Event, EventDetector, EventRecord};
+use marsden::systems::{Kepler, Pendulum};
+use marsden::{
+    Initial, Midpoint, Problem, Rule, RunOptions, SolveOptions, Termination, TimeGrid, Trapezoid,
+};
+
+use crate::common::{loglog_slope, tight};
+
+/// An event function as a plain function pointer, so that several share one type.
+type G = fn(f64, &[f64], &[f64], &[f64]) -> f64;
+
+fn theta(_t: f64, q: &[f64], _v: &[f64], _p: &[f64]) -> f64 {
+    q[0]
+}
+
+/// The radial velocity (times r): `q · v`, rising through zero at each pericentre.
+fn radial(_t: f64, q: &[f64], v: &[f64], _p: &[f64]) -> f64 {
+    q[0] * v[0] + q[1] * v[1]
+}
+
+fn options() -> SolveOptions {
+    SolveOptions {
+        newton: tight(),
+        ..SolveOptions::default()
+    }
+}
+
+/// The pendulum `L = ½θ̇² + cos θ` released from θ₀ = 1.5 at rest, on `steps` steps of `h`.
+fn pendulum(h: f64, steps: usize) -> Problem<Pendulum> {
+    let grid = TimeGrid::new(0.0, h, steps).unwrap();
+    Problem::new(Pendulum::default(), Initial::velocity(&[1.5], &[0.0]), grid).unwrap()
+}
+
+/// Runs `problem` under `rule` with `events`; the trajectory and the records.
+fn detect<L: marsden::Lagrangian, R: Rule>(
+    problem: &Problem<L>,
+    rule: &R,
+    events: Vec<Event<G>>,
+) -> (marsden::Trajectory, Vec<EventRecord>) {
+    let mut detector = EventDetector::new(problem.lagrangian(), events).unwrap();
+    let run = problem.solve_with(rule, &options(), &mut detector).unwrap();
+    (run, detector.into_records())
+}
+
+/// Released at rest from θ₀, the pendulum passes θ = 0 at T/4, 3T/4, 5T/4, … (T = 4K(k)/ω,
+/// k = sin(θ₀/2)), falling at T/4 + jT and rising at 3T/4 + jT. The located times converge at
+/// the midpoint rule's order 2 (fitted over h = 0.1 … 0.0125), and are far closer to the exact
+/// ones than the nearest grid time (within h/20 of them, and h/100 at the finest h, where a grid
+/// time can be h/2 away).
+#[test]
+fn pendulum_zero_crossings_converge_at_order_two() {
+    let period = Pendulum::default().period(1.5).unwrap();
+    let steps_sizes = [0.1, 0.05, 0.025, 0.0125];
+    let mut errors = Vec::new();
+    for &h in &steps_sizes {
+        let steps = (2.2 * period / h).ceil() as usize;
+        let events = vec![Event::record(theta as G, Direction::Both)];
+        let (run, records) = detect(&pendulum(h, steps), &Midpoint, events);
+        assert_eq!(run.termination, Termination::Completed);
+        assert_eq!(records.len(), 4, "h = {h}: four crossings in 2.2 periods");
+        let mut worst: f64 = 0.0;
+        for (j, record) in records.iter().enumerate() {
+            let exact = (2 * j + 1) as f64 * period / 4.0;
+            let expected = if j % 2 == 0 {
+                Direction::Down
+            } else {
+                Direction::Up
+            };
+            assert_eq!(record.direction, expected);
+            // The record lies inside its step, on the interpolant's zero of θ.
+            assert!((record.step - 1) as f64 * h <= record.t && record.t <= record.step as f64 * h);
+            assert!(record.q[0].abs() < 1e-14, "θ at the event: {}", record.q[0]);
+            let error = (record.t - exact).abs();
+            // The nearest grid time is up to h/2 away; the located time is far closer.
+            let grid_error = (exact / h - (exact / h).round()).abs() * h;
+            assert!(
+                error < 0.05 * h,
+                "h = {h}: event error {error:.3e}, grid error {grid_error:.3e}"
+            );
+            worst = worst.max(error);
+        }
+        errors.push(worst);
+    }
+    // Measured: 4.19e-3, 1.04e-3, 2.61e-4, 6.52e-5 (slope 2.001); a hundredth of h at the end.
+    assert!(errors[3] < 0.01 * steps_sizes[3], "{errors:?}");
+    let slope = loglog_slope(&steps_sizes, &errors);
+    assert!(
+        (slope - 2.0).abs() < 0.2,
+        "order {slope} (errors {errors:?})"
+    );
+}
+
+/// The down-crossings alone: T/4 and 5T/4, the up-crossing in between skipped.
+#[test]
+fn direction_selects_the_crossings() {
+    let period = Pendulum::default().period(1.5).unwrap();
+    let h = 0.01;
+    let problem = pendulum(h, (1.6 * period / h) as usize);
+    let (_, records) = detect(
+        &problem,
+        &Midpoint,
+        vec![Event::record(theta as G, Direction::Down)],
+    );
+    let times: Vec<f64> = records.iter().map(|r| r.t).collect();
+    assert_eq!(times.len(), 2, "{times:?}");
+    assert!((times[0] - period / 4.0).abs() < 1e-3);
+    assert!((times[1] - 5.0 * period / 4.0).abs() < 1e-3);
+}
+
+/// Kepler, e = 0.6, from pericentre: a `Stop` event on `q · v` rising through zero ends the run
+/// at the next pericentre, one period 2π later (R10's orbit, a = 1, μ = 1); the located time
+/// converges at order 2.
+#[test]
+fn stop_event_ends_kepler_orbit_at_its_pericentre() {
+    let (q0, p0) = Kepler::pericentre(0.6);
+    let period = 2.0 * std::f64::consts::PI;
+    let steps_sizes = [0.004, 0.002, 0.001];
+    let mut errors = Vec::new();
+    for &h in &steps_sizes {
+        let grid = TimeGrid::new(0.0, h, (2.0 * period / h) as usize).unwrap();
+        let problem = Problem::new(Kepler::default(), Initial::momentum(&q0, &p0), grid).unwrap();
+        let events = vec![Event::stop(radial as G, Direction::Up)];
+        let (run, records) = detect(&problem, &Midpoint, events);
+        let Termination::Event { event, steps, t } = run.termination else {
+            panic!("{:?}", run.termination)
+        };
+        assert_eq!(event, 0);
+        assert_eq!(records.len(), 1);
+        assert_eq!(records[0].t, t);
+        // The run ends with the step the event lies in, its last state stored.
+        assert_eq!(run.steps, steps);
+        assert_eq!(*run.step_indices.last().unwrap(), steps);
+        assert!(((steps - 1) as f64) * h <= t && t <= steps as f64 * h);
+        // At pericentre: q = (1 − e, 0) up to the orbit's precession, q · v = 0.
+        let q = &records[0].q;
+        assert!(
+            (q[0].hypot(q[1]) - 0.4).abs() < 1e-3,
+            "r = {}",
+            q[0].hypot(q[1])
+        );
+        assert!(radial(t, q, &records[0].v, &records[0].p).abs() < 1e-12);
+        errors.push((t - period).abs());
+    }
+    // Measured: 1.26e-3, 3.15e-4, 7.87e-5 (slope 2.000).
+    assert!(errors[2] < 1e-4, "{errors:?}");
+    let slope = loglog_slope(&steps_sizes, &errors);
+    assert!(
+        (slope - 2.0).abs() < 0.2,
+        "order {slope} (errors {errors:?})"
+    );
+}
+
+/// `count = n` stops at the n-th crossing (the earlier ones recorded); a `Record` event with a
+/// count records that many and no more.
+#[test]
+fn count_stops_after_the_nth_crossing() {
+    let period = Pendulum::default().period(1.5).unwrap();
+    let h = 0.01;
+    let problem = pendulum(h, (10.0 * period / h) as usize);
+    let events = vec![
+        Event::stop(theta as G, Direction::Both).count(3),
+        Event::record(theta as G, Direction::Both).count(2),
+    ];
+    let (run, records) = detect(&problem, &Midpoint, events);
+    let Termination::Event { event, t, .. } = run.termination else {
+        panic!("{:?}", run.termination)
+    };
+    assert_eq!(event, 0);
+    assert!((t - 5.0 * period / 4.0).abs() < 1e-3, "{t}");
+    let of = |e: usize| records.iter().filter(|r| r.event == e).count();
+    assert_eq!((of(0), of(1)), (3, 2));
+    // Records come in time order.
+    assert!(records.windows(2).all(|w| w[0].t <= w[1].t));
+}
+
+/// A count of zero is refused with a typed error.
+#[test]
+fn count_zero_is_refused() {
+    let problem = pendulum(0.1, 10);
+    let events = vec![Event::stop(theta as G, Direction::Up).count(0)];
+    let error = EventDetector::new(problem.lagrangian(), events).unwrap_err();
+    assert!(matches!(error, Error::Input(_)), "{error:?}");
+}
+
+/// With events that never fire, the run (states, samples, reports, statistics) is the run
+/// without a detector, bit for bit: on the Newton path (midpoint) and the explicit one
+/// (trapezoid = Störmer–Verlet, chunked between samples without observer), with a stride.
+#[test]
+fn runs_without_events_are_unchanged() {
+    let never = |_t: f64, q: &[f64], _v: &[f64], _p: &[f64]| q[0] - 10.0;
+    let options = SolveOptions {
+        run: RunOptions { stride: 7 },
+        ..options()
+    };
+    let problem = pendulum(0.05, 500);
+    let plain = problem.solve(&Midpoint, &options).unwrap();
+    let mut detector = EventDetector::new(
+        problem.lagrangian(),
+        vec![Event::stop(never, Direction::Both)],
+    )
+    .unwrap();
+    let watched = problem
+        .solve_with(&Midpoint, &options, &mut detector)
+        .unwrap();
+    assert_eq!(plain, watched);
+    assert!(detector.records().is_empty());
+    let plain = problem.solve(&Trapezoid, &options).unwrap();
+    let watched = problem
+        .solve_with(&Trapezoid, &options, &mut detector)
+        .unwrap();
+    assert_eq!(plain, watched);
+}
+
+/// An event function that returns NaN fails the run with a typed step error naming the event,
+/// and the trajectory up to that step is kept.
+#[test]
+fn non_finite_event_fails_the_run_and_keeps_the_trajectory() {
+    let bad = |t: f64, _q: &[f64], _v: &[f64], _p: &[f64]| if t > 0.5 { f64::NAN } else { 1.0 };
+    let problem = pendulum(0.1, 20);
+    let mut detector = EventDetector::new(
+        problem.lagrangian(),
+        vec![Event::record(bad, Direction::Up)],
+    )
+    .unwrap();
+    let failure = problem
+        .solve_with(&Midpoint, &options(), &mut detector)
+        .unwrap_err();
+    let Error::Step(step) = &failure.error else {
+        panic!("{:?}", failure.error)
+    };
+    assert!(matches!(
+        step.cause,
+        StepError::EventNotFinite { event: 0, .. }
+    ));
+    assert_eq!(failure.trajectory.steps, 6);
+}
