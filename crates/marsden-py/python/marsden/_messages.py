@@ -53,6 +53,8 @@ _PHRASES: List[Tuple[str, str]] = [
     (r"`\[sensitivity\]` cannot", "`sensitivity` cannot"),
     (r"give the initial momenta `p = \[\.\.\.\]`", "give the initial momenta p0=[...]"),
     (r"a `(\w+)` needs `coordinates` in \[system\]", r"a `\1` needs coordinates="),
+    (r"in \[system\] (\w+)", r"in \1="),
+    (r"in \[\[system\.symmetry\]\] (\w+)", r"in the symmetry's \1"),
     (r"`initial\.q`|\binitial\.q\b", "q0"),
     (r"`initial\.v`|\binitial\.v\b", "v0"),
     (r"`initial\.p`|\binitial\.p\b", "p0"),
