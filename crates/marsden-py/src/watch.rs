@@ -8,9 +8,9 @@
 //! signal's exception. Nothing is shared with the work but the flag, so nothing is left half
 //! written. The waiting costs nothing when the work ends: the result arrives on a channel.
 
-use std::sync::{Arc, Mutex, PoisonError};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{self, RecvTimeoutError};
+use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Duration;
 
 use marsden_spec::Progress;

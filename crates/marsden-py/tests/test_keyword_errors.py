@@ -42,6 +42,16 @@ def test_steps_and_t_end_both():
     speaks_keywords(text)
 
 
+def test_t_end_off_the_grid_says_give_steps():
+    """The mistake of the first Kepler example: t_end = 20π is no whole number of h = 0.01."""
+    import math
+
+    text = message(**{**without("steps"), "h": 0.01, "t_end": 20 * math.pi})
+    assert "is not a whole number of steps" in text and "or give steps=" in text, text
+    assert "--> in t_end=" in text, text
+    speaks_keywords(text)
+
+
 def test_missing_h_says_give_h():
     text = message(**without("h"))
     assert "give the time step h=" in text, text
@@ -93,6 +103,7 @@ def test_an_unknown_name_is_pointed_at_inside_the_expression():
 
 def test_a_force_is_pointed_at_by_its_index():
     text = message(**BASE, forces=["-c*x_dot"])
+    assert "in forces[0]: unknown name `c`" in text, text
     assert "--> in forces[0]=" in text and "   | -c*x_dot" in text, text
     assert "   |  ^" in text, text
 
@@ -103,6 +114,10 @@ def test_discrete_lagrangian_with_a_method_says_leave_out_method():
     assert "`method` cannot be used with `discrete_lagrangian`" in text, text
     assert "leave out method=" in text, text
     speaks_keywords(text)
+    text = message(discrete_lagrangian="h*((x_1 - x_0)/h)^2/2", coordinates="x", q0=[1.0],
+                   v0=[0.0], h=0.1, steps=10)
+    assert "`v0` cannot be used with `discrete_lagrangian`" in text, text
+    assert "give the initial momenta p0=[...]" in text and "--> in v0=" in text, text
 
 
 def test_problem_text_keeps_the_caret_and_the_toml_terms():
