@@ -108,6 +108,20 @@ def test_rotation_and_translation_name_the_momentum_maps():
     assert np.array_equal(mapping.momenta["L"], written.momenta["Lz"])
 
 
+def test_angles_t0_and_project_take_effect():
+    s = marsden.Problem(**PENDULUM, steps=20, angles="theta", t0=1.0).solve()
+    assert s.summary["output"]["angles"] == ["theta"]
+    assert s.t[0] == 1.0 and s.t[-1] == pytest.approx(2.0)
+    # A point off the circle x² + y² = 1, projected onto it before the run (R7's system).
+    circle = dict(lagrangian="0.5*(x_dot^2 + y_dot^2) - y", coordinates=["x", "y"],
+                  constraints=["x^2 + y^2 - 1"], q0=[0.1, -1.1], v0=[0.0, 0.0], h=0.05,
+                  steps=20)
+    with pytest.raises(marsden.ProblemError):
+        marsden.Problem(**circle)
+    projected = marsden.Problem(**circle, project=True).solve()
+    assert abs(np.hypot(*projected.q[0]) - 1.0) < 1e-12
+
+
 def test_angles_and_output_keywords_reach_the_file(cli, tmp_path):
     """`angles`, `output_dir`, `output_format`, `plots`: what `marsden run` writes."""
     out = tmp_path / "run"
