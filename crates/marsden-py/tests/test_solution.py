@@ -45,6 +45,19 @@ def test_plot_draws_a_discrete_lagrangian_solution():
     assert "no energy" in energy.get_title()
 
 
+def test_plot_of_a_discrete_lagrangian_with_a_symmetry_draws_its_momentum_map():
+    """A free particle's L_d = h·½((x₁ − x₀)/h)² is translation invariant: J = p, constant."""
+    pytest.importorskip("matplotlib")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    s = marsden.Problem(discrete_lagrangian="h*0.5*((x_1 - x_0)/h)^2", coordinates="x",
+                        translation="x", q0=[0.0], p0=[0.5], h=0.1, steps=10).solve()
+    assert s.energy is None and np.all(s.momenta["Px"] == 0.5)
+    drift = s.plot().axes[1]
+    assert [line.get_label() for line in drift.lines] == ["J_Px"]
+
+
 def test_plot_of_an_ordinary_run_draws_the_energy_error():
     pytest.importorskip("matplotlib")
     import matplotlib

@@ -43,7 +43,6 @@ __all__ = [
 ]
 
 
-
 def _version() -> str:
     """The installed package's version (maturin takes it from Cargo: the workspace's)."""
     try:

@@ -17,8 +17,8 @@ FloatArray = npt.NDArray[np.float64]
 
 __version__: str
 
-__all__ = ["__version__", "Problem", "ProblemError", "Sensitivity", "SimulationError", "Solution", "sweep",
-           "systems", "to_grammar"]
+__all__ = ["__version__", "Problem", "ProblemError", "Sensitivity", "SimulationError",
+           "Solution", "sweep", "systems", "to_grammar"]
 
 SensitivityRequest = Union[bool, Sequence[str], Mapping[str, Any]]
 
