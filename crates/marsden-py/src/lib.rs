@@ -7,7 +7,7 @@
 //!
 //! | module | what |
 //! |---|---|
-//! | [`watch`] | runs off the interpreter's lock; Ctrl-C sets the run's stop flag |
+//! | [`watch`] | runs off the interpreter's lock; Ctrl-C sets the run's stop flag; progress to a Python function |
 //! | [`convert`] | an [`marsden_spec::Outcome`] as a dictionary of NumPy arrays |
 //! | this file | the functions Python calls and the `ProblemError` exception |
 
@@ -81,27 +81,39 @@ fn check<'py>(py: Python<'py>, text: &str, origin: &str) -> PyResult<Bound<'py, 
 }
 
 /// Runs problem text with its samples in memory (every `every`-th step, the first and the
-/// last), off the interpreter's lock; `progress` prints a line on stderr as it goes.
+/// last), off the interpreter's lock; `progress`, a Python function, is called as
+/// `progress(step, total, elapsed_seconds, done)` every few hundred steps and at the end (an
+/// exception it raises stops the run and is raised here).
 #[pyfunction]
-#[pyo3(signature = (text, origin, every=None, progress=false))]
+#[pyo3(signature = (text, origin, every=None, progress=None))]
 fn solve<'py>(
     py: Python<'py>,
     text: &str,
     origin: &str,
     every: Option<usize>,
-    progress: bool,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let spec = spec_of(text, origin, every)?;
     let stop = Arc::new(AtomicBool::new(false));
     let flag = stop.clone();
+    let reporter = progress.map(|f| watch::Reporter::new(f, stop.clone()));
     let outcome = watch::off_the_lock(py, &stop, || {
-        let report = |p: marsden_spec::Progress| watch::report(p);
+        let report = |p: marsden_spec::Progress| {
+            if let Some(r) = &reporter {
+                r.report(p);
+            }
+        };
         let controls = Controls {
-            progress: progress.then_some(&report as &dyn Fn(marsden_spec::Progress)),
+            progress: reporter
+                .is_some()
+                .then_some(&report as &dyn Fn(marsden_spec::Progress)),
             stop: Some(flag),
         };
         marsden_spec::execute(&spec, Store::Memory, &controls)
     })?;
+    if let Some(error) = reporter.and_then(watch::Reporter::into_error) {
+        return Err(error);
+    }
     convert::outcome(py, &outcome.map_err(to_py)?)
 }
 

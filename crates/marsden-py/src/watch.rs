@@ -8,9 +8,9 @@
 //! signal's exception. Nothing is shared with the work but the flag, so nothing is left half
 //! written. The waiting costs nothing when the work ends: the result arrives on a channel.
 
-use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{self, RecvTimeoutError};
+use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Duration;
 
 use marsden_spec::Progress;
@@ -61,19 +61,43 @@ where
     }
 }
 
-/// One progress line on stderr (`\r`-overwritten), and a newline at the end.
-pub fn report(p: Progress) {
-    let percent = match p.total {
-        0 => 100.0,
-        total => 100.0 * p.step as f64 / total as f64,
-    };
-    eprint!(
-        "\r  step {}/{} ({percent:5.1} %), {:.1} s",
-        p.step,
-        p.total,
-        p.elapsed.as_secs_f64()
-    );
-    if p.done {
-        eprintln!();
+/// A Python function called with every progress report of a run, `f(step, total,
+/// elapsed_seconds, done)`, with the interpreter's lock taken for the call. The first exception
+/// it raises sets the run's stop flag (the run ends within a few hundred steps, as on Ctrl-C)
+/// and is kept for the caller; no call follows it.
+pub struct Reporter {
+    callback: Py<PyAny>,
+    stop: Arc<AtomicBool>,
+    error: Mutex<Option<PyErr>>,
+}
+
+impl Reporter {
+    /// Reports to `callback`; an exception in it sets `stop`.
+    pub fn new(callback: Py<PyAny>, stop: Arc<AtomicBool>) -> Self {
+        Self {
+            callback,
+            stop,
+            error: Mutex::new(None),
+        }
+    }
+
+    /// Calls the function with `p` (nothing once it has raised).
+    pub fn report(&self, p: Progress) {
+        let mut error = self.error.lock().unwrap_or_else(PoisonError::into_inner);
+        if error.is_some() {
+            return;
+        }
+        let args = (p.step, p.total, p.elapsed.as_secs_f64(), p.done);
+        if let Err(e) = Python::with_gil(|py| self.callback.call1(py, args)) {
+            self.stop.store(true, Ordering::Relaxed);
+            *error = Some(e);
+        }
+    }
+
+    /// The exception the function raised, if it did.
+    pub fn into_error(self) -> Option<PyErr> {
+        self.error
+            .into_inner()
+            .unwrap_or_else(PoisonError::into_inner)
     }
 }

@@ -10,14 +10,14 @@ import marsden
 from conftest import PENDULUM
 
 
-def test_problem_error_is_a_value_error_with_a_caret():
+def test_problem_error_is_a_value_error_with_a_caret_in_the_expression():
     with pytest.raises(marsden.ProblemError) as info:
         marsden.Problem(**{**PENDULUM, "lagrangian": "0.5*m*l^2*theta_dot^2 + m*gg*l*cos(theta)"},
                         steps=10)
     assert isinstance(info.value, ValueError)
     message = str(info.value)
     assert "unknown name `gg`" in message, message
-    assert "<python>:4:41" in message and "^^" in message, message
+    assert "--> in lagrangian=" in message and "^^" in message, message
     assert "known names: g, l, m" in message, message
 
 
@@ -25,8 +25,8 @@ def test_wrong_number_of_initial_positions():
     with pytest.raises(marsden.ProblemError) as info:
         marsden.Problem(**{**PENDULUM, "q0": [1.5, 0.0]}, steps=10)
     message = str(info.value)
-    assert "q" in message and "2" in message and "1" in message, message
-    assert "<python>:" in message and "^" in message, message
+    assert "q0 has 2 values, but the system has 1" in message, message
+    assert "--> in q0=" in message and "<python>" not in message, message
 
 
 def test_bad_method_names_the_closest():
@@ -39,7 +39,8 @@ def test_bad_method_names_the_closest():
 def test_non_finite_or_non_positive_h(h):
     with pytest.raises(marsden.ProblemError) as info:
         marsden.Problem(**{**PENDULUM, "h": h}, steps=10)
-    assert "h" in str(info.value) and "^" in str(info.value), str(info.value)
+    assert "h must be a positive, finite time step" in str(info.value), str(info.value)
+    assert "--> in h=" in str(info.value), str(info.value)
 
 
 def test_toml_errors_point_into_the_text():

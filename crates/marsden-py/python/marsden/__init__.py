@@ -19,6 +19,7 @@ Problem files work too (``marsden.Problem.load("examples/pendulum.toml")``), the
 
 from __future__ import annotations
 
+from importlib import metadata
 from typing import Any, Dict, List
 
 from . import _native
@@ -30,6 +31,7 @@ from ._sweep import sweep
 from ._sympy import to_grammar
 
 __all__ = [
+    "__version__",
     "Problem",
     "ProblemError",
     "Sensitivity",
@@ -39,6 +41,18 @@ __all__ = [
     "systems",
     "to_grammar",
 ]
+
+
+def _version() -> str:
+    """The installed package's version (maturin takes it from Cargo: the workspace's)."""
+    try:
+        return metadata.version("marsden")
+    except metadata.PackageNotFoundError:  # imported from a source tree, not installed
+        return "0+unknown"
+
+
+#: The version of marsden (the same as the ``marsden`` command's, ``marsden --version``).
+__version__: str = _version()
 
 
 def systems() -> List[Dict[str, Any]]:

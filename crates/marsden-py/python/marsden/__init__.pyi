@@ -2,17 +2,23 @@
 
 import concurrent.futures
 import os
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
 
-Expression = Any  # a string in the problem-file grammar, or a SymPy expression
-Symmetries = Union[Mapping[str, Sequence[Expression]], Sequence[Tuple[str, Sequence[Expression]]]]
+Expression = Any  # a string in the problem-file grammar, a SymPy expression or a number
+#: A generator (one expression per coordinate) or a named symmetry ({"rotation": "z"}).
+Generator = Union[Sequence[Expression], Mapping[str, str]]
+Symmetries = Union[Mapping[str, Generator], Sequence[Tuple[str, Generator]]]
+ProgressRequest = Union[bool, Callable[[int, int, float, bool], Any]]
+PathLike = Union[str, os.PathLike[str]]
 FloatArray = npt.NDArray[np.float64]
 
-__all__ = ["Problem", "ProblemError", "Sensitivity", "SimulationError", "Solution", "sweep",
-           "systems", "to_grammar"]
+__version__: str
+
+__all__ = ["__version__", "Problem", "ProblemError", "Sensitivity", "SimulationError",
+           "Solution", "sweep", "systems", "to_grammar"]
 
 SensitivityRequest = Union[bool, Sequence[str], Mapping[str, Any]]
 
@@ -42,7 +48,7 @@ class Solution:
     q: FloatArray
     p: FloatArray
     v: FloatArray
-    energy: FloatArray
+    energy: Optional[FloatArray]
     momenta: Dict[str, FloatArray]
     constraint_residual: Optional[FloatArray]
     multipliers: FloatArray
@@ -64,7 +70,7 @@ class Problem:
     def __init__(
         self,
         lagrangian: Optional[Expression] = ...,
-        coordinates: Optional[Sequence[Any]] = ...,
+        coordinates: Optional[Union[str, Sequence[Any]]] = ...,
         parameters: Optional[Mapping[str, Any]] = ...,
         q0: Optional[Sequence[float]] = ...,
         v0: Optional[Sequence[float]] = ...,
@@ -79,14 +85,26 @@ class Problem:
         hamiltonian: Optional[Expression] = ...,
         *,
         builtin: Optional[str] = ...,
+        discrete_lagrangian: Optional[Expression] = ...,
         name: Optional[str] = ...,
+        rotation: Optional[Union[str, Sequence[str]]] = ...,
+        translation: Optional[Union[str, Sequence[str]]] = ...,
         t0: Optional[float] = ...,
+        bodies_file: Optional[PathLike] = ...,
+        project: Optional[bool] = ...,
         tolerance: Optional[float] = ...,
         max_iterations: Optional[int] = ...,
-        project: Optional[bool] = ...,
         fast_paths: Optional[bool] = ...,
         compensated: Optional[bool] = ...,
         every: Optional[int] = ...,
+        angles: Optional[Union[str, Sequence[Any]]] = ...,
+        output_dir: Optional[PathLike] = ...,
+        output_format: Optional[str] = ...,
+        plots: Optional[bool] = ...,
+        every_step: Optional[bool] = ...,
+        certify: Optional[bool] = ...,
+        sensitivity: Optional[SensitivityRequest] = ...,
+        sweep: Optional[Mapping[str, Any]] = ...,
     ) -> None: ...
     @classmethod
     def from_toml(cls, text: str, origin: str = ...) -> Problem: ...
@@ -108,8 +126,12 @@ class Problem:
     def h(self) -> float: ...
     @property
     def steps(self) -> int: ...
-    def solve(self, every: Optional[int] = ..., progress: bool = ...,
+    def solve(self, every: Optional[int] = ..., progress: ProgressRequest = ...,
               sensitivity: Optional[SensitivityRequest] = ...) -> Solution: ...
+    def sweep(self, parameter: Optional[str] = ..., values: Optional[Sequence[float]] = ...,
+              executor: Optional[concurrent.futures.Executor] = ..., *,
+              initial: Optional[str] = ..., every: Optional[int] = ...,
+              threads: Optional[int] = ...) -> List[Union[Solution, Exception]]: ...
 
 def sweep(
     problem: Problem,

@@ -8,42 +8,26 @@ A problem is problem-file text (TOML). The keyword form writes that text from Py
 from __future__ import annotations
 
 import os
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Union
 
-from . import _native, _sensitivity, _toml
+from . import _native, _sensitivity
+from . import _keywords as kw
+from . import _messages, _problem_text, _progress
 from ._errors import ProblemError
 from ._solution import Solution, from_native
-from ._sympy import is_sympy, to_grammar
 
-Expression = Any  # a string in the grammar, or a SymPy expression
-Symmetries = Union[Mapping[str, Sequence[Expression]], Sequence[Tuple[str, Sequence[Expression]]]]
+Expression = Any  # a string in the grammar, a SymPy expression or a number
+Symmetries = kw.Symmetries
 
 _ORIGIN = "<python>"
-
-
-def _text(expr: Expression) -> str:
-    """An expression as grammar text."""
-    if isinstance(expr, str):
-        return expr
-    if is_sympy(expr):
-        return to_grammar(expr)
-    raise TypeError(f"expected an expression (str or SymPy), got {type(expr).__name__}")
-
-
-def _name(coordinate: Any) -> str:
-    """A coordinate's name: a string, a SymPy symbol or a dynamicsymbol ``theta(t)``."""
-    if isinstance(coordinate, str):
-        return coordinate
-    if is_sympy(coordinate):
-        return to_grammar(coordinate)
-    raise TypeError(f"expected a coordinate name, got {coordinate!r}")
 
 
 class Problem:
     """A mechanical system, its initial state and the integrator: what a problem file holds.
 
-    Give a Lagrangian (or ``builtin=`` a catalog system, or a ``hamiltonian=``) as a string in
-    the problem-file grammar or as a SymPy expression::
+    Give a Lagrangian (or ``builtin=`` a catalog system, a ``hamiltonian=``, or your own
+    ``discrete_lagrangian=``) as a string in the problem-file grammar or as a SymPy
+    expression::
 
         >>> import marsden
         >>> pendulum = marsden.Problem(
@@ -54,27 +38,47 @@ class Problem:
         >>> solution.q.shape
         (1001, 1)
 
-    Every value is checked at once; a mistake raises :class:`marsden.ProblemError` with the
-    message of the ``marsden`` command (the offending line of :attr:`toml`, with a caret).
+    Every value is checked at once; a mistake raises :class:`marsden.ProblemError` naming the
+    keyword at fault (with a caret under the fault inside an expression).
 
-    Arguments: ``coordinates`` (names; velocities are ``<name>_dot``), ``parameters`` (name ->
-    value), ``q0`` and one of ``v0`` / ``p0``, ``method`` (``midpoint``, ``trapezoid``,
-    ``gauss-2``, ``lobatto-3``, ...), ``h`` and one of ``steps`` / ``t_end``; optional
-    ``forces`` (one generalized force per coordinate), ``constraints`` (holonomic, ``φ(q) =
-    0``), ``symmetries`` (name -> generator ``ξ_Q(q)``, monitored momentum maps),
-    ``hamiltonian``, ``t0``, ``tolerance``, ``max_iterations``, ``project``, ``fast_paths``,
-    ``compensated``, ``every`` (store every k-th step) and ``name``.
+    Every key of a problem file has its keyword:
+
+    - the system: ``coordinates`` (names, or one name; velocities are ``<name>_dot``),
+      ``parameters`` (name -> value), and one of ``lagrangian``, ``builtin``,
+      ``hamiltonian`` (``H(q, p_q)``) and ``discrete_lagrangian`` (``L_d`` written with
+      ``<q>_0``, ``<q>_1``, ``h`` and ``t``: the method itself, so no ``method``, ``v0``,
+      ``forces`` or ``constraints`` with it, and no energy in the solution); optional
+      ``forces`` (one generalized force per coordinate), ``constraints`` (holonomic,
+      ``φ(q) = 0``), ``symmetries`` (name -> generator ``ξ_Q(q)``, or name ->
+      ``{"rotation": "z"}``: monitored momentum maps), ``rotation`` / ``translation`` (an
+      axis or a list of axes: the named symmetries ``Lz``, ``Px``, ... of Cartesian
+      coordinates) and ``name``. An expression is a string, a SymPy expression or a number.
+    - the initial state: ``q0`` and one of ``v0`` / ``p0`` (or ``bodies_file``, an N-body
+      file of ``builtin="nbody"``, relative to the working directory), ``t0``, ``project``
+      (project onto the constraints first).
+    - the integrator: ``method`` (default ``midpoint``; ``trapezoid``, ``gauss-2``,
+      ``lobatto-3``, ...), ``h`` and one of ``steps`` / ``t_end`` (a whole number of steps),
+      ``tolerance``, ``max_iterations``, ``fast_paths``, ``compensated``.
+    - the output: ``every`` (store every k-th step), ``angles`` (coordinates that are
+      angles: plots wrap them), and for a file run by ``marsden run``: ``output_dir``,
+      ``output_format`` (``csv``, ``npy``) and ``plots``.
+    - the analysis: ``every_step`` (monitor energy and momenta at every step, not only the
+      stored ones) and ``certify`` (the symplecticity and equivariance defects, in
+      ``solution.summary["certificates"]``).
+    - ``sensitivity`` (as in :meth:`solve`) and ``sweep`` (``{"parameter": "l", "values":
+      [...]}`` or ``{"initial": "q[0]", "range": {"start": ..., "stop": ..., "count":
+      ...}}``: run it with :meth:`sweep`).
     """
 
     def __init__(
         self,
         lagrangian: Optional[Expression] = None,
-        coordinates: Optional[Sequence[Any]] = None,
+        coordinates: Optional[Union[str, Sequence[Any]]] = None,
         parameters: Optional[Mapping[str, Any]] = None,
         q0: Optional[Sequence[float]] = None,
         v0: Optional[Sequence[float]] = None,
         p0: Optional[Sequence[float]] = None,
-        method: Optional[str] = "midpoint",
+        method: Optional[str] = None,
         h: Optional[float] = None,
         steps: Optional[int] = None,
         t_end: Optional[float] = None,
@@ -84,58 +88,54 @@ class Problem:
         hamiltonian: Optional[Expression] = None,
         *,
         builtin: Optional[str] = None,
+        discrete_lagrangian: Optional[Expression] = None,
         name: Optional[str] = None,
+        rotation: Optional[Union[str, Sequence[str]]] = None,
+        translation: Optional[Union[str, Sequence[str]]] = None,
         t0: Optional[float] = None,
+        bodies_file: Optional[Union[str, "os.PathLike[str]"]] = None,
+        project: Optional[bool] = None,
         tolerance: Optional[float] = None,
         max_iterations: Optional[int] = None,
-        project: Optional[bool] = None,
         fast_paths: Optional[bool] = None,
         compensated: Optional[bool] = None,
         every: Optional[int] = None,
+        angles: Optional[Union[str, Sequence[Any]]] = None,
+        output_dir: Optional[Union[str, "os.PathLike[str]"]] = None,
+        output_format: Optional[str] = None,
+        plots: Optional[bool] = None,
+        every_step: Optional[bool] = None,
+        certify: Optional[bool] = None,
+        sensitivity: Optional[_sensitivity.Request] = None,
+        sweep: Optional[Mapping[str, Any]] = None,
     ) -> None:
-        system = [
-            ("name", None if name is None else _toml.string(name)),
-            ("builtin", None if builtin is None else _toml.string(builtin)),
-            ("coordinates", None if coordinates is None
-             else _toml.strings(_name(c) for c in coordinates)),
-            ("parameters", None if parameters is None else _toml.parameters(parameters)),
-            ("lagrangian", None if lagrangian is None else _toml.string(_text(lagrangian))),
-            ("hamiltonian", None if hamiltonian is None else _toml.string(_text(hamiltonian))),
-            ("forces", None if forces is None else _toml.strings(_text(f) for f in forces)),
-            ("constraints", None if constraints is None
-             else _toml.strings(_text(c) for c in constraints)),
-        ]
-        initial = [
-            ("t0", None if t0 is None else _toml.number(float(t0))),
-            ("q", None if q0 is None else _toml.floats(q0)),
-            ("v", None if v0 is None else _toml.floats(v0)),
-            ("p", None if p0 is None else _toml.floats(p0)),
-            ("project", None if project is None else _bool(project)),
-        ]
-        integrator = [
-            ("method", None if method is None else _toml.string(method)),
-            ("h", None if h is None else _toml.number(float(h))),
-            ("steps", None if steps is None else _toml.number(steps)),
-            ("t_end", None if t_end is None else _toml.number(float(t_end))),
-            ("tolerance", None if tolerance is None else _toml.number(float(tolerance))),
-            ("max_iterations", None if max_iterations is None else _toml.number(max_iterations)),
-            ("fast_paths", None if fast_paths is None else _bool(fast_paths)),
-            ("compensated", None if compensated is None else _bool(compensated)),
-        ]
-        lines = _toml.table("system", system)
-        for sym_name, generator in _symmetry_items(symmetries):
-            lines += ["", "[[system.symmetry]]", f"name = {_toml.string(sym_name)}",
-                      f"generator = {_toml.strings(_text(g) for g in generator)}"]
-        lines += [""] + _toml.table("initial", initial)
-        lines += [""] + _toml.table("integrator", integrator)
-        if every is not None:
-            lines += [""] + _toml.table("output", [("every", _toml.number(every))])
-        self._init("\n".join(lines) + "\n", _ORIGIN)
+        generated = _problem_text.write(_problem_text.Keywords(
+            lagrangian=lagrangian, coordinates=coordinates, parameters=parameters, q0=q0,
+            v0=v0, p0=p0, method=method, h=h, steps=steps, t_end=t_end, forces=forces,
+            constraints=constraints, symmetries=symmetries, hamiltonian=hamiltonian,
+            builtin=builtin, discrete_lagrangian=discrete_lagrangian, name=name,
+            rotation=rotation, translation=translation, t0=t0, bodies_file=bodies_file,
+            project=project, tolerance=tolerance, max_iterations=max_iterations,
+            fast_paths=fast_paths, compensated=compensated, every=every, angles=angles,
+            output_dir=output_dir, output_format=output_format, plots=plots,
+            every_step=every_step, certify=certify, sensitivity=sensitivity, sweep=sweep))
+        try:
+            self._init(generated.text, _ORIGIN)
+        except ProblemError as e:
+            raise ProblemError(_messages.for_keywords(str(e), generated)) from None
+        self._generated: Optional[kw.Generated] = generated
 
     def _init(self, text: str, origin: str) -> None:
         self._text = text
         self._origin = origin
+        self._generated = None
         self._info: Dict[str, Any] = dict(_native.check(text, origin))
+
+    def _error(self, error: ProblemError) -> ProblemError:
+        """``error`` in the terms the problem was given in (keywords, or text)."""
+        if self._generated is not None:
+            return ProblemError(_messages.for_keywords(str(error), self._generated))
+        return error
 
     @classmethod
     def from_toml(cls, text: str, origin: str = "<toml>") -> "Problem":
@@ -144,15 +144,21 @@ class Problem:
         >>> p = marsden.Problem.from_toml(open("examples/pendulum.toml").read())
         """
         problem = cls.__new__(cls)
-        problem._init(text, origin)
+        try:
+            problem._init(text, origin)
+        except ProblemError as e:
+            raise ProblemError(_messages.for_text(str(e), origin)) from None
         return problem
 
     @classmethod
     def load(cls, path: Union[str, "os.PathLike[str]"]) -> "Problem":
-        """The problem file at ``path`` (``marsden run path`` computes the same)."""
+        """The problem file at ``path`` (``marsden run path`` computes the same); paths in
+        it (an N-body ``file``) are relative to the file's directory."""
         with open(path, encoding="utf-8") as f:
             text = f.read()
-        return cls.from_toml(text, os.fspath(path))
+        problem = cls.__new__(cls)
+        problem._init(text, os.fspath(path))
+        return problem
 
     @classmethod
     def builtin(cls, name: str, **kwargs: Any) -> "Problem":
@@ -199,32 +205,57 @@ class Problem:
         """The number of steps."""
         return self._info["steps"]
 
-    def solve(self, every: Optional[int] = None, progress: bool = False,
+    def solve(self, every: Optional[int] = None, progress: _progress.Request = False,
               sensitivity: Optional[_sensitivity.Request] = None) -> Solution:
         """Runs the problem (without the interpreter's lock; Ctrl-C raises
         ``KeyboardInterrupt`` within a few hundred steps) and returns the stored samples.
 
         ``every``: store every k-th step (and the first and the last); default: the
-        problem's ``[output] every``, else 1. ``progress``: a progress line on stderr.
-        ``sensitivity``: derivatives of the run, in :attr:`Solution.sensitivity` — ``True``
-        for ``∂(q_k, p_k)/∂(q₀, p₀)``, a list of parameter names for ``∂(q_k, p_k)/∂θ``, or
-        both as ``{"initial": True, "parameters": ["g"]}`` (the problem file's
-        ``[sensitivity]`` table)::
+        problem's ``[output] every``, else 1. ``progress``: ``True`` for a report on
+        ``sys.stderr`` (a line redrawn in place on a terminal, else one line per tenth of the
+        run), or a function called as ``f(step, total, elapsed_seconds, done)`` every few
+        hundred steps. ``sensitivity``: derivatives of the run, in
+        :attr:`Solution.sensitivity` — ``True`` for ``∂(q_k, p_k)/∂(q₀, p₀)``, a list of
+        parameter names for ``∂(q_k, p_k)/∂θ``, or both as ``{"initial": True,
+        "parameters": ["g"]}`` (the problem file's ``[sensitivity]`` table)::
 
             >>> s = pendulum.solve(sensitivity=["g", "l"])
             >>> s.sensitivity.column("g")      # ∂(θ, p_θ)/∂g at the last step
 
-        Raises :class:`marsden.SimulationError` if the run fails part-way (its
+        Raises :class:`marsden.ProblemError` for a problem with a sweep (run it with
+        :meth:`sweep`), and :class:`marsden.SimulationError` if the run fails part-way (its
         ``.solution`` holds the samples before the failure) or if the derivatives asked for
         could not be computed (its ``.solution`` holds the whole run).
         """
+        if self._info.get("sweep") is not None:
+            label, members = self._info["sweep"]
+            raise ProblemError(
+                f"error: this problem is a sweep over {label} ({len(members)} members); "
+                "solve() runs one problem\n"
+                "  = help: run every member with problem.sweep() (or marsden.sweep(problem)), "
+                "or `marsden run` the file")
         text = self._text
         if sensitivity is not None:
             if self._info.get("sensitivity"):
                 raise ProblemError("this problem already has a [sensitivity] table: leave out "
                                    "solve(sensitivity=...), or remove the table")
             text += _sensitivity.table(sensitivity)
-        return from_native(_native.solve(text, self._origin, every, progress))
+        try:
+            fields = _native.solve(text, self._origin, every, _progress.callback(progress))
+        except ProblemError as e:
+            raise self._error(e) from None
+        return from_native(fields)
+
+    def sweep(self, parameter: Optional[str] = None, values: Optional[Sequence[float]] = None,
+              executor: Any = None, **options: Any) -> List[Any]:
+        """:func:`marsden.sweep` of this problem: its own sweep (a ``[sweep]`` table or
+        ``sweep=``) when called without ``parameter`` and ``values``.
+
+        >>> marsden.Problem.load("examples/pendulum_sweep.toml").sweep()
+        """
+        from ._sweep import sweep
+
+        return sweep(self, parameter, values, executor, **options)
 
     def __repr__(self) -> str:
         i = self._info
@@ -242,15 +273,3 @@ class Problem:
 
     def __setstate__(self, state: Dict[str, Any]) -> None:
         self._init(state["text"], state["origin"])
-
-
-def _bool(value: bool) -> str:
-    return "true" if value else "false"
-
-
-def _symmetry_items(symmetries: Optional[Symmetries]) -> List[Tuple[str, Sequence[Any]]]:
-    if symmetries is None:
-        return []
-    if isinstance(symmetries, Mapping):
-        return list(symmetries.items())
-    return [(n, g) for n, g in symmetries]

@@ -38,7 +38,9 @@ class Solution:
         self.q: np.ndarray = fields["q"]
         self.p: np.ndarray = fields["p"]
         self.v: np.ndarray = fields["v"]
-        self.energy: np.ndarray = fields["energy"]
+        energy = fields["energy"]
+        self.energy: Optional[np.ndarray] = (
+            None if energy is None or (len(energy) == 0 and len(self.t) > 0) else energy)
         self.momenta: Dict[str, np.ndarray] = dict(fields["momenta"])
         self.constraint_residual: Optional[np.ndarray] = fields["constraint_residual"]
         self.multipliers: np.ndarray = fields["multipliers"]
@@ -68,7 +70,8 @@ class Solution:
 
     def to_pandas(self) -> Any:
         """The samples as a ``pandas.DataFrame``: ``t``, ``q…``, ``p_…``, ``v_…``, ``energy``,
-        ``J_…`` and ``constraint_residual`` columns, as ``trajectory.csv`` (plus ``v``)."""
+        ``J_…`` and ``constraint_residual`` columns, as ``trajectory.csv`` (plus ``v``); a
+        quantity the run does not have (``energy`` of a discrete Lagrangian) has no column."""
         try:
             import pandas as pd
         except ImportError as e:  # pragma: no cover - depends on the environment
@@ -78,7 +81,8 @@ class Solution:
             columns[name] = self.q[:, i]
         for i, name in enumerate(self.coordinates):
             columns[f"p_{name}"] = self.p[:, i]
-        columns["energy"] = self.energy
+        if self.energy is not None:
+            columns["energy"] = self.energy
         for name, values in self.momenta.items():
             columns[f"J_{name}"] = values
         if self.constraint_residual is not None:
@@ -91,7 +95,8 @@ class Solution:
 
     def plot(self, ax: Any = None) -> Any:
         """The phase portrait (``q`` against ``p`` per coordinate) and the relative energy
-        error against time, with matplotlib; returns the figure."""
+        error against time (for a run without an energy, the momentum maps' drift, or an
+        empty panel saying so), with matplotlib; returns the figure."""
         try:
             import matplotlib.pyplot as plt
         except ImportError as e:  # pragma: no cover - depends on the environment
@@ -107,18 +112,25 @@ class Solution:
         phase.set_ylabel("p")
         phase.set_title("phase portrait")
         phase.legend()
-        e0 = self.energy[0] if len(self.energy) else 1.0
-        scale = abs(e0) if e0 != 0 else 1.0
-        energy.plot(self.t, (self.energy - e0) / scale, lw=0.6)
-        energy.set_xlabel("t")
-        energy.set_ylabel("(E - E0)/|E0|")
-        energy.set_title("energy error")
+        if self.energy is not None:
+            _relative_error(energy, self.t, self.energy, "(E - E0)/|E0|", "energy error")
+        elif self.momenta:
+            for name, values in self.momenta.items():
+                energy.plot(self.t, values - values[0] if len(values) else values, lw=0.6,
+                            label=f"J_{name}")
+            energy.set_xlabel("t")
+            energy.set_ylabel("J - J0")
+            energy.set_title("momentum map drift (no energy: discrete Lagrangian)")
+            energy.legend()
+        else:
+            energy.set_axis_off()
+            energy.set_title("no energy: a discrete Lagrangian has no continuous L")
         fig.tight_layout()
         return fig
 
     def __repr__(self) -> str:
         s = self.summary
-        energy = s.get("energy", {})
+        energy = s.get("energy") or {}
         t_final = s.get("t_final")
         text = (f"Solution({s.get('name', '?')!r}, {self.status}, {len(self)} samples of "
                 f"{len(self.coordinates)} coordinates {self.coordinates}, steps "
@@ -130,6 +142,16 @@ class Solution:
         if self.error:
             text += f", error={self.error!r}"
         return text + ")"
+
+
+def _relative_error(ax: Any, t: np.ndarray, values: np.ndarray, label: str, title: str) -> None:
+    """``(x − x₀)/|x₀|`` against ``t`` on ``ax`` (unscaled if ``x₀ = 0``)."""
+    x0 = values[0] if len(values) else 1.0
+    scale = abs(x0) if x0 != 0 else 1.0
+    ax.plot(t, (values - x0) / scale, lw=0.6)
+    ax.set_xlabel("t")
+    ax.set_ylabel(label)
+    ax.set_title(title)
 
 
 def from_native(fields: Dict[str, Any]) -> Solution:
