@@ -92,8 +92,8 @@ impl Inertia {
             Error::Input(InputError::InvalidInertia {
                 body,
                 reason,
-                matrix: *rows,
-                principal,
+                matrix: rows.to_vec(),
+                principal: principal.to_vec(),
             })
         };
         let asymmetry = (matrix - matrix.transpose()).amax();
