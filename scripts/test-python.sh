@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The Python package's tests: builds and installs crates/marsden-py into a fresh virtual
-# environment with pytest, numpy, sympy, scipy and dask[distributed], then runs
+# environment with pytest, numpy, sympy, scipy, matplotlib and dask[distributed], then runs
 # crates/marsden-py/tests. The extension is built with the `dev` profile (`pip install` gives
 # users `release`): what `cargo test --workspace` compiled into target/debug is reused, the
 # workspace crates included (marsden-py's Cargo.toml names the features a build of it alone
@@ -17,7 +17,7 @@ VENV="${VENV:-target/ci-venv}"
 rm -rf "$VENV"
 "$PYTHON" -m venv "$VENV"
 "$VENV/bin/python" -m pip install --quiet --upgrade pip
-"$VENV/bin/python" -m pip install --quiet pytest numpy sympy "dask[distributed]" pandas scipy
+"$VENV/bin/python" -m pip install --quiet pytest numpy sympy "dask[distributed]" pandas scipy matplotlib
 start=$(date +%s)
 MATURIN_PEP517_ARGS="--profile dev" "$VENV/bin/python" -m pip install --quiet ./crates/marsden-py
 echo "test-python: built and installed the extension in $(( $(date +%s) - start )) s"

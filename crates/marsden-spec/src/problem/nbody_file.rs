@@ -63,11 +63,15 @@ pub fn read(
     };
     let span = file.span();
     let base = ck.source.path().parent().map(PathBuf::from);
+    // Text without a file of its own (`from_toml_str` with a bare name) has no directory: its
+    // paths are relative to the working directory, and the message says so.
+    let relative_to = match base.as_ref().is_some_and(|b| !b.as_os_str().is_empty()) {
+        true => "the path is relative to the problem file's directory",
+        false => "the path is relative to the working directory (the problem text has no file)",
+    };
     let path = base.unwrap_or_default().join(file.get_ref());
-    let text = crate::source::read_bounded(&path, "N-body file").map_err(|m| {
-        ck.error(Some(span.clone()), m)
-            .help("the path is relative to the problem file's directory")
-    })?;
+    let text = crate::source::read_bounded(&path, "N-body file")
+        .map_err(|m| ck.error(Some(span.clone()), m).help(relative_to))?;
     check_count(&text).map_err(|m| {
         ck.error(Some(span.clone()), format!("in {}: {m}", path.display()))
             .note("format: first line N, then one line `m x y z vx vy vz` per body")

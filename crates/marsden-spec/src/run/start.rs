@@ -340,7 +340,8 @@ fn largest_defect(report: Option<&marsden::symmetry::check::SymmetryReport>) -> 
 pub const NEARBY_STATES: usize = 8;
 
 /// Relative size of the neighbourhood: each coordinate moves by up to this fraction of
-/// `max(|q|, 1)`, each velocity by this fraction of `max(|v|, 1)`.
+/// `max(|q|, 1)`, each velocity by this fraction of `max(|v|, 1)`, the time forward by up to
+/// this fraction of `max(|t|, 1)`.
 const NEARBY_RADIUS: f64 = 0.05;
 
 /// The states a declared symmetry is checked at: the initial state and [`NEARBY_STATES`]
@@ -355,10 +356,14 @@ pub fn nearby_samples(
     let n = q.len();
     let q_scale = NEARBY_RADIUS * q.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
     let v_scale = NEARBY_RADIUS * v.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
-    let offsets = Sample::random(n, NEARBY_STATES, 0x005E_ED0F_5EED, 1.0);
+    let t_scale = NEARBY_RADIUS * t.abs().max(1.0);
+    // One more random coordinate moves the time forward (a Lagrangian that depends on `t` may
+    // be invariant at `t₀` only: `∂L/∂x ∝ sin √t`), never before `t₀` (its domain may start
+    // there).
+    let offsets = Sample::random(n + 1, NEARBY_STATES, 0x005E_ED0F_5EED, 1.0);
     std::iter::once(Sample::new(t, q, v))
         .chain(offsets.into_iter().map(|o| Sample {
-            t,
+            t: t + t_scale * 0.5 * (1.0 + o.q[n]),
             q: q.iter().zip(&o.q).map(|(x, r)| x + q_scale * r).collect(),
             v: v.iter().zip(&o.v).map(|(x, r)| x + v_scale * r).collect(),
         }))
