@@ -29,8 +29,8 @@
 //! | discrete mechanics | [`discrete`] | `L_d`, `f_d^±`, `D₁L_d`, `D₂L_d`, `F^±L_d`, DEL; rules (midpoint, trapezoid, α, Galerkin, compositions); `L_d^E` by shooting |
 //! | forces, constraints | [`forces`], [`holonomic`] | damping, driving, controls, `f_H ∘ FL`; RATTLE, initial data on `T*N` |
 //! | catalog | [`systems`], [`special`] | canonical systems; elliptic functions, exact pendulum, Kepler and oscillator solutions |
-//! | integrator | [`integrator`] | the discrete Hamiltonian map `F̃_{L_d}` solved by Newton (the path chosen once), compensated summation, `F_{L_d}` |
-//! | run | [`run`] | problem → one run loop over a [`run::Stepper`] → trajectory; stride, observers, failures |
+//! | integrator | [`integrator`] | the discrete Hamiltonian map `F̃_{L_d}` solved by Newton (the path chosen once), compensated summation, checkpoints, `F_{L_d}` |
+//! | run | [`run`] | problem → one run loop over a [`run::Stepper`] → trajectory; stride, observers, events located inside the step, failures |
 //! | Hamiltonian side | [`hamiltonian`] | `H(q, p)`, `X_H`, implicit midpoint, Störmer–Verlet, Legendre adapters |
 //! | symmetry | [`symmetry`] | group actions, generators and lifts, `J_L`, `J_H`, `J^±_{L_d}`, symmetry checks |
 //! | analysis | [`analysis`] | energy error and drift, Noether and force balances, energy balance, constraint residuals; symplecticity certificate |
