@@ -85,8 +85,8 @@ pub enum InputError {
         body: usize,
         /// What is wrong, with the offending numbers.
         reason: String,
-        /// The inertia matrix given, row-major.
-        matrix: [f64; 9],
+        /// The inertia matrix given, row-major (9 entries).
+        matrix: Vec<f64>,
         /// Its eigenvalues (principal moments), ascending (NaN when not symmetric).
         principal: [f64; 3],
     },

@@ -92,7 +92,7 @@ impl Inertia {
             Error::Input(InputError::InvalidInertia {
                 body,
                 reason,
-                matrix: *rows,
+                matrix: rows.to_vec(),
                 principal,
             })
         };
