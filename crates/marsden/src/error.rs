@@ -85,11 +85,10 @@ pub enum InputError {
         body: usize,
         /// What is wrong, with the offending numbers.
         reason: String,
-        /// The inertia matrix given, row-major (9 entries; boxed in a `Vec` to keep the error
-        /// small on the step's hot path).
+        /// The inertia matrix given, row-major (9 entries).
         matrix: Vec<f64>,
         /// Its eigenvalues (principal moments), ascending (NaN when not symmetric).
-        principal: Vec<f64>,
+        principal: [f64; 3],
     },
     /// A matrix given as an attitude is not a rotation: `max |RᵀR − I|` above the tolerance,
     /// or `det R < 0`.

@@ -93,7 +93,7 @@ impl Inertia {
                 body,
                 reason,
                 matrix: rows.to_vec(),
-                principal: principal.to_vec(),
+                principal,
             })
         };
         let asymmetry = (matrix - matrix.transpose()).amax();

