@@ -21,8 +21,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             it.cost, it.violation, it.kkt, it.step, it.regularization
         );
     }
-    let umax = s.u.iter().map(|u| u[0].abs()).fold(0.0, f64::max);
-    let xmax = s.q.iter().map(|q| q[0].abs()).fold(0.0, f64::max);
+    let umax =
+        s.u.iter()
+            .map(|u| u[0].abs())
+            .fold(0.0, marsden::numerics::dense::max_or_nan);
+    let xmax =
+        s.q.iter()
+            .map(|q| q[0].abs())
+            .fold(0.0, marsden::numerics::dense::max_or_nan);
     println!(
         "{:?} cost {:.8}, {} iterations, max |u| {umax:.3}, max |x| {xmax:.3}, {:.3} s",
         s.status,

@@ -73,5 +73,5 @@ pub fn casimir(state: &RigidState, i: usize) -> f64 {
 pub fn orthogonality(state: &RigidState) -> f64 {
     (0..state.bodies())
         .map(|i| orthogonality_defect(&state.rotation(i)))
-        .fold(0.0, f64::max)
+        .fold(0.0, crate::numerics::dense::max_or_nan)
 }

@@ -108,7 +108,8 @@ pub fn cay_inv(r: &Mat3) -> Option<Vec3> {
 
 /// The orthogonality defect `max |RᵀR − I|` (max-norm over the entries).
 pub fn orthogonality_defect(r: &Mat3) -> f64 {
-    (r.transpose() * r - Mat3::identity()).amax()
+    // nalgebra's `amax` skips NaN (`>` is false): a NaN attitude must not read as orthogonal.
+    crate::numerics::dense::max_norm((r.transpose() * r - Mat3::identity()).as_slice())
 }
 
 /// The nearest rotation to a nearly orthonormal `r` (its polar factor), by the Newton iteration
@@ -141,7 +142,9 @@ pub fn attitude(what: &'static str, rows: &[f64; 9]) -> Result<Mat3, Error> {
     let r = Mat3::from_row_slice(rows);
     let defect = orthogonality_defect(&r);
     let determinant = r.determinant();
-    if defect > ATTITUDE_TOLERANCE || determinant <= 0.0 {
+    // Written so that a NaN defect or determinant (an overflow) is refused, not accepted.
+    let rotation = defect <= ATTITUDE_TOLERANCE && determinant > 0.0;
+    if !rotation {
         return Err(Error::Input(InputError::NotARotation {
             what,
             defect,
