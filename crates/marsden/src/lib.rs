@@ -48,12 +48,23 @@
 //!   `p_{k+1} = D₂L_d(q_k, q_{k+1}) + f_d⁺(q_k, q_{k+1})`.
 //! * Midpoint: `L_d = h L(t + h/2, (q₀+q₁)/2, (q₁−q₀)/h)`, forces `f_d^± = (h/2) f(midpoint)`.
 //!   Trapezoid: `L_d = (h/2)[L(t, q₀, v) + L(t+h, q₁, v)]`, `v = (q₁−q₀)/h`, forces at the ends.
+//!   Generalised midpoint: `L_d^α = h L(t + αh, (1−α)q₀ + αq₁, v)`, forces
+//!   `(f_d⁻, f_d⁺) = (h(1−α) f, hα f)` at that point; symmetrised: `½(L_d^α + L_d^{1−α})`.
+//!   Midpoint is α = ½, trapezoid the symmetrised α = 0.
+//! * Discrete Legendre transforms ([MW01] §1.3): `F⁻L_d(q₀, q₁) = (q₀, −D₁L_d(q₀, q₁))`,
+//!   `F⁺L_d(q₀, q₁) = (q₁, D₂L_d(q₀, q₁))`; without forces the step is `F⁺L_d ∘ (F⁻L_d)⁻¹`, and
+//!   eliminating the momenta gives the DEL `D₂L_d(q_{k−1}, q_k) + D₁L_d(q_k, q_{k+1}) = 0`; with
+//!   forces, `D₂L_d(q_{k−1}, q_k) + D₁L_d(q_k, q_{k+1}) + f_d⁺(q_{k−1}, q_k) + f_d⁻(q_k, q_{k+1}) = 0`.
 //! * Constraints (SHAKE, [LMO08]): `p_k + D₁L_d(q_k, q_{k+1}) − h Dφ(q_k)ᵀλ_k = 0`,
 //!   `φ(q_{k+1}) = 0`; RATTLE adds the momentum projection so that `(q_{k+1}, p_{k+1})` lies on
 //!   the cotangent bundle of the constraint manifold (`Dφ(q) · FH(q, p) = 0`). Rules of higher
 //!   order impose `φ = 0` at their stages too (constrained Lobatto IIIA–IIIB; compositions of
 //!   RATTLE steps), so they keep their order; Gauss rules are refused with constraints.
 //! * The discrete momenta are the `p_k` above: for the midpoint rule `p_k ≠ M (q_{k+1} − q_k)/h`.
+//! * Equivalences, for `L = ½vᵀMv − V(q)` ([MW01]; [HLW06] §VI.6): the midpoint rule *is* the
+//!   implicit midpoint rule on `H = ½pᵀM⁻¹p + V` (`q₁ = q₀ + hM⁻¹(p₀ + p₁)/2`,
+//!   `p₁ = p₀ − h∇V((q₀ + q₁)/2)`), and the trapezoid rule *is* velocity Störmer–Verlet
+//!   (`p_½ = p₀ − (h/2)∇V(q₀)`, `q₁ = q₀ + hM⁻¹p_½`, `p₁ = p_½ − (h/2)∇V(q₁)`).
 //! * Rigid bodies ([`lie`], [LLM07]): the attitude `R ∈ SO(3)` maps body to space, `Ṙ = R Ω^`,
 //!   `Π = JΩ` the body angular momentum, `J` the inertia about the fixed point (the centre of mass
 //!   for a free body), `J_d = ½ tr(J) I − J`; the body moment `M` is the left-trivialised
@@ -61,7 +72,10 @@
 //!   `R_{k+1} = R_kF_k`, `Π_{k+1} = F_kᵀΠ_k + (h/2)F_kᵀM_k + (h/2)M_{k+1}`. Spatial rotations act
 //!   on the left (momentum map `RΠ`), body rotations on the right (`Π`).
 //! * Discrete Noether: for an `L_d` invariant under a group action, `J_k = ⟨p_k, ξ_Q(q_k)⟩` is
-//!   exactly constant (to the Newton tolerance: over `N` steps at most `N · tol · |ξ_Q|`).
+//!   exactly constant (to the Newton tolerance: over `N` steps at most `N · tol · |ξ_Q|`), with the
+//!   discrete momenta `p_k`. The midpoint, trapezoid and Galerkin `L_d` of an invariant `L` are
+//!   invariant under linear actions (translations, rotations). Tests of conservation run Newton to
+//!   round-off or let their bound grow with `N`.
 //!
 //! ## Reference cases
 //!
@@ -120,6 +134,7 @@
 //! [MW01]: crate#references
 //! [LMO08]: crate#references
 //! [LLM07]: crate#references
+//! [HLW06]: crate#references
 
 pub mod analysis;
 pub mod discrete;

@@ -2,7 +2,7 @@
 //!
 //! Unknowns `z = (Δ₁, …, Δ_s, λ, Λ₁, …, Λ_c)`: the offsets `Δ_j = Q_j − q_k` of the control points after
 //! `Q₀ = q_k` (so `q_{k+1} = q_k + Δ_s`) and the constraint multipliers. Offsets, not positions,
-//! keep velocities `Δ/h` free of the `ε|q|/h` cancellation error of `(q_{k+1} − q_k)/h`. Equations (DESIGN.md §3; forced DEL in
+//! keep velocities `Δ/h` free of the `ε|q|/h` cancellation error of `(q_{k+1} − q_k)/h`. Equations ([conventions](crate#conventions); forced DEL in
 //! position–momentum form, [MW01] §3.2; SHAKE, [LMO08]):
 //!
 //! ```text

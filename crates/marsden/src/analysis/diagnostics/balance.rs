@@ -2,7 +2,7 @@
 //!
 //! Concept of the notes (MW01): *(Lagrangian) Noether's theorem with forces* — `J_L(T) − J_L(0) = ∫ ⟨f_L, ξ_Q⟩ dt` — and
 //! *discrete variational mechanics with forces*. With the forced discrete Legendre transforms
-//! (DESIGN.md §3) `p_k = −D₁L_d − f_d⁻` and `p_{k+1} = D₂L_d + f_d⁺` of the step
+//! ([conventions](crate#conventions)) `p_k = −D₁L_d − f_d⁻` and `p_{k+1} = D₂L_d + f_d⁺` of the step
 //! `(q_k, q_{k+1})`,
 //!
 //! ```text
