@@ -53,8 +53,8 @@
 //!   Midpoint is α = ½, trapezoid the symmetrised α = 0.
 //! * Discrete Legendre transforms ([MW01] §1.3): `F⁻L_d(q₀, q₁) = (q₀, −D₁L_d(q₀, q₁))`,
 //!   `F⁺L_d(q₀, q₁) = (q₁, D₂L_d(q₀, q₁))`; without forces the step is `F⁺L_d ∘ (F⁻L_d)⁻¹`, and
-//!   eliminating the momenta gives the DEL `D₂L_d(q_{k−1}, q_k) + D₁L_d(q_k, q_{k+1}) = 0`; with
-//!   forces, `D₂L_d(q_{k−1}, q_k) + D₁L_d(q_k, q_{k+1}) + f_d⁺(q_{k−1}, q_k) + f_d⁻(q_k, q_{k+1}) = 0`.
+//!   eliminating the momenta gives the DEL `D₂L_d(q_{k−1}, q_k) + D₁L_d(q_k, q_{k+1}) = 0`; forces
+//!   add `f_d⁺(q_{k−1}, q_k) + f_d⁻(q_k, q_{k+1})` to its left-hand side.
 //! * Constraints (SHAKE, [LMO08]): `p_k + D₁L_d(q_k, q_{k+1}) − h Dφ(q_k)ᵀλ_k = 0`,
 //!   `φ(q_{k+1}) = 0`; RATTLE adds the momentum projection so that `(q_{k+1}, p_{k+1})` lies on
 //!   the cotangent bundle of the constraint manifold (`Dφ(q) · FH(q, p) = 0`). Rules of higher
