@@ -80,7 +80,7 @@
 //! ## Reference cases
 //!
 //! The tests check the library against known answers (`tests/reference/`, a file per case named
-//! after it). The tolerances asserted are at least as tight as these:
+//! after it; the constrained cases R7, R13 and R14 in `tests/constraints/`). The tolerances asserted are at least as tight as these:
 //!
 //! | case | system, method | checked | tolerance |
 //! |---|---|---|---|
@@ -90,10 +90,13 @@
 //! | R4 | pendulum | unit values of `L_d`, `F^±L_d`, the DEL residual | 1e-15 |
 //! | R5 | pendulum, generalised midpoint α | order 1 for α ≠ ½, 2 at α = ½ and symmetrised | ±0.05 on the slope |
 //! | R6 | pendulum, Galerkin Gauss / Lobatto | order 2s (Gauss), 2s − 2 (Lobatto); second-order regression values | slopes; 1e-11 |
+//! | R7 | Cartesian pendulum on the circle of radius `l`, SHAKE + RATTLE (derived here: the exact solution from the pendulum's elliptic-function solution) | order 2 (two-point rules), `2s − 2` (constrained Lobatto IIIA–IIIB, [Jay96]), the scheme's order (compositions of RATTLE steps, [Rei96]); multipliers of the stored states at the method's order | ±0.2 on the slope |
 //! | R8 | pendulum, 10⁶ steps | energy error bounded, no drift; shadow Hamiltonian | as in the case |
 //! | R9 | free fall | every variational integrator exact | 1e-13 relative |
 //! | R10 | Kepler e = 0.6 | angular momentum (discrete Noether); energy bounded; one-period regression | 1e-12 over 10⁵ steps; 2e-4; 1e-10 |
 //! | R12 | damped oscillator, midpoint forces | discrete energy balance `E_{k+1} − E_k = −c(q_{k+1} − q_k)²/h`; closed form | 1e-14 per step; 1e-12 |
+//! | R13 | spherical pendulum in Cartesian coordinates, stage constraints (against the angle flow, extrapolated to round-off) | `φ = 0` at every stage point; `L_z` (discrete Noether); order 4 with order-4 rules | 1e-14; 1e-12 over 2000 steps; ±0.2 on the slope |
+//! | R14 | planar double pendulum, angles against Cartesian coordinates with two distance constraints | both converge to the same motion; their difference `O(h²)` (midpoint), `O(h⁴)` (`lobatto-3`) | ±0.05 and ±0.2 on the slope |
 //! | R17 | symmetric rules | time reversibility; `det DF = 1`, `DFᵀJDF = J` | 1e-12 / 1e-11; 1e-8 |
 //! | R19 | free rigid body, LGVI (Moser–Veselov) | energy, `|Π|²` and `RΠ` over 10⁴ steps of `h = 0.1`; orders 2, 4, 6 against the elliptic-function solution | 1e-12; ±0.1 on the slope |
 //! | R20 | heavy symmetric top, LGVI | `e₃·RΠ`, `Π₃` to round-off; energy error bounded and `O(h²)`; `|RᵀR − I|` after 10⁶ steps | 1e-12 relative; 1e-13 |
@@ -134,6 +137,8 @@
 //! [MW01]: crate#references
 //! [LMO08]: crate#references
 //! [LLM07]: crate#references
+//! [Jay96]: crate#references
+//! [Rei96]: crate#references
 //! [HLW06]: crate#references
 
 pub mod analysis;
