@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Runs the C reference (../shared/bench/verlet.c) and marsden's divan benchmarks in one go and
-# prints a table of medians with ratios, so every ratio comes from the same run on the same
-# machine. Usage: scripts/bench.sh [bench-name ...]
+# Runs the C reference (verlet.c, kept beside the repository) and marsden's divan benchmarks in
+# one go and prints a table of medians with ratios, so every ratio comes from the same run on the
+# same machine. Usage: scripts/bench.sh [bench-name ...]
 #   default: the core benches step, constrained, nbody, chain (crates/marsden/benches/)
 # Environment: VERLET_C (path of verlet.c), BENCH_DATA (directory of the Plummer files).
 set -euo pipefail

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """A Lagrangian typed as text against the same system from the catalog, through `marsden run`,
-with the C references of ../shared/bench/verlet.c, all in one run (interleaved repeats, medians).
+with the C references (verlet.c, kept beside the repository), all in one run (interleaved
+repeats, medians).
 
     scripts/bench_expression.py NEW_BIN [OLD_BIN] [--repeats R] [--verlet PATH_TO_verlet.c]
 

@@ -11,7 +11,8 @@ BENCHMARKS.md.
   - Kepler e = 0.6, h = 0.01, 10^6 steps: marsden's midpoint rule from Python, and REBOUND's
     leapfrog (WHFast's kick-drift-kick without the Kepler solver) if `rebound` is installed.
 
-trep (Python 2 only) cannot be installed here: its figures are those of ../shared/bench/README.md.
+trep (Python 2 only) cannot be installed here: its figures are the peers' figures kept beside the
+repository with the C reference (verlet.c).
 
     python scripts/bench_python.py --marsden target/release/marsden [--repeats 5]
 """

@@ -8,7 +8,7 @@ use crate::util::{
 };
 
 /// R1 (m = k = 1, (q, p) = (1, 0), h = 0.1): `q_N`, `p_N` of the midpoint map at N = 10, 100,
-/// 1000 (REFERENCE-CASES.md, closed form at 40 digits; the digits as published).
+/// 1000 (reference case R1's closed form at 40 digits; the digits as published).
 #[allow(clippy::excessive_precision)]
 const R1: [(usize, f64, f64); 3] = [
     (10, 0.54100229460035897, -0.84102111580931570),

@@ -38,7 +38,7 @@ fn fitted(stdout: &str, method: &str) -> f64 {
     cells.last().unwrap().parse().unwrap()
 }
 
-/// Reference case R6 (reference/REFERENCE-CASES.md; R5 for the midpoint rule's order 2):
+/// Reference case R6 (the `marsden` crate documentation; R5 for the midpoint rule's order 2):
 /// pendulum `L = ½q̇² + cos q`, `q₀ = 1.5`, `p₀ = 0`, `T = 5`, `N = 10, 20, 40, 80`. The
 /// midpoint rule (P1, Gauss 1 point) has order 2 and Gauss 2 (P2, 2 Gauss points) order 4;
 /// the errors are those of the table of R6 (quoted to 4 digits).

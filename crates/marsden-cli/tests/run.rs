@@ -2,13 +2,14 @@
 //! `trajectory.csv`, the summary's fields, the expression path against the Rust path, the
 //! other output formats.
 
-// The reference values are quoted with all the digits of REFERENCE-CASES.md.
+// The reference values are quoted with all the published digits of reference case R1's closed form.
 #![allow(clippy::excessive_precision)]
 
 use crate::util::{assert_close, column, fixture, number, run_ok};
 use sha2::{Digest, Sha256};
 
-/// Reference case R1 (reference/REFERENCE-CASES.md): `(q_N, p_N)` for N = 10, 100, 1000.
+/// Reference case R1 (the `marsden` crate documentation, Reference cases): `(q_N, p_N)` for N = 10,
+/// 100, 1000.
 const R1: [(usize, f64, f64); 3] = [
     (10, 0.54100229460035897, -0.84102111580931570),
     (100, -0.84356915087578985, 0.53702056542622173),

@@ -74,7 +74,7 @@ fn try_separable(text: &str, coords: &[&str], params: &[(&str, f64)]) -> Option<
     program.separable(coords.len())
 }
 
-/// REFERENCE-CASES Kepler (e = 0.6, μ = 1), the pendulum, and the double pendulum's potential
+/// Kepler (reference case R10: e = 0.6, μ = 1), the pendulum, and the double pendulum's potential
 /// (with a constant mass matrix, so it is separable): `V`, `∇V`, `∇²V`.
 fn reference_forms() -> Vec<(&'static str, SeparableForm)> {
     let double = "0.5*(th1_dot^2 + th2_dot^2) + (m1+m2)*g*l1*cos(th1) + m2*g*l2*cos(th2) \

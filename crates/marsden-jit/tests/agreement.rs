@@ -1,7 +1,7 @@
-//! [`CompiledTape`] against the tape interpreter ([`Tape::eval_into`] at `f64`): **bit for
-//! bit** equal outputs (or both NaN: IEEE 754 leaves a NaN's payload unspecified), on the
-//! reference potentials (Kepler, pendulum, double pendulum; REFERENCE-CASES), every function of
-//! the language, special inputs and random expressions.
+//! [`CompiledTape`] against the tape interpreter ([`Tape::eval_into`] at `f64`): **bit for bit**
+//! equal outputs (or both NaN: IEEE 754 leaves a NaN's payload unspecified), on the reference
+//! potentials (Kepler of reference case R10, pendulum, double pendulum), every function of the
+//! language, special inputs and random expressions.
 
 use marsden_expr::{Program, SeparableForm, Symbols, Tape};
 use marsden_jit::CompiledTape;
@@ -69,7 +69,7 @@ pub(crate) fn separable(text: &str, coords: &[&str], params: &[(&str, f64)]) -> 
     program.separable(coords.len()).unwrap()
 }
 
-/// REFERENCE-CASES Kepler (μ = 1), the pendulum and a double-pendulum-like potential
+/// Kepler (reference case R10, μ = 1), the pendulum and a double-pendulum-like potential
 /// (constant mass matrix, coupled through `cos(θ₁ − θ₂)`).
 pub(crate) fn reference_forms() -> Vec<(&'static str, SeparableForm)> {
     let double = "0.5*(th1_dot^2 + th2_dot^2) + (m1+m2)*g*l1*cos(th1) + m2*g*l2*cos(th2) \

@@ -94,7 +94,7 @@ fn assert_same_run(
     got.done
 }
 
-/// Kepler (e = 0.6 from pericentre, REFERENCE-CASES), the pendulum and a coupled double
+/// Kepler (e = 0.6 from pericentre, reference case R10), the pendulum and a coupled double
 /// pendulum, 3000 steps each.
 #[test]
 fn reference_potentials_run_as_the_interpreted_loop() {

@@ -71,7 +71,7 @@ def test_builtin_and_catalog():
                                       symmetries={"Lz": ["-y", "x"]})
     assert problem.coordinates == ["x", "y"] and problem.parameters == {"mu": 1.0}
     solution = problem.solve()
-    # Kepler e = 0.6 (REFERENCE-CASES: Kepler): L_z = q_x p_y - q_y p_x = 0.8 is conserved
+    # Kepler e = 0.6 (reference case R10): L_z = q_x p_y - q_y p_x = 0.8 is conserved
     # by the midpoint rule to round-off.
     assert abs(solution.momenta["Lz"][0] - 0.8) < 1e-15
     assert np.max(np.abs(solution.momenta["Lz"] - 0.8)) < 1e-12
@@ -86,8 +86,8 @@ def test_samples_have_one_row_per_stored_step():
     assert np.allclose(solution.v, solution.p, rtol=0, atol=1e-12)
     energy = 0.5 * solution.p[:, 0] ** 2 - np.cos(solution.q[:, 0])
     assert np.allclose(solution.energy, energy, rtol=0, atol=1e-12)
-    # A symplectic method: bounded energy error, about 1e-3 at h = 0.05 (REFERENCE-CASES:
-    # pendulum, midpoint).
+    # A symplectic method: bounded energy error, about 1e-3 at h = 0.05 (reference case
+    # R8: pendulum, midpoint).
     assert solution.summary["energy"]["max_rel_error"] < 5e-3
 
 

@@ -43,7 +43,7 @@ def test_dynamicsymbols_print_as_coordinates_and_velocities():
 
 
 def test_sympy_and_string_forms_give_the_same_bits():
-    """Kepler e = 0.6 (REFERENCE-CASES: Kepler) from SymPy and from the printed string."""
+    """Kepler e = 0.6 (reference case R10) from SymPy and from the printed string."""
     x, y, x_dot, y_dot, mu = sp.symbols("x y x_dot y_dot mu")
     lagrangian = sp.Rational(1, 2) * (x_dot**2 + y_dot**2) + mu / sp.sqrt(x**2 + y**2)
     common = dict(coordinates=[x, y], parameters={"mu": 1.0}, q0=[0.4, 0.0], p0=[0.0, 2.0],

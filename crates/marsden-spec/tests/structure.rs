@@ -194,7 +194,7 @@ fn banded_chain(n: usize) -> ExprLagrangian {
 
 /// Native code for the tapes (default `jit` feature) and their interpreter (what
 /// `MARSDEN_JIT=0` selects) give the same trajectories bit for bit: Kepler typed as text (e = 0.6,
-/// REFERENCE-CASES; explicit Störmer–Verlet through ∇V, and midpoint through ∇²V) and a banded
+/// reference case R10; explicit Störmer–Verlet through ∇V, and midpoint through ∇²V) and a banded
 /// chain (midpoint's banded Newton through ∇²V).
 #[test]
 fn native_and_interpreted_tapes_give_identical_trajectories() {
@@ -349,7 +349,7 @@ fn trapezoid_run(
 /// with the `jit` feature) takes exactly the generic loop's steps: bit for bit the same states
 /// as the interpreted tapes' run (and for an autonomous `V` as runs in pieces and single
 /// steps), the same statistics, the same stop at the first non-finite state. Cases: Kepler
-/// typed as text (e = 0.6, REFERENCE-CASES), a time-dependent 12-mass chain (more coordinates
+/// typed as text (e = 0.6, reference case R10), a time-dependent 12-mass chain (more coordinates
 /// than the generic loop's fixed-size arrays: no kernel), unequal masses with `sin`, `exp`,
 /// `atan2`, a non-integer power and a time-dependent force inside the loop, and a runaway
 /// potential `V = −exp(x²)` whose run overflows.

@@ -1,14 +1,15 @@
-//! One step of the gravitational N-body problem (`systems::NBody`, Plummer data of
-//! `shared/bench/data/plummer_N{64,256,1024}_seed20241121.txt`, G = 1, ε = 0.01, h = 1e-3) with
-//! the trapezoid rule — explicit Störmer–Verlet with the vectorised direct-summation gradient
-//! ([`marsden::systems::nbody::gravity`]) — next to `verlet nbody FILE 1 0.01 0.001 … full`
-//! (`scripts/bench.sh` runs both and prints the ratio). Target: ≤ 1.1× `verlet.c` at N = 1024.
+//! One step of the gravitational N-body problem (`systems::NBody`, Plummer data
+//! `plummer_N{64,256,1024}_seed20241121.txt` of the benchmark data kept beside the repository with
+//! the C reference, G = 1, ε = 0.01, h = 1e-3) with the trapezoid rule — explicit Störmer–Verlet
+//! with the vectorised direct-summation gradient ([`marsden::systems::nbody::gravity`]) — next to
+//! `verlet nbody FILE 1 0.01 0.001 … full` (`scripts/bench.sh` runs both and prints the ratio).
+//! Target: ≤ 1.1× `verlet.c` at N = 1024.
 //!
 //! `midpoint_*` times the implicit midpoint step on the same data (Newton with Jacobian
 //! `M/h + (h/4)∇²V`, dense AD Hessian: for scale only, at N = 64).
 //!
-//! Run: `cargo bench -p marsden --bench nbody` (needs the data files next to the project:
-//! `../shared/bench/data`, or `MARSDEN_BENCH_DATA=dir`).
+//! Run: `cargo bench -p marsden --bench nbody` (needs the benchmark data files kept beside the
+//! repository with the C reference `verlet.c`, or `MARSDEN_BENCH_DATA=dir`).
 
 use std::path::PathBuf;
 

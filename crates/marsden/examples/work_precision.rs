@@ -7,14 +7,15 @@
 //! cargo run --release -p marsden --features tools --example work_precision [FILE] [T] [T_IMPLICIT]
 //! ```
 //!
-//! `FILE` defaults to `../shared/bench/data/outer_solar_system_hlw.txt` (from the repository
-//! root), `T` to 10⁵ days for the explicit methods (the trapezoid rule is Störmer–Verlet on
-//! this separable system, and its compositions are explicit too), `T_IMPLICIT` to 4000 days for
-//! the Gauss methods (Newton on the dense 6-body Jacobian costs milliseconds per step, so 10⁵
-//! days would take minutes). The wall time is the median of 3 runs that store no states; the energy comes
-//! from one more run that evaluates `E = Σ|pᵢ|²/2mᵢ − Σ G mᵢ mⱼ/|qᵢ − qⱼ|` after every step.
-//! The cost per 10 days is comparable with the C Störmer–Verlet of `bench/verlet.c`
-//! (144 ns per step at `h = 10` days).
+//! `FILE` defaults to `outer_solar_system_hlw.txt` of the benchmark data kept beside the repository
+//! with the C reference `verlet.c` (the path is relative to the repository root), `T` to 10⁵ days
+//! for the explicit methods (the trapezoid rule is Störmer–Verlet on this separable system, and its
+//! compositions are explicit too), `T_IMPLICIT` to 4000 days for the Gauss methods (Newton on the
+//! dense 6-body Jacobian costs milliseconds per step, so 10⁵ days would take minutes). The wall
+//! time is the median of 3 runs that store no states; the energy comes from one more run that
+//! evaluates `E = Σ|pᵢ|²/2mᵢ − Σ G mᵢ mⱼ/|qᵢ − qⱼ|` after every step. The cost per 10 days is
+//! comparable with the C Störmer–Verlet of the C reference (`verlet.c`, kept beside the repository;
+//! 144 ns per step at `h = 10` days).
 
 use std::ops::ControlFlow;
 use std::time::Instant;

@@ -48,12 +48,23 @@
 //!   `p_{k+1} = D₂L_d(q_k, q_{k+1}) + f_d⁺(q_k, q_{k+1})`.
 //! * Midpoint: `L_d = h L(t + h/2, (q₀+q₁)/2, (q₁−q₀)/h)`, forces `f_d^± = (h/2) f(midpoint)`.
 //!   Trapezoid: `L_d = (h/2)[L(t, q₀, v) + L(t+h, q₁, v)]`, `v = (q₁−q₀)/h`, forces at the ends.
+//!   Generalised midpoint: `L_d^α = h L(t + αh, (1−α)q₀ + αq₁, v)`, forces
+//!   `(f_d⁻, f_d⁺) = (h(1−α) f, hα f)` at that point; symmetrised: `½(L_d^α + L_d^{1−α})`.
+//!   Midpoint is α = ½, trapezoid the symmetrised α = 0.
+//! * Discrete Legendre transforms ([MW01] §1.3): `F⁻L_d(q₀, q₁) = (q₀, −D₁L_d(q₀, q₁))`,
+//!   `F⁺L_d(q₀, q₁) = (q₁, D₂L_d(q₀, q₁))`; without forces the step is `F⁺L_d ∘ (F⁻L_d)⁻¹`, and
+//!   eliminating the momenta gives the DEL `D₂L_d(q_{k−1}, q_k) + D₁L_d(q_k, q_{k+1}) = 0`; forces
+//!   add `f_d⁺(q_{k−1}, q_k) + f_d⁻(q_k, q_{k+1})` to its left-hand side.
 //! * Constraints (SHAKE, [LMO08]): `p_k + D₁L_d(q_k, q_{k+1}) − h Dφ(q_k)ᵀλ_k = 0`,
 //!   `φ(q_{k+1}) = 0`; RATTLE adds the momentum projection so that `(q_{k+1}, p_{k+1})` lies on
 //!   the cotangent bundle of the constraint manifold (`Dφ(q) · FH(q, p) = 0`). Rules of higher
 //!   order impose `φ = 0` at their stages too (constrained Lobatto IIIA–IIIB; compositions of
 //!   RATTLE steps), so they keep their order; Gauss rules are refused with constraints.
 //! * The discrete momenta are the `p_k` above: for the midpoint rule `p_k ≠ M (q_{k+1} − q_k)/h`.
+//! * Equivalences, for `L = ½vᵀMv − V(q)` ([MW01]; [HLW06] §VI.6): the midpoint rule *is* the
+//!   implicit midpoint rule on `H = ½pᵀM⁻¹p + V` (`q₁ = q₀ + hM⁻¹(p₀ + p₁)/2`,
+//!   `p₁ = p₀ − h∇V((q₀ + q₁)/2)`), and the trapezoid rule *is* velocity Störmer–Verlet
+//!   (`p_½ = p₀ − (h/2)∇V(q₀)`, `q₁ = q₀ + hM⁻¹p_½`, `p₁ = p_½ − (h/2)∇V(q₁)`).
 //! * Rigid bodies ([`lie`], [LLM07]): the attitude `R ∈ SO(3)` maps body to space, `Ṙ = R Ω^`,
 //!   `Π = JΩ` the body angular momentum, `J` the inertia about the fixed point (the centre of mass
 //!   for a free body), `J_d = ½ tr(J) I − J`; the body moment `M` is the left-trivialised
@@ -61,12 +72,15 @@
 //!   `R_{k+1} = R_kF_k`, `Π_{k+1} = F_kᵀΠ_k + (h/2)F_kᵀM_k + (h/2)M_{k+1}`. Spatial rotations act
 //!   on the left (momentum map `RΠ`), body rotations on the right (`Π`).
 //! * Discrete Noether: for an `L_d` invariant under a group action, `J_k = ⟨p_k, ξ_Q(q_k)⟩` is
-//!   exactly constant (to the Newton tolerance: over `N` steps at most `N · tol · |ξ_Q|`).
+//!   exactly constant (to the Newton tolerance: over `N` steps at most `N · tol · |ξ_Q|`), with the
+//!   discrete momenta `p_k`. The midpoint, trapezoid and Galerkin `L_d` of an invariant `L` are
+//!   invariant under linear actions (translations, rotations). Tests of conservation run Newton to
+//!   round-off or let their bound grow with `N`.
 //!
 //! ## Reference cases
 //!
 //! The tests check the library against known answers (`tests/reference/`, a file per case named
-//! after it). The tolerances asserted are at least as tight as these:
+//! after it; the constrained cases R7, R13 and R14 in `tests/constraints/`). The tolerances asserted are at least as tight as these:
 //!
 //! | case | system, method | checked | tolerance |
 //! |---|---|---|---|
@@ -76,10 +90,13 @@
 //! | R4 | pendulum | unit values of `L_d`, `F^±L_d`, the DEL residual | 1e-15 |
 //! | R5 | pendulum, generalised midpoint α | order 1 for α ≠ ½, 2 at α = ½ and symmetrised | ±0.05 on the slope |
 //! | R6 | pendulum, Galerkin Gauss / Lobatto | order 2s (Gauss), 2s − 2 (Lobatto); second-order regression values | slopes; 1e-11 |
+//! | R7 | Cartesian pendulum on the circle of radius `l`, SHAKE + RATTLE (derived here: the exact solution from the pendulum's elliptic-function solution) | order 2 (two-point rules), `2s − 2` (constrained Lobatto IIIA–IIIB, [Jay96]), the scheme's order (compositions of RATTLE steps, [Rei96]); multipliers of the stored states at the method's order | ±0.2 on the slope |
 //! | R8 | pendulum, 10⁶ steps | energy error bounded, no drift; shadow Hamiltonian | as in the case |
 //! | R9 | free fall | every variational integrator exact | 1e-13 relative |
 //! | R10 | Kepler e = 0.6 | angular momentum (discrete Noether); energy bounded; one-period regression | 1e-12 over 10⁵ steps; 2e-4; 1e-10 |
 //! | R12 | damped oscillator, midpoint forces | discrete energy balance `E_{k+1} − E_k = −c(q_{k+1} − q_k)²/h`; closed form | 1e-14 per step; 1e-12 |
+//! | R13 | spherical pendulum in Cartesian coordinates, stage constraints (against the angle flow, extrapolated to round-off) | `φ = 0` at every stage point; `L_z` (discrete Noether); order 4 with order-4 rules | 1e-14; 1e-12 over 2000 steps; ±0.2 on the slope |
+//! | R14 | planar double pendulum, angles against Cartesian coordinates with two distance constraints | both converge to the same motion; their difference `O(h²)` (midpoint), `O(h⁴)` (`lobatto-3`) | ±0.05 and ±0.2 on the slope |
 //! | R17 | symmetric rules | time reversibility; `det DF = 1`, `DFᵀJDF = J` | 1e-12 / 1e-11; 1e-8 |
 //! | R19 | free rigid body, LGVI (Moser–Veselov) | energy, `|Π|²` and `RΠ` over 10⁴ steps of `h = 0.1`; orders 2, 4, 6 against the elliptic-function solution | 1e-12; ±0.1 on the slope |
 //! | R20 | heavy symmetric top, LGVI | `e₃·RΠ`, `Π₃` to round-off; energy error bounded and `O(h²)`; `|RᵀR − I|` after 10⁶ steps | 1e-12 relative; 1e-13 |
@@ -120,6 +137,9 @@
 //! [MW01]: crate#references
 //! [LMO08]: crate#references
 //! [LLM07]: crate#references
+//! [Jay96]: crate#references
+//! [Rei96]: crate#references
+//! [HLW06]: crate#references
 
 pub mod analysis;
 pub mod discrete;

@@ -1,6 +1,6 @@
 //! The integration tests of the core, in one binary (one link of the crate instead of one per
-//! file), grouped by area. Each reference case of `REFERENCE-CASES.md` (listed in the crate
-//! docs) has its file in `reference/`, named after it.
+//! file), grouped by area. Each reference case (listed in the crate documentation, Reference cases)
+//! has its file in `reference/`, named after it.
 
 // Tests may unwrap and quote reference values with all their digits.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::excessive_precision)]

@@ -2,8 +2,8 @@
 //! final time — validated into a [`Plan`] before anything runs.
 //!
 //! A method of order `p` has global error `e(h) ≈ C hᵖ` at a fixed final time `T` until
-//! round-off takes over (HLW06 §II.1; reference cases R5 and R6 of
-//! `reference/REFERENCE-CASES.md`). The study runs the file's problem with each method at each
+//! round-off takes over (HLW06 §II.1; reference cases R5 and R6 in
+//! the `marsden` crate documentation). The study runs the file's problem with each method at each
 //! `h` to `T` with `N = (T − t₀)/h` steps, measures `e(h) = |(q_N, p_N) − (q(T), p(T))|`
 //! against one reference solution shared by all methods ([`marsden::studies::order::reference_solution`])
 //! and fits the log–log slope ([`marsden::studies::order::empirical_order`]).

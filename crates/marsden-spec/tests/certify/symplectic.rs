@@ -45,8 +45,9 @@ fn no_certificate_unless_asked_for() {
     assert!(summary_json(&text).get("certificate").is_none());
 }
 
-/// Kepler (reference cases §0: rotations are a symmetry of the midpoint and Gauss `L_d`): the
-/// equivariance defect is at round-off, and the multi-stage map is symplectic too.
+/// Kepler (the `marsden` crate documentation, Conventions: rotations are a symmetry of the midpoint
+/// and Gauss `L_d`): the equivariance defect is at round-off, and the multi-stage map is symplectic
+/// too.
 #[test]
 fn kepler_rotation_equivariance_defect_is_round_off() {
     for method in ["midpoint", "gauss-2"] {

@@ -1,4 +1,5 @@
-//! Discrete forces `f_d^±`: the forced discrete Legendre transforms (DESIGN.md §3, [MW01] §3.2)
+//! Discrete forces `f_d^±`: the forced discrete Legendre transforms
+//! ([conventions](crate#conventions), [MW01] §3.2)
 //!
 //! ```text
 //!     p_k     = −D₁L_d(q_k, q_{k+1}) − f_d⁻(q_k, q_{k+1}),

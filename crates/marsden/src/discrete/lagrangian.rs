@@ -8,7 +8,7 @@
 //!     D₂L_d(q_{k−1}, q_k) + D₁L_d(q_k, q_{k+1}) = 0,
 //! ```
 //!
-//! and the discrete Legendre transforms ([MW01] §1.3, conventions in DESIGN.md §3)
+//! and the discrete Legendre transforms ([MW01] §1.3, [conventions](crate#conventions))
 //!
 //! ```text
 //!     F⁻L_d(q₀, q₁) = (q₀, −D₁L_d(q₀, q₁)),     F⁺L_d(q₀, q₁) = (q₁, D₂L_d(q₀, q₁)).

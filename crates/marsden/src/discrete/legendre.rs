@@ -1,5 +1,5 @@
 //! Derivatives of discrete Lagrangians by AD: `D₁L_d`, `D₂L_d`, the discrete Legendre
-//! transforms and the DEL residual ([MW01] §1.3, conventions in DESIGN.md §3):
+//! transforms and the DEL residual ([MW01] §1.3, [conventions](crate#conventions)):
 //!
 //! ```text
 //!     F⁻L_d(q₀, q₁) = (q₀, −D₁L_d(q₀, q₁)),     F⁺L_d(q₀, q₁) = (q₁, D₂L_d(q₀, q₁)),

@@ -5,7 +5,7 @@
 //! Lagrange–d'Alembert principle `δ∫L dt + ∫⟨f_L, δq⟩ dt = 0`, i.e. the forced Euler–Lagrange
 //! equations `∂L/∂q − d/dt ∂L/∂v + f_L = 0` ([MW01] §3.1). A rule discretises it by its own
 //! quadrature into discrete forces `f_d^±` ([`crate::discrete::rules::Rule::discretize_force`]), which enter the
-//! forced discrete Legendre transforms (DESIGN.md §3, [MW01] §3.2)
+//! forced discrete Legendre transforms ([conventions](crate#conventions), [MW01] §3.2)
 //!
 //! ```text
 //!     p_k     = −D₁L_d(q_k, q_{k+1}) − f_d⁻(q_k, q_{k+1}),

@@ -6,7 +6,8 @@
 //!
 //! symplectic and symmetric of order 2 for every `H` ([HLW06] §VI.3, Thm VI.3.5; it is the
 //! one-stage Gauss method). For `H = ½pᵀM⁻¹p + V(q)` with constant `M` it coincides with the
-//! midpoint variational integrator of `L = ½vᵀMv − V` (reference cases §0).
+//! midpoint variational integrator of `L = ½vᵀMv − V` (the crate's
+//! [conventions](crate#conventions), equivalences).
 //!
 //! Solved by Newton's method ([`crate::numerics::newton`]) for the increment `Δ = z₁ − z₀`, with residual
 //! `Δ/h − X_H(z₀ + Δ/2)` and Jacobian `I/h − ½DX_H`, `DX_H = J∇²H` by AD. The residual is in the

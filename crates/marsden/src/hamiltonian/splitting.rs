@@ -16,8 +16,9 @@
 //! | [`Splitting::symplectic_euler`] (momentum first) | `(1, 1)` | 1 |
 //!
 //! Velocity Störmer–Verlet is the trapezoid variational integrator of `L = ½vᵀMv − V`
-//! (reference cases §0, R2). The step map's Jacobian is the product of the stages' Jacobians
-//! `[[I, 0], [−bh∇²V, I]]` and `[[I, ah∇²T], [0, I]]`, with the Hessians by AD.
+//! ([conventions](crate#conventions), equivalences; R2). The step map's Jacobian is the product of
+//! the stages' Jacobians `[[I, 0], [−bh∇²V, I]]` and `[[I, ah∇²T], [0, I]]`, with the Hessians by
+//! AD.
 //!
 //! [HLW06]: crate#references
 //! [HLW03]: crate#references

@@ -6,8 +6,9 @@
 //!
 //! ## The constrained scheme
 //!
-//! One step `(q_k, p_k) ↦ (q_{k+1}, p_{k+1})` of [`crate::integrator::Integrator`] with constraints and a
-//! [`Rattle`] projection is ([MW01] §3.5, [LMO08] §3, [HLW06] §VII.1; conventions DESIGN.md §3):
+//! One step `(q_k, p_k) ↦ (q_{k+1}, p_{k+1})` of [`crate::integrator::Integrator`] with constraints
+//! and a [`Rattle`] projection is ([MW01] §3.5, [LMO08] §3, [HLW06] §VII.1;
+//! [conventions](crate#conventions)):
 //!
 //! ```text
 //!  SHAKE:   p_k + D₁L_d(q_k, q_{k+1}) + f_d⁻ − h Dφ(q_k)ᵀ λ_k = 0,     φ(q_{k+1}) = 0,

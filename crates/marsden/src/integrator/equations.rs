@@ -1,9 +1,10 @@
 //! The implicit equations of one step, assembled for Newton's method.
 //!
-//! Unknowns `z = (Δ₁, …, Δ_s, λ, Λ₁, …, Λ_c)`: the offsets `Δ_j = Q_j − q_k` of the control points after
-//! `Q₀ = q_k` (so `q_{k+1} = q_k + Δ_s`) and the constraint multipliers. Offsets, not positions,
-//! keep velocities `Δ/h` free of the `ε|q|/h` cancellation error of `(q_{k+1} − q_k)/h`. Equations (DESIGN.md §3; forced DEL in
-//! position–momentum form, [MW01] §3.2; SHAKE, [LMO08]):
+//! Unknowns `z = (Δ₁, …, Δ_s, λ, Λ₁, …, Λ_c)`: the offsets `Δ_j = Q_j − q_k` of the control points
+//! after `Q₀ = q_k` (so `q_{k+1} = q_k + Δ_s`) and the constraint multipliers. Offsets, not
+//! positions, keep velocities `Δ/h` free of the `ε|q|/h` cancellation error of `(q_{k+1} − q_k)/h`.
+//! Equations ([conventions](crate#conventions); forced DEL in position–momentum form, [MW01] §3.2;
+//! SHAKE, [LMO08]):
 //!
 //! ```text
 //!     p_k + ∂L_d/∂Q₀ + F₀ − h Dφ(q_k)ᵀ λ = 0          (discrete Legendre transform F⁻)

@@ -1,8 +1,8 @@
 //! The momentum projection after a solved step (RATTLE, [`crate::holonomic::Rattle`]):
 //! `p_{k+1} = p̃_{k+1} − h Dφ(q_{k+1})ᵀ μ_k`, so that `(q_{k+1}, p_{k+1})` lies on the cotangent
-//! bundle of the constraint manifold (DESIGN.md §3; [LMO08]). With the rule's end weight `w`
-//! ([`crate::discrete::DiscreteAction::end_weight`]) `μ_k / w` estimates the multiplier
-//! `λ(t_{k+1})` of the continuous equations (kept as [`Integrator::end_multipliers`]).
+//! bundle of the constraint manifold ([conventions](crate#conventions); [LMO08]). With the rule's
+//! end weight `w` ([`crate::discrete::DiscreteAction::end_weight`]) `μ_k / w` estimates the
+//! multiplier `λ(t_{k+1})` of the continuous equations (kept as [`Integrator::end_multipliers`]).
 //!
 //! [LMO08]: crate#references
 

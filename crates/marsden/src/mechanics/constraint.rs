@@ -1,7 +1,7 @@
 //! Holonomic constraints `φ(q) = 0`, written once over the scalar type.
 //!
 //! Concept of the notes (MW01): *constrained Lagrangian systems*. The constrained discrete Euler–Lagrange equations in
-//! SHAKE form (DESIGN.md §3, [MW01] §3.5, [LMO08])
+//! SHAKE form ([conventions](crate#conventions), [MW01] §3.5, [LMO08])
 //!
 //! ```text
 //!     p_k + D₁L_d(q_k, q_{k+1}) + f_d⁻ − h Dφ(q_k)ᵀ λ_k = 0,     φ(q_{k+1}) = 0,

@@ -3,7 +3,7 @@
 //! Concept of the notes (MW01): *forced Lagrangian systems* and *discrete variational mechanics with forces*. The
 //! Lagrange–d'Alembert principle `δ∫L dt + ∫⟨f_L, δq⟩ dt = 0` is discretised as
 //! `δΣL_d + Σ(⟨f_d⁻, δq_k⟩ + ⟨f_d⁺, δq_{k+1}⟩) = 0`, which gives the forced discrete Legendre
-//! transforms (DESIGN.md §3)
+//! transforms ([conventions](crate#conventions))
 //!
 //! ```text
 //!     p_k     = −D₁L_d(q_k, q_{k+1}) − f_d⁻(q_k, q_{k+1}),

@@ -13,11 +13,12 @@
 //!     p½ = p_k − c ∇V(t_{k−1}, q_k),    q_{k+1} = q_k + d ⊙ p½,    p_{k+1} = p½ − c ∇V(t_k, q_{k+1}),
 //! ```
 //!
-//! the trapezoid rule's discrete Euler–Lagrange equations for `L = ½ vᵀ M v − V(t, q)`
-//! ([MW01] §2.2.1; reference cases §0), stopping before the first step whose `(q_{k+1}, p_{k+1})`
-//! is not finite. Tests compare a kernel's runs with the generic loop's bit for bit. The
-//! integrator calls a kernel for up to four degrees of freedom, the sizes whose generic loop
-//! takes exactly these times (larger systems repeat single steps, at times `t_{k−1} + h`).
+//! the trapezoid rule's discrete Euler–Lagrange equations for `L = ½ vᵀ M v − V(t, q)` ([MW01]
+//! §2.2.1; [conventions](crate#conventions)), stopping before the first step whose
+//! `(q_{k+1}, p_{k+1})` is not finite. Tests compare a kernel's runs with the generic loop's bit
+//! for bit. The integrator calls a kernel for up to four degrees of freedom, the sizes whose
+//! generic loop takes exactly these times (larger systems repeat single steps, at times
+//! `t_{k−1} + h`).
 //!
 //! [MW01]: crate#references
 

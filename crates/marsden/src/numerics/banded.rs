@@ -7,7 +7,7 @@
 //! LAPACK's `dgbtrf`), so factoring costs `O(n b²)` and solving `O(n b)` — linear in `n` for a
 //! chain (`b = 1`).
 //!
-//! Why not faer's sparse LU (DESIGN.md §8)? For a banded matrix the band *is* the sparsity
+//! Why not faer's sparse LU? For a banded matrix the band *is* the sparsity
 //! pattern: no symbolic analysis, no index arrays, no indirect addressing, and the storage is
 //! reused from step to step without allocation. A general sparse LU pays for all three and
 //! would only win for patterns that are not bands (2-D meshes), which no catalog system has.

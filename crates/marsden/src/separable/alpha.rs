@@ -2,7 +2,7 @@
 //! Jacobian `M/h + hα(1−α)∇²V`, reused across iterations and steps while it converges.
 //!
 //! For `L = ½ vᵀ M v − V(t, q)` and `L_d^α = h L(t₀ + αh, q₀ + αΔ, Δ/h)`, `Δ = q_{k+1} − q_k`,
-//! the discrete Legendre transforms are ([MW01] §2.2.1; DESIGN.md §3)
+//! the discrete Legendre transforms are ([MW01] §2.2.1; [conventions](crate#conventions))
 //!
 //! ```text
 //!     R(Δ)    = p_k + ∂L_d/∂Q₀ = p_k − M Δ/h − h(1−α) ∇V(t₀ + αh, q_k + αΔ) = 0,

@@ -3,7 +3,7 @@
 //!
 //! For `L = ½ vᵀ M v − V(t, q)` with constant `M`, the trapezoid discrete Lagrangian
 //! `L_d = (h/2)[L(t₀, q₀, v) + L(t₁, q₁, v)]`, `v = (q₁ − q₀)/h`, gives ([MW01] §2.2.1; HLW06
-//! §VI.6; reference cases §0)
+//! §VI.6; [conventions](crate#conventions))
 //!
 //! ```text
 //!     p_k     = −D₁L_d = M v − (h/2) ∂L/∂q(t₀, q_k)     ⇒   p½ = p_k + (h/2) ∂L/∂q(t₀, q_k),

@@ -9,7 +9,7 @@
 //! Concept of the notes (MW01): *Examples* (`ℝ³` acting by translation, `SO(3)` acting by rotation). The hat map
 //! `ω ↦ ω̂`, `ω̂ x = ω × x`, identifies `ℝ³ ≅ so(3)`; then `Ad_g ω = Rω` and `Ad*_{g⁻¹} μ = Rμ`
 //! ([MR99] §9.2). All three actions are linear (affine), so the midpoint, trapezoid and α
-//! discrete Lagrangians of an invariant `L` are invariant too (reference cases §0).
+//! discrete Lagrangians of an invariant `L` are invariant too ([conventions](crate#conventions)).
 //!
 //! [MR99]: crate#references
 

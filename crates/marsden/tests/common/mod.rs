@@ -12,9 +12,10 @@ use std::ops::ControlFlow;
 
 use marsden::{DiscreteAction, Integrator, NewtonOptions, Observer, State, StepView};
 
-/// Newton options for conservation tests: converge to round-off (reference cases §0, solver
-/// note). A residual tolerance of 1e-15 relative to the momenta is below what f64 can always
-/// reach; the iteration then stops on the update-size criterion, i.e. at round-off.
+/// Newton options for conservation tests: converge to round-off (the crate documentation,
+/// Conventions, discrete Noether). A residual tolerance of 1e-15 relative to the momenta is below
+/// what f64 can always reach; the iteration then stops on the update-size criterion, i.e. at
+/// round-off.
 pub fn tight() -> NewtonOptions {
     NewtonOptions {
         residual_tolerance: 1e-15,

@@ -1,8 +1,8 @@
-//! The same mechanical system written as L and as H (reference cases §0, equivalences):
-//! for a constant mass matrix the midpoint VI of L *is* implicit midpoint on H and the trapezoid
-//! VI *is* velocity Störmer–Verlet (same trajectories to 1e-12 over 10³ steps); for the double
-//! pendulum (configuration-dependent mass matrix) the two forms agree pointwise (energy, vector
-//! field, momentum maps) and both converge with order 2 to the same solution.
+//! The same mechanical system written as L and as H (the crate documentation, Conventions,
+//! equivalences): for a constant mass matrix the midpoint VI of L *is* implicit midpoint on H and
+//! the trapezoid VI *is* velocity Störmer–Verlet (same trajectories to 1e-12 over 10³ steps); for
+//! the double pendulum (configuration-dependent mass matrix) the two forms agree pointwise (energy,
+//! vector field, momentum maps) and both converge with order 2 to the same solution.
 #![allow(clippy::unwrap_used, clippy::expect_used)] // tests may unwrap
 
 use crate::common::{loglog_slope, tight};

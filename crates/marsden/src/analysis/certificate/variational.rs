@@ -1,7 +1,8 @@
 //! The exact Jacobian of a variational step by the implicit function theorem.
 //!
-//! The step `(q_k, p_k) ↦ (q_{k+1}, p_{k+1})` of [`crate::integrator::Integrator`] solves, for the offsets
-//! `z = (Δ₁, …, Δ_s)` of the control points `Q_j = q_k + Δ_j` (DESIGN.md §3, `crate::integrator::equations`),
+//! The step `(q_k, p_k) ↦ (q_{k+1}, p_{k+1})` of [`crate::integrator::Integrator`] solves, for the
+//! offsets `z = (Δ₁, …, Δ_s)` of the control points `Q_j = q_k + Δ_j`
+//! ([conventions](crate#conventions), `crate::integrator::equations`),
 //!
 //! ```text
 //!     R₀(z; q_k, p_k) = p_k + ∂L_d/∂Q₀ + F₀ = 0,      R_j(z; q_k) = ∂L_d/∂Q_j + F_j = 0  (0 < j < s),

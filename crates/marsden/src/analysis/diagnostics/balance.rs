@@ -1,9 +1,9 @@
 //! Noether's theorem with forces, discrete and exact: the momentum balance of every step.
 //!
-//! Concept of the notes (MW01): *(Lagrangian) Noether's theorem with forces* — `J_L(T) − J_L(0) = ∫ ⟨f_L, ξ_Q⟩ dt` — and
-//! *discrete variational mechanics with forces*. With the forced discrete Legendre transforms
-//! (DESIGN.md §3) `p_k = −D₁L_d − f_d⁻` and `p_{k+1} = D₂L_d + f_d⁺` of the step
-//! `(q_k, q_{k+1})`,
+//! Concept of the notes (MW01): *(Lagrangian) Noether's theorem with forces* —
+//! `J_L(T) − J_L(0) = ∫ ⟨f_L, ξ_Q⟩ dt` — and *discrete variational mechanics with forces*. With the
+//! forced discrete Legendre transforms ([conventions](crate#conventions)) `p_k = −D₁L_d − f_d⁻` and
+//! `p_{k+1} = D₂L_d + f_d⁺` of the step `(q_k, q_{k+1})`,
 //!
 //! ```text
 //!     ⟨p_{k+1}, ξ_Q(q_{k+1})⟩ − ⟨p_k, ξ_Q(q_k)⟩

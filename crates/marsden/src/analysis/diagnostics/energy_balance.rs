@@ -14,7 +14,8 @@
 //!
 //! **What holds exactly.** For `L = ½ vᵀMv − V(q)` with constant `M`, the midpoint rule with
 //! midpoint forces is `q_{k+1} = q_k + h M⁻¹ p̄`, `p_{k+1} = p_k − h∇V(q̄) + h f(q̄, v̄)` with
-//! `p̄ = (p_k + p_{k+1})/2` (reference cases §0), hence, `E` being `½pᵀM⁻¹p + V`,
+//! `p̄ = (p_k + p_{k+1})/2` ([conventions](crate#conventions), equivalences), hence, `E` being
+//! `½pᵀM⁻¹p + V`,
 //!
 //! ```text
 //!     D_k = V(q_{k+1}) − V(q_k) − ⟨∇V(q̄), q_{k+1} − q_k⟩ = (1/24) D³V(q̄)[Δq, Δq, Δq] + O(|Δq|⁵),

@@ -1,12 +1,13 @@
 //! Noether diagnostics: momentum maps along a run, and how far they drift.
 //!
-//! Concept of the notes (MW01): *Noether's theorem* and *discrete Lagrangian Noether's theorem*. If `L_d` is invariant
-//! under a group action, the discrete momentum map `J_k = J_H(q_k, p_k) = ⟨p_k, ξ_Q(q_k)⟩`
-//! (with the discrete momenta `p_k = F^±L_d`, which are exactly what a trajectory stores) is
-//! constant along discrete trajectories ([MW01] Thm 1.3.3; reference cases §0) — up to the
-//! Newton residual left in each step, which moves it by `⟨r_k, ξ_Q(q_k)⟩`. This module reports
-//! the series `J_k` of every declared momentum map and its maximum drift, in batch from a
-//! [`Trajectory`] or streaming as an [`Observer`]; see [`super::balance`] for forced systems.
+//! Concept of the notes (MW01): *Noether's theorem* and *discrete Lagrangian Noether's theorem*. If
+//! `L_d` is invariant under a group action, the discrete momentum map
+//! `J_k = J_H(q_k, p_k) = ⟨p_k, ξ_Q(q_k)⟩` (with the discrete momenta `p_k = F^±L_d`, which are
+//! exactly what a trajectory stores) is constant along discrete trajectories ([MW01] Thm 1.3.3;
+//! [conventions](crate#conventions)) — up to the Newton residual left in each step, which moves it
+//! by `⟨r_k, ξ_Q(q_k)⟩`. This module reports the series `J_k` of every declared momentum map and
+//! its maximum drift, in batch from a [`Trajectory`] or streaming as an [`Observer`]; see
+//! [`super::balance`] for forced systems.
 //!
 //! [MW01]: crate#references
 

@@ -1,8 +1,9 @@
 //! Rules: how a Lagrangian `L` (and a force `f_L`) becomes a discrete Lagrangian `L_d` (and
 //! discrete forces `f_d^±`) by quadrature of the action over one step.
 //!
-//! Concept of the notes (MW01): *variational integrators — use approximations to the exact discrete Lagrangian*
-//! ([MW01] §2.2, §4). Conventions (DESIGN.md §3, reference cases §0), with `v = (q₁ − q₀)/h`:
+//! Concept of the notes (MW01): *variational integrators — use approximations to the exact discrete
+//! Lagrangian* ([MW01] §2.2, §4). Conventions as in the [crate documentation](crate#conventions),
+//! with `v = (q₁ − q₀)/h`:
 //!
 //! | rule | `L_d(q₀, q₁)` | forces `(f_d⁻, f_d⁺)` | order |
 //! |---|---|---|---|

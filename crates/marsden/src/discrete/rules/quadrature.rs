@@ -11,8 +11,8 @@
 //! `(k+1)P_{k+1} = (2k+1) x P_k − k P_{k−1}`, started from the Chebyshev-like guesses
 //! `cos(π(i − ¼)/(r + ½))` (Gauss) and `cos(π i/(r − 1))` (Lobatto), and iterated until the update
 //! is at round-off; symmetry is imposed by computing one half and mirroring it. This reaches
-//! every node and weight to about one ulp. The `gauss-quad` crate suggested in DESIGN §8 was
-//! not used: it has no Lobatto rule (it would have to be assembled from its Gauss–Jacobi(1,1)
+//! every node and weight to about one ulp. The `gauss-quad` crate was considered
+//! and not used: it has no Lobatto rule (it would have to be assembled from its Gauss–Jacobi(1,1)
 //! rule, whose Golub–Welsch eigenvalue nodes are accurate only to a few ulp times the matrix
 //! norm, with the Lobatto weights still needing the formula above), and the Newton iteration
 //! is twenty lines with no dependency.

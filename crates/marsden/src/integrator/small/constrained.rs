@@ -1,7 +1,8 @@
 //! The SHAKE step for small constrained systems, with sizes known at compile time.
 //!
-//! Same equations as [`crate::integrator::equations`] with holonomic constraints (two-point discrete Lagrangian,
-//! `n ≤ 4` degrees of freedom, `d ≤ 4` constraints; DESIGN.md §3, [`crate::holonomic`]):
+//! Same equations as [`crate::integrator::equations`] with holonomic constraints (two-point
+//! discrete Lagrangian, `n ≤ 4` degrees of freedom, `d ≤ 4` constraints; the crate's
+//! [conventions](crate#conventions), [`crate::holonomic`]):
 //!
 //! ```text
 //!     p_k + D₁L_d(q_k, q_k + Δ) + f_d⁻ − h Dφ(q_k)ᵀ λ = 0,      φ(q_k + Δ) = 0,

@@ -1,7 +1,7 @@
-//! The N-body initial-data format of the benchmark data (`shared/bench/data/`): the first line
-//! holds the number of bodies `N`, then one line per body `m x y z vx vy vz` (whitespace
-//! separated). Momenta are `p = m v`. Blank lines and lines starting with `#` are skipped.
-//! Every error about the contents names the line (1-based) it was found on.
+//! The N-body initial-data format of the benchmark data (kept beside the repository with the C
+//! reference `verlet.c`): the first line holds the number of bodies `N`, then one line per body
+//! `m x y z vx vy vz` (whitespace separated). Momenta are `p = m v`. Blank lines and lines starting
+//! with `#` are skipped. Every error about the contents names the line (1-based) it was found on.
 //!
 //! [`load`] reads a file into a ready system and its initial state `(NBody, q₀, p₀)` (what a
 //! `builtin = "nbody"` run needs); [`parse`] reads text into [`NBodyData`].
