@@ -24,7 +24,7 @@
 
 use crate::scalar::Scalar;
 
-use crate::numerics::scratch::{NODE, with_buffer};
+use crate::numerics::scratch::{Buffer, NODE};
 use crate::separable::ExplicitStep;
 use crate::separable::{SeparableJacobian, SeparableStep};
 
@@ -64,9 +64,8 @@ pub trait DiscreteLagrangian {
     /// `q₁ = q₀ + Δ`; override it (as the built-in rules do) to use `Δ` directly.
     fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
         let q1 = |i: usize| q0[i] + delta[i];
-        with_buffer::<S, NODE, S>(q0.len(), S::from(0.0), q1, |q1| {
-            self.discrete_lagrangian(t0, h, q0, q1)
-        })
+        let mut q1 = Buffer::<S, NODE>::from_fn(q0.len(), S::from(0.0), q1);
+        self.discrete_lagrangian(t0, h, q0, q1.as_mut_slice())
     }
 
     /// An explicit form of the step, if this discrete Lagrangian has one (the trapezoid rule on a

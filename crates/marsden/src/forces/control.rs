@@ -7,7 +7,7 @@
 //! quadrature times and contributes nothing to the Newton Jacobian.
 
 use crate::mechanics::Force;
-use crate::numerics::scratch::{NODE, with_buffer};
+use crate::numerics::scratch::{Buffer, NODE};
 use crate::scalar::Scalar;
 
 /// A force given by a closure of time, `f_L(t, q, v) = u(t)`: `u(t, out)` writes the n
@@ -46,16 +46,11 @@ impl<U> std::fmt::Debug for Control<U> {
 impl<U: Fn(f64, &mut [f64])> Force for Control<U> {
     #[inline]
     fn force<S: Scalar>(&self, t: S, _q: &[S], _v: &[S], out: &mut [S]) {
-        with_buffer::<f64, NODE, ()>(
-            out.len(),
-            0.0,
-            |_| 0.0,
-            |u| {
-                (self.input)(t.re(), u);
-                for (o, &ui) in out.iter_mut().zip(u.iter()) {
-                    *o = S::from(ui);
-                }
-            },
-        );
+        let mut u = Buffer::<f64, NODE>::new(out.len(), 0.0);
+        let u = u.as_mut_slice();
+        (self.input)(t.re(), u);
+        for (o, &ui) in out.iter_mut().zip(u.iter()) {
+            *o = S::from(ui);
+        }
     }
 }

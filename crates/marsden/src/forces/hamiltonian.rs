@@ -16,7 +16,7 @@ use crate::error::InputError;
 use crate::mechanics;
 use crate::mechanics::{Force, Lagrangian};
 use crate::numerics::ad;
-use crate::numerics::scratch::{NODE, with_buffer};
+use crate::numerics::scratch::{Buffer, NODE};
 use crate::scalar::Scalar;
 
 /// A Hamiltonian force `f_H(t, q, p)`, written once over the scalar type.
@@ -104,24 +104,18 @@ fn momenta<L: Lagrangian, S: Scalar>(l: &L, t: S, q: &[S], v: &[S], p: &mut [S])
         i if i <= n => q[i - 1],
         i => v[i - n - 1],
     };
-    with_buffer::<S, { 2 * NODE + 1 }, ()>(2 * n + 1, t, entry, |z| {
-        ad::nested_gradient(&OnTangentBundle(l), z, n + 1..2 * n + 1, p);
-    });
+    let mut z = Buffer::<S, { 2 * NODE + 1 }>::from_fn(2 * n + 1, t, entry);
+    ad::nested_gradient(&OnTangentBundle(l), z.as_mut_slice(), n + 1..2 * n + 1, p);
 }
 
 impl<L: Lagrangian, H: HamiltonianForce> Force for FromHamiltonian<L, H> {
     #[inline]
     fn force<S: Scalar>(&self, t: S, q: &[S], v: &[S], out: &mut [S]) {
         let zero = S::from(0.0);
-        with_buffer::<S, NODE, ()>(
-            q.len(),
-            zero,
-            |_| zero,
-            |p| {
-                momenta(&self.lagrangian, t, q, v, p);
-                self.force.hamiltonian_force(t, q, p, out);
-            },
-        );
+        let mut p = Buffer::<S, NODE>::new(q.len(), zero);
+        let p = p.as_mut_slice();
+        momenta(&self.lagrangian, t, q, v, p);
+        self.force.hamiltonian_force(t, q, p, out);
     }
 
     fn validate(&self, dof: usize) -> Result<(), Error> {

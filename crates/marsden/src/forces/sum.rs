@@ -6,7 +6,7 @@
 use crate::discrete::DiscreteForce;
 use crate::error::Error;
 use crate::mechanics::Force;
-use crate::numerics::scratch::with_buffer;
+use crate::numerics::scratch::Buffer;
 use crate::scalar::Scalar;
 
 /// The sum `f₁ + f₂` of two forces (nest it, or use [`ForceExt::plus`], for more).
@@ -39,17 +39,12 @@ const SCRATCH: usize = 16;
 #[inline(always)]
 fn add_into<S: Scalar>(out: &mut [S], fill: impl FnOnce(&mut [S])) {
     let zero = S::from(0.0);
-    with_buffer::<S, SCRATCH, ()>(
-        out.len(),
-        zero,
-        |_| zero,
-        |second| {
-            fill(second);
-            out.iter_mut()
-                .zip(second.iter())
-                .for_each(|(o, &s)| *o += s);
-        },
-    );
+    let mut second = Buffer::<S, SCRATCH>::new(out.len(), zero);
+    let second = second.as_mut_slice();
+    fill(second);
+    out.iter_mut()
+        .zip(second.iter())
+        .for_each(|(o, &s)| *o += s);
 }
 
 impl<A: Force, B: Force> Force for ForceSum<A, B> {

@@ -11,7 +11,7 @@
 //! [MW01]: crate#references
 
 use crate::discrete::DiscreteForce;
-use crate::numerics::scratch::{NODE, with_buffer};
+use crate::numerics::scratch::{Buffer, NODE};
 use crate::scalar::Scalar;
 
 /// Discrete forces `(f_d⁻, f_d⁺)` of one step `(q₀, q₁)` from `t₀` to `t₀ + h`.
@@ -58,12 +58,8 @@ pub trait TwoPointForce {
         plus: &mut [S],
     ) {
         let zero = S::from(0.0);
-        with_buffer::<S, NODE, ()>(
-            q0.len(),
-            zero,
-            |i| q0[i] + delta[i],
-            |q1| self.two_point_force(t0, h, q0, q1, minus, plus),
-        );
+        let mut q1 = Buffer::<S, NODE>::from_fn(q0.len(), zero, |i| q0[i] + delta[i]);
+        self.two_point_force(t0, h, q0, q1.as_mut_slice(), minus, plus);
     }
 }
 

@@ -32,7 +32,7 @@ use crate::mechanics::{Constraint, Lagrangian};
 use crate::numerics::dense::{max_norm, solve_in_place};
 use crate::numerics::dual::SmallDual;
 use crate::numerics::newton::{Convergence, NewtonOptions, NewtonReport};
-use crate::numerics::scratch::{NODE, with_buffer};
+use crate::numerics::scratch::{Buffer, NODE};
 use crate::scalar::Scalar;
 
 /// What an [`crate::integrator::Integrator`] applies to the momenta after each solved step.
@@ -468,14 +468,10 @@ impl<L: Lagrangian> MultiFunction for InVelocity<'_, L> {
     #[inline]
     fn eval<S: Scalar>(&self, v: &[S], out: &mut [S]) {
         let zero = S::from(0.0);
-        with_buffer::<S, NODE, ()>(
-            self.q.len(),
-            zero,
-            |i| S::from(self.q[i]),
-            |q| {
-                out[0] = self.lagrangian.lagrangian(S::from(self.t), q, v);
-            },
-        );
+        let mut q = Buffer::<S, NODE>::from_fn(self.q.len(), zero, |i| S::from(self.q[i]));
+        out[0] = self
+            .lagrangian
+            .lagrangian(S::from(self.t), q.as_mut_slice(), v);
     }
 }
 

@@ -44,7 +44,7 @@ use crate::mechanics::{Constraint, constraint_jacobian};
 use crate::numerics::ad::{self, HessianParts, MultiFunction};
 use crate::numerics::dense::max_norm;
 use crate::numerics::newton::NonlinearSystem;
-use crate::numerics::scratch::{NODE, with_buffer};
+use crate::numerics::scratch::{Buffer, NODE};
 use crate::scalar::Scalar;
 
 /// Sizes of a step's Newton system.
@@ -115,30 +115,24 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
             let a = q0[i % sh.n];
             offsets[i] + (S::from(a.re()) - a)
         };
-        with_buffer::<S, OFFSETS, ()>(offsets.len(), zero, shifted, |offsets| {
-            out[0] = self.action.action(self.t0, self.h, q0, offsets);
-            let nf = sh.force_outputs();
-            if nf > 0 {
-                let forces = &mut out[1..1 + nf];
-                self.force
-                    .discrete_force(self.t0, self.h, q0, offsets, forces);
+        let mut held = Buffer::<S, OFFSETS>::from_fn(offsets.len(), zero, shifted);
+        let offsets: &[S] = held.as_mut_slice();
+        out[0] = self.action.action(self.t0, self.h, q0, offsets);
+        let nf = sh.force_outputs();
+        if nf > 0 {
+            let forces = &mut out[1..1 + nf];
+            self.force
+                .discrete_force(self.t0, self.h, q0, offsets, forces);
+        }
+        if sh.d > 0 {
+            let last = &offsets[(sh.s - 1) * sh.n..];
+            let mut q_end = Buffer::<S, NODE>::from_fn(sh.n, zero, |i| q0[i] + last[i]);
+            self.constraint
+                .constraint(q_end.as_mut_slice(), &mut out[1 + nf..1 + nf + sh.d]);
+            if sh.stages > 0 {
+                self.stage_constraints(q0, offsets, &mut out[..]);
             }
-            if sh.d > 0 {
-                let last = &offsets[(sh.s - 1) * sh.n..];
-                with_buffer::<S, NODE, ()>(
-                    sh.n,
-                    zero,
-                    |i| q0[i] + last[i],
-                    |q_end| {
-                        self.constraint
-                            .constraint(q_end, &mut out[1 + nf..1 + nf + sh.d]);
-                    },
-                );
-                if sh.stages > 0 {
-                    self.stage_constraints(q0, offsets, &mut out[..]);
-                }
-            }
-        });
+        }
     }
 }
 
@@ -151,15 +145,10 @@ impl<A: DiscreteAction, F, C: Constraint> StepFunction<'_, A, F, C> {
         let first = 1 + sh.force_outputs() + sh.d;
         for i in 0..sh.stages {
             let block = first + i * sh.d;
-            with_buffer::<S, NODE, ()>(
-                sh.n,
-                zero,
-                |_| zero,
-                |x| {
-                    self.action.stage_point(i, q0, offsets, x);
-                    self.constraint.constraint(x, &mut out[block..block + sh.d]);
-                },
-            );
+            let mut stage = Buffer::<S, NODE>::new(sh.n, zero);
+            let x = stage.as_mut_slice();
+            self.action.stage_point(i, q0, offsets, x);
+            self.constraint.constraint(x, &mut out[block..block + sh.d]);
             for c in 0..sh.d {
                 let weight = self.h * self.stage_multipliers[i * sh.d + c];
                 out[0] -= out[block + c] * weight;

@@ -19,7 +19,7 @@
 
 use super::so3::Vec3;
 use crate::numerics::ad::{MultiFunction, jacobian};
-use crate::numerics::scratch::with_buffer;
+use crate::numerics::scratch::Buffer;
 use crate::scalar::Scalar;
 
 /// Inline capacity of the buffers of the perturbed configuration (12 numbers per body: two bodies
@@ -164,17 +164,18 @@ impl<U: RigidPotential> MultiFunction for Perturbed<'_, U> {
             let (a, b) = ((col + 1) % 3, (col + 2) % 3);
             xi[b] * r[a] - xi[a] * r[b] + r[col]
         };
-        with_buffer::<_, INLINE, _>(9 * bodies, zero, rotation, |rotations| {
-            let position = |k: usize| S::from(self.positions[k]);
-            with_buffer::<_, INLINE, _>(3 * bodies, zero, position, |positions| {
-                for (slot, &body) in self.free.iter().enumerate() {
-                    for a in 0..3 {
-                        positions[3 * body + a] += z[3 * bodies + 3 * slot + a];
-                    }
-                }
-                out[0] = self.potential.value(S::from(self.t), rotations, positions);
-            });
-        });
+        let mut rotations = Buffer::<S, INLINE>::from_fn(9 * bodies, zero, rotation);
+        let position = |k: usize| S::from(self.positions[k]);
+        let mut positions = Buffer::<S, INLINE>::from_fn(3 * bodies, zero, position);
+        let positions = positions.as_mut_slice();
+        for (slot, &body) in self.free.iter().enumerate() {
+            for a in 0..3 {
+                positions[3 * body + a] += z[3 * bodies + 3 * slot + a];
+            }
+        }
+        out[0] = self
+            .potential
+            .value(S::from(self.t), rotations.as_mut_slice(), positions);
     }
 }
 

@@ -10,7 +10,7 @@
 use super::kernel::VerletKernel;
 use crate::numerics::ad::{self, HessianParts, MultiFunction};
 use crate::numerics::banded::Banded;
-use crate::numerics::scratch::{NODE, with_buffer};
+use crate::numerics::scratch::{Buffer, NODE};
 use crate::scalar::Scalar;
 
 /// A (possibly time-dependent) Lagrangian `L(t, q, v)` on `TQ = ℝⁿ × ℝⁿ`.
@@ -221,12 +221,10 @@ impl<L: Lagrangian + ?Sized> MultiFunction for PotentialOf<'_, L> {
     #[inline]
     fn eval<S: Scalar>(&self, q: &[S], out: &mut [S]) {
         let zero = S::from(0.0);
-        with_buffer::<S, NODE, ()>(
-            q.len(),
-            zero,
-            |_| zero,
-            |v| out[0] = -self.lagrangian.lagrangian(S::from(self.t), q, v),
-        );
+        let mut v = Buffer::<S, NODE>::new(q.len(), zero);
+        out[0] = -self
+            .lagrangian
+            .lagrangian(S::from(self.t), q, v.as_mut_slice());
     }
 }
 

@@ -24,7 +24,7 @@
 
 use std::ops::Range;
 
-use crate::numerics::scratch::with_buffer;
+use crate::numerics::scratch::Buffer;
 use crate::scalar::Scalar;
 use nalgebra::{Const, U1};
 use num_dual::{Derivative, Dual, DualSVec64, HyperDual64, HyperDualSVec64};
@@ -170,17 +170,11 @@ pub fn nested_gradient<S: Scalar, F: MultiFunction>(
 pub fn directional_second<F: MultiFunction>(f: &F, x: &[f64], u: &[f64], w: &[f64]) -> f64 {
     let zero = HyperDual64::from(0.0);
     let seed = |i: usize| HyperDual64::new(x[i], u[i], w[i], 0.0);
-    with_buffer::<_, INLINE, _>(x.len(), zero, seed, |xs| {
-        with_buffer::<_, INLINE, _>(
-            f.outputs(),
-            zero,
-            |_| zero,
-            |res| {
-                f.eval(xs, res);
-                res[0].eps1eps2
-            },
-        )
-    })
+    let mut xs = Buffer::<_, INLINE>::from_fn(x.len(), zero, seed);
+    let mut res = Buffer::<_, INLINE>::new(f.outputs(), zero);
+    let res = res.as_mut_slice();
+    f.eval(xs.as_mut_slice(), res);
+    res[0].eps1eps2
 }
 
 fn jacobian_chunked<const C: usize, F: MultiFunction>(
@@ -193,37 +187,31 @@ fn jacobian_chunked<const C: usize, F: MultiFunction>(
     let (nc, m) = (cols.len(), f.outputs());
     let zero = DualSVec64::<C>::from_re(0.0);
     let init = |i: usize| DualSVec64::<C>::from_re(x[i]);
-    with_buffer::<_, INLINE, _>(x.len(), zero, init, |xs| {
-        with_buffer::<_, INLINE, _>(
-            m,
-            zero,
-            |_| zero,
-            |out| {
-                let mut evaluations = 0;
-                for jb in (0..nc).step_by(C) {
-                    let width = C.min(nc - jb);
-                    for a in 0..width {
-                        xs[cols.start + jb + a].eps =
-                            Derivative::derivative_generic(Const::<C>, U1, a);
-                    }
-                    f.eval(xs, out);
-                    evaluations += 1;
-                    for (i, o) in out.iter().enumerate() {
-                        values[i] = o.re;
-                        let row = &mut jac[i * nc + jb..i * nc + jb + width];
-                        match &o.eps.0 {
-                            Some(e) => row.copy_from_slice(&e.as_slice()[..width]),
-                            None => row.fill(0.0),
-                        }
-                    }
-                    for a in 0..width {
-                        xs[cols.start + jb + a].eps = Derivative::none();
-                    }
-                }
-                evaluations
-            },
-        )
-    })
+    let mut xs = Buffer::<_, INLINE>::from_fn(x.len(), zero, init);
+    let xs = xs.as_mut_slice();
+    let mut out = Buffer::<_, INLINE>::new(m, zero);
+    let out = out.as_mut_slice();
+    let mut evaluations = 0;
+    for jb in (0..nc).step_by(C) {
+        let width = C.min(nc - jb);
+        for a in 0..width {
+            xs[cols.start + jb + a].eps = Derivative::derivative_generic(Const::<C>, U1, a);
+        }
+        f.eval(xs, out);
+        evaluations += 1;
+        for (i, o) in out.iter().enumerate() {
+            values[i] = o.re;
+            let row = &mut jac[i * nc + jb..i * nc + jb + width];
+            match &o.eps.0 {
+                Some(e) => row.copy_from_slice(&e.as_slice()[..width]),
+                None => row.fill(0.0),
+            }
+        }
+        for a in 0..width {
+            xs[cols.start + jb + a].eps = Derivative::none();
+        }
+    }
+    evaluations
 }
 
 fn hessian_chunked<const C: usize, F: MultiFunction>(
@@ -235,39 +223,28 @@ fn hessian_chunked<const C: usize, F: MultiFunction>(
 ) {
     let (nr, nc, m) = (rows.len(), cols.len(), f.outputs());
     let zero = hd_re::<C>(0.0);
-    with_buffer::<_, INLINE, _>(
-        x.len(),
-        zero,
-        |i| hd_re::<C>(x[i]),
-        |xs| {
-            with_buffer::<_, INLINE, _>(
-                m,
-                zero,
-                |_| zero,
-                |res| {
-                    // At least one chunk each way, so values are written even if a range is empty.
-                    for ib in (0..nr.max(1)).step_by(C) {
-                        for jb in (0..nc.max(1)).step_by(C) {
-                            let (wr, wc) =
-                                (C.min(nr.saturating_sub(ib)), C.min(nc.saturating_sub(jb)));
-                            for a in 0..wr {
-                                xs[rows.start + ib + a] = xs[rows.start + ib + a].derivative1(a);
-                            }
-                            for b in 0..wc {
-                                xs[cols.start + jb + b] = xs[cols.start + jb + b].derivative2(b);
-                            }
-                            f.eval(xs, res);
-                            out.evaluations += 1;
-                            collect_block(res, (ib, wr), (jb, wc), nc, out);
-                            for v in xs.iter_mut() {
-                                *v = hd_re::<C>(v.re);
-                            }
-                        }
-                    }
-                },
-            )
-        },
-    )
+    let mut xs = Buffer::<_, INLINE>::from_fn(x.len(), zero, |i| hd_re::<C>(x[i]));
+    let xs = xs.as_mut_slice();
+    let mut res = Buffer::<_, INLINE>::new(m, zero);
+    let res = res.as_mut_slice();
+    // At least one chunk each way, so values are written even if a range is empty.
+    for ib in (0..nr.max(1)).step_by(C) {
+        for jb in (0..nc.max(1)).step_by(C) {
+            let (wr, wc) = (C.min(nr.saturating_sub(ib)), C.min(nc.saturating_sub(jb)));
+            for a in 0..wr {
+                xs[rows.start + ib + a] = xs[rows.start + ib + a].derivative1(a);
+            }
+            for b in 0..wc {
+                xs[cols.start + jb + b] = xs[cols.start + jb + b].derivative2(b);
+            }
+            f.eval(xs, res);
+            out.evaluations += 1;
+            collect_block(res, (ib, wr), (jb, wc), nc, out);
+            for v in xs.iter_mut() {
+                *v = hd_re::<C>(v.re);
+            }
+        }
+    }
 }
 
 /// The 1 × 1 case with num-dual's scalar hyper-dual numbers (no optional derivative parts):
@@ -286,29 +263,23 @@ fn hessian_scalar<F: MultiFunction>(
         v.eps2 = if cols.contains(&i) { 1.0 } else { 0.0 };
         v
     };
-    with_buffer::<_, 4, _>(x.len(), zero, seed, |xs| {
-        with_buffer::<_, 4, _>(
-            f.outputs(),
-            zero,
-            |_| zero,
-            |res| {
-                f.eval(xs, res);
-                out.evaluations += 1;
-                for (i, o) in res.iter().enumerate() {
-                    out.values[i] = o.re;
-                    if cols.len() == 1 {
-                        out.jac_cols[i] = o.eps2;
-                    }
-                }
-                if rows.len() == 1 {
-                    out.grad_rows[0] = res[0].eps1;
-                    if cols.len() == 1 {
-                        out.hess[0] = res[0].eps1eps2;
-                    }
-                }
-            },
-        )
-    })
+    let mut xs = Buffer::<_, 4>::from_fn(x.len(), zero, seed);
+    let mut res = Buffer::<_, 4>::new(f.outputs(), zero);
+    let res = res.as_mut_slice();
+    f.eval(xs.as_mut_slice(), res);
+    out.evaluations += 1;
+    for (i, o) in res.iter().enumerate() {
+        out.values[i] = o.re;
+        if cols.len() == 1 {
+            out.jac_cols[i] = o.eps2;
+        }
+    }
+    if rows.len() == 1 {
+        out.grad_rows[0] = res[0].eps1;
+        if cols.len() == 1 {
+            out.hess[0] = res[0].eps1eps2;
+        }
+    }
 }
 
 #[inline]

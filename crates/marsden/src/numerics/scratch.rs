@@ -1,47 +1,76 @@
-//! Scratch buffers for the hot path, scoped to a closure.
+//! Scratch buffers for the hot path.
 //!
 //! Rules and the step build short vectors of dual numbers (node positions and velocities,
-//! offsets, AD inputs) on every evaluation. [`with_buffer`] keeps up to `CAP` of them in a plain
-//! local array — never returned or moved, so no copies of inline storage — and hands a slice to
-//! the closure; longer vectors go to the heap, so small systems never allocate and large ones
-//! still work.
+//! offsets, AD inputs) on every evaluation. A [`Buffer`] keeps up to `CAP` of them in a plain
+//! array in the frame that declares it; longer vectors go to the heap, so small systems never
+//! allocate and large ones still work.
+//!
+//! A `Buffer` is a value, not a scope: the code that uses it is written where it is declared.
+//! (An earlier form took the using code as a closure, which compiled the buffer's set-up once
+//! per closure type — a fifth of the problem-file layer's code; BENCHMARKS.md, "Build time".)
 //!
 //! [`with_slice`] is the same idea for callers outside the core (the inputs slice of a compiled
 //! expression, `[q, q̇, t, θ]` and the like): its stack array is the smallest of a few sizes
 //! that fits, so the unused tail that must be initialised stays short even for large dual
 //! numbers.
 
-/// Runs `body` on a buffer of `len` values `init(0) … init(len − 1)`, on the stack if
-/// `len ≤ CAP` (`fill` pads the unused part of the array). Up to two values take an array of
-/// two, so that small systems do not pay for padding a long array of hyper-dual numbers.
+/// `len` values of `S`: on the stack if `len ≤ CAP`, else on the heap. Up to two values take
+/// an array of two, so that small systems do not pay for filling a long array of hyper-dual
+/// numbers.
 ///
-/// `body` is called at exactly one place: these buffers nest (a rule's node inside the step's
-/// offsets inside an AD chunk), and a body inlined once per storage kind would be compiled
-/// three times per level.
-#[inline(always)]
-pub fn with_buffer<S: Copy, const CAP: usize, R>(
+/// ```
+/// use marsden::numerics::scratch::Buffer;
+///
+/// let mut squares = Buffer::<f64, 4>::from_fn(3, 0.0, |i| (i * i) as f64);
+/// let x = squares.as_mut_slice();
+/// x[0] = 7.0;
+/// assert_eq!(x, [7.0, 1.0, 4.0]);
+/// ```
+pub struct Buffer<S, const CAP: usize> {
+    storage: Storage<S, CAP>,
     len: usize,
-    fill: S,
-    mut init: impl FnMut(usize) -> S,
-    body: impl FnOnce(&mut [S]) -> R,
-) -> R {
-    let mut two;
-    let mut inline;
-    let mut heap;
-    let buffer: &mut [S] = if len <= 2 {
-        two = [fill; 2];
-        &mut two[..len]
-    } else if len <= CAP {
-        inline = [fill; CAP];
-        &mut inline[..len]
-    } else {
-        heap = vec![fill; len];
-        &mut heap
-    };
-    for (i, slot) in buffer.iter_mut().enumerate() {
-        *slot = init(i);
+}
+
+/// Where a [`Buffer`]'s values live.
+enum Storage<S, const CAP: usize> {
+    Two([S; 2]),
+    Inline([S; CAP]),
+    Heap(Vec<S>),
+}
+
+impl<S: Copy, const CAP: usize> Buffer<S, CAP> {
+    /// `len` copies of `fill` (which also pads the unused part of the array).
+    #[inline(always)]
+    pub fn new(len: usize, fill: S) -> Self {
+        let storage = if len <= 2 {
+            Storage::Two([fill; 2])
+        } else if len <= CAP {
+            Storage::Inline([fill; CAP])
+        } else {
+            Storage::Heap(vec![fill; len])
+        };
+        Buffer { storage, len }
     }
-    body(buffer)
+
+    /// The values `init(0) … init(len − 1)`; `fill` pads the unused part of the array.
+    #[inline(always)]
+    pub fn from_fn(len: usize, fill: S, mut init: impl FnMut(usize) -> S) -> Self {
+        let mut buffer = Self::new(len, fill);
+        for (i, slot) in buffer.as_mut_slice().iter_mut().enumerate() {
+            *slot = init(i);
+        }
+        buffer
+    }
+
+    /// The `len` values.
+    #[inline(always)]
+    pub fn as_mut_slice(&mut self) -> &mut [S] {
+        match &mut self.storage {
+            Storage::Two(two) => &mut two[..self.len],
+            Storage::Inline(inline) => &mut inline[..self.len],
+            Storage::Heap(heap) => heap,
+        }
+    }
 }
 
 /// Runs `body` on a buffer of `len` copies of `fill`, held in a stack array of 3, 5, 9, 17 or
@@ -101,9 +130,12 @@ mod tests {
 
     #[test]
     fn inline_and_heap_buffers_hold_the_same_values() {
-        let two = with_buffer::<f64, 4, _>(2, 0.0, |i| i as f64, |b| b.to_vec());
-        let small = with_buffer::<f64, 4, _>(3, 0.0, |i| i as f64, |b| b.to_vec());
-        let large = with_buffer::<f64, 4, _>(6, 0.0, |i| i as f64, |b| b.to_vec());
+        let values = |len| {
+            Buffer::<f64, 4>::from_fn(len, 0.0, |i| i as f64)
+                .as_mut_slice()
+                .to_vec()
+        };
+        let (two, small, large) = (values(2), values(3), values(6));
         assert_eq!(two, [0.0, 1.0]);
         assert_eq!(small, [0.0, 1.0, 2.0]);
         assert_eq!(large, [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]);

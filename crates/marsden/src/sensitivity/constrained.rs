@@ -58,7 +58,7 @@ use crate::integrator::{Integrator, StepReport};
 use crate::mechanics::{Constraint, Lagrangian, State};
 use crate::numerics::ad::{self, HessianParts, MultiFunction};
 use crate::numerics::dense::Lu;
-use crate::numerics::scratch::{NODE, with_buffer};
+use crate::numerics::scratch::{Buffer, NODE};
 use crate::scalar::Scalar;
 
 /// Inline capacity for the offsets of a step (`s·n`).
@@ -136,11 +136,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
                 zero
             }
         };
-        with_buffer::<S, NODE, ()>(big, zero, point, |q0| {
-            with_buffer::<S, OFFSETS, ()>(l.s * big, zero, shifted, |offsets| {
-                self.evaluate(q0, offsets, multipliers, out);
-            });
-        });
+        let mut q0 = Buffer::<S, NODE>::from_fn(big, zero, point);
+        let mut offsets = Buffer::<S, OFFSETS>::from_fn(l.s * big, zero, shifted);
+        self.evaluate(q0.as_mut_slice(), offsets.as_mut_slice(), multipliers, out);
     }
 }
 
@@ -154,17 +152,12 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> AugmentedStep<'_, A, F,
         let nf = l.forces();
         if nf > 0 {
             // The forces on the free coordinates (those on θ are zero and not equations).
-            with_buffer::<S, OFFSETS, ()>(
-                (l.s + 1) * big,
-                zero,
-                |_| zero,
-                |all| {
-                    self.force.discrete_force(self.t0, self.h, q0, offsets, all);
-                    for j in 0..=l.s {
-                        out[1 + j * n..1 + (j + 1) * n].copy_from_slice(&all[j * big..j * big + n]);
-                    }
-                },
-            );
+            let mut all = Buffer::<S, OFFSETS>::new((l.s + 1) * big, zero);
+            let all = all.as_mut_slice();
+            self.force.discrete_force(self.t0, self.h, q0, offsets, all);
+            for j in 0..=l.s {
+                out[1 + j * n..1 + (j + 1) * n].copy_from_slice(&all[j * big..j * big + n]);
+            }
         }
         if d == 0 {
             return;
@@ -176,27 +169,16 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> AugmentedStep<'_, A, F,
             out[0] -= out[first + c] * multipliers[c] * S::from(self.h);
         }
         let last = &offsets[(l.s - 1) * big..];
-        with_buffer::<S, NODE, ()>(
-            big,
-            zero,
-            |i| q0[i] + last[i],
-            |q_end| {
-                self.constraint
-                    .constraint(q_end, &mut out[first..first + d]);
-            },
-        );
+        let mut q_end = Buffer::<S, NODE>::from_fn(big, zero, |i| q0[i] + last[i]);
+        self.constraint
+            .constraint(q_end.as_mut_slice(), &mut out[first..first + d]);
         for i in 0..l.stages {
             let block = first + (1 + i) * d;
-            with_buffer::<S, NODE, ()>(
-                big,
-                zero,
-                |_| zero,
-                |point| {
-                    self.action.stage_point(i, q0, offsets, point);
-                    self.constraint
-                        .constraint(point, &mut out[block..block + d]);
-                },
-            );
+            let mut point = Buffer::<S, NODE>::new(big, zero);
+            let point = point.as_mut_slice();
+            self.action.stage_point(i, q0, offsets, point);
+            self.constraint
+                .constraint(point, &mut out[block..block + d]);
             for c in 0..d {
                 out[0] -= out[block + c] * multipliers[(1 + i) * d + c] * S::from(self.h);
             }

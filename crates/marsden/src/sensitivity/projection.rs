@@ -27,7 +27,7 @@ use crate::error::{Error, StepError, StepFailure};
 use crate::mechanics::{Constraint, Lagrangian};
 use crate::numerics::ad::{self, HessianParts, MultiFunction};
 use crate::numerics::dense::Lu;
-use crate::numerics::scratch::{NODE, with_buffer};
+use crate::numerics::scratch::{Buffer, NODE};
 use crate::scalar::Scalar;
 
 /// `(q, v) ↦ L(t, q, v)`.
@@ -65,15 +65,10 @@ impl<C: Constraint> MultiFunction for Component<'_, C> {
     }
     fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
         let zero = S::from(0.0);
-        with_buffer::<S, NODE, ()>(
-            self.constraint.count(),
-            zero,
-            |_| zero,
-            |phi| {
-                self.constraint.constraint(x, phi);
-                out[0] = phi[self.c];
-            },
-        );
+        let mut phi = Buffer::<S, NODE>::new(self.constraint.count(), zero);
+        let phi = phi.as_mut_slice();
+        self.constraint.constraint(x, phi);
+        out[0] = phi[self.c];
     }
 }
 

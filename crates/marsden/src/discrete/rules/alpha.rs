@@ -8,7 +8,7 @@ use super::{Rule, at_node, with_displacement};
 use crate::discrete::{DiscreteForce, DiscreteLagrangian};
 use crate::mechanics::{Force, Lagrangian, MassMatrix, Structure};
 use crate::numerics::newton::{NewtonFailure, NewtonOptions, NewtonReport};
-use crate::numerics::scratch::{NODE, with_buffer};
+use crate::numerics::scratch::{Buffer, NODE};
 use crate::scalar::Scalar;
 use crate::separable::alpha::solve_alpha;
 use crate::separable::jacobian::step_jacobian;
@@ -138,19 +138,13 @@ impl<F: Force> DiscreteForce for AlphaForce<F> {
             #[inline(always)]
             |q, v| {
                 let zero = S::from(0.0);
-                with_buffer::<S, NODE, ()>(
-                    n,
-                    zero,
-                    |_| zero,
-                    #[inline(always)]
-                    |f| {
-                        self.force.force(t, q, v, f);
-                        for i in 0..n {
-                            out[i] = f[i] * w0;
-                            out[n + i] = f[i] * w1;
-                        }
-                    },
-                )
+                let mut f = Buffer::<S, NODE>::new(n, zero);
+                let f = f.as_mut_slice();
+                self.force.force(t, q, v, f);
+                for i in 0..n {
+                    out[i] = f[i] * w0;
+                    out[n + i] = f[i] * w1;
+                }
             },
         )
     }

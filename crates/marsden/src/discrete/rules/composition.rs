@@ -48,7 +48,7 @@ use super::Rule;
 use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::error::Error;
 use crate::mechanics::{Force, Lagrangian};
-use crate::numerics::scratch::{NODE, with_buffer};
+use crate::numerics::scratch::{Buffer, NODE};
 use crate::scalar::Scalar;
 use crate::separable::{ExplicitStep, ExplicitWorkspace};
 
@@ -290,13 +290,12 @@ fn for_each_substep<S: Scalar>(
                 offsets[(first - 1) * n + a]
             }
         };
-        with_buffer::<S, NODE, ()>(n, zero, start, |shift| {
-            let point = |a: usize| q0[a] + shift[a];
-            with_buffer::<S, NODE, ()>(n, zero, point, |qi| {
-                let sub = |k: usize| offsets[first * n + k] - shift[k % n];
-                with_buffer::<S, { 2 * NODE }, ()>(sb * n, zero, sub, |sub| f(i, (ti, hi), qi, sub))
-            })
-        });
+        let mut shift = Buffer::<S, NODE>::from_fn(n, zero, start);
+        let shift: &[S] = shift.as_mut_slice();
+        let mut qi = Buffer::<S, NODE>::from_fn(n, zero, |a| q0[a] + shift[a]);
+        let sub = |k: usize| offsets[first * n + k] - shift[k % n];
+        let mut sub = Buffer::<S, { 2 * NODE }>::from_fn(sb * n, zero, sub);
+        f(i, (ti, hi), qi.as_mut_slice(), sub.as_mut_slice());
     }
 }
 
@@ -363,19 +362,13 @@ impl<D: DiscreteAction> DiscreteAction for ComposedLd<D> {
             return;
         }
         let zero = S::from(0.0);
-        with_buffer::<S, NODE, ()>(n, zero, start, |shift| {
-            with_buffer::<S, NODE, ()>(
-                n,
-                zero,
-                |a| q0[a] + shift[a],
-                |qi| {
-                    let sub = |j: usize| offsets[first * n + j] - shift[j % n];
-                    with_buffer::<S, { 2 * NODE }, ()>(sb * n, zero, sub, |sub| {
-                        self.base.stage_point(r, qi, sub, out);
-                    })
-                },
-            )
-        });
+        let mut shift = Buffer::<S, NODE>::from_fn(n, zero, start);
+        let shift: &[S] = shift.as_mut_slice();
+        let mut qi = Buffer::<S, NODE>::from_fn(n, zero, |a| q0[a] + shift[a]);
+        let sub = |j: usize| offsets[first * n + j] - shift[j % n];
+        let mut sub = Buffer::<S, { 2 * NODE }>::from_fn(sb * n, zero, sub);
+        self.base
+            .stage_point(r, qi.as_mut_slice(), sub.as_mut_slice(), out);
     }
 
     /// `γ_m` times the base's end weight.
@@ -445,18 +438,13 @@ impl<G: DiscreteForce> DiscreteForce for ComposedForce<G> {
             (t0, h),
             (q0, offsets),
             |i, (ti, hi), q, d| {
-                with_buffer::<S, { 2 * NODE }, ()>(
-                    (sb + 1) * n,
-                    zero,
-                    |_| zero,
-                    |f| {
-                        self.base.discrete_force(ti, hi, q, d, f);
-                        let first = i * sb * n;
-                        for (k, fk) in f.iter().enumerate() {
-                            out[first + k] += *fk;
-                        }
-                    },
-                )
+                let mut f = Buffer::<S, { 2 * NODE }>::new((sb + 1) * n, zero);
+                let f = f.as_mut_slice();
+                self.base.discrete_force(ti, hi, q, d, f);
+                let first = i * sb * n;
+                for (k, fk) in f.iter().enumerate() {
+                    out[first + k] += *fk;
+                }
             },
         );
     }

@@ -48,7 +48,7 @@ use super::quadrature::{Quadrature, QuadratureFamily};
 use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::error::Error;
 use crate::mechanics::{Force, Lagrangian};
-use crate::numerics::scratch::{NODE, with_buffer};
+use crate::numerics::scratch::{Buffer, NODE};
 use crate::scalar::Scalar;
 
 /// Largest polynomial degree accepted (equispaced Lagrange bases stay well conditioned).
@@ -199,9 +199,9 @@ impl GalerkinTable {
                 }
                 v / h
             };
-            with_buffer::<S, NODE, ()>(n, zero, position, |q| {
-                with_buffer::<S, NODE, ()>(n, zero, velocity, |v| f(i, S::from(t0 + c * h), q, v))
-            });
+            let mut q = Buffer::<S, NODE>::from_fn(n, zero, position);
+            let mut v = Buffer::<S, NODE>::from_fn(n, zero, velocity);
+            f(i, S::from(t0 + c * h), q.as_mut_slice(), v.as_mut_slice());
         }
     }
 }
@@ -329,21 +329,16 @@ impl<F: Force> DiscreteForce for GalerkinForce<F> {
         out[..s1 * n].iter_mut().for_each(|o| *o = zero);
         let table = &*self.table;
         table.for_each_node((t0, h), (q0, offsets), |i, t, q, v| {
-            with_buffer::<S, NODE, ()>(
-                n,
-                zero,
-                |_| zero,
-                |f| {
-                    self.force.force(t, q, v, f);
-                    let b = table.quadrature.weights[i] * h;
-                    for j in 0..s1 {
-                        let w = b * table.value[i * s1 + j];
-                        for a in 0..n {
-                            out[j * n + a] += f[a] * w;
-                        }
-                    }
-                },
-            )
+            let mut f = Buffer::<S, NODE>::new(n, zero);
+            let f = f.as_mut_slice();
+            self.force.force(t, q, v, f);
+            let b = table.quadrature.weights[i] * h;
+            for j in 0..s1 {
+                let w = b * table.value[i * s1 + j];
+                for a in 0..n {
+                    out[j * n + a] += f[a] * w;
+                }
+            }
         });
     }
     fn is_active(&self) -> bool {

@@ -78,28 +78,16 @@ pub(crate) fn at_node<S: crate::scalar::Scalar, R>(
     (q0, delta): (&[S], &[S]),
     f: impl FnOnce(&[S], &[S]) -> R,
 ) -> R {
-    use crate::numerics::scratch::{NODE, with_buffer};
+    use crate::numerics::scratch::{Buffer, NODE};
     let (n, zero, inv_h) = (q0.len(), S::from(0.0), 1.0 / h);
     let position = |i: usize| match c {
         0.0 => q0[i],
         1.0 => q0[i] + delta[i],
         _ => q0[i] + delta[i] * c,
     };
-    with_buffer::<S, NODE, R>(
-        n,
-        zero,
-        position,
-        #[inline(always)]
-        |q| {
-            with_buffer::<S, NODE, R>(
-                n,
-                zero,
-                |i| delta[i] * inv_h,
-                #[inline(always)]
-                |v| f(q, v),
-            )
-        },
-    )
+    let mut q = Buffer::<S, NODE>::from_fn(n, zero, position);
+    let mut v = Buffer::<S, NODE>::from_fn(n, zero, |i| delta[i] * inv_h);
+    f(q.as_mut_slice(), v.as_mut_slice())
 }
 
 /// Calls `f(q₁ − q₀)`.
@@ -109,6 +97,7 @@ pub(crate) fn with_displacement<S: crate::scalar::Scalar, R>(
     q1: &[S],
     f: impl FnOnce(&[S]) -> R,
 ) -> R {
-    use crate::numerics::scratch::{NODE, with_buffer};
-    with_buffer::<S, NODE, R>(q0.len(), S::from(0.0), |i| q1[i] - q0[i], |d| f(d))
+    use crate::numerics::scratch::{Buffer, NODE};
+    let mut d = Buffer::<S, NODE>::from_fn(q0.len(), S::from(0.0), |i| q1[i] - q0[i]);
+    f(d.as_mut_slice())
 }

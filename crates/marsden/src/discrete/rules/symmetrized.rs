@@ -9,7 +9,7 @@ use super::{Rule, at_node, with_displacement};
 use crate::discrete::{DiscreteForce, DiscreteLagrangian};
 use crate::mechanics::structure::InverseMass;
 use crate::mechanics::{Force, Lagrangian};
-use crate::numerics::scratch::{NODE, with_buffer};
+use crate::numerics::scratch::{Buffer, NODE};
 use crate::scalar::Scalar;
 use crate::separable::explicit::{run_by_steps, velocity_verlet, velocity_verlet_run};
 use crate::separable::jacobian::step_jacobian;
@@ -162,18 +162,13 @@ impl<F: Force> DiscreteForce for SymmetrizedForce<F> {
             let t = S::from(t0 + c * h);
             let (w0, w1) = (0.5 * h * (1.0 - c), 0.5 * h * c);
             at_node(c, h, (q0, offsets), |q, v| {
-                with_buffer::<S, NODE, ()>(
-                    n,
-                    zero,
-                    |_| zero,
-                    |f| {
-                        self.force.force(t, q, v, f);
-                        for i in 0..n {
-                            out[i] += f[i] * w0;
-                            out[n + i] += f[i] * w1;
-                        }
-                    },
-                )
+                let mut f = Buffer::<S, NODE>::new(n, zero);
+                let f = f.as_mut_slice();
+                self.force.force(t, q, v, f);
+                for i in 0..n {
+                    out[i] += f[i] * w0;
+                    out[n + i] += f[i] * w1;
+                }
             });
         }
     }
