@@ -107,6 +107,7 @@ impl CompiledTape {
     }
 
     /// How many values the code reads from `head`.
+    #[inline]
     fn head_reads(&self) -> usize {
         self.inputs.min(self.split)
     }

@@ -61,7 +61,7 @@ fn spec_of(text: &str, origin: &str, every: Option<usize>) -> PyResult<RunSpec> 
 #[pyfunction]
 fn check<'py>(py: Python<'py>, text: &str, origin: &str) -> PyResult<Bound<'py, PyDict>> {
     let spec = spec_of(text, origin, None)?;
-    marsden_spec::run::start::prepare(&spec).map_err(bad)?;
+    marsden_spec::prepare(&spec).map_err(bad)?;
     let d = PyDict::new(py);
     d.set_item("name", &spec.name)?;
     d.set_item("coordinates", &spec.system.coordinates)?;

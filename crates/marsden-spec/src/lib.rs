@@ -16,34 +16,39 @@
 //! Nothing here prints or exits; errors are values ([`Error`], its [`Diagnostic`] rendered with
 //! the file's line and a caret).
 //!
-//! # Map of the crate
+//! # Three crates behind one surface
 //!
-//! Data flows down.
+//! ```text
+//! marsden-problem   TOML ──raw (serde, spans)──▶ RunSpec (its system a typed Lagrangian)
+//! marsden-engine    Engine: prepare · run · initial_tangent · order_study, generic over L
+//! marsden-engine-catalog   the engine compiled for the catalog's systems
+//! marsden-spec      factory: RunSpec ──engine_for──▶ Box<dyn Engine> (the expression systems
+//!                   compiled here); execute, sweeps, summary.json, plots, report texts
+//! ```
+//!
+//! The language ([`problem`], [`model`], [`catalog`], [`error`], [`source`]) and the engine's
+//! modules are re-exported here under the paths the front ends use ([`run`], [`order`]).
 //!
 //! | stage | module | what |
 //! |---|---|---|
-//! | stage 1: raw file | [`problem::raw`] | serde mirror of the TOML, `deny_unknown_fields`, spans |
-//! | stage 2: run spec | [`problem`] | every check → [`RunSpec`] (and [`SweepSpec`]); [`load`], [`from_toml_str`] |
-//! | errors | [`error`], [`source`] | [`Diagnostic`] pointing into the file, [`Error`] with its [`ErrorKind`] |
-//! | systems | [`catalog`], [`model`] | catalog systems by name; expressions as `Lagrangian`, `Force`, `Constraint`, momentum maps |
+//! | file → spec | [`problem`] | every check → [`RunSpec`] (and [`SweepSpec`]); [`load`], [`from_toml_str`] |
+//! | the seam | [`factory`] | [`engine_for`]: the [`marsden_engine::Engine`] of a file's system |
 //! | run | [`run`] | [`execute`](fn@execute) with [`Controls`] → [`Outcome`]: files, [`Samples`] in memory, [`Summary`] |
 //! | sweeps | [`run::sweep`] | members in parallel, one row each, `--shard` |
 //! | order study | [`order`] | methods × step sizes, errors against a reference, fitted orders |
 //! | texts | [`report`] | what `run`, `check` and `systems` print |
 //!
-//! The expressions themselves are the [`marsden_expr`] crate. The problem-file schema and the
-//! outputs (`trajectory.csv` columns, `summary.json` fields) are a contract: extend, don't
-//! rename.
+//! The problem-file schema and the outputs (`trajectory.csv` columns, `summary.json` fields)
+//! are a contract: extend, don't rename.
 
-pub mod catalog;
-pub mod error;
-pub mod model;
+pub mod factory;
 pub mod order;
-pub mod problem;
 pub mod report;
 pub mod run;
-pub mod source;
 
-pub use error::{Diagnostic, Error, ErrorKind};
-pub use problem::{Overrides, RunSpec, SweepSpec, from_toml_str, load};
+pub use factory::{engine_for, prepare};
+pub use marsden_problem::{
+    Diagnostic, Error, ErrorKind, Overrides, RunSpec, SweepSpec, catalog, error, from_toml_str,
+    load, model, problem, source,
+};
 pub use run::{Controls, Outcome, Progress, RunStatus, Samples, Store, Summary, execute};

@@ -2,7 +2,6 @@
 //! defaults filled in and the initial state completed.
 
 use marsden_spec::report;
-use marsden_spec::run::start;
 
 use super::FileArgs;
 use crate::error::{CliError, Status};
@@ -10,7 +9,7 @@ use crate::error::{CliError, Status};
 /// Validates and prints; status 2 on the first mistake.
 pub fn check(args: &FileArgs) -> Result<Status, CliError> {
     let spec = marsden_spec::load(&args.file, &args.overrides())?;
-    let start = start::prepare(&spec)?;
+    let start = marsden_spec::prepare(&spec)?;
     for warning in &start.warnings {
         eprintln!("warning: {warning}");
     }

@@ -20,7 +20,7 @@
 //! is still printed) or the reference could not be computed; 2 bad input (unknown method, empty
 //! list, a step size that is not positive or does not divide `T − t₀`, a constrained problem).
 
-use marsden_spec::order::{self, Request, runner, table};
+use marsden_spec::order::{self, Request, table};
 use marsden_spec::{Diagnostic, Overrides};
 
 use super::OrderArgs;
@@ -35,7 +35,7 @@ pub fn order(args: &OrderArgs) -> Result<Status, CliError> {
         t_end: args.t_end,
     };
     let plan = order::plan(&spec, &request)?;
-    let results = runner::measure(&spec, &plan)?;
+    let results = order::measure(&spec, &plan)?;
     print!("{}", table::render(&plan, &results));
     if let Some(path) = &args.csv {
         std::fs::write(path, table::csv(&plan, &results)).map_err(|e| {

@@ -7,12 +7,12 @@ use std::path::PathBuf;
 use super::controls::Controls;
 use super::samples::{NullSink, Samples, Tee};
 use super::sensitivity::SensitivitySummary;
-use super::solve::RunRecord;
-use super::solve::{Destination, Runner};
+use super::solve::{Destination, RunRecord};
 use super::summary::Summary;
 use super::{balance, output, plots, sensitivity, start};
 use crate::error::{Diagnostic, Error};
 use crate::problem::RunSpec;
+use marsden_engine::Engine;
 
 /// Where the samples of a run go.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -61,7 +61,8 @@ pub struct Outcome {
 /// written); [`ErrorKind::Failed`](crate::ErrorKind::Failed) only if not even the summary could
 /// be written. A failed or interrupted simulation is an `Ok` outcome with that status.
 pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<Outcome, Error> {
-    let start = start::prepare(spec)?;
+    let engine = crate::engine_for(spec);
+    let start = engine.prepare(spec)?;
     let dir = spec.output.dir.clone();
     let io = |what: &str, e: &dyn std::fmt::Display| {
         Error::bad_input(Diagnostic::new(format!(
@@ -118,12 +119,7 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
             with_velocity: false,
         },
     };
-    let mut record = Runner {
-        spec,
-        destination,
-        controls,
-    }
-    .run()?;
+    let mut record = engine.run(spec, destination, controls)?;
     let mut warnings = start.warnings.clone();
     let mut written = Vec::new();
     if let Some(sink) = files.as_mut() {
@@ -154,6 +150,7 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
         .map(str::to_owned)
         .collect();
     let sensitivity = derivatives(
+        engine.as_ref(),
         spec,
         (&record, &start),
         (store.files().then_some(&dir), store.memory()),
@@ -202,6 +199,7 @@ struct Derivatives {
 /// reaches them (and kept in memory only with `keep`); `None` without `[sensitivity]`. A failure
 /// is reported in the summary's block.
 fn derivatives(
+    engine: &dyn Engine,
     spec: &RunSpec,
     (record, start): (&RunRecord, &start::Start),
     (dir, keep): (Option<&PathBuf>, bool),
@@ -244,7 +242,8 @@ fn derivatives(
             write_error = Some(e);
         }
     };
-    let found = match sensitivity::compute_streamed(spec, asked, start, controls, &mut sink) {
+    let found = match sensitivity::compute_streamed(engine, spec, asked, start, controls, &mut sink)
+    {
         Ok(found) => found,
         Err(e) => return Some(failed(e)),
     };

@@ -12,8 +12,9 @@ use super::certify::Certificate;
 use super::noether_balance::NoetherBalance;
 use super::output::SUMMARY_JSON;
 use super::sensitivity::SensitivitySummary;
-use super::solve::RunRecord;
+use super::solve::{FinalState, RunRecord};
 use crate::problem::spec::ENERGY_NOT_AVAILABLE;
+use marsden_engine::serialize::as_object;
 
 /// Why a forced or time-dependent run has no energy balance: the balance is that of two-point
 /// rules (forces and `∂L_d/∂t₀` at `q_k`, `q_{k+1}`); a method with internal stages puts its
@@ -199,17 +200,6 @@ pub struct NewtonSummary {
     pub explicit_steps: usize,
 }
 
-/// `final_state { … }`.
-#[derive(Debug, Clone, Serialize)]
-pub struct FinalState {
-    /// Time.
-    pub t: f64,
-    /// Positions.
-    pub q: Vec<f64>,
-    /// Momenta.
-    pub p: Vec<f64>,
-}
-
 /// `output { … }`.
 #[derive(Debug, Clone, Serialize)]
 pub struct OutputSummary {
@@ -242,14 +232,6 @@ pub struct Provenance {
 /// Serialises `(key, value)` pairs as a JSON object, keeping their order.
 fn as_map<S: serde::Serializer>(
     pairs: &[(String, MomentumSummary)],
-    serializer: S,
-) -> Result<S::Ok, S::Error> {
-    serializer.collect_map(pairs.iter().map(|(k, v)| (k, v)))
-}
-
-/// Serialises `(key, value)` pairs as a JSON object, keeping their order.
-pub(super) fn as_object<S: serde::Serializer, V: Serialize>(
-    pairs: &[(String, V)],
     serializer: S,
 ) -> Result<S::Ok, S::Error> {
     serializer.collect_map(pairs.iter().map(|(k, v)| (k, v)))

@@ -20,7 +20,7 @@ use super::controls::Controls;
 use super::execute::{Outcome, Store};
 use super::samples::NullSink;
 use super::shard::Shard;
-use super::solve::{Destination, RunRecord, Runner};
+use super::solve::{Destination, RunRecord};
 use super::summary::RunStatus;
 use super::sweep_table::{SweepColumns, SweepRow};
 use super::sweep_writer::SweepWriter;
@@ -304,16 +304,12 @@ fn run_member(
     controls: &Controls<'_>,
 ) -> Result<RunRecord, Diagnostic> {
     let spec = problem::member(base, overrides, k)?;
-    super::start::prepare(&spec)?;
+    let engine = crate::engine_for(&spec);
+    engine.prepare(&spec)?;
     let mut sink = NullSink::default();
     let destination = Destination {
         sink: &mut sink,
         with_velocity: false,
     };
-    Runner {
-        spec: &spec,
-        destination,
-        controls,
-    }
-    .run()
+    engine.run(&spec, destination, controls)
 }

@@ -1,7 +1,6 @@
 //! Runs that would finish but report something untrue are refused at load time (a
 //! diagnostic, exit 2) or reported as failed.
 
-use marsden_spec::run::start;
 use marsden_spec::{Controls, RunSpec, RunStatus, Store, execute};
 
 /// A free particle, `L = ½ẋ²`, with the integrator lines `integrator` and initial lines
@@ -15,7 +14,7 @@ fn free(initial: &str, integrator: &str) -> String {
 
 fn refused(text: &str) -> String {
     match RunSpec::from_toml_str(text, "p.toml") {
-        Ok(spec) => match start::prepare(&spec) {
+        Ok(spec) => match marsden_spec::prepare(&spec) {
             Ok(_) => panic!("accepted:\n{text}"),
             Err(d) => d.to_string(),
         },

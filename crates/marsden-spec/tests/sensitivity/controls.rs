@@ -6,8 +6,8 @@ use std::cell::RefCell;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use marsden_spec::prepare;
 use marsden_spec::run::sensitivity::compute_with;
-use marsden_spec::run::start::prepare;
 use marsden_spec::{Controls, Progress, RunSpec};
 
 use super::{OSCILLATOR, product};
@@ -30,7 +30,14 @@ fn r1_stop_flag_set_from_the_progress_callback_ends_the_tangent_run_at_512_steps
         progress: Some(&request),
         stop: Some(stop.clone()),
     };
-    let found = compute_with(&spec, asked, &start, &controls).unwrap();
+    let found = compute_with(
+        marsden_spec::engine_for(&spec).as_ref(),
+        &spec,
+        asked,
+        &start,
+        &controls,
+    )
+    .unwrap();
     assert_eq!(
         seen.into_inner(),
         [(256, 2000, false), (512, 2000, false), (512, 2000, true)]
@@ -75,13 +82,28 @@ fn r1_jacobians_are_streamed_to_the_sink_not_kept() {
     let asked = spec.sensitivity.as_ref().unwrap();
     let mut streamed = Vec::new();
     let mut sink = |t: f64, jacobian: &[f64]| streamed.push((t, jacobian.to_vec()));
-    let found = compute_streamed(&spec, asked, &start, &Controls::none(), &mut sink).unwrap();
+    let found = compute_streamed(
+        marsden_spec::engine_for(&spec).as_ref(),
+        &spec,
+        asked,
+        &start,
+        &Controls::none(),
+        &mut sink,
+    )
+    .unwrap();
     assert!(
         found.samples.is_empty(),
         "kept {} samples",
         found.samples.len()
     );
-    let kept = compute_with(&spec, asked, &start, &Controls::none()).unwrap();
+    let kept = compute_with(
+        marsden_spec::engine_for(&spec).as_ref(),
+        &spec,
+        asked,
+        &start,
+        &Controls::none(),
+    )
+    .unwrap();
     assert_eq!(found.summary.samples, kept.samples.len());
     assert_eq!(streamed, kept.samples);
     assert!(streamed.windows(2).all(|w| w[0].0 < w[1].0));

@@ -203,6 +203,26 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         self.predictor.set_velocity(v);
     }
 
+    /// The step's Newton solve from the predicted `z`, its result checked (finite) and, when
+    /// constrained, projected. Written out rather than chained through closures: the closures
+    /// were compiled as calls of their own where the build does not optimise across crates.
+    #[inline(always)]
+    fn solve_checked(
+        &mut self,
+        z: &mut [f64],
+        state: &State,
+        h: f64,
+        step: usize,
+    ) -> Result<NewtonReport, Error> {
+        let report = match self.solve(z, state, h) {
+            Ok(report) => report,
+            Err(failure) => return Err(self.newton_error(failure, step, state, z)),
+        };
+        self.check_finite(z, step, state.t)?;
+        self.project(z, state, h, step)?;
+        Ok(report)
+    }
+
     /// One step of the discrete Hamiltonian map from `state` (advanced in place by `h`).
     ///
     /// On error `state` is left unchanged.
@@ -218,12 +238,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         }
         let mut z = std::mem::take(&mut self.buffers.z);
         self.predictor.predict(&mut z, h, self.shape);
-        let outcome = self
-            .solve(&mut z, state, h)
-            .map_err(|failure| self.newton_error(failure, step, state, &z))
-            .and_then(|report| self.check_finite(&z, step, state.t).map(|_| report))
-            .and_then(|report| self.project(&z, state, h, step).map(|_| report));
-        let result = match outcome {
+        let result = match self.solve_checked(&mut z, state, h, step) {
             Ok(report) => {
                 self.predictor.record(&z, h);
                 self.accept(&z, state, h);

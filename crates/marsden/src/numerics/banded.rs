@@ -38,6 +38,7 @@ impl Banded {
     }
 
     /// Re-shapes to `n × n` with half-bandwidth `b` (reusing the storage) and zeroes it.
+    #[inline]
     pub fn reshape(&mut self, n: usize, b: usize) {
         self.n = n;
         self.b = b.min(n.saturating_sub(1));

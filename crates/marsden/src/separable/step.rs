@@ -164,6 +164,7 @@ impl SeparableWorkspace {
 }
 
 /// `q_α = q₀ + αΔ`, formed as the rules form it ([`crate::discrete::rules`]).
+#[inline]
 pub(super) fn node(alpha: f64, q0: &[f64], delta: &[f64], out: &mut [f64]) {
     for ((o, q), d) in out.iter_mut().zip(q0).zip(delta) {
         *o = match alpha {

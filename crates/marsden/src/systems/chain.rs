@@ -103,6 +103,7 @@ impl Lagrangian for Chain {
     }
     /// `∂V/∂qᵢ = φ′(q_i − q_{i−1}) − φ′(q_{i+1} − q_i)`: each bond's force once (into `scratch`),
     /// then differences.
+    #[inline]
     fn potential_gradient(&self, _t: f64, q: &[f64], grad: &mut [f64], scratch: &mut Vec<f64>) {
         let n = q.len();
         scratch.resize(n + 1, 0.0);
@@ -117,6 +118,7 @@ impl Lagrangian for Chain {
         Some(1)
     }
     /// Tridiagonal: `∂²V/∂qᵢ² = φ″(rᵢ) + φ″(r_{i+1})`, `∂²V/∂qᵢ∂q_{i+1} = −φ″(r_{i+1})`.
+    #[inline]
     fn potential_hessian(&self, _t: f64, q: &[f64], hess: &mut Banded) {
         let n = q.len();
         let mut left = self.bond_derivatives(Self::stretch(q, 0)).1;

@@ -71,6 +71,7 @@ impl Lagrangian for Kepler {
         grad[1] = c * q[1];
     }
     /// `∇²V = μ (I/|q|³ − 3 q qᵀ/|q|⁵)`.
+    #[inline]
     fn potential_hessian(&self, _t: f64, q: &[f64], hess: &mut Banded) {
         let r2 = q[0] * q[0] + q[1] * q[1];
         let c = self.mu / (r2 * r2.sqrt());

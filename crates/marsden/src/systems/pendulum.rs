@@ -75,6 +75,7 @@ impl Lagrangian for Pendulum {
         grad[0] = q[0].sin() * (self.m * self.g * self.l);
     }
     /// `∂²V/∂θ² = m g l cos θ`.
+    #[inline]
     fn potential_hessian(&self, _t: f64, q: &[f64], hess: &mut Banded) {
         hess.set(0, 0, q[0].cos() * (self.m * self.g * self.l));
     }

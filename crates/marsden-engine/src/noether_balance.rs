@@ -12,7 +12,7 @@
 //!
 //! exactly when `L_d` is invariant. The defect `D_k = J_{k+1} − J_k − I_k` is then at round-off
 //! plus the Newton residual; for a declared action that is not a symmetry of `L_d` it is the
-//! change the forces do not account for. Like the energy balance ([`super::balance`]) this
+//! change the forces do not account for. Like the energy balance ([`crate::balance`]) this
 //! applies to two-point rules only and sees every step (the core's
 //! [`BalanceMonitor`], wrapped around the run's own observer).
 //!

@@ -16,9 +16,9 @@ use marsden::holonomic::multipliers_at;
 use marsden::{Constraint, Lagrangian, Observer, StepView, Trajectory, mechanics};
 use marsden_io::RowSink;
 
-use super::controls::{CHECK_EVERY, Controls, Progress};
-use super::diagnostics::Diagnostics;
-use crate::model::MomentumMap;
+use crate::controls::{CHECK_EVERY, Controls, Progress};
+use crate::diagnostics::Diagnostics;
+use marsden_problem::model::MomentumMap;
 
 /// Streams samples to a [`RowSink`] and accumulates [`Diagnostics`].
 pub struct StreamObserver<'a, 's, L, C, M> {

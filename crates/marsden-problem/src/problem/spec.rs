@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use marsden::{Initial, NewtonOptions, TimeGrid};
 
 use super::method::Method;
-use crate::catalog::{Builtin, BuiltinSystem, WithLagrangian};
+use crate::catalog::{Builtin, BuiltinSystem};
 use crate::model::{
     ExprConstraint, ExprDiscreteLagrangian, ExprForce, ExprLagrangian, HamiltonianExprLagrangian,
     Symmetry,
@@ -117,33 +117,6 @@ pub const ENERGY_NOT_AVAILABLE: &str =
     "not available (no continuous Lagrangian: the file gives L_d)";
 
 impl LagrangianSpec {
-    /// Calls `f` with the concrete Lagrangian type.
-    pub fn dispatch<W: WithLagrangian>(&self, f: W) -> W::Output {
-        match self {
-            LagrangianSpec::Builtin { system, .. } => system.dispatch(f),
-            LagrangianSpec::Expression(l) => f.call(l),
-            LagrangianSpec::Hamiltonian(l) => f.call(l),
-            LagrangianSpec::Discrete(ld) => f.discrete(ld),
-        }
-    }
-
-    /// Calls `f` as [`LagrangianSpec::dispatch`] does, but with one type for every catalog
-    /// system ([`BuiltinSystem`] itself, which forwards each call): `f` is compiled once for
-    /// the catalog instead of once per system. For computations whose every evaluation of `L`
-    /// costs far more than a branch.
-    ///
-    /// The other arms repeat [`LagrangianSpec::dispatch`]'s instead of calling it: a call
-    /// would compile `dispatch::<W>` whole, its catalog arm included, and with it `f` once per
-    /// system again (10 % more code in `marsden-spec`, BENCHMARKS.md).
-    pub fn dispatch_shared<W: WithLagrangian>(&self, f: W) -> W::Output {
-        match self {
-            LagrangianSpec::Builtin { system, .. } => f.call(system),
-            LagrangianSpec::Expression(l) => f.call(l),
-            LagrangianSpec::Hamiltonian(l) => f.call(l),
-            LagrangianSpec::Discrete(ld) => f.discrete(ld),
-        }
-    }
-
     /// `builtin <name>` or the expression text.
     pub fn describe(&self) -> String {
         match self {

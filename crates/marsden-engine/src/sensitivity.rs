@@ -35,11 +35,11 @@ use marsden::{Constraint as _, Lagrangian, State, Termination, TimeGrid};
 use marsden_io::{CsvWriter, NpyShape, NpyWriter};
 use serde::Serialize;
 
-use super::controls::{CHECK_EVERY, Controls, Progress};
-use super::start::{self, Start};
-use crate::catalog::WithLagrangian;
-use crate::model::ExprParametric;
-use crate::problem::{Format, RunSpec, SensitivitySpec};
+use crate::controls::{CHECK_EVERY, Controls, Progress};
+use crate::engine::Engine;
+use crate::start::{self, Start};
+use marsden_problem::model::ExprParametric;
+use marsden_problem::problem::{Format, RunSpec, SensitivitySpec};
 
 /// `sensitivity.npy`.
 pub const SENSITIVITY_NPY: &str = "sensitivity.npy";
@@ -84,11 +84,12 @@ pub struct Sensitivities {
 /// # Errors
 /// The core's error (a step that failed, a rule whose step cannot be differentiated), as text.
 pub fn compute(
+    engine: &dyn Engine,
     spec: &RunSpec,
     asked: &SensitivitySpec,
     start: &Start,
 ) -> Result<Sensitivities, String> {
-    compute_with(spec, asked, start, &Controls::none())
+    compute_with(engine, spec, asked, start, &Controls::none())
 }
 
 /// Runs the tangent run of `spec` from `start`, showing its progress to `controls` and stopping
@@ -99,6 +100,7 @@ pub fn compute(
 /// # Errors
 /// The core's error (a step that failed, a rule whose step cannot be differentiated), as text.
 pub fn compute_with(
+    engine: &dyn Engine,
     spec: &RunSpec,
     asked: &SensitivitySpec,
     start: &Start,
@@ -106,7 +108,7 @@ pub fn compute_with(
 ) -> Result<Sensitivities, String> {
     let mut samples = Vec::new();
     let mut keep = |t: f64, jacobian: &[f64]| samples.push((t, jacobian.to_vec()));
-    let mut found = compute_streamed(spec, asked, start, controls, &mut keep)?;
+    let mut found = compute_streamed(engine, spec, asked, start, controls, &mut keep)?;
     found.samples = samples;
     Ok(found)
 }
@@ -119,6 +121,7 @@ pub fn compute_with(
 /// # Errors
 /// The core's error (a step that failed, a rule whose step cannot be differentiated), as text.
 pub fn compute_streamed(
+    engine: &dyn Engine,
     spec: &RunSpec,
     asked: &SensitivitySpec,
     start: &Start,
@@ -150,7 +153,7 @@ pub fn compute_streamed(
         }
         .call(rule)
         .map_err(|e| e.to_string()),
-        None => (spec.system.lagrangian).dispatch(InitialOnly {
+        None => engine.initial_tangent(TangentJob {
             spec,
             rule,
             state,
@@ -211,7 +214,7 @@ fn run_steps(run: &Tangent, total: usize) -> usize {
 }
 
 /// The caller's controls as a tangent run sees them, and where its stored samples go.
-struct Watched<'c, 'a> {
+pub struct Watched<'c, 'a> {
     controls: &'c Controls<'a>,
     total: usize,
     clock: Instant,
@@ -317,18 +320,21 @@ fn options(spec: &RunSpec) -> TangentOptions {
 }
 
 /// The tangent run of the file's own Lagrangian and forces (`P = 0`), with the integrator type
-/// of the run itself (the same [`Problem`] type as [`super::solve::run_problem`] builds), so
-/// the tangent run adds no integrator code to the build.
-struct InitialOnly<'a> {
+/// of the run itself (the same [`marsden::Problem`] type as [`crate::solve::run_by_rule`]
+/// builds), so the tangent run adds no integrator code to the build.
+pub struct TangentJob<'a> {
     spec: &'a RunSpec,
     rule: &'a marsden::discrete::rules::Method,
     state: State,
     watched: &'a Watched<'a, 'a>,
 }
 
-impl WithLagrangian for InitialOnly<'_> {
-    type Output = Result<Tangent, String>;
-    fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output {
+impl TangentJob<'_> {
+    /// Runs the job with the file's system, of type `L`.
+    ///
+    /// # Errors
+    /// The core's error, as text.
+    pub fn run_with<L: Lagrangian>(self, lagrangian: &L) -> Result<Tangent, String> {
         let s = &self.spec.system;
         let force = s.force.on(lagrangian);
         let problem = start::constrained_problem(self.spec, lagrangian, &s.constraint)
@@ -341,11 +347,6 @@ impl WithLagrangian for InitialOnly<'_> {
             self.watched.tangent(&mut vi, self.state, spec)
         };
         run().map_err(|e: marsden::Error| e.to_string())
-    }
-
-    /// Refused when the file was read; said again here in case a caller builds the spec.
-    fn discrete(self, _: &crate::model::ExprDiscreteLagrangian) -> Self::Output {
-        Err("[sensitivity] cannot be used with `discrete_lagrangian`".to_owned())
     }
 }
 

@@ -228,33 +228,6 @@ pub enum BuiltinSystem {
     NBody(NBody),
 }
 
-/// A computation generic over the Lagrangian: how the command calls monomorphic code
-/// ([`crate::run::run_problem`]) with whichever system the file describes.
-pub trait WithLagrangian {
-    /// What the computation returns.
-    type Output;
-    /// Runs the computation with `lagrangian`.
-    fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output;
-    /// Runs the computation with a file's own discrete Lagrangian (no continuous `L`): each
-    /// computation says what it can do without one.
-    fn discrete(self, ld: &crate::model::ExprDiscreteLagrangian) -> Self::Output;
-}
-
-impl BuiltinSystem {
-    /// Calls `f` with the concrete catalog type.
-    pub fn dispatch<W: WithLagrangian>(&self, f: W) -> W::Output {
-        match self {
-            BuiltinSystem::HarmonicOscillator(s) => f.call(s),
-            BuiltinSystem::FreeFall(s) => f.call(s),
-            BuiltinSystem::Pendulum(s) => f.call(s),
-            BuiltinSystem::DoublePendulum(s) => f.call(s),
-            BuiltinSystem::Kepler(s) => f.call(s),
-            BuiltinSystem::HenonHeiles(s) => f.call(s),
-            BuiltinSystem::NBody(s) => f.call(s),
-        }
-    }
-}
-
 /// `$body` with `$s` bound to the system inside `$self`, whichever it is.
 macro_rules! each {
     ($self:expr, $s:ident => $body:expr) => {
@@ -274,7 +247,7 @@ macro_rules! each {
 /// the same numbers as the system itself, at the cost of a branch per call and of what the
 /// optimiser no longer sees across it. For computations that cost far more than that per
 /// evaluation of `L` (`method = "exact"`'s shooting), so that they are compiled once for the
-/// catalog instead of once per system ([`crate::problem::LagrangianSpec::dispatch_shared`]).
+/// catalog instead of once per system (`marsden_engine::ExactRun`).
 impl Lagrangian for BuiltinSystem {
     #[inline]
     fn dof(&self) -> usize {
@@ -325,19 +298,12 @@ mod tests {
     use crate::model::{ExprLagrangian, slots};
     use marsden_expr::{Program, Symbols};
 
-    /// Evaluates `L` at a fixed, generic state.
-    struct Sample;
-    impl WithLagrangian for Sample {
-        type Output = f64;
-        fn call<L: Lagrangian>(self, l: &L) -> f64 {
-            let n = l.dof();
-            let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.2 * i as f64).collect();
-            let v: Vec<f64> = (0..n).map(|i| -0.7 + 0.3 * i as f64).collect();
-            l.lagrangian(0.0, &q, &v)
-        }
-        fn discrete(self, _: &crate::model::ExprDiscreteLagrangian) -> f64 {
-            f64::NAN
-        }
+    /// `L` at a fixed, generic state.
+    fn sample<L: Lagrangian>(l: &L) -> f64 {
+        let n = l.dof();
+        let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.2 * i as f64).collect();
+        let v: Vec<f64> = (0..n).map(|i| -0.7 + 0.3 * i as f64).collect();
+        l.lagrangian(0.0, &q, &v)
     }
 
     #[test]
@@ -345,14 +311,15 @@ mod tests {
         for b in Builtin::ALL.into_iter().filter(|b| !b.needs_masses()) {
             let params = b.parameters();
             let values: Vec<f64> = params.iter().map(|p| p.default * 1.3).collect();
-            let rust = b.build(&values, Vec::new()).dispatch(Sample);
+            let system = b.build(&values, Vec::new());
+            let rust = each!(&system, s => sample(s));
             let coordinates = b.coordinates(0);
             let mut symbols = Symbols::with_inputs(slots::tangent_inputs(&coordinates)).unwrap();
             for (p, v) in params.iter().zip(&values) {
                 symbols.add_constant(p.name, *v).unwrap();
             }
             let program = Program::compile(b.formula(), &symbols).unwrap();
-            let expr = Sample.call(&ExprLagrangian::new(program, coordinates.len()));
+            let expr = sample(&ExprLagrangian::new(program, coordinates.len()));
             assert!(
                 (rust - expr).abs() <= 1e-14 * rust.abs().max(1.0),
                 "{}",
@@ -361,41 +328,38 @@ mod tests {
         }
     }
 
+    /// What [`probe`] finds: the degrees of freedom, the values, the structure, the
+    /// bandwidth, and whether a packed Hessian and a Verlet kernel exist.
+    type Probed = (usize, Vec<f64>, String, Option<usize>, [bool; 2]);
+
     /// Everything the integrators ask of a Lagrangian, at a fixed state.
-    struct Probe;
-    impl WithLagrangian for Probe {
-        type Output = (usize, Vec<f64>, String, Option<usize>, [bool; 2]);
-        fn call<L: Lagrangian>(self, l: &L) -> Self::Output {
-            let n = l.dof();
-            let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.2 * i as f64).collect();
-            let v: Vec<f64> = (0..n).map(|i| -0.7 + 0.3 * i as f64).collect();
-            let mut values = vec![l.lagrangian(0.4, &q, &v)];
-            let mut grad = vec![0.0; n];
-            l.potential_gradient(0.4, &q, &mut grad, &mut Vec::new());
-            values.extend(grad);
-            let mut hess = Banded::new(n, l.potential_bandwidth().unwrap_or(n));
-            l.potential_hessian(0.4, &q, &mut hess);
-            values.extend(
-                (0..n)
-                    .flat_map(|i| hess.columns(i).map(move |j| (i, j)))
-                    .map(|(i, j)| hess.get(i, j)),
-            );
-            let mut packed = vec![0.0; n * (n + 1) / 2];
-            let has_packed = l.potential_hessian_packed(0.4, &q, &mut packed);
-            values.extend(packed);
-            let structure = format!("{:?}", l.structure());
-            let kernel = l.verlet_kernel().is_some();
-            (
-                n,
-                values,
-                structure,
-                l.potential_bandwidth(),
-                [has_packed, kernel],
-            )
-        }
-        fn discrete(self, _: &crate::model::ExprDiscreteLagrangian) -> Self::Output {
-            (0, Vec::new(), String::new(), None, [false; 2])
-        }
+    fn probe<L: Lagrangian>(l: &L) -> Probed {
+        let n = l.dof();
+        let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.2 * i as f64).collect();
+        let v: Vec<f64> = (0..n).map(|i| -0.7 + 0.3 * i as f64).collect();
+        let mut values = vec![l.lagrangian(0.4, &q, &v)];
+        let mut grad = vec![0.0; n];
+        l.potential_gradient(0.4, &q, &mut grad, &mut Vec::new());
+        values.extend(grad);
+        let mut hess = Banded::new(n, l.potential_bandwidth().unwrap_or(n));
+        l.potential_hessian(0.4, &q, &mut hess);
+        values.extend(
+            (0..n)
+                .flat_map(|i| hess.columns(i).map(move |j| (i, j)))
+                .map(|(i, j)| hess.get(i, j)),
+        );
+        let mut packed = vec![0.0; n * (n + 1) / 2];
+        let has_packed = l.potential_hessian_packed(0.4, &q, &mut packed);
+        values.extend(packed);
+        let structure = format!("{:?}", l.structure());
+        let kernel = l.verlet_kernel().is_some();
+        (
+            n,
+            values,
+            structure,
+            l.potential_bandwidth(),
+            [has_packed, kernel],
+        )
     }
 
     /// The shared catalog type answers every call as the system it holds does, bit for bit
@@ -410,8 +374,8 @@ mod tests {
                 Vec::new()
             };
             let system = b.build(&values, masses);
-            let own = system.dispatch(Probe);
-            let shared = Probe.call(&system);
+            let own = each!(&system, s => probe(s));
+            let shared = probe(&system);
             assert_eq!(own.0, shared.0, "{}", b.name());
             let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             assert_eq!(bits(&own.1), bits(&shared.1), "{}", b.name());

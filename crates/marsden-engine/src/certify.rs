@@ -45,7 +45,7 @@ pub struct Certificate {
     /// The symplecticity defect of the step map.
     pub symplecticity: Symplecticity,
     /// The equivariance defect of `L_d`, by symmetry name (in the file's order).
-    #[serde(serialize_with = "super::summary::as_object")]
+    #[serde(serialize_with = "crate::serialize::as_object")]
     pub equivariance: Vec<(String, Equivariance)>,
 }
 

@@ -18,8 +18,8 @@ use marsden::discrete::DiscreteAction as _;
 use marsden::integrator::StepShape;
 use marsden::{Constraint as _, Lagrangian, Rule as _};
 
-use crate::error::Diagnostic;
-use crate::problem::RunSpec;
+use marsden_problem::error::Diagnostic;
+use marsden_problem::problem::RunSpec;
 
 /// Unknowns per step above which the method is said to be slow: a step of this size already
 /// takes a good part of a second, and the cost rises with the cube of the size or faster

@@ -4,7 +4,7 @@
 //!    with its span; `toml`'s errors are reworded by [`toml_error`].
 //! 2. [`spec`]: the validated [`RunSpec`] — every check made here ([`system`], [`parameters`],
 //!    [`settings`], [`named_symmetry`], helpers in [`check`]), each failure a [`Diagnostic`] pointing at the
-//!    value at fault. Building and running the problem is [`crate::run`]'s job.
+//!    value at fault. Building and running the problem is the engine's job (`marsden_engine`).
 //!
 //! Entry points: [`load`] (a file on disk), [`from_toml_str`] (text from anywhere, e.g. a
 //! notebook cell), [`member`] (one member of a sweep).

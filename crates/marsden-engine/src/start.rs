@@ -5,10 +5,9 @@ use marsden::error::SetupError;
 use marsden::symmetry::check::Sample;
 use marsden::{Constraint, Initial, Lagrangian, Problem, mechanics};
 
-use crate::catalog::WithLagrangian;
-use crate::error::Diagnostic;
-use crate::problem::{InitialData, RunSpec};
-use crate::source::SourceFile;
+use marsden_problem::error::Diagnostic;
+use marsden_problem::problem::{InitialData, RunSpec};
+use marsden_problem::source::SourceFile;
 
 /// The complete initial state.
 #[derive(Debug, Clone, PartialEq)]
@@ -29,71 +28,66 @@ pub struct Start {
     pub symmetries: Vec<SymmetryCheck>,
 }
 
-/// Builds the problem once to complete and check the initial state.
+/// Builds the problem of `spec` with `lagrangian` to complete and check the initial state
+/// ([`crate::engine::Engine::prepare`]).
 ///
 /// # Errors
 /// The core's objection (a singular Lagrangian, a Legendre transform that cannot be
 /// inverted), pointing at the Lagrangian or the initial data.
-pub fn prepare(spec: &RunSpec) -> Result<Start, Diagnostic> {
-    spec.system.lagrangian.dispatch(Prepare(spec))
+pub fn prepare_with<L: Lagrangian>(spec: &RunSpec, lagrangian: &L) -> Result<Start, Diagnostic> {
+    let memory = crate::step_system::available_memory();
+    crate::step_system::fits_in_memory(spec, lagrangian, memory)?;
+    let problem = constrained_problem(spec, lagrangian, &spec.system.constraint)?;
+    let start = problem.start();
+    let v = problem.initial_velocity().to_vec();
+    let energy = mechanics::energy(lagrangian, start.t, &start.q, &v);
+    if !energy.is_finite() {
+        return Err(non_finite_energy(spec, energy));
+    }
+    let (symmetries, mut warnings) = non_symmetries(lagrangian, spec, (start.t, &start.q, &v));
+    warnings.extend(constraint_non_symmetries(spec, (start.t, &start.q, &v)));
+    warnings.extend(crate::step_system::large_step_system(spec, lagrangian));
+    Ok(Start {
+        t: start.t,
+        q: start.q.clone(),
+        v,
+        p: start.p.clone(),
+        energy,
+        warnings,
+        symmetries,
+    })
 }
 
-struct Prepare<'a>(&'a RunSpec);
-
-impl WithLagrangian for Prepare<'_> {
-    type Output = Result<Start, Diagnostic>;
-
-    fn call<L: Lagrangian>(self, lagrangian: &L) -> Self::Output {
-        let spec = self.0;
-        let memory = super::step_system::available_memory();
-        super::step_system::fits_in_memory(spec, lagrangian, memory)?;
-        let problem = constrained_problem(spec, lagrangian, &spec.system.constraint)?;
-        let start = problem.start();
-        let v = problem.initial_velocity().to_vec();
-        let energy = mechanics::energy(lagrangian, start.t, &start.q, &v);
-        if !energy.is_finite() {
-            return Err(non_finite_energy(spec, energy));
-        }
-        let (symmetries, mut warnings) = non_symmetries(lagrangian, spec, (start.t, &start.q, &v));
-        warnings.extend(constraint_non_symmetries(spec, (start.t, &start.q, &v)));
-        warnings.extend(super::step_system::large_step_system(spec, lagrangian));
-        Ok(Start {
-            t: start.t,
-            q: start.q.clone(),
-            v,
-            p: start.p.clone(),
-            energy,
-            warnings,
-            symmetries,
-        })
-    }
-
-    /// A file's own `L_d`: the state is `(q, p)` as given (the file was refused with `v`);
-    /// there is no velocity and no energy (both NaN).
-    fn discrete(self, ld: &crate::model::ExprDiscreteLagrangian) -> Self::Output {
-        let spec = self.0;
-        let InitialData::Momentum(p) = &spec.initial.data else {
-            return Err(Diagnostic::new(
-                "a `discrete_lagrangian` run starts from momenta: there is no continuous L to \
-                 turn a velocity into a momentum",
-            )
-            .at(spec.source.locate_opt(spec.spans.initial_data.clone()))
-            .help("give `p = [...]` in [initial]"));
-        };
-        let n = marsden::DiscreteLagrangian::dof(ld);
-        let (t, q) = (spec.initial.t0, &spec.initial.q);
-        regular_discrete(ld, spec, (t, q, p))?;
-        let (symmetries, warnings) = discrete_non_symmetries(ld, spec, (t, q, p));
-        Ok(Start {
-            t,
-            q: q.clone(),
-            v: vec![f64::NAN; n],
-            p: p.clone(),
-            energy: f64::NAN,
-            warnings,
-            symmetries,
-        })
-    }
+/// A file's own `L_d`: the state is `(q, p)` as given (the file was refused with `v`); there is
+/// no velocity and no energy (both NaN).
+///
+/// # Errors
+/// Initial data given as velocities; a singular `D₁₂L_d` at the first step.
+pub fn prepare_discrete(
+    spec: &RunSpec,
+    ld: &marsden_problem::model::ExprDiscreteLagrangian,
+) -> Result<Start, Diagnostic> {
+    let InitialData::Momentum(p) = &spec.initial.data else {
+        return Err(Diagnostic::new(
+            "a `discrete_lagrangian` run starts from momenta: there is no continuous L to \
+             turn a velocity into a momentum",
+        )
+        .at(spec.source.locate_opt(spec.spans.initial_data.clone()))
+        .help("give `p = [...]` in [initial]"));
+    };
+    let n = marsden::DiscreteLagrangian::dof(ld);
+    let (t, q) = (spec.initial.t0, &spec.initial.q);
+    regular_discrete(ld, spec, (t, q, p))?;
+    let (symmetries, warnings) = discrete_non_symmetries(ld, spec, (t, q, p));
+    Ok(Start {
+        t,
+        q: q.clone(),
+        v: vec![f64::NAN; n],
+        p: p.clone(),
+        energy: f64::NAN,
+        warnings,
+        symmetries,
+    })
 }
 
 /// `L_d` as a function of `(q₀, q₁)` for the AD drivers.
@@ -215,7 +209,7 @@ pub fn start_error(spec: &RunSpec, e: &marsden::Error) -> Diagnostic {
     let source: &SourceFile = &spec.source;
     match e {
         marsden::Error::Setup(SetupError::SingularLagrangian { .. })
-            if matches!(spec.system.lagrangian, crate::problem::LagrangianSpec::Hamiltonian(_)) =>
+            if matches!(spec.system.lagrangian, marsden_problem::problem::LagrangianSpec::Hamiltonian(_)) =>
         {
             Diagnostic::new(format!("the Hamiltonian is not regular at the initial state ({e})"))
                 .at(source.locate_opt(spec.spans.lagrangian.clone()))
@@ -376,7 +370,7 @@ pub fn nearby_samples(
 fn unchecked(spec: &RunSpec, why: &str) -> (Vec<SymmetryCheck>, Vec<String>) {
     let checks = (spec.system.symmetries.iter())
         .map(|s| SymmetryCheck {
-            name: crate::model::MomentumMap::name(s).to_owned(),
+            name: marsden_problem::model::MomentumMap::name(s).to_owned(),
             of: "L",
             states: 0,
             max_relative_defect: f64::NAN,

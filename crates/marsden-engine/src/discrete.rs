@@ -10,12 +10,12 @@ use std::time::Instant;
 
 use marsden::{DiscreteLagrangian as _, Integrator, RunFailure, State, Trajectory, simulate};
 
-use super::controls::Controls;
-use super::observer::StreamObserver;
-use super::solve::{Destination, RunRecord, finish};
-use crate::error::Diagnostic;
-use crate::model::{ExprDiscreteLagrangian, ExprLagrangian};
-use crate::problem::{InitialData, RunSpec};
+use crate::controls::Controls;
+use crate::observer::StreamObserver;
+use crate::solve::{Destination, RunRecord, finish};
+use marsden_problem::error::Diagnostic;
+use marsden_problem::model::{ExprDiscreteLagrangian, ExprLagrangian};
+use marsden_problem::problem::{InitialData, RunSpec};
 
 /// Runs `spec`, whose system is the discrete Lagrangian `ld`, streaming rows into
 /// `destination`.

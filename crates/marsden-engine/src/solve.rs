@@ -1,0 +1,421 @@
+//! The generic runner: a `Problem` from any [`Lagrangian`], [`Force`] and [`Constraint`],
+//! solved with the file's rule ([`run_by_rule`]) or by shooting ([`run_exact`]) while the
+//! [`StreamObserver`] stores the samples. Reached through [`crate::engine::Engine`].
+
+use std::time::Instant;
+
+use marsden::discrete::exact::ExactDiscreteLagrangian;
+use marsden::discrete::rules::Method as Rule;
+use marsden::{
+    Constraint, Force, Integrator, Lagrangian, Observer, Problem, Rule as _, RunFailure,
+    SolveOptions, Statistics, Trajectory, simulate,
+};
+use marsden_io::RowSink;
+use serde::Serialize;
+
+use crate::balance::{BalanceSeries, BalanceSummary, Balanced, TimeDerivative};
+use crate::certify::{Certificate, Ends, certify, without_step_jacobian};
+use crate::controls::Controls;
+use crate::diagnostics::Diagnostics;
+use crate::noether_balance::{NoetherBalance, NoetherBalanced};
+use crate::observer::StreamObserver;
+use crate::start;
+use marsden::symmetry::GroupAction;
+use marsden_problem::error::Diagnostic;
+use marsden_problem::model::{ExprConstraint, MomentumMap, Symmetry};
+use marsden_problem::problem::RunSpec;
+
+/// What a run did, before it is written up.
+#[derive(Debug, Clone)]
+pub struct RunRecord {
+    /// The failure's message (`None`: completed or interrupted).
+    pub error: Option<String>,
+    /// Whether the run was stopped through [`Controls::stop`].
+    pub interrupted: bool,
+    /// Steps completed.
+    pub steps: usize,
+    /// The last good state.
+    pub final_state: FinalState,
+    /// Newton work.
+    pub statistics: Statistics,
+    /// Wall-clock seconds of the integration.
+    pub wall_seconds: f64,
+    /// What was monitored.
+    pub diagnostics: Diagnostics,
+    /// Rows written.
+    pub rows: u64,
+    /// The discrete energy balance of a forced run with a two-point rule (`None` otherwise).
+    pub balance: Option<BalanceSummary>,
+    /// The same at the stored steps, for the plot.
+    pub balance_series: Option<BalanceSeries>,
+    /// The forced Noether balance of each symmetry, with the energy balance (empty otherwise).
+    pub noether_balance: Vec<(String, NoetherBalance)>,
+    /// The certificates (`[analysis] certify = true`).
+    pub certificate: Option<Certificate>,
+}
+
+/// `method = "exact"`: the integrator steps `L_d^E` of the problem's Lagrangian by shooting
+/// (forces and constraints were refused when the file was read).
+fn solve_exact<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
+    problem: &Problem<L, F, C>,
+    options: &SolveOptions,
+    observer: &mut O,
+) -> Result<Trajectory, Box<RunFailure>> {
+    let l = problem.lagrangian();
+    let failure = |error| {
+        let trajectory = Trajectory::new(l.dof(), 0, problem.grid().h);
+        Box::new(RunFailure { error, trajectory })
+    };
+    let exact = ExactDiscreteLagrangian::new(l);
+    let mut integrator = Integrator::new(exact)
+        .with_options(options.newton)
+        .map_err(failure)?
+        .with_compensated_summation(options.compensated);
+    integrator.set_velocity_hint(problem.initial_velocity());
+    let (start, grid) = (problem.start().clone(), problem.grid());
+    simulate(&mut integrator, start, grid, &options.run, observer)
+        .into_result()
+        .map_err(|failure| explain_exact_failure(l, failure, grid.h))
+}
+
+/// A failed step of `L_d^E` is reported by the integrator as a non-finite value (the shooting
+/// evaluates to NaN when its boundary value problem has no solution): the shooting's own error
+/// at the last good state, from the chord `q₁ = q_k + h v_k` ([`ExactDiscreteLagrangian::boundary_value`]),
+/// says why.
+fn explain_exact_failure<L: Lagrangian>(
+    l: &L,
+    mut failure: Box<RunFailure>,
+    h: f64,
+) -> Box<RunFailure> {
+    let marsden::Error::Step(step) = &failure.error else {
+        return failure;
+    };
+    let trajectory = &failure.trajectory;
+    let Some(last) = trajectory.len().checked_sub(1) else {
+        return failure;
+    };
+    let (t, q, p) = (trajectory.t(last), trajectory.q(last), trajectory.p(last));
+    let mut v = vec![0.0; q.len()];
+    if marsden::mechanics::velocity(l, t, q, p, &mut v).is_err() {
+        return failure;
+    }
+    let q1: Vec<f64> = q.iter().zip(&v).map(|(q, v)| q + h * v).collect();
+    let exact = ExactDiscreteLagrangian::new(l);
+    if let Err(why) = exact.boundary_value(t, h, q, &q1) {
+        failure.error = marsden::Error::Setup(marsden::error::SetupError::ExactStepFailed {
+            step: step.step,
+            t: step.t,
+            reason: why.to_string(),
+        });
+    }
+    failure
+}
+
+/// [`solve`], and for an active force or a Lagrangian depending on `t` (`time_dependent`) and
+/// a two-point rule the discrete energy balance of every step ([`Balanced`], with the
+/// `∂L_d/∂t₀` term when `time_dependent`) and the forced Noether balance of every symmetry in
+/// `maps` ([`NoetherBalanced`]) on the way (the energy series keeps every `every`-th step).
+pub fn solve_balanced<L: Lagrangian, F: Force, C: Constraint, M, O: Observer + ?Sized>(
+    (problem, maps): (&Problem<L, F, C>, &[M]),
+    (rule, output): (&Rule, Output),
+    options: &SolveOptions,
+    observer: &mut O,
+) -> (Result<Trajectory, Box<RunFailure>>, Option<Balances>)
+where
+    M: MomentumMap + GroupAction,
+{
+    use marsden::discrete::DiscreteAction as _;
+    let Output {
+        every,
+        time_dependent,
+    } = output;
+    let l = problem.lagrangian();
+    let two_point = rule.discretize(l).internal_stages() == 0;
+    if !(problem.force().is_active() || time_dependent) || !two_point {
+        return (problem.solve_with(rule, options, observer), None);
+    }
+    let force = rule.discretize_force(problem.force(), l.dof());
+    let noether_force = rule.discretize_force(problem.force(), l.dof());
+    let h = problem.grid().h;
+    let total = problem.grid().steps;
+    let names = maps
+        .iter()
+        .map(|m| MomentumMap::name(m).to_owned())
+        .collect();
+    let mut noether = NoetherBalanced::new((names, maps), (&noether_force, h), observer);
+    let time = time_dependent.then(|| rule.discretize_force(TimeDerivative(l), l.dof()));
+    let mut balanced = Balanced::new(l, (force, time, h), (every, total), &mut noether);
+    let result = problem.solve_with(rule, options, &mut balanced);
+    let balances = Balances {
+        energy: balanced.summary,
+        series: balanced.series,
+        noether: noether.balances(),
+    };
+    (result, Some(balances))
+}
+
+/// The balances of a forced run with a two-point rule: the discrete energy balance (its
+/// summary, and its series at the stored steps for the plot) and the forced Noether balance of
+/// each symmetry.
+pub struct Balances {
+    /// The energy balance's summary.
+    pub energy: BalanceSummary,
+    /// The energy balance at the stored steps.
+    pub series: BalanceSeries,
+    /// The forced Noether balance of each symmetry, by name.
+    pub noether: Vec<(String, NoetherBalance)>,
+}
+
+/// The last good state of a run (`summary.json`'s `final_state { … }`).
+#[derive(Debug, Clone, Serialize)]
+pub struct FinalState {
+    /// Time.
+    pub t: f64,
+    /// Positions.
+    pub q: Vec<f64>,
+    /// Momenta.
+    pub p: Vec<f64>,
+}
+
+/// Where the rows of a run go: a sink, and whether each row carries the velocities too (for
+/// the in-memory samples of the caller).
+pub struct Destination<'s> {
+    /// The writer.
+    pub sink: &'s mut (dyn RowSink + 's),
+    /// Append `v` to every row.
+    pub with_velocity: bool,
+}
+
+/// Runs `spec` with `lagrangian` by `rule` (the file's forces, constraints and symmetries),
+/// streaming rows into `destination`; with the energy and Noether balances of a forced run
+/// ([`solve_balanced`]) and the certificates when `[analysis] certify = true`.
+///
+/// # Errors
+/// Only if the core rejects the initial state (already checked by
+/// [`start::prepare_with`]); a failing run is a [`RunRecord`] with an error message, not an
+/// `Err`.
+pub fn run_by_rule<L: Lagrangian>(
+    spec: &RunSpec,
+    rule: &Rule,
+    lagrangian: &L,
+    destination: Destination<'_>,
+    controls: &Controls<'_>,
+) -> Result<RunRecord, Diagnostic> {
+    let s = &spec.system;
+    let force = s.force.on(lagrangian);
+    let maps = s.symmetries.as_slice();
+    let mut session = Session::open(spec, (lagrangian, &force), destination, controls)?;
+    let output = Output {
+        every: spec.output.every,
+        time_dependent: s.depends_on_time(),
+    };
+    let (result, balance) = solve_balanced(
+        (&session.problem, maps),
+        (rule, output),
+        &session.options,
+        &mut session.observer,
+    );
+    let (mut record, problem) = session.finish(result, balance);
+    if spec.analysis.certify {
+        let ends = RunEnds::of(&problem, &record);
+        let (names, i) = (symmetry_names(spec), &spec.integrator);
+        let symmetries = (names.as_slice(), maps);
+        let step = (rule, i.newton, i.grid.h);
+        record.certificate = Some(certify(&problem, symmetries, step, &ends.view()));
+    }
+    Ok(record)
+}
+
+/// Runs `spec` with `method = "exact"`: the integrator steps `L_d^E` of `lagrangian` by
+/// shooting (forces and constraints were refused when the file was read); its certificate has
+/// no step Jacobian to offer.
+///
+/// # Errors
+/// As [`run_by_rule`].
+pub fn run_exact<L: Lagrangian>(
+    spec: &RunSpec,
+    lagrangian: &L,
+    destination: Destination<'_>,
+    controls: &Controls<'_>,
+) -> Result<RunRecord, Diagnostic> {
+    let force = spec.system.force.on(lagrangian);
+    let mut session = Session::open(spec, (lagrangian, &force), destination, controls)?;
+    let result = solve_exact(&session.problem, &session.options, &mut session.observer);
+    let (mut record, _) = session.finish(result, None);
+    if spec.analysis.certify {
+        record.certificate = Some(without_step_jacobian(force.is_active()));
+    }
+    Ok(record)
+}
+
+/// What a run streams besides the states: the energy series keeps every `every`-th step, and
+/// a Lagrangian that reads `t` adds the `∂L_d/∂t₀` term to the energy balance.
+#[derive(Debug, Clone, Copy)]
+pub struct Output {
+    /// Store every `every`-th step.
+    pub every: usize,
+    /// The Lagrangian depends on `t`.
+    pub time_dependent: bool,
+}
+
+/// A run being made: the problem (built once), the solver's options, the observer streaming
+/// the rows, and the clock.
+struct Session<'a, 's, L, F> {
+    problem: Problem<&'a L, &'a F, &'a ExprConstraint>,
+    options: SolveOptions,
+    observer: StreamObserver<'a, 's, L, ExprConstraint, Symmetry>,
+    clock: Instant,
+}
+
+impl<'a, 's, L: Lagrangian, F: Force> Session<'a, 's, L, F> {
+    /// The problem of `spec` with `force`, and an observer writing into `destination`.
+    fn open(
+        spec: &'a RunSpec,
+        (lagrangian, force): (&'a L, &'a F),
+        destination: Destination<'s>,
+        controls: &'a Controls<'a>,
+    ) -> Result<Self, Diagnostic> {
+        let s = &spec.system;
+        let grid = spec.integrator.grid;
+        let problem =
+            start::constrained_problem(spec, lagrangian, &s.constraint)?.with_force(force);
+        let options = SolveOptions {
+            newton: spec.integrator.newton,
+            // The observer stores the samples; the core keeps only the first and the last.
+            run: marsden::RunOptions { stride: usize::MAX },
+            general_path: !spec.integrator.fast_paths,
+            compensated: spec.integrator.compensated,
+        };
+        let parts = (
+            (Some(lagrangian), lagrangian.dof()),
+            &s.constraint,
+            s.symmetries.as_slice(),
+        );
+        let sink = (destination.sink, destination.with_velocity);
+        let observer = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), controls)
+            .monitoring_every_step(spec.analysis.every_step);
+        Ok(Session {
+            problem,
+            options,
+            observer,
+            clock: Instant::now(),
+        })
+    }
+
+    /// The record of the run that ended with `result`, with its balances; and the problem,
+    /// for the certificates.
+    fn finish(
+        self,
+        result: Result<Trajectory, Box<RunFailure>>,
+        balance: Option<Balances>,
+    ) -> (RunRecord, Problem<&'a L, &'a F, &'a ExprConstraint>) {
+        let wall_seconds = self.clock.elapsed().as_secs_f64();
+        let mut record = finish(self.observer, result, wall_seconds);
+        if let Some(b) = balance {
+            (record.balance, record.balance_series) = (Some(b.energy), Some(b.series));
+            record.noether_balance = b.noether;
+        }
+        (record, self.problem)
+    }
+}
+
+/// The record of a run that ended with `result` after `wall_seconds`, its last state written
+/// (no balances, no certificate).
+pub(super) fn finish<L: Lagrangian, C: Constraint, M: MomentumMap>(
+    mut observer: StreamObserver<'_, '_, L, C, M>,
+    result: Result<Trajectory, Box<RunFailure>>,
+    wall_seconds: f64,
+) -> RunRecord {
+    let (trajectory, error) = match result {
+        Ok(t) => (t, None),
+        Err(failure) => (failure.trajectory, Some(failure.error.to_string())),
+    };
+    observer.finish(trajectory.steps);
+    observer.record_last(&trajectory);
+    let io = observer
+        .io_error
+        .as_ref()
+        .map(|e| format!("writing the trajectory failed: {e}"));
+    let energy = non_finite_energy(&observer.diagnostics, observer.rows());
+    RunRecord {
+        error: error.or(io).or(energy),
+        interrupted: observer.interrupted,
+        steps: trajectory.steps,
+        final_state: final_state(&trajectory),
+        statistics: trajectory.statistics,
+        wall_seconds,
+        rows: observer.rows(),
+        diagnostics: observer.diagnostics,
+        balance: None,
+        balance_series: None,
+        noether_balance: Vec::new(),
+        certificate: None,
+    }
+}
+
+/// A failure if any stored energy was not finite: a run whose energies are NaN or infinite
+/// preserved nothing that can be reported, even if every step converged.
+fn non_finite_energy(diagnostics: &Diagnostics, rows: u64) -> Option<String> {
+    let bad = diagnostics.energy.report().failures;
+    (bad > 0).then(|| {
+        format!(
+            "the energy ⟨p, q̇⟩ − L is not finite at {bad} of the {rows} stored states: the \
+             Lagrangian or its derivatives are not finite along the trajectory"
+        )
+    })
+}
+
+fn final_state(trajectory: &Trajectory) -> FinalState {
+    match trajectory.len().checked_sub(1) {
+        Some(i) => FinalState {
+            t: trajectory.t(i),
+            q: trajectory.q(i).to_vec(),
+            p: trajectory.p(i).to_vec(),
+        },
+        None => FinalState {
+            t: f64::NAN,
+            q: Vec::new(),
+            p: Vec::new(),
+        },
+    }
+}
+
+/// The two ends of a run for its certificates: the problem's start and the last good state.
+struct RunEnds<'p> {
+    start: &'p marsden::State,
+    v0: &'p [f64],
+    end: marsden::State,
+}
+
+impl<'p> RunEnds<'p> {
+    fn of<L: Lagrangian, F: Force, C: Constraint>(
+        problem: &'p Problem<L, F, C>,
+        record: &RunRecord,
+    ) -> Self {
+        let f = &record.final_state;
+        RunEnds {
+            start: problem.start(),
+            v0: problem.initial_velocity(),
+            end: marsden::State {
+                t: f.t,
+                q: f.q.clone(),
+                p: f.p.clone(),
+            },
+        }
+    }
+
+    fn view(&self) -> Ends<'_> {
+        Ends {
+            start: self.start,
+            v0: self.v0,
+            end: &self.end,
+        }
+    }
+}
+
+/// The names of the file's symmetries, in its order.
+fn symmetry_names(spec: &RunSpec) -> Vec<String> {
+    (spec.system.symmetries.iter())
+        .map(|m| MomentumMap::name(m).to_owned())
+        .collect()
+}

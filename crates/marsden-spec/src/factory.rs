@@ -1,0 +1,47 @@
+//! The one place where a problem file's system becomes a type: [`engine_for`] returns the
+//! [`Engine`] of the file's system, compiled for its Lagrangian type — a catalog system's in
+//! `marsden-engine-catalog`, an expression system's here. Everything after this call is
+//! non-generic.
+
+use marsden_engine::{DiscreteEngine, Engine, ExactRun, Typed};
+
+use crate::error::Diagnostic;
+use crate::problem::{LagrangianSpec, RunSpec};
+use crate::run::start::Start;
+
+/// The engine of `spec`'s system. With `method = "exact"` its runs step the exact discrete
+/// Lagrangian by shooting ([`ExactRun`]; the catalog's through the one forwarding type), and
+/// every other computation is the system's own.
+pub fn engine_for(spec: &RunSpec) -> Box<dyn Engine + '_> {
+    let exact = spec.integrator.method.rule().is_none();
+    match &spec.system.lagrangian {
+        LagrangianSpec::Builtin { system, .. } => match exact {
+            true => marsden_engine_catalog::exact_engine(system),
+            false => marsden_engine_catalog::engine(system),
+        },
+        LagrangianSpec::Expression(l) => match exact {
+            true => Box::new(ExactRun {
+                lagrangian: l,
+                rest: Box::new(Typed(l)),
+            }),
+            false => Box::new(Typed(l)),
+        },
+        LagrangianSpec::Hamiltonian(l) => match exact {
+            true => Box::new(ExactRun {
+                lagrangian: l,
+                rest: Box::new(Typed(l)),
+            }),
+            false => Box::new(Typed(l)),
+        },
+        LagrangianSpec::Discrete(ld) => Box::new(DiscreteEngine(ld)),
+    }
+}
+
+/// The complete initial state of `spec`, checked ([`Engine::prepare`] of its engine).
+///
+/// # Errors
+/// The core's objection (a singular Lagrangian, a Legendre transform that cannot be
+/// inverted), pointing at the Lagrangian or the initial data.
+pub fn prepare(spec: &RunSpec) -> Result<Start, Diagnostic> {
+    engine_for(spec).prepare(spec)
+}
