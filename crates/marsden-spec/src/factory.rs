@@ -1,10 +1,11 @@
 //! The one place where a problem file's system becomes a type: [`engine_for`] returns the
 //! [`Engine`] of the file's system, compiled for its Lagrangian type — a catalog system's in
-//! `marsden-engine-catalog`, an expression system's here. Everything after this call is
-//! non-generic.
+//! `marsden-engine-oscillators` or `marsden-engine-orbits`, an expression system's here.
+//! Everything after this call is non-generic.
 
 use marsden_engine::{DiscreteEngine, Engine, ExactRun, Typed};
 
+use crate::catalog::BuiltinSystem;
 use crate::error::Diagnostic;
 use crate::problem::{LagrangianSpec, RunSpec};
 use crate::run::start::Start;
@@ -16,8 +17,8 @@ pub fn engine_for(spec: &RunSpec) -> Box<dyn Engine + '_> {
     let exact = spec.integrator.method.rule().is_none();
     match &spec.system.lagrangian {
         LagrangianSpec::Builtin { system, .. } => match exact {
-            true => marsden_engine_catalog::exact_engine(system),
-            false => marsden_engine_catalog::engine(system),
+            true => marsden_engine_orbits::exact(system, catalog_engine(system)),
+            false => catalog_engine(system),
         },
         LagrangianSpec::Expression(l) => match exact {
             true => Box::new(ExactRun {
@@ -34,6 +35,21 @@ pub fn engine_for(spec: &RunSpec) -> Box<dyn Engine + '_> {
             false => Box::new(Typed(l)),
         },
         LagrangianSpec::Discrete(ld) => Box::new(DiscreteEngine(ld)),
+    }
+}
+
+/// The engine of a catalog system, compiled in one of the two catalog crates.
+fn catalog_engine(system: &BuiltinSystem) -> Box<dyn Engine + '_> {
+    use marsden_engine_orbits as orbits;
+    use marsden_engine_oscillators as oscillators;
+    match system {
+        BuiltinSystem::HarmonicOscillator(s) => oscillators::harmonic_oscillator(s),
+        BuiltinSystem::FreeFall(s) => oscillators::free_fall(s),
+        BuiltinSystem::Pendulum(s) => oscillators::pendulum(s),
+        BuiltinSystem::DoublePendulum(s) => oscillators::double_pendulum(s),
+        BuiltinSystem::Kepler(s) => orbits::kepler(s),
+        BuiltinSystem::HenonHeiles(s) => orbits::henon_heiles(s),
+        BuiltinSystem::NBody(s) => orbits::nbody(s),
     }
 }
 

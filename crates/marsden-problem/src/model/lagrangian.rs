@@ -326,7 +326,10 @@ impl Lagrangian for ExprLagrangian {
         self.dof
     }
 
-    #[inline]
+    // Always inlined: at the small kernels' dual numbers a call copies every argument and the
+    // result (hundreds of bytes each), which the rules' node closures otherwise pay per
+    // evaluation (BENCHMARKS.md, "Build time").
+    #[inline(always)]
     fn lagrangian<S: Scalar>(&self, t: S, q: &[S], v: &[S]) -> S {
         if let Some(value) = self.jet.as_deref().and_then(|jet| jet.compose(t, q, v)) {
             return value;

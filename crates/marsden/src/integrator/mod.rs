@@ -219,7 +219,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             Err(failure) => return Err(self.newton_error(failure, step, state, z)),
         };
         self.check_finite(z, step, state.t)?;
-        self.project(z, state, h, step)?;
+        if self.projection.is_active() {
+            self.project(z, state, h, step)?;
+        }
         Ok(report)
     }
 

@@ -150,6 +150,7 @@ impl ExplicitWorkspace {
     }
 
     /// Marks the gradient held as the one at `(t, q)`.
+    #[inline]
     fn remember(&mut self, t: f64, q: &[f64]) {
         self.cache_q.copy_from_slice(q);
         self.cache_t = t;
@@ -179,6 +180,7 @@ impl ExplicitWorkspace {
     }
 
     /// Whether the cached gradient was taken at `(t, q)`.
+    #[inline]
     fn holds(&self, t: f64, h: f64, q: &[f64]) -> bool {
         let close = (t - self.cache_t).abs() <= 16.0 * f64::EPSILON * t.abs().max(h.abs());
         self.cache_valid && close && self.cache_q.as_slice() == q
