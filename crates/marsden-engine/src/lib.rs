@@ -3,9 +3,9 @@
 //!
 //! A problem file names its system at run time; the integrator's hot loops are compiled for
 //! each Lagrangian type. This crate holds the generic code and instantiates none of it: the
-//! catalog's systems are compiled in `marsden-engine-oscillators` and `marsden-engine-orbits`,
-//! the expression systems in `marsden-spec` (whose factory chooses the engine for a file), so
-//! the three compile side by side. The caller holds a `Box<dyn Engine>`: one indirect call per run, none per step.
+//! catalog's systems are compiled in `marsden-engine-catalog`, the expression systems (and the
+//! catalog's shared `exact` run) in `marsden-spec`, whose factory chooses the engine for a
+//! file: the two compile side by side. The caller holds a `Box<dyn Engine>`: one indirect call per run, none per step.
 //!
 //! # Map of the crate
 //!

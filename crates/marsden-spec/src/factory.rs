@@ -1,6 +1,6 @@
 //! The one place where a problem file's system becomes a type: [`engine_for`] returns the
 //! [`Engine`] of the file's system, compiled for its Lagrangian type — a catalog system's in
-//! `marsden-engine-oscillators` or `marsden-engine-orbits`, an expression system's here.
+//! `marsden-engine-catalog`, an expression system's (and the catalog's shared `exact` run) here.
 //! Everything after this call is non-generic.
 
 use marsden_engine::{DiscreteEngine, Engine, ExactRun, Typed};
@@ -17,7 +17,10 @@ pub fn engine_for(spec: &RunSpec) -> Box<dyn Engine + '_> {
     let exact = spec.integrator.method.rule().is_none();
     match &spec.system.lagrangian {
         LagrangianSpec::Builtin { system, .. } => match exact {
-            true => marsden_engine_orbits::exact(system, catalog_engine(system)),
+            true => Box::new(ExactRun {
+                lagrangian: system,
+                rest: catalog_engine(system),
+            }),
             false => catalog_engine(system),
         },
         LagrangianSpec::Expression(l) => match exact {
@@ -38,18 +41,17 @@ pub fn engine_for(spec: &RunSpec) -> Box<dyn Engine + '_> {
     }
 }
 
-/// The engine of a catalog system, compiled in one of the two catalog crates.
+/// The engine of a catalog system, compiled in `marsden-engine-catalog`.
 fn catalog_engine(system: &BuiltinSystem) -> Box<dyn Engine + '_> {
-    use marsden_engine_orbits as orbits;
-    use marsden_engine_oscillators as oscillators;
+    use marsden_engine_catalog as catalog;
     match system {
-        BuiltinSystem::HarmonicOscillator(s) => oscillators::harmonic_oscillator(s),
-        BuiltinSystem::FreeFall(s) => oscillators::free_fall(s),
-        BuiltinSystem::Pendulum(s) => oscillators::pendulum(s),
-        BuiltinSystem::DoublePendulum(s) => oscillators::double_pendulum(s),
-        BuiltinSystem::Kepler(s) => orbits::kepler(s),
-        BuiltinSystem::HenonHeiles(s) => orbits::henon_heiles(s),
-        BuiltinSystem::NBody(s) => orbits::nbody(s),
+        BuiltinSystem::HarmonicOscillator(s) => catalog::harmonic_oscillator(s),
+        BuiltinSystem::FreeFall(s) => catalog::free_fall(s),
+        BuiltinSystem::Pendulum(s) => catalog::pendulum(s),
+        BuiltinSystem::DoublePendulum(s) => catalog::double_pendulum(s),
+        BuiltinSystem::Kepler(s) => catalog::kepler(s),
+        BuiltinSystem::HenonHeiles(s) => catalog::henon_heiles(s),
+        BuiltinSystem::NBody(s) => catalog::nbody(s),
     }
 }
 

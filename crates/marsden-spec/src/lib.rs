@@ -21,7 +21,7 @@
 //! ```text
 //! marsden-problem   TOML ──raw (serde, spans)──▶ RunSpec (its system a typed Lagrangian)
 //! marsden-engine    Engine: prepare · run · initial_tangent · order_study, generic over L
-//! marsden-engine-oscillators, marsden-engine-orbits   the engine compiled for the catalog
+//! marsden-engine-catalog   the engine compiled for the catalog's systems
 //! marsden-spec      factory: RunSpec ──engine_for──▶ Box<dyn Engine> (the expression systems
 //!                   compiled here); execute, sweeps, summary.json, plots, report texts
 //! ```

@@ -334,7 +334,13 @@ impl Lagrangian for ExprLagrangian {
         if let Some(value) = self.jet.as_deref().and_then(|jet| jet.compose(t, q, v)) {
             return value;
         }
-        with_inputs(q, v, t, |x| self.program.eval(x))
+        with_inputs(
+            q,
+            v,
+            t,
+            #[inline(always)]
+            |x| self.program.eval(x),
+        )
     }
 
     fn structure(&self) -> Structure {

@@ -14,7 +14,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     Integrator<A, F, C, P>
 {
     /// Fails if the converged `Δ_s = q_{k+1} − q_k` or `p_{k+1}` is not finite.
-    #[inline]
+    #[inline(always)]
     pub(super) fn check_finite(&self, z: &[f64], step: usize, t: f64) -> Result<(), Error> {
         let sn = self.shape.s * self.shape.n;
         let q_next = &z[sn - self.shape.n..sn];

@@ -56,8 +56,13 @@ impl<S: Copy, const CAP: usize> Buffer<S, CAP> {
     #[inline(always)]
     pub fn from_fn(len: usize, fill: S, mut init: impl FnMut(usize) -> S) -> Self {
         let mut buffer = Self::new(len, fill);
-        for (i, slot) in buffer.as_mut_slice().iter_mut().enumerate() {
-            *slot = init(i);
+        // A plain counted loop: this body is compiled once per `init` closure, and an
+        // iterator chain would bring its adapters' code into every copy.
+        let values = buffer.as_mut_slice();
+        let mut i = 0;
+        while i < values.len() {
+            values[i] = init(i);
+            i += 1;
         }
         buffer
     }

@@ -64,6 +64,7 @@ impl<L: Lagrangian> DiscreteLagrangian for AlphaLd<L> {
             |q, v| self.lagrangian.lagrangian(t, q, v),
         ) * h
     }
+    #[inline]
     fn separable(&self) -> Option<&dyn SeparableStep> {
         Some(self)
     }

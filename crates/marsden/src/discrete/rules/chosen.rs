@@ -164,6 +164,7 @@ macro_rules! forward_action {
             fn explicit(&self) -> Option<&dyn ExplicitStep> {
                 each!(self, x => x.explicit(), $($variant),+)
             }
+            #[inline]
             fn separable(&self) -> Option<&dyn SeparableStep> {
                 each!(self, x => x.separable(), $($variant),+)
             }
