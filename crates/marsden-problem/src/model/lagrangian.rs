@@ -127,7 +127,7 @@ impl NativeJet {
 
     /// `L` at the small kernels' dual numbers `(t, q, q̇)` from the native Taylor data;
     /// `None` for other scalar types or without native code.
-    #[inline]
+    #[inline(always)]
     fn compose<S: Scalar>(&self, t: S, q: &[S], v: &[S]) -> Option<S> {
         #[cfg(feature = "jit")]
         {
@@ -326,12 +326,14 @@ impl Lagrangian for ExprLagrangian {
         self.dof
     }
 
-    // Always inlined: at the small kernels' dual numbers a call copies every argument and the
-    // result (hundreds of bytes each), which the rules' node closures otherwise pay per
-    // evaluation (BENCHMARKS.md, "Build time").
-    #[inline(always)]
+    // No closures between the caller and the evaluation: at the small kernels' dual numbers
+    // each call boundary copies the argument and the result (hundreds of bytes), and without
+    // link-time optimisation the closures stayed calls (BENCHMARKS.md, "Build time").
+    #[inline]
     fn lagrangian<S: Scalar>(&self, t: S, q: &[S], v: &[S]) -> S {
-        if let Some(value) = self.jet.as_deref().and_then(|jet| jet.compose(t, q, v)) {
+        if let Some(jet) = self.jet.as_deref()
+            && let Some(value) = jet.compose(t, q, v)
+        {
             return value;
         }
         with_inputs(

@@ -18,11 +18,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     pub(super) fn check_finite(&self, z: &[f64], step: usize, t: f64) -> Result<(), Error> {
         let sn = self.shape.s * self.shape.n;
         let q_next = &z[sn - self.shape.n..sn];
-        if q_next
-            .iter()
-            .chain(&self.buffers.p_next)
-            .all(|x| x.is_finite())
-        {
+        // Two plain loops: a chained iterator stayed a call of its own.
+        let finite = |x: &[f64]| x.iter().all(|v| v.is_finite());
+        if finite(q_next) && finite(&self.buffers.p_next) {
             Ok(())
         } else {
             Err(Error::Step(StepFailure {
