@@ -63,9 +63,9 @@ pub trait DiscreteLagrangian {
     /// `ε|q|/h` per step, visible as a random walk of conserved momenta. The default forms
     /// `q₁ = q₀ + Δ`; override it (as the built-in rules do) to use `Δ` directly.
     fn discrete_lagrangian_offset<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], delta: &[S]) -> S {
-        let q1 = |i: usize| q0[i] + delta[i];
-        let mut q1 = Buffer::<S, NODE>::from_fn(q0.len(), S::from(0.0), q1);
-        self.discrete_lagrangian(t0, h, q0, q1.as_mut_slice())
+        let mut q1 = Buffer::<S, NODE>::empty();
+        let q1 = q1.from_fn(q0.len(), S::from(0.0), |i| q0[i] + delta[i]);
+        self.discrete_lagrangian(t0, h, q0, q1)
     }
 
     /// An explicit form of the step, if this discrete Lagrangian has one (the trapezoid rule on a

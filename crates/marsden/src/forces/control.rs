@@ -46,8 +46,8 @@ impl<U> std::fmt::Debug for Control<U> {
 impl<U: Fn(f64, &mut [f64])> Force for Control<U> {
     #[inline]
     fn force<S: Scalar>(&self, t: S, _q: &[S], _v: &[S], out: &mut [S]) {
-        let mut u = Buffer::<f64, NODE>::new(out.len(), 0.0);
-        let u = u.as_mut_slice();
+        let mut u = Buffer::<f64, NODE>::empty();
+        let u = u.filled(out.len(), 0.0);
         (self.input)(t.re(), u);
         for (o, &ui) in out.iter_mut().zip(u.iter()) {
             *o = S::from(ui);

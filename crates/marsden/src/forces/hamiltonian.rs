@@ -104,16 +104,17 @@ fn momenta<L: Lagrangian, S: Scalar>(l: &L, t: S, q: &[S], v: &[S], p: &mut [S])
         i if i <= n => q[i - 1],
         i => v[i - n - 1],
     };
-    let mut z = Buffer::<S, { 2 * NODE + 1 }>::from_fn(2 * n + 1, t, entry);
-    ad::nested_gradient(&OnTangentBundle(l), z.as_mut_slice(), n + 1..2 * n + 1, p);
+    let mut z = Buffer::<S, { 2 * NODE + 1 }>::empty();
+    let z = z.from_fn(2 * n + 1, t, entry);
+    ad::nested_gradient(&OnTangentBundle(l), &mut *z, n + 1..2 * n + 1, p);
 }
 
 impl<L: Lagrangian, H: HamiltonianForce> Force for FromHamiltonian<L, H> {
     #[inline]
     fn force<S: Scalar>(&self, t: S, q: &[S], v: &[S], out: &mut [S]) {
         let zero = S::from(0.0);
-        let mut p = Buffer::<S, NODE>::new(q.len(), zero);
-        let p = p.as_mut_slice();
+        let mut p = Buffer::<S, NODE>::empty();
+        let p = p.filled(q.len(), zero);
         momenta(&self.lagrangian, t, q, v, p);
         self.force.hamiltonian_force(t, q, p, out);
     }

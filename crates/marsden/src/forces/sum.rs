@@ -39,8 +39,8 @@ const SCRATCH: usize = 16;
 #[inline(always)]
 fn add_into<S: Scalar>(out: &mut [S], fill: impl FnOnce(&mut [S])) {
     let zero = S::from(0.0);
-    let mut second = Buffer::<S, SCRATCH>::new(out.len(), zero);
-    let second = second.as_mut_slice();
+    let mut second = Buffer::<S, SCRATCH>::empty();
+    let second = second.filled(out.len(), zero);
     fill(second);
     out.iter_mut()
         .zip(second.iter())

@@ -58,8 +58,9 @@ pub trait TwoPointForce {
         plus: &mut [S],
     ) {
         let zero = S::from(0.0);
-        let mut q1 = Buffer::<S, NODE>::from_fn(q0.len(), zero, |i| q0[i] + delta[i]);
-        self.two_point_force(t0, h, q0, q1.as_mut_slice(), minus, plus);
+        let mut q1 = Buffer::<S, NODE>::empty();
+        let q1 = q1.from_fn(q0.len(), zero, |i| q0[i] + delta[i]);
+        self.two_point_force(t0, h, q0, &mut *q1, minus, plus);
     }
 }
 

@@ -468,10 +468,9 @@ impl<L: Lagrangian> MultiFunction for InVelocity<'_, L> {
     #[inline]
     fn eval<S: Scalar>(&self, v: &[S], out: &mut [S]) {
         let zero = S::from(0.0);
-        let mut q = Buffer::<S, NODE>::from_fn(self.q.len(), zero, |i| S::from(self.q[i]));
-        out[0] = self
-            .lagrangian
-            .lagrangian(S::from(self.t), q.as_mut_slice(), v);
+        let mut q = Buffer::<S, NODE>::empty();
+        let q = q.from_fn(self.q.len(), zero, |i| S::from(self.q[i]));
+        out[0] = self.lagrangian.lagrangian(S::from(self.t), &mut *q, v);
     }
 }
 

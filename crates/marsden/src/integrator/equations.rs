@@ -115,8 +115,8 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
             let a = q0[i % sh.n];
             offsets[i] + (S::from(a.re()) - a)
         };
-        let mut held = Buffer::<S, OFFSETS>::from_fn(offsets.len(), zero, shifted);
-        let offsets: &[S] = held.as_mut_slice();
+        let mut held = Buffer::<S, OFFSETS>::empty();
+        let offsets: &[S] = held.from_fn(offsets.len(), zero, shifted);
         out[0] = self.action.action(self.t0, self.h, q0, offsets);
         let nf = sh.force_outputs();
         if nf > 0 {
@@ -126,9 +126,10 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
         }
         if sh.d > 0 {
             let last = &offsets[(sh.s - 1) * sh.n..];
-            let mut q_end = Buffer::<S, NODE>::from_fn(sh.n, zero, |i| q0[i] + last[i]);
+            let mut q_end = Buffer::<S, NODE>::empty();
+            let q_end = q_end.from_fn(sh.n, zero, |i| q0[i] + last[i]);
             self.constraint
-                .constraint(q_end.as_mut_slice(), &mut out[1 + nf..1 + nf + sh.d]);
+                .constraint(&mut *q_end, &mut out[1 + nf..1 + nf + sh.d]);
             if sh.stages > 0 {
                 self.stage_constraints(q0, offsets, &mut out[..]);
             }
@@ -145,8 +146,9 @@ impl<A: DiscreteAction, F, C: Constraint> StepFunction<'_, A, F, C> {
         let first = 1 + sh.force_outputs() + sh.d;
         for i in 0..sh.stages {
             let block = first + i * sh.d;
-            let mut stage = Buffer::<S, NODE>::new(sh.n, zero);
-            let x = stage.as_mut_slice();
+            let mut stage = Buffer::<S, NODE>::empty();
+            let stage = stage.filled(sh.n, zero);
+            let x = &mut *stage;
             self.action.stage_point(i, q0, offsets, x);
             self.constraint.constraint(x, &mut out[block..block + sh.d]);
             for c in 0..sh.d {

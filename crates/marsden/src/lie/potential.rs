@@ -164,10 +164,11 @@ impl<U: RigidPotential> MultiFunction for Perturbed<'_, U> {
             let (a, b) = ((col + 1) % 3, (col + 2) % 3);
             xi[b] * r[a] - xi[a] * r[b] + r[col]
         };
-        let mut rotations = Buffer::<S, INLINE>::from_fn(9 * bodies, zero, rotation);
+        let mut rotations = Buffer::<S, INLINE>::empty();
+        let rotations = rotations.from_fn(9 * bodies, zero, rotation);
         let position = |k: usize| S::from(self.positions[k]);
-        let mut positions = Buffer::<S, INLINE>::from_fn(3 * bodies, zero, position);
-        let positions = positions.as_mut_slice();
+        let mut positions = Buffer::<S, INLINE>::empty();
+        let positions = positions.from_fn(3 * bodies, zero, position);
         for (slot, &body) in self.free.iter().enumerate() {
             for a in 0..3 {
                 positions[3 * body + a] += z[3 * bodies + 3 * slot + a];
@@ -175,7 +176,7 @@ impl<U: RigidPotential> MultiFunction for Perturbed<'_, U> {
         }
         out[0] = self
             .potential
-            .value(S::from(self.t), rotations.as_mut_slice(), positions);
+            .value(S::from(self.t), &mut *rotations, positions);
     }
 }
 

@@ -221,10 +221,9 @@ impl<L: Lagrangian + ?Sized> MultiFunction for PotentialOf<'_, L> {
     #[inline]
     fn eval<S: Scalar>(&self, q: &[S], out: &mut [S]) {
         let zero = S::from(0.0);
-        let mut v = Buffer::<S, NODE>::new(q.len(), zero);
-        out[0] = -self
-            .lagrangian
-            .lagrangian(S::from(self.t), q, v.as_mut_slice());
+        let mut v = Buffer::<S, NODE>::empty();
+        let v = v.filled(q.len(), zero);
+        out[0] = -self.lagrangian.lagrangian(S::from(self.t), q, &mut *v);
     }
 }
 

@@ -170,10 +170,11 @@ pub fn nested_gradient<S: Scalar, F: MultiFunction>(
 pub fn directional_second<F: MultiFunction>(f: &F, x: &[f64], u: &[f64], w: &[f64]) -> f64 {
     let zero = HyperDual64::from(0.0);
     let seed = |i: usize| HyperDual64::new(x[i], u[i], w[i], 0.0);
-    let mut xs = Buffer::<_, INLINE>::from_fn(x.len(), zero, seed);
-    let mut res = Buffer::<_, INLINE>::new(f.outputs(), zero);
-    let res = res.as_mut_slice();
-    f.eval(xs.as_mut_slice(), res);
+    let mut xs = Buffer::<_, INLINE>::empty();
+    let xs = xs.from_fn(x.len(), zero, seed);
+    let mut res = Buffer::<_, INLINE>::empty();
+    let res = res.filled(f.outputs(), zero);
+    f.eval(&mut *xs, res);
     res[0].eps1eps2
 }
 
@@ -187,10 +188,10 @@ fn jacobian_chunked<const C: usize, F: MultiFunction>(
     let (nc, m) = (cols.len(), f.outputs());
     let zero = DualSVec64::<C>::from_re(0.0);
     let init = |i: usize| DualSVec64::<C>::from_re(x[i]);
-    let mut xs = Buffer::<_, INLINE>::from_fn(x.len(), zero, init);
-    let xs = xs.as_mut_slice();
-    let mut out = Buffer::<_, INLINE>::new(m, zero);
-    let out = out.as_mut_slice();
+    let mut xs = Buffer::<_, INLINE>::empty();
+    let xs = xs.from_fn(x.len(), zero, init);
+    let mut out = Buffer::<_, INLINE>::empty();
+    let out = out.filled(m, zero);
     let mut evaluations = 0;
     for jb in (0..nc).step_by(C) {
         let width = C.min(nc - jb);
@@ -223,10 +224,10 @@ fn hessian_chunked<const C: usize, F: MultiFunction>(
 ) {
     let (nr, nc, m) = (rows.len(), cols.len(), f.outputs());
     let zero = hd_re::<C>(0.0);
-    let mut xs = Buffer::<_, INLINE>::from_fn(x.len(), zero, |i| hd_re::<C>(x[i]));
-    let xs = xs.as_mut_slice();
-    let mut res = Buffer::<_, INLINE>::new(m, zero);
-    let res = res.as_mut_slice();
+    let mut xs = Buffer::<_, INLINE>::empty();
+    let xs = xs.from_fn(x.len(), zero, |i| hd_re::<C>(x[i]));
+    let mut res = Buffer::<_, INLINE>::empty();
+    let res = res.filled(m, zero);
     // At least one chunk each way, so values are written even if a range is empty.
     for ib in (0..nr.max(1)).step_by(C) {
         for jb in (0..nc.max(1)).step_by(C) {
@@ -263,10 +264,11 @@ fn hessian_scalar<F: MultiFunction>(
         v.eps2 = if cols.contains(&i) { 1.0 } else { 0.0 };
         v
     };
-    let mut xs = Buffer::<_, 4>::from_fn(x.len(), zero, seed);
-    let mut res = Buffer::<_, 4>::new(f.outputs(), zero);
-    let res = res.as_mut_slice();
-    f.eval(xs.as_mut_slice(), res);
+    let mut xs = Buffer::<_, 4>::empty();
+    let xs = xs.from_fn(x.len(), zero, seed);
+    let mut res = Buffer::<_, 4>::empty();
+    let res = res.filled(f.outputs(), zero);
+    f.eval(&mut *xs, res);
     out.evaluations += 1;
     for (i, o) in res.iter().enumerate() {
         out.values[i] = o.re;

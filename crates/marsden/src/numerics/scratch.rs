@@ -5,7 +5,7 @@
 //! array in the frame that declares it; longer vectors go to the heap, so small systems never
 //! allocate and large ones still work.
 //!
-//! A `Buffer` is a value, not a scope: the code that uses it is written where it is declared.
+//! A `Buffer` is a local, not a scope: the code that uses it is written where it is declared.
 //! (An earlier form took the using code as a closure, which compiled the buffer's set-up once
 //! per closure type — a fifth of the problem-file layer's code; BENCHMARKS.md, "Build time".)
 //!
@@ -14,67 +14,80 @@
 //! that fits, so the unused tail that must be initialised stays short even for large dual
 //! numbers.
 
-/// `len` values of `S`: on the stack if `len ≤ CAP`, else on the heap. Up to two values take
-/// an array of two, so that small systems do not pay for filling a long array of hyper-dual
-/// numbers.
+/// Room for `len` values of `S` in the frame that declares it: an array of `CAP` if
+/// `len ≤ CAP`, else the heap. Up to two values take an array of two, so that small systems do
+/// not pay for filling a long array of hyper-dual numbers.
+///
+/// Declared empty, then filled in place ([`Buffer::filled`], [`Buffer::from_fn`]), which
+/// hands out the slice: the storage is never returned or moved, so its array (hundreds of bytes
+/// for dual numbers) is never copied — a constructor returning the filled buffer cost a
+/// `memcpy` of the whole array per buffer where the build does not optimise across crates.
 ///
 /// ```
 /// use marsden::numerics::scratch::Buffer;
 ///
-/// let mut squares = Buffer::<f64, 4>::from_fn(3, 0.0, |i| (i * i) as f64);
-/// let x = squares.as_mut_slice();
+/// let mut squares = Buffer::<f64, 4>::empty();
+/// let x = squares.from_fn(3, 0.0, |i| (i * i) as f64);
 /// x[0] = 7.0;
 /// assert_eq!(x, [7.0, 1.0, 4.0]);
 /// ```
 pub struct Buffer<S, const CAP: usize> {
     storage: Storage<S, CAP>,
-    len: usize,
 }
 
 /// Where a [`Buffer`]'s values live.
 enum Storage<S, const CAP: usize> {
+    Empty,
     Two([S; 2]),
     Inline([S; CAP]),
     Heap(Vec<S>),
 }
 
 impl<S: Copy, const CAP: usize> Buffer<S, CAP> {
+    /// No values yet.
+    #[inline(always)]
+    pub const fn empty() -> Self {
+        Buffer {
+            storage: Storage::Empty,
+        }
+    }
+
     /// `len` copies of `fill` (which also pads the unused part of the array).
     #[inline(always)]
-    pub fn new(len: usize, fill: S) -> Self {
-        let storage = if len <= 2 {
+    pub fn filled(&mut self, len: usize, fill: S) -> &mut [S] {
+        self.storage = if len <= 2 {
             Storage::Two([fill; 2])
         } else if len <= CAP {
             Storage::Inline([fill; CAP])
         } else {
             Storage::Heap(vec![fill; len])
         };
-        Buffer { storage, len }
+        match &mut self.storage {
+            Storage::Empty => &mut [],
+            Storage::Two(two) => &mut two[..len],
+            Storage::Inline(inline) => &mut inline[..len],
+            Storage::Heap(heap) => heap,
+        }
     }
 
     /// The values `init(0) … init(len − 1)`; `fill` pads the unused part of the array.
     #[inline(always)]
-    pub fn from_fn(len: usize, fill: S, mut init: impl FnMut(usize) -> S) -> Self {
-        let mut buffer = Self::new(len, fill);
+    pub fn from_fn(&mut self, len: usize, fill: S, mut init: impl FnMut(usize) -> S) -> &mut [S] {
+        let values = self.filled(len, fill);
         // A plain counted loop: this body is compiled once per `init` closure, and an
         // iterator chain would bring its adapters' code into every copy.
-        let values = buffer.as_mut_slice();
         let mut i = 0;
         while i < values.len() {
             values[i] = init(i);
             i += 1;
         }
-        buffer
+        values
     }
+}
 
-    /// The `len` values.
-    #[inline(always)]
-    pub fn as_mut_slice(&mut self) -> &mut [S] {
-        match &mut self.storage {
-            Storage::Two(two) => &mut two[..self.len],
-            Storage::Inline(inline) => &mut inline[..self.len],
-            Storage::Heap(heap) => heap,
-        }
+impl<S: Copy, const CAP: usize> Default for Buffer<S, CAP> {
+    fn default() -> Self {
+        Self::empty()
     }
 }
 
@@ -136,8 +149,8 @@ mod tests {
     #[test]
     fn inline_and_heap_buffers_hold_the_same_values() {
         let values = |len| {
-            Buffer::<f64, 4>::from_fn(len, 0.0, |i| i as f64)
-                .as_mut_slice()
+            Buffer::<f64, 4>::empty()
+                .from_fn(len, 0.0, |i| i as f64)
                 .to_vec()
         };
         let (two, small, large) = (values(2), values(3), values(6));

@@ -136,9 +136,11 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
                 zero
             }
         };
-        let mut q0 = Buffer::<S, NODE>::from_fn(big, zero, point);
-        let mut offsets = Buffer::<S, OFFSETS>::from_fn(l.s * big, zero, shifted);
-        self.evaluate(q0.as_mut_slice(), offsets.as_mut_slice(), multipliers, out);
+        let mut q0 = Buffer::<S, NODE>::empty();
+        let q0 = q0.from_fn(big, zero, point);
+        let mut offsets = Buffer::<S, OFFSETS>::empty();
+        let offsets = offsets.from_fn(l.s * big, zero, shifted);
+        self.evaluate(&mut *q0, &mut *offsets, multipliers, out);
     }
 }
 
@@ -152,8 +154,8 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> AugmentedStep<'_, A, F,
         let nf = l.forces();
         if nf > 0 {
             // The forces on the free coordinates (those on θ are zero and not equations).
-            let mut all = Buffer::<S, OFFSETS>::new((l.s + 1) * big, zero);
-            let all = all.as_mut_slice();
+            let mut all = Buffer::<S, OFFSETS>::empty();
+            let all = all.filled((l.s + 1) * big, zero);
             self.force.discrete_force(self.t0, self.h, q0, offsets, all);
             for j in 0..=l.s {
                 out[1 + j * n..1 + (j + 1) * n].copy_from_slice(&all[j * big..j * big + n]);
@@ -169,13 +171,14 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> AugmentedStep<'_, A, F,
             out[0] -= out[first + c] * multipliers[c] * S::from(self.h);
         }
         let last = &offsets[(l.s - 1) * big..];
-        let mut q_end = Buffer::<S, NODE>::from_fn(big, zero, |i| q0[i] + last[i]);
+        let mut q_end = Buffer::<S, NODE>::empty();
+        let q_end = q_end.from_fn(big, zero, |i| q0[i] + last[i]);
         self.constraint
-            .constraint(q_end.as_mut_slice(), &mut out[first..first + d]);
+            .constraint(&mut *q_end, &mut out[first..first + d]);
         for i in 0..l.stages {
             let block = first + (1 + i) * d;
-            let mut point = Buffer::<S, NODE>::new(big, zero);
-            let point = point.as_mut_slice();
+            let mut point = Buffer::<S, NODE>::empty();
+            let point = point.filled(big, zero);
             self.action.stage_point(i, q0, offsets, point);
             self.constraint
                 .constraint(point, &mut out[block..block + d]);

@@ -65,8 +65,8 @@ impl<C: Constraint> MultiFunction for Component<'_, C> {
     }
     fn eval<S: Scalar>(&self, x: &[S], out: &mut [S]) {
         let zero = S::from(0.0);
-        let mut phi = Buffer::<S, NODE>::new(self.constraint.count(), zero);
-        let phi = phi.as_mut_slice();
+        let mut phi = Buffer::<S, NODE>::empty();
+        let phi = phi.filled(self.constraint.count(), zero);
         self.constraint.constraint(x, phi);
         out[0] = phi[self.c];
     }

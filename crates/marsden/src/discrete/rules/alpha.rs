@@ -139,8 +139,8 @@ impl<F: Force> DiscreteForce for AlphaForce<F> {
             #[inline(always)]
             |q, v| {
                 let zero = S::from(0.0);
-                let mut f = Buffer::<S, NODE>::new(n, zero);
-                let f = f.as_mut_slice();
+                let mut f = Buffer::<S, NODE>::empty();
+                let f = f.filled(n, zero);
                 self.force.force(t, q, v, f);
                 for i in 0..n {
                     out[i] = f[i] * w0;

@@ -290,12 +290,13 @@ fn for_each_substep<S: Scalar>(
                 offsets[(first - 1) * n + a]
             }
         };
-        let mut shift = Buffer::<S, NODE>::from_fn(n, zero, start);
-        let shift: &[S] = shift.as_mut_slice();
-        let mut qi = Buffer::<S, NODE>::from_fn(n, zero, |a| q0[a] + shift[a]);
-        let sub = |k: usize| offsets[first * n + k] - shift[k % n];
-        let mut sub = Buffer::<S, { 2 * NODE }>::from_fn(sb * n, zero, sub);
-        f(i, (ti, hi), qi.as_mut_slice(), sub.as_mut_slice());
+        let mut shift = Buffer::<S, NODE>::empty();
+        let shift: &[S] = shift.from_fn(n, zero, start);
+        let mut qi = Buffer::<S, NODE>::empty();
+        let qi = qi.from_fn(n, zero, |a| q0[a] + shift[a]);
+        let mut sub = Buffer::<S, { 2 * NODE }>::empty();
+        let sub = sub.from_fn(sb * n, zero, |k| offsets[first * n + k] - shift[k % n]);
+        f(i, (ti, hi), qi, sub);
     }
 }
 
@@ -362,13 +363,13 @@ impl<D: DiscreteAction> DiscreteAction for ComposedLd<D> {
             return;
         }
         let zero = S::from(0.0);
-        let mut shift = Buffer::<S, NODE>::from_fn(n, zero, start);
-        let shift: &[S] = shift.as_mut_slice();
-        let mut qi = Buffer::<S, NODE>::from_fn(n, zero, |a| q0[a] + shift[a]);
-        let sub = |j: usize| offsets[first * n + j] - shift[j % n];
-        let mut sub = Buffer::<S, { 2 * NODE }>::from_fn(sb * n, zero, sub);
-        self.base
-            .stage_point(r, qi.as_mut_slice(), sub.as_mut_slice(), out);
+        let mut shift = Buffer::<S, NODE>::empty();
+        let shift: &[S] = shift.from_fn(n, zero, start);
+        let mut qi = Buffer::<S, NODE>::empty();
+        let qi = qi.from_fn(n, zero, |a| q0[a] + shift[a]);
+        let mut sub = Buffer::<S, { 2 * NODE }>::empty();
+        let sub = sub.from_fn(sb * n, zero, |j| offsets[first * n + j] - shift[j % n]);
+        self.base.stage_point(r, qi, sub, out);
     }
 
     /// `γ_m` times the base's end weight.
@@ -438,8 +439,8 @@ impl<G: DiscreteForce> DiscreteForce for ComposedForce<G> {
             (t0, h),
             (q0, offsets),
             |i, (ti, hi), q, d| {
-                let mut f = Buffer::<S, { 2 * NODE }>::new((sb + 1) * n, zero);
-                let f = f.as_mut_slice();
+                let mut f = Buffer::<S, { 2 * NODE }>::empty();
+                let f = f.filled((sb + 1) * n, zero);
                 self.base.discrete_force(ti, hi, q, d, f);
                 let first = i * sb * n;
                 for (k, fk) in f.iter().enumerate() {

@@ -199,9 +199,11 @@ impl GalerkinTable {
                 }
                 v / h
             };
-            let mut q = Buffer::<S, NODE>::from_fn(n, zero, position);
-            let mut v = Buffer::<S, NODE>::from_fn(n, zero, velocity);
-            f(i, S::from(t0 + c * h), q.as_mut_slice(), v.as_mut_slice());
+            let mut q = Buffer::<S, NODE>::empty();
+            let q = q.from_fn(n, zero, position);
+            let mut v = Buffer::<S, NODE>::empty();
+            let v = v.from_fn(n, zero, velocity);
+            f(i, S::from(t0 + c * h), &mut *q, &mut *v);
         }
     }
 }
@@ -329,8 +331,8 @@ impl<F: Force> DiscreteForce for GalerkinForce<F> {
         out[..s1 * n].iter_mut().for_each(|o| *o = zero);
         let table = &*self.table;
         table.for_each_node((t0, h), (q0, offsets), |i, t, q, v| {
-            let mut f = Buffer::<S, NODE>::new(n, zero);
-            let f = f.as_mut_slice();
+            let mut f = Buffer::<S, NODE>::empty();
+            let f = f.filled(n, zero);
             self.force.force(t, q, v, f);
             let b = table.quadrature.weights[i] * h;
             for j in 0..s1 {

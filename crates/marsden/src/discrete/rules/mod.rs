@@ -85,9 +85,11 @@ pub(crate) fn at_node<S: crate::scalar::Scalar, R>(
         1.0 => q0[i] + delta[i],
         _ => q0[i] + delta[i] * c,
     };
-    let mut q = Buffer::<S, NODE>::from_fn(n, zero, position);
-    let mut v = Buffer::<S, NODE>::from_fn(n, zero, |i| delta[i] * inv_h);
-    f(q.as_mut_slice(), v.as_mut_slice())
+    let mut q = Buffer::<S, NODE>::empty();
+    let q = q.from_fn(n, zero, position);
+    let mut v = Buffer::<S, NODE>::empty();
+    let v = v.from_fn(n, zero, |i| delta[i] * inv_h);
+    f(&mut *q, &mut *v)
 }
 
 /// Calls `f(q₁ − q₀)`.
@@ -98,6 +100,7 @@ pub(crate) fn with_displacement<S: crate::scalar::Scalar, R>(
     f: impl FnOnce(&[S]) -> R,
 ) -> R {
     use crate::numerics::scratch::{Buffer, NODE};
-    let mut d = Buffer::<S, NODE>::from_fn(q0.len(), S::from(0.0), |i| q1[i] - q0[i]);
-    f(d.as_mut_slice())
+    let mut d = Buffer::<S, NODE>::empty();
+    let d = d.from_fn(q0.len(), S::from(0.0), |i| q1[i] - q0[i]);
+    f(&mut *d)
 }

@@ -162,8 +162,8 @@ impl<F: Force> DiscreteForce for SymmetrizedForce<F> {
             let t = S::from(t0 + c * h);
             let (w0, w1) = (0.5 * h * (1.0 - c), 0.5 * h * c);
             at_node(c, h, (q0, offsets), |q, v| {
-                let mut f = Buffer::<S, NODE>::new(n, zero);
-                let f = f.as_mut_slice();
+                let mut f = Buffer::<S, NODE>::empty();
+                let f = f.filled(n, zero);
                 self.force.force(t, q, v, f);
                 for i in 0..n {
                     out[i] += f[i] * w0;
