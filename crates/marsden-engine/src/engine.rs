@@ -19,9 +19,9 @@ use marsden::sensitivity::Tangent;
 
 use crate::controls::Controls;
 use crate::order_runner::Results;
-use crate::sensitivity::TangentJob;
 use crate::solve::{Destination, RunRecord};
 use crate::start::Start;
+use crate::tangent::TangentJob;
 use marsden_problem::error::{Diagnostic, Error};
 use marsden_problem::model::ExprDiscreteLagrangian;
 use marsden_problem::order::Plan;

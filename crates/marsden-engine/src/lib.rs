@@ -44,6 +44,7 @@ pub mod serialize;
 pub mod solve;
 pub mod start;
 pub mod step_system;
+pub mod tangent;
 
 pub use controls::{CHECK_EVERY, Controls, Progress};
 pub use engine::{DiscreteEngine, Engine, ExactRun, Typed};

@@ -22,23 +22,17 @@
 //!
 //! [MW01]: marsden#references
 
-use std::cell::RefCell;
-use std::ops::ControlFlow;
 use std::path::Path;
-use std::time::Instant;
 
-use marsden::sensitivity::{
-    ConstrainedParametricIntegrator, ParametricIntegrator, SensitiveStep, Tangent, TangentOptions,
-    TangentSample, tangent_streamed,
-};
-use marsden::{Constraint as _, Lagrangian, State, Termination, TimeGrid};
+use marsden::sensitivity::{Tangent, TangentSample};
+use marsden::{Constraint as _, State, Termination};
 use marsden_io::{CsvWriter, NpyShape, NpyWriter};
 use serde::Serialize;
 
-use crate::controls::{CHECK_EVERY, Controls, Progress};
+use crate::controls::Controls;
 use crate::engine::Engine;
-use crate::start::{self, Start};
-use marsden_problem::model::ExprParametric;
+use crate::start::Start;
+use crate::tangent::{TangentJob, Watched, WithParameters};
 use marsden_problem::problem::{Format, RunSpec, SensitivitySpec};
 
 /// `sensitivity.npy`.
@@ -213,64 +207,6 @@ fn run_steps(run: &Tangent, total: usize) -> usize {
     }
 }
 
-/// The caller's controls as a tangent run sees them, and where its stored samples go.
-pub struct Watched<'c, 'a> {
-    controls: &'c Controls<'a>,
-    total: usize,
-    clock: Instant,
-    sink: RefCell<&'c mut dyn FnMut(&TangentSample)>,
-}
-
-impl<'c, 'a> Watched<'c, 'a> {
-    fn new(
-        spec: &RunSpec,
-        controls: &'c Controls<'a>,
-        sink: &'c mut dyn FnMut(&TangentSample),
-    ) -> Self {
-        Self {
-            controls,
-            total: spec.integrator.grid.steps,
-            clock: Instant::now(),
-            sink: RefCell::new(sink),
-        }
-    }
-
-    /// Calls the progress callback, if any.
-    fn report(&self, step: usize, done: bool) {
-        if let Some(progress) = self.controls.progress {
-            progress(Progress {
-                step,
-                total: self.total,
-                elapsed: self.clock.elapsed(),
-                done,
-            });
-        }
-    }
-
-    /// The tangent run of `stepper`, watched every [`CHECK_EVERY`] steps.
-    fn tangent<D: SensitiveStep + ?Sized>(
-        &self,
-        stepper: &mut D,
-        state: State,
-        spec: &RunSpec,
-    ) -> Result<Tangent, marsden::Error> {
-        let active = self.controls.is_active();
-        let watch = |k: usize| {
-            if !active || !k.is_multiple_of(CHECK_EVERY) {
-                return ControlFlow::Continue(());
-            }
-            self.report(k, false);
-            match self.controls.stop_requested() {
-                true => ControlFlow::Break(()),
-                false => ControlFlow::Continue(()),
-            }
-        };
-        let grid: &TimeGrid = &spec.integrator.grid;
-        let mut sink = self.sink.borrow_mut();
-        tangent_streamed(stepper, state, grid, &options(spec), watch, &mut **sink)
-    }
-}
-
 /// The summary of the asked columns: names, the final Jacobian, the number of samples handed on.
 fn select(
     spec: &RunSpec,
@@ -310,76 +246,6 @@ pub fn names(spec: &RunSpec, asked: &SensitivitySpec) -> SensitivitySummary {
         samples: 0,
         error: None,
         note: (spec.system.constraint.count() > 0).then(|| ON_TANGENT_VECTORS.to_owned()),
-    }
-}
-
-fn options(spec: &RunSpec) -> TangentOptions {
-    TangentOptions {
-        every: spec.output.every.max(1),
-    }
-}
-
-/// The tangent run of the file's own Lagrangian and forces (`P = 0`), with the integrator type
-/// of the run itself (the same [`marsden::Problem`] type as [`crate::solve::run_by_rule`]
-/// builds), so the tangent run adds no integrator code to the build.
-pub struct TangentJob<'a> {
-    spec: &'a RunSpec,
-    rule: &'a marsden::discrete::rules::Method,
-    state: State,
-    watched: &'a Watched<'a, 'a>,
-}
-
-impl TangentJob<'_> {
-    /// Runs the job with the file's system, of type `L`.
-    ///
-    /// # Errors
-    /// The core's error, as text.
-    pub fn run_with<L: Lagrangian>(self, lagrangian: &L) -> Result<Tangent, String> {
-        let s = &self.spec.system;
-        let force = s.force.on(lagrangian);
-        let problem = start::constrained_problem(self.spec, lagrangian, &s.constraint)
-            .map_err(|d| d.to_string())?
-            .with_force(&force);
-        let spec = self.spec;
-        let run = || {
-            let integrator = problem.integrator(self.rule, spec.integrator.newton)?;
-            let mut vi = integrator.with_fast_paths(false);
-            self.watched.tangent(&mut vi, self.state, spec)
-        };
-        run().map_err(|e: marsden::Error| e.to_string())
-    }
-}
-
-/// The tangent run of the parametric model at the file's parameter values.
-struct WithParameters<'a> {
-    spec: &'a RunSpec,
-    model: &'a ExprParametric,
-    state: State,
-    /// The initial velocities (the constrained predictor's first guess).
-    v: &'a [f64],
-    watched: &'a Watched<'a, 'a>,
-}
-
-impl WithParameters<'_> {
-    fn call(self, rule: &marsden::discrete::rules::Method) -> Result<Tangent, marsden::Error> {
-        use marsden::sensitivity::ParametricModel as _;
-        let spec = self.spec;
-        let theta: Vec<f64> = (self.model.parameter_names().iter())
-            .map(|name| {
-                (spec.system.parameters.iter())
-                    .find(|(n, _)| n == name)
-                    .map_or(f64::NAN, |(_, v)| *v)
-            })
-            .collect();
-        let newton = spec.integrator.newton;
-        let model = self.model.clone();
-        if self.model.constraints() > 0 {
-            let vi = ConstrainedParametricIntegrator::new(rule, model, &theta, newton)?;
-            let mut vi = vi.with_velocity_hint(self.v);
-            return self.watched.tangent(&mut vi, self.state, spec);
-        }
-        let mut vi = ParametricIntegrator::new(rule, model, &theta, newton)?;
-        self.watched.tangent(&mut vi, self.state, spec)
     }
 }
 

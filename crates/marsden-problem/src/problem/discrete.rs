@@ -16,22 +16,22 @@ use toml::Spanned;
 use super::check::Checker;
 use super::parameters::{self, Parameters};
 use super::raw::{RawProblem, RawSystem};
+use super::resolved::{Resolved, symbols};
 use super::spec::LagrangianSpec;
-use super::system::{Resolved, symbols};
 use crate::error::Diagnostic;
 use crate::model::ExprDiscreteLagrangian;
 use crate::model::discrete_lagrangian::endpoint_inputs;
 use marsden_expr::Program;
 
 /// The key, as the messages name it.
-pub const KEY: &str = "discrete_lagrangian";
+pub use super::spec::DISCRETE_KEY as KEY;
 
 /// Validates and compiles `discrete_lagrangian = "…"` (with `coordinates` and number
 /// parameters).
 ///
 /// # Errors
 /// No `coordinates`, list parameters, a syntax error or an unknown name (with a suggestion).
-pub fn expression(
+pub(super) fn expression(
     ck: &Checker<'_>,
     text: &Spanned<String>,
     system: &RawSystem,
@@ -53,7 +53,8 @@ pub fn expression(
         .compile(&symbols)
         .map_err(|e| ck.expr_error(context, text, &e))?;
     let ld = ExprDiscreteLagrangian::new(program, coordinates.len());
-    Ok((LagrangianSpec::Discrete(ld), coordinates, constants, None))
+    let ld = LagrangianSpec::Discrete(ld);
+    Ok(Resolved::expression(ld, coordinates, constants))
 }
 
 /// The keys a `discrete_lagrangian` file cannot have, refused with the key named; `Ok` for any

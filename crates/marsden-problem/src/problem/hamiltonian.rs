@@ -7,8 +7,8 @@ use toml::Spanned;
 use super::check::Checker;
 use super::parameters::{self, Parameters};
 use super::raw::RawSystem;
+use super::resolved::{Resolved, symbols};
 use super::spec::LagrangianSpec;
-use super::system::{Resolved, symbols};
 use crate::error::Diagnostic;
 use crate::model::ExprHamiltonian;
 use crate::model::hamiltonian::cotangent_inputs;
@@ -16,7 +16,7 @@ use marsden::hamiltonian::HamiltonianLagrangian;
 use marsden_expr::Program;
 
 /// Validates and compiles `hamiltonian = "…"` (with `coordinates` and number parameters).
-pub fn expression(
+pub(super) fn expression(
     ck: &Checker<'_>,
     text: &Spanned<String>,
     system: &RawSystem,
@@ -46,5 +46,6 @@ pub fn expression(
             .help("∂²H/∂p² must be invertible for the run to go through L = ⟨p, v⟩ − H"));
     }
     let h = HamiltonianLagrangian::new(ExprHamiltonian::new(program, n));
-    Ok((LagrangianSpec::Hamiltonian(h), coordinates, constants, None))
+    let h = LagrangianSpec::Hamiltonian(h);
+    Ok(Resolved::expression(h, coordinates, constants))
 }

@@ -18,6 +18,7 @@ pub mod named_symmetry;
 pub mod nbody_file;
 pub mod parameters;
 pub mod raw;
+mod resolved;
 pub mod sensitivity;
 pub mod settings;
 pub mod spec;

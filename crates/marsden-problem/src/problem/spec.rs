@@ -59,7 +59,7 @@ impl RunSpec {
     pub fn method_name(&self) -> String {
         match self.system.has_energy() {
             true => self.integrator.method.to_string(),
-            false => super::discrete::KEY.to_owned(),
+            false => DISCRETE_KEY.to_owned(),
         }
     }
 
@@ -111,6 +111,10 @@ pub enum LagrangianSpec {
     /// `discrete_lagrangian = "…"`: the file's own `L_d`, with no continuous `L` behind it.
     Discrete(ExprDiscreteLagrangian),
 }
+
+/// The key of a file's own discrete Lagrangian, `[system] discrete_lagrangian`, which is also
+/// the method's name in its outputs.
+pub const DISCRETE_KEY: &str = "discrete_lagrangian";
 
 /// What a run of a `discrete_lagrangian` file says instead of an energy.
 pub const ENERGY_NOT_AVAILABLE: &str =

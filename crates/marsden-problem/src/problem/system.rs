@@ -7,6 +7,7 @@ use super::check::{Checker, count_coordinates};
 use super::nbody_file::BodiesFile;
 use super::parameters::{self, Parameters};
 use super::raw::{RawSymmetry, RawSystem, SpannedList};
+use super::resolved::{Resolved, symbols};
 use super::spec::{LagrangianSpec, SystemSpec};
 use crate::catalog::{Builtin, MASSES};
 use crate::error::Diagnostic;
@@ -109,7 +110,12 @@ pub fn system(
         file_masses(ck, system, &mut params, bodies)?;
     }
     let parsed = Parsed::read(ck, system)?;
-    let (lagrangian, coordinates, constants, masses) = match (&system.lagrangian, &system.builtin) {
+    let Resolved {
+        lagrangian,
+        coordinates,
+        parameters: constants,
+        masses,
+    } = match (&system.lagrangian, &system.builtin) {
         (Some(_), Some(b)) => {
             return Err(ck.error(
                 Some(b.span()),
@@ -179,13 +185,6 @@ fn file_masses(
     Ok(())
 }
 
-pub(super) type Resolved = (
-    LagrangianSpec,
-    Vec<String>,
-    Vec<(String, f64)>,
-    Option<Vec<f64>>,
-);
-
 fn builtin(
     ck: &Checker<'_>,
     name: &Spanned<String>,
@@ -213,7 +212,12 @@ fn builtin(
         builtin: b,
         system: built,
     };
-    Ok((spec, coordinates, resolved.all, masses))
+    Ok(Resolved {
+        lagrangian: spec,
+        coordinates,
+        parameters: resolved.all,
+        masses,
+    })
 }
 
 fn expression(
@@ -236,29 +240,8 @@ fn expression(
         .compile(&symbols)
         .map_err(|e| ck.expr_error("[system] lagrangian", text, &e))?;
     let l = ExprLagrangian::new(program, coordinates.len());
-    Ok((LagrangianSpec::Expression(l), coordinates, constants, None))
-}
-
-/// A symbol table of `inputs` (slots in order) and the parameters as constants.
-pub(super) fn symbols(
-    ck: &Checker<'_>,
-    inputs: Vec<String>,
-    constants: &[(String, f64)],
-    params: &Parameters,
-) -> Result<Symbols, Diagnostic> {
-    let mut symbols = Symbols::with_inputs(&inputs).map_err(|e| Diagnostic::new(e.to_string()))?;
-    for (name, value) in constants {
-        if let Err(e) = symbols.add_constant(name, *value) {
-            let span = params.number(name).map(|w| w.span.clone());
-            let clash = if inputs.contains(name) {
-                format!("parameter `{name}` has the name of a coordinate, a velocity or `t`")
-            } else {
-                format!("parameter `{name}`: {e}")
-            };
-            return Err(ck.error(span, clash));
-        }
-    }
-    Ok(symbols)
+    let l = LagrangianSpec::Expression(l);
+    Ok(Resolved::expression(l, coordinates, constants))
 }
 
 fn forces(
