@@ -24,9 +24,10 @@
 
 use crate::scalar::Scalar;
 
+use crate::numerics::newton::{NewtonFailure, NewtonOptions, NewtonReport};
 use crate::numerics::scratch::{Buffer, NODE};
 use crate::separable::ExplicitStep;
-use crate::separable::{SeparableJacobian, SeparableStep};
+use crate::separable::{Frame, SeparableJacobian, SeparableStep, SeparableWorkspace};
 
 /// A two-point discrete Lagrangian `L_d(t₀, h, q₀, q₁)`.
 ///
@@ -129,6 +130,22 @@ pub trait DiscreteAction {
     /// A structured Newton step, if any (see [`DiscreteLagrangian::separable`]).
     fn separable(&self) -> Option<&dyn SeparableStep> {
         None
+    }
+
+    /// The step of [`DiscreteAction::separable`], if any, called through this type: a rule
+    /// chosen at run time ([`crate::discrete::rules::chosen`]) forwards it to its variant, so
+    /// that the call is direct (a call through the `dyn` reference stays a virtual call where
+    /// the build does not optimise across crates).
+    #[inline]
+    fn solve_separable_step(
+        &self,
+        frame: Frame<'_>,
+        z: &mut [f64],
+        p_next: &mut [f64],
+        (options, ws): (&NewtonOptions, &mut SeparableWorkspace),
+    ) -> Option<Result<NewtonReport, NewtonFailure>> {
+        let step = self.separable()?;
+        Some(step.solve_separable(frame, z, p_next, options, ws))
     }
 
     /// A structured step Jacobian, if any (see [`DiscreteLagrangian::separable_jacobian`]).

@@ -163,9 +163,6 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         h: f64,
     ) -> Result<NewtonReport, NewtonFailure> {
         let sh = self.shape;
-        let Some(step) = self.action.separable() else {
-            return self.solve_general(z, state, h);
-        };
         let b = &mut self.buffers;
         b.p_next.resize(sh.n, 0.0);
         let frame = Frame {
@@ -174,7 +171,13 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             q0: &state.q,
             p0: &state.p,
         };
-        let result = step.solve_separable(frame, z, &mut b.p_next, &self.options, &mut b.separable);
+        let parts = (&self.options, &mut b.separable);
+        let Some(result) = self
+            .action
+            .solve_separable_step(frame, z, &mut b.p_next, parts)
+        else {
+            return self.solve_general(z, state, h);
+        };
         let evaluations = evaluations_of(&result);
         self.statistics.system_evaluations += evaluations;
         self.statistics.potential_gradients += evaluations;

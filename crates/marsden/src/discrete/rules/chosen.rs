@@ -29,8 +29,9 @@ use super::{
 };
 use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::mechanics::{Force, Lagrangian};
+use crate::numerics::newton::{NewtonFailure, NewtonOptions, NewtonReport};
 use crate::scalar::Scalar;
-use crate::separable::{ExplicitStep, SeparableJacobian, SeparableStep};
+use crate::separable::{ExplicitStep, Frame, SeparableJacobian, SeparableStep, SeparableWorkspace};
 
 /// The discrete Lagrangian of a [`BaseMethod`]: midpoint and α-rules share [`AlphaLd`],
 /// trapezoid and the symmetrised rules [`SymmetrizedLd`].
@@ -167,6 +168,16 @@ macro_rules! forward_action {
             #[inline]
             fn separable(&self) -> Option<&dyn SeparableStep> {
                 each!(self, x => x.separable(), $($variant),+)
+            }
+            #[inline]
+            fn solve_separable_step(
+                &self,
+                frame: Frame<'_>,
+                z: &mut [f64],
+                p_next: &mut [f64],
+                parts: (&NewtonOptions, &mut SeparableWorkspace),
+            ) -> Option<Result<NewtonReport, NewtonFailure>> {
+                each!(self, x => x.solve_separable_step(frame, z, p_next, parts), $($variant),+)
             }
             fn separable_jacobian(&self) -> Option<&dyn SeparableJacobian> {
                 each!(self, x => x.separable_jacobian(), $($variant),+)
