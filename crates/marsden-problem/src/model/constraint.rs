@@ -10,7 +10,7 @@ use marsden_expr::ProgramSet;
 /// ```
 /// use marsden::Constraint;
 /// use marsden_expr::{ProgramSet, Symbols};
-/// use marsden_spec::model::ExprConstraint;
+/// use marsden_problem::model::ExprConstraint;
 ///
 /// let mut symbols = Symbols::with_inputs(["x", "y"]).unwrap();
 /// symbols.add_constant("l", 1.0).unwrap();

@@ -25,8 +25,8 @@ use marsden_expr::{DisplacementForm, Program};
 /// ```
 /// use marsden::DiscreteLagrangian;
 /// use marsden_expr::{Program, Symbols};
-/// use marsden_spec::model::ExprDiscreteLagrangian;
-/// use marsden_spec::model::discrete_lagrangian::endpoint_inputs;
+/// use marsden_problem::model::ExprDiscreteLagrangian;
+/// use marsden_problem::model::discrete_lagrangian::endpoint_inputs;
 ///
 /// let symbols = Symbols::with_inputs(endpoint_inputs(&["x".to_owned()])).unwrap();
 /// let text = "h*(0.5*((x_1 - x_0)/h)^2 - 0.5*((x_0 + x_1)/2)^2)";

@@ -33,7 +33,7 @@ pub enum ForceInputs {
 /// use marsden::Force;
 /// use marsden::systems::HarmonicOscillator;
 /// use marsden_expr::{ProgramSet, Symbols};
-/// use marsden_spec::model::{ExprForce, ForceInputs};
+/// use marsden_problem::model::{ExprForce, ForceInputs};
 ///
 /// let mut symbols = Symbols::with_inputs(["x", "x_dot", "t"]).unwrap();
 /// symbols.add_constant("c", 0.5).unwrap();

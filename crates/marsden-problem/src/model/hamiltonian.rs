@@ -21,7 +21,7 @@ use super::inputs::with_inputs;
 /// ```
 /// use marsden::hamiltonian::Hamiltonian;
 /// use marsden_expr::{Program, Symbols};
-/// use marsden_spec::model::ExprHamiltonian;
+/// use marsden_problem::model::ExprHamiltonian;
 ///
 /// let symbols = Symbols::with_inputs(["theta", "p_theta", "t"]).unwrap();
 /// let program = Program::compile("0.5*p_theta^2 - cos(theta)", &symbols).unwrap();

@@ -50,7 +50,7 @@ use marsden_expr::{Jet, Program, SeparableForm};
 /// use marsden::Lagrangian;
 /// use marsden::mechanics::Structure;
 /// use marsden_expr::{Program, Symbols};
-/// use marsden_spec::model::ExprLagrangian;
+/// use marsden_problem::model::ExprLagrangian;
 ///
 /// let symbols = Symbols::with_inputs(["theta", "theta_dot", "t"]).unwrap();
 /// let program = Program::compile("0.5*theta_dot^2 + cos(theta)", &symbols).unwrap();

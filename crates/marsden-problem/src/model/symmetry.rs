@@ -24,7 +24,7 @@ pub trait MomentumMap {
 ///
 /// ```
 /// use marsden_expr::{ProgramSet, Symbols};
-/// use marsden_spec::model::{MomentumMap, Symmetry};
+/// use marsden_problem::model::{MomentumMap, Symmetry};
 ///
 /// let symbols = Symbols::with_inputs(["x", "y"]).unwrap();
 /// let rotation = Symmetry::new("Lz", ProgramSet::compile(["-y", "x"], &symbols).unwrap());

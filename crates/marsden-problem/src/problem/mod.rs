@@ -54,7 +54,7 @@ pub fn load(path: &Path, overrides: &Overrides) -> Result<RunSpec, Diagnostic> {
 /// the file (an N-body `file = "…"`) are read from the current directory.
 ///
 /// ```
-/// use marsden_spec::{Overrides, from_toml_str};
+/// use marsden_problem::{Overrides, from_toml_str};
 ///
 /// let text = "[system]\nbuiltin = \"pendulum\"\n[initial]\nq = [1.0]\nv = [0.0]\n\
 ///             [integrator]\nh = 0.1\nsteps = 10\n";
@@ -63,7 +63,7 @@ pub fn load(path: &Path, overrides: &Overrides) -> Result<RunSpec, Diagnostic> {
 ///
 /// let err = from_toml_str("[integrator]\nh = -1\n", "bad.toml", &Overrides::default());
 /// assert!(err.unwrap_err().to_string().starts_with("error: "));
-/// # Ok::<(), marsden_spec::Diagnostic>(())
+/// # Ok::<(), marsden_problem::Diagnostic>(())
 /// ```
 ///
 /// # Errors

@@ -96,6 +96,7 @@ impl<L: Lagrangian> SeparableStep for AlphaLd<L> {
         };
         Some(mass)
     }
+    #[inline(always)]
     fn solve_separable(
         &self,
         frame: Frame<'_>,
