@@ -61,9 +61,6 @@ struct Iterate {
 /// residual test counts only once the estimated error of the iterate, `θ/(1−θ)·‖δ‖` (Hairer &
 /// Wanner §IV.8; `θ` measured in this step, else the last step's), is below the update
 /// tolerance — a quadratically convergent step meets this as soon as the general path would.
-// Always inlined into its one caller (the α rules' separable step), so that the step is one
-// function with the integrator's dispatch, as whole-program optimisation made it.
-#[inline(always)]
 pub(crate) fn solve_alpha<L: Lagrangian>(
     l: &L,
     alpha: f64,

@@ -96,7 +96,6 @@ impl<L: Lagrangian> SeparableStep for AlphaLd<L> {
         };
         Some(mass)
     }
-    #[inline(always)]
     fn solve_separable(
         &self,
         frame: Frame<'_>,

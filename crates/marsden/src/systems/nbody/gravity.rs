@@ -13,7 +13,9 @@
 pub const LANES: usize = 8;
 
 /// Writes `∇V` (layout `x₁ y₁ z₁ x₂ …`) of bodies with `masses` at `q` into `grad`; `scratch`
-/// holds the structure-of-arrays copy between calls.
+/// holds the structure-of-arrays copy between calls. Inlinable: compiled with the run that
+/// calls it, in the crate that names the system.
+#[inline]
 pub fn gradient(
     (masses, g, softening): (&[f64], f64, f64),
     q: &[f64],
