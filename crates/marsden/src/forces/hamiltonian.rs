@@ -106,7 +106,7 @@ fn momenta<L: Lagrangian, S: Scalar>(l: &L, t: S, q: &[S], v: &[S], p: &mut [S])
     };
     let mut z = Buffer::<S, { 2 * NODE + 1 }>::empty();
     let z = z.from_fn(2 * n + 1, t, entry);
-    ad::nested_gradient(&OnTangentBundle(l), &mut *z, n + 1..2 * n + 1, p);
+    ad::nested_gradient(&OnTangentBundle(l), z, n + 1..2 * n + 1, p);
 }
 
 impl<L: Lagrangian, H: HamiltonianForce> Force for FromHamiltonian<L, H> {

@@ -60,7 +60,7 @@ pub trait TwoPointForce {
         let zero = S::from(0.0);
         let mut q1 = Buffer::<S, NODE>::empty();
         let q1 = q1.from_fn(q0.len(), zero, |i| q0[i] + delta[i]);
-        self.two_point_force(t0, h, q0, &mut *q1, minus, plus);
+        self.two_point_force(t0, h, q0, q1, minus, plus);
     }
 }
 

@@ -470,7 +470,7 @@ impl<L: Lagrangian> MultiFunction for InVelocity<'_, L> {
         let zero = S::from(0.0);
         let mut q = Buffer::<S, NODE>::empty();
         let q = q.from_fn(self.q.len(), zero, |i| S::from(self.q[i]));
-        out[0] = self.lagrangian.lagrangian(S::from(self.t), &mut *q, v);
+        out[0] = self.lagrangian.lagrangian(S::from(self.t), q, v);
     }
 }
 

@@ -129,7 +129,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
             let mut q_end = Buffer::<S, NODE>::empty();
             let q_end = q_end.from_fn(sh.n, zero, |i| q0[i] + last[i]);
             self.constraint
-                .constraint(&mut *q_end, &mut out[1 + nf..1 + nf + sh.d]);
+                .constraint(q_end, &mut out[1 + nf..1 + nf + sh.d]);
             if sh.stages > 0 {
                 self.stage_constraints(q0, offsets, &mut out[..]);
             }
@@ -147,8 +147,7 @@ impl<A: DiscreteAction, F, C: Constraint> StepFunction<'_, A, F, C> {
         for i in 0..sh.stages {
             let block = first + i * sh.d;
             let mut stage = Buffer::<S, NODE>::empty();
-            let stage = stage.filled(sh.n, zero);
-            let x = &mut *stage;
+            let x = stage.filled(sh.n, zero);
             self.action.stage_point(i, q0, offsets, x);
             self.constraint.constraint(x, &mut out[block..block + sh.d]);
             for c in 0..sh.d {

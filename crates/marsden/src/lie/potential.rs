@@ -174,9 +174,7 @@ impl<U: RigidPotential> MultiFunction for Perturbed<'_, U> {
                 positions[3 * body + a] += z[3 * bodies + 3 * slot + a];
             }
         }
-        out[0] = self
-            .potential
-            .value(S::from(self.t), &mut *rotations, positions);
+        out[0] = self.potential.value(S::from(self.t), rotations, positions);
     }
 }
 

@@ -223,7 +223,7 @@ impl<L: Lagrangian + ?Sized> MultiFunction for PotentialOf<'_, L> {
         let zero = S::from(0.0);
         let mut v = Buffer::<S, NODE>::empty();
         let v = v.filled(q.len(), zero);
-        out[0] = -self.lagrangian.lagrangian(S::from(self.t), q, &mut *v);
+        out[0] = -self.lagrangian.lagrangian(S::from(self.t), q, v);
     }
 }
 

@@ -174,7 +174,7 @@ pub fn directional_second<F: MultiFunction>(f: &F, x: &[f64], u: &[f64], w: &[f6
     let xs = xs.from_fn(x.len(), zero, seed);
     let mut res = Buffer::<_, INLINE>::empty();
     let res = res.filled(f.outputs(), zero);
-    f.eval(&mut *xs, res);
+    f.eval(xs, res);
     res[0].eps1eps2
 }
 
@@ -268,7 +268,7 @@ fn hessian_scalar<F: MultiFunction>(
     let xs = xs.from_fn(x.len(), zero, seed);
     let mut res = Buffer::<_, 4>::empty();
     let res = res.filled(f.outputs(), zero);
-    f.eval(&mut *xs, res);
+    f.eval(xs, res);
     out.evaluations += 1;
     for (i, o) in res.iter().enumerate() {
         out.values[i] = o.re;

@@ -140,7 +140,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> MultiFunction
         let q0 = q0.from_fn(big, zero, point);
         let mut offsets = Buffer::<S, OFFSETS>::empty();
         let offsets = offsets.from_fn(l.s * big, zero, shifted);
-        self.evaluate(&mut *q0, &mut *offsets, multipliers, out);
+        self.evaluate(q0, offsets, multipliers, out);
     }
 }
 
@@ -174,7 +174,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> AugmentedStep<'_, A, F,
         let mut q_end = Buffer::<S, NODE>::empty();
         let q_end = q_end.from_fn(big, zero, |i| q0[i] + last[i]);
         self.constraint
-            .constraint(&mut *q_end, &mut out[first..first + d]);
+            .constraint(q_end, &mut out[first..first + d]);
         for i in 0..l.stages {
             let block = first + (1 + i) * d;
             let mut point = Buffer::<S, NODE>::empty();

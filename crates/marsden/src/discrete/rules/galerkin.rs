@@ -203,7 +203,7 @@ impl GalerkinTable {
             let q = q.from_fn(n, zero, position);
             let mut v = Buffer::<S, NODE>::empty();
             let v = v.from_fn(n, zero, velocity);
-            f(i, S::from(t0 + c * h), &mut *q, &mut *v);
+            f(i, S::from(t0 + c * h), q, v);
         }
     }
 }

@@ -89,7 +89,7 @@ pub(crate) fn at_node<S: crate::scalar::Scalar, R>(
     let q = q.from_fn(n, zero, position);
     let mut v = Buffer::<S, NODE>::empty();
     let v = v.from_fn(n, zero, |i| delta[i] * inv_h);
-    f(&mut *q, &mut *v)
+    f(q, v)
 }
 
 /// Calls `f(q₁ − q₀)`.
@@ -102,5 +102,5 @@ pub(crate) fn with_displacement<S: crate::scalar::Scalar, R>(
     use crate::numerics::scratch::{Buffer, NODE};
     let mut d = Buffer::<S, NODE>::empty();
     let d = d.from_fn(q0.len(), S::from(0.0), |i| q1[i] - q0[i]);
-    f(&mut *d)
+    f(d)
 }
