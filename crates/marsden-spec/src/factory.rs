@@ -3,6 +3,7 @@
 //! `marsden-engine-catalog`, an expression system's (and the catalog's shared `exact` run) here.
 //! Everything after this call is non-generic.
 
+use marsden::Lagrangian;
 use marsden_engine::{DiscreteEngine, Engine, ExactRun, Typed};
 
 use crate::catalog::BuiltinSystem;
@@ -23,21 +24,21 @@ pub fn engine_for(spec: &RunSpec) -> Box<dyn Engine + '_> {
             }),
             false => catalog_engine(system),
         },
-        LagrangianSpec::Expression(l) => match exact {
-            true => Box::new(ExactRun {
-                lagrangian: l,
-                rest: Box::new(Typed(l)),
-            }),
-            false => Box::new(Typed(l)),
-        },
-        LagrangianSpec::Hamiltonian(l) => match exact {
-            true => Box::new(ExactRun {
-                lagrangian: l,
-                rest: Box::new(Typed(l)),
-            }),
-            false => Box::new(Typed(l)),
-        },
+        LagrangianSpec::Expression(l) => expression_engine(l, exact),
+        LagrangianSpec::Hamiltonian(l) => expression_engine(l, exact),
         LagrangianSpec::Discrete(ld) => Box::new(DiscreteEngine(ld)),
+    }
+}
+
+/// The engine of an expression system (compiled here): by the rules, or by shooting with
+/// `exact`, the rest by the rules.
+fn expression_engine<L: Lagrangian>(l: &L, exact: bool) -> Box<dyn Engine + '_> {
+    match exact {
+        true => Box::new(ExactRun {
+            lagrangian: l,
+            rest: Box::new(Typed(l)),
+        }),
+        false => Box::new(Typed(l)),
     }
 }
 
