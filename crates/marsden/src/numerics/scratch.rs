@@ -85,12 +85,6 @@ impl<S: Copy, const CAP: usize> Buffer<S, CAP> {
     }
 }
 
-impl<S: Copy, const CAP: usize> Default for Buffer<S, CAP> {
-    fn default() -> Self {
-        Self::empty()
-    }
-}
-
 /// Runs `body` on a buffer of `len` copies of `fill`, held in a stack array of 3, 5, 9, 17 or
 /// 33 values (the smallest that fits) and on the heap above 33.
 ///
