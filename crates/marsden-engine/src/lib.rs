@@ -17,6 +17,7 @@
 //! | before a run | [`step_system`] | the size of the step's Newton system, a warning when it is large |
 //! | the run | [`solve`] | a `Problem` from the file's parts, stepped by the rule or by shooting |
 //! | a file's own `L_d` | [`discrete`] | the run of a `discrete_lagrangian` file |
+//! | a rigid body | [`rigid`] | the LGVI's run of a `rigid_body` file, its invariants and symmetry checks |
 //! | forced runs | [`balance`] | the discrete energy balance of every step (R12) |
 //! | forced runs | [`noether_balance`] | the forced Noether balance of every symmetry (MW01 §3.2) |
 //! | on request | [`certify`] | symplecticity defect of the step map (on `T*N` when constrained), equivariance defect of `L_d` |
@@ -39,6 +40,7 @@ pub mod engine;
 pub mod noether_balance;
 pub mod observer;
 pub mod order_runner;
+pub mod rigid;
 pub mod sensitivity;
 pub mod serialize;
 pub mod solve;

@@ -52,6 +52,8 @@ pub struct RunRecord {
     pub noether_balance: Vec<(String, NoetherBalance)>,
     /// The certificates (`[analysis] certify = true`).
     pub certificate: Option<Certificate>,
+    /// A rigid body's own invariants and last attitude (`None` for other systems).
+    pub rigid: Option<crate::rigid::RigidRecord>,
 }
 
 /// `method = "exact"`: the integrator steps `L_d^E` of the problem's Lagrangian by shooting
@@ -350,6 +352,7 @@ pub(super) fn finish<L: Lagrangian, C: Constraint, M: MomentumMap>(
         balance_series: None,
         noether_balance: Vec::new(),
         certificate: None,
+        rigid: None,
     }
 }
 

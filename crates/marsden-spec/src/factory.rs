@@ -4,6 +4,7 @@
 //! Everything after this call is non-generic.
 
 use marsden::Lagrangian;
+use marsden_engine::rigid::RigidEngine;
 use marsden_engine::{DiscreteEngine, Engine, ExactRun, Typed};
 
 use crate::catalog::BuiltinSystem;
@@ -27,6 +28,7 @@ pub fn engine_for(spec: &RunSpec) -> Box<dyn Engine + '_> {
         LagrangianSpec::Expression(l) => expression_engine(l, exact),
         LagrangianSpec::Hamiltonian(l) => expression_engine(l, exact),
         LagrangianSpec::Discrete(ld) => Box::new(DiscreteEngine(ld)),
+        LagrangianSpec::Rigid(body) => Box::new(RigidEngine(body)),
     }
 }
 

@@ -14,6 +14,7 @@ pub mod hamiltonian;
 pub mod inputs;
 pub mod lagrangian;
 pub mod parametric;
+pub mod rigid;
 pub mod symmetry;
 
 pub use constraint::ExprConstraint;

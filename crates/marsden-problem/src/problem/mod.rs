@@ -19,6 +19,7 @@ pub mod nbody_file;
 pub mod parameters;
 pub mod raw;
 mod resolved;
+pub mod rigid;
 pub mod sensitivity;
 pub mod settings;
 pub mod spec;
@@ -158,18 +159,31 @@ fn validate_raw(
     discrete::refuse_unsupported(&ck, raw)?;
     let bodies = nbody_file::read(&ck, raw.initial.as_ref())?;
     let system = system::system(&ck, raw.system.as_ref(), bodies.as_ref())?;
-    let (initial, initial_spans) = settings::initial(
-        &ck,
-        raw.initial.as_ref(),
-        &system.coordinates,
-        bodies.as_ref(),
-    )?;
+    let (initial, initial_spans) = match system.rigid() {
+        Some(body) => rigid::initial(&ck, raw.initial.as_ref(), body)?,
+        None => {
+            rigid::refuse_rigid_keys(&ck, raw)?;
+            settings::initial(
+                &ck,
+                raw.initial.as_ref(),
+                &system.coordinates,
+                bodies.as_ref(),
+            )?
+        }
+    };
     // With `project = true` the start is projected onto the manifold when the run starts
     // (`run::start`), so positions off it are accepted here.
     if !initial.project {
         settings::constraints_at_start(&ck, &system.constraint, &initial.q, initial_spans.q)?;
     }
-    let integrator = settings::integrator(&ck, raw.integrator.as_ref(), initial.t0, overrides)?;
+    let mut integrator = settings::integrator(&ck, raw.integrator.as_ref(), initial.t0, overrides)?;
+    if system.rigid().is_some() {
+        let span = (raw.integrator.as_ref())
+            .and_then(|i| i.get_ref().method.as_ref())
+            .map(|m| m.span());
+        integrator.method = rigid::method(&ck, &integrator.method, span)?;
+        rigid::refuse_unsupported(&ck, raw)?;
+    }
     if !system.constraint.components().is_empty()
         && let Some(reason) = integrator.method.constraint_refusal()
     {
@@ -266,7 +280,8 @@ fn run_name(raw: &raw::RawProblem, system: &SystemSpec, path: &Path) -> String {
         LagrangianSpec::Builtin { builtin, .. } => builtin.name().to_owned(),
         LagrangianSpec::Expression(_)
         | LagrangianSpec::Hamiltonian(_)
-        | LagrangianSpec::Discrete(_) => path
+        | LagrangianSpec::Discrete(_)
+        | LagrangianSpec::Rigid(_) => path
             .file_stem()
             .map_or("run".to_owned(), |s| s.to_string_lossy().into_owned()),
     }

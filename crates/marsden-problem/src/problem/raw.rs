@@ -126,6 +126,36 @@ pub struct RawSystem {
     pub constraints: Option<SpannedList<String>>,
     /// Symmetries whose momentum maps are monitored.
     pub symmetry: Option<Vec<Spanned<RawSymmetry>>>,
+    /// A rigid body instead of coordinates: its configuration is an attitude `R ∈ SO(3)`
+    /// (and a centre of mass `x ∈ ℝ³` with `mass`), stepped by the Lie group variational
+    /// integrator ([`super::rigid`]).
+    pub rigid_body: Option<Spanned<RawRigidBody>>,
+    /// A rigid body's potential `U` in `R11 … R33`, `x`, `y`, `z`, `t` and the parameters.
+    pub potential: Option<Spanned<String>>,
+    /// A rigid body's external torque in the body frame, three expressions like `potential`'s.
+    pub torques: Option<SpannedList<String>>,
+}
+
+/// `rigid_body = { inertia = [..], mass = m }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawRigidBody {
+    /// The principal moments `[J1, J2, J3]` (body axes) or the symmetric 3×3 inertia tensor,
+    /// about the fixed point (or the centre of mass of a body with `mass`).
+    pub inertia: Option<Spanned<RawInertia>>,
+    /// The mass of a free body, whose centre of mass `x ∈ ℝ³` moves too (absent: the body turns
+    /// about a fixed point).
+    pub mass: Option<Spanned<f64>>,
+}
+
+/// An inertia as written: three principal moments or a 3×3 matrix (rows).
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum RawInertia {
+    /// `[J1, J2, J3]`.
+    Principal(Vec<f64>),
+    /// `[[J11, J12, J13], [J21, J22, J23], [J31, J32, J33]]`.
+    Matrix(Vec<Vec<f64>>),
 }
 
 /// One `[[system.symmetry]]` entry.
@@ -139,8 +169,12 @@ pub struct RawSymmetry {
     /// A named translation instead of `generator`: `"x"`, `"y"` or `"z"`
     /// ([`super::named_symmetry`]).
     pub translation: Option<Spanned<String>>,
-    /// A named rotation about an axis instead of `generator`: `"x"`, `"y"` or `"z"`.
+    /// A named rotation about an axis instead of `generator`: `"x"`, `"y"` or `"z"` (for a
+    /// rigid body: a rotation in space, whose momentum map is the spatial angular momentum).
     pub rotation: Option<Spanned<String>>,
+    /// A rigid body only: a rotation about a body axis, `"x"`, `"y"` or `"z"` (the right
+    /// action; its momentum map is that component of the body momentum `Π`).
+    pub body_rotation: Option<Spanned<String>>,
 }
 
 /// `[initial]`.
@@ -161,6 +195,19 @@ pub struct RawInitial {
     /// Project `(q, v)` or `(q, p)` onto the constraint manifold before the run (default
     /// false: initial data off the constraints are an error).
     pub project: Option<bool>,
+    /// A rigid body's initial attitude as a rotation vector (axis times angle).
+    pub rotation_vector: Option<SpannedList<f64>>,
+    /// A rigid body's initial attitude as a matrix (rows; body → space).
+    #[serde(rename = "R")]
+    pub r: Option<Spanned<Vec<Vec<f64>>>>,
+    /// A rigid body's initial attitude as a unit quaternion `[w, x, y, z]`.
+    pub quaternion: Option<SpannedList<f64>>,
+    /// A rigid body's initial angular velocity in the body frame.
+    #[serde(rename = "Omega")]
+    pub omega: Option<SpannedList<f64>>,
+    /// A rigid body's initial angular momentum in the body frame, `Π = JΩ`.
+    #[serde(rename = "Pi")]
+    pub pi: Option<SpannedList<f64>>,
 }
 
 /// `[integrator]`.

@@ -114,6 +114,7 @@ fn parametric(
         LagrangianSpec::Builtin { .. } => return Err(refuse("the N-body builtin")),
         LagrangianSpec::Hamiltonian(_) => return Err(refuse("a `hamiltonian` system")),
         LagrangianSpec::Discrete(_) => return Err(refuse("a `discrete_lagrangian` system")),
+        LagrangianSpec::Rigid(_) => return Err(refuse("a rigid body")),
     };
     if system.force.is_active() && system.force.inputs() == ForceInputs::Momenta {
         return Err(ck

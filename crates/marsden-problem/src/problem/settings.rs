@@ -88,6 +88,7 @@ pub fn initial(
             q,
             data,
             project,
+            rigid: None,
         },
         spans,
     ))
@@ -117,6 +118,7 @@ fn from_file(
         q: bodies.data.q.clone(),
         data: InitialData::Velocity(bodies.data.v.clone()),
         project: table.project.unwrap_or(false),
+        rigid: None,
     };
     let spans = InitialSpans {
         q: bodies.span.clone(),

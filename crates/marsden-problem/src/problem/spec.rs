@@ -9,6 +9,7 @@ use std::path::PathBuf;
 use marsden::{Initial, NewtonOptions, TimeGrid};
 
 use super::method::Method;
+use super::rigid::{RigidInitial, RigidSpec};
 use crate::catalog::{Builtin, BuiltinSystem};
 use crate::model::{
     ExprConstraint, ExprDiscreteLagrangian, ExprForce, ExprLagrangian, HamiltonianExprLagrangian,
@@ -110,6 +111,8 @@ pub enum LagrangianSpec {
     Hamiltonian(HamiltonianExprLagrangian),
     /// `discrete_lagrangian = "…"`: the file's own `L_d`, with no continuous `L` behind it.
     Discrete(ExprDiscreteLagrangian),
+    /// `rigid_body = { … }`: a rigid body on SO(3) (× ℝ³), `L = ½ΩᵀJΩ (+ ½m|ẋ|²) − U`.
+    Rigid(Box<RigidSpec>),
 }
 
 /// The key of a file's own discrete Lagrangian, `[system] discrete_lagrangian`, which is also
@@ -132,6 +135,15 @@ impl LagrangianSpec {
                 format!("H = {}", l.hamiltonian.program().text())
             }
             LagrangianSpec::Discrete(ld) => format!("L_d = {}", ld.program().text()),
+            LagrangianSpec::Rigid(r) => format!(
+                "rigid body: L = ½ΩᵀJΩ{} − U, U = {}",
+                if r.mass.is_some() {
+                    " + ½m|ẋ|²"
+                } else {
+                    ""
+                },
+                r.potential.text().unwrap_or("0")
+            ),
         }
     }
 }
@@ -162,6 +174,27 @@ impl SystemSpec {
         self.coordinates.len()
     }
 
+    /// The rigid body, if the system is one.
+    pub fn rigid(&self) -> Option<&RigidSpec> {
+        match &self.lagrangian {
+            LagrangianSpec::Rigid(r) => Some(r),
+            _ => None,
+        }
+    }
+
+    /// The names of the monitored momentum maps (columns `J_<name>`), in the file's order.
+    pub fn momentum_names(&self) -> Vec<String> {
+        match self.rigid() {
+            Some(r) => r.momentum_names(),
+            None => (self.symmetries.iter())
+                .map(|s| {
+                    use crate::model::MomentumMap as _;
+                    s.name().to_owned()
+                })
+                .collect(),
+        }
+    }
+
     /// Whether the system has an energy `⟨p, q̇⟩ − L`: not for a file's own `L_d`.
     pub fn has_energy(&self) -> bool {
         !matches!(self.lagrangian, LagrangianSpec::Discrete(_))
@@ -172,6 +205,13 @@ impl SystemSpec {
     pub fn energy_not_conserved(&self) -> Option<&'static str> {
         if self.force.is_active() {
             return Some("forces act");
+        }
+        if let Some(r) = self.rigid() {
+            return match (r.loads.is_active(), r.potential.depends_on_time()) {
+                (true, _) => Some("torques or forces act"),
+                (false, true) => Some("the potential depends on t"),
+                (false, false) => None,
+            };
         }
         match (&self.lagrangian, self.depends_on_time()) {
             (_, false) => None,
@@ -214,6 +254,9 @@ pub struct InitialSpec {
     /// Project the data onto the constraint manifold (`φ(q) = 0`, `Dφ(q) v = 0`) before the
     /// run; otherwise data off the manifold are refused.
     pub project: bool,
+    /// A rigid body's attitude and body momentum (`q`, `v`/`p` are then its centre of mass's,
+    /// empty for a body turning about a fixed point).
+    pub rigid: Option<RigidInitial>,
 }
 
 impl InitialSpec {

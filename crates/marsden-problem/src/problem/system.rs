@@ -106,6 +106,19 @@ pub fn system(
         }
     }
     let mut params = Parameters::read(ck, system)?;
+    if let Some(body) = &system.rigid_body {
+        return rigid_system(ck, system, body, &params);
+    }
+    if let Some(body_rotation) =
+        (symmetries(system).iter()).find_map(|s| s.get_ref().body_rotation.as_ref())
+    {
+        return Err(ck
+            .error(
+                Some(body_rotation.span()),
+                "`body_rotation` applies to a rigid body",
+            )
+            .help("declare the body with `rigid_body = { inertia = [J1, J2, J3] }`"));
+    }
     if let Some(bodies) = bodies {
         file_masses(ck, system, &mut params, bodies)?;
     }
@@ -151,6 +164,30 @@ pub fn system(
         force,
         constraint,
         symmetries,
+    })
+}
+
+/// A rigid body's `[system]` ([`super::rigid`]): no coordinates but its centre of mass's.
+fn rigid_system(
+    ck: &Checker<'_>,
+    system: &RawSystem,
+    body: &toml::Spanned<super::raw::RawRigidBody>,
+    params: &Parameters,
+) -> Result<SystemSpec, Diagnostic> {
+    let Resolved {
+        lagrangian,
+        coordinates,
+        parameters,
+        masses,
+    } = super::rigid::system(ck, system, body, params)?;
+    Ok(SystemSpec {
+        lagrangian,
+        coordinates,
+        parameters,
+        masses,
+        force: crate::model::ExprForce::none(),
+        constraint: crate::model::ExprConstraint::none(),
+        symmetries: Vec::new(),
     })
 }
 

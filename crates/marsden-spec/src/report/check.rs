@@ -121,6 +121,31 @@ fn system(out: &mut Lines, spec: &RunSpec) {
                 ),
             );
         }
+        LagrangianSpec::Rigid(body) => {
+            out.line("system", format!("{}: rigid body", spec.name));
+            out.line("lagrangian", spec.system.lagrangian.describe());
+            let j = body.inertia.tensor();
+            out.line(
+                "inertia",
+                format!(
+                    "[[{}, {}, {}], [{}, {}, {}], [{}, {}, {}]], stepped by the Lie group \
+                     variational integrator on SO(3){}",
+                    j[(0, 0)],
+                    j[(0, 1)],
+                    j[(0, 2)],
+                    j[(1, 0)],
+                    j[(1, 1)],
+                    j[(1, 2)],
+                    j[(2, 0)],
+                    j[(2, 1)],
+                    j[(2, 2)],
+                    if body.mass.is_some() { " × ℝ³" } else { "" }
+                ),
+            );
+            if let Some(m) = body.mass {
+                out.line("mass", m.to_string());
+            }
+        }
     }
     out.line("coordinates", s.coordinates.join(", "));
     let mut params: Vec<String> = s

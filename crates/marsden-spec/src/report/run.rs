@@ -24,7 +24,11 @@ pub fn render(outcome: &Outcome) -> String {
         "{}: {}, {}, {} ({}), h = {}",
         s.name,
         s.system,
-        count_coordinates(&s.coordinates),
+        match (&s.rigid_body, s.coordinates.is_empty()) {
+            (Some(_), true) => "on SO(3)".to_owned(),
+            (Some(_), false) => format!("on SO(3) × ℝ³ ({})", s.coordinates.join(", ")),
+            (None, _) => count_coordinates(&s.coordinates),
+        },
         s.method,
         match s.energy_not_available {
             Some(_) => "the file's own L_d".to_owned(),
@@ -85,6 +89,18 @@ pub fn render(outcome: &Outcome) -> String {
     );
     energy_lines(&mut out, s);
     let over = over_samples(s);
+    if let Some(r) = &s.rigid_body {
+        line(
+            &mut out,
+            "rigid body",
+            format!(
+                "max |RᵀR − I| = {}, Casimir |Π|²: {} with max drift {}{over}",
+                sci(r.orthogonality_defect),
+                num(r.casimir.initial),
+                sci(r.casimir.max_abs_drift)
+            ),
+        );
+    }
     for (name, m) in &s.momenta {
         line(
             &mut out,

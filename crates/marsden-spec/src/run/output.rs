@@ -12,7 +12,6 @@ use std::path::Path;
 
 use marsden_io::{CsvWriter, Group, Layout, NpyDirWriter, RowSink};
 
-use crate::model::MomentumMap;
 use crate::problem::{Format, SystemSpec};
 
 /// The trajectory file of `format = "csv"`.
@@ -23,6 +22,16 @@ pub const SUMMARY_JSON: &str = "summary.json";
 pub const CONSTRAINT_RESIDUAL: &str = "constraint_residual";
 /// Name of the multipliers' group (`lambda_0`, `lambda_1`, …; `lambda.npy`).
 pub const LAMBDA: &str = "lambda";
+/// A rigid body's attitude group (`R.npy`).
+pub const ATTITUDE: &str = "R";
+/// Its columns: the entries of `R` (body → space), row-major.
+pub const ATTITUDE_COLUMNS: [&str; 9] = [
+    "R11", "R12", "R13", "R21", "R22", "R23", "R31", "R32", "R33",
+];
+/// A rigid body's body-momentum group (`Pi.npy`).
+pub const BODY_MOMENTUM: &str = "Pi";
+/// Its columns.
+pub const BODY_MOMENTUM_COLUMNS: [&str; 3] = ["Pi1", "Pi2", "Pi3"];
 
 /// The column layout of a system's trajectory.
 ///
@@ -31,12 +40,18 @@ pub const LAMBDA: &str = "lambda";
 pub fn layout(system: &SystemSpec) -> marsden_io::Result<Layout> {
     let q = system.coordinates.iter().map(|c| format!("q_{c}"));
     let p = system.coordinates.iter().map(|c| format!("p_{c}"));
-    let j = system.symmetries.iter().map(|s| format!("J_{}", s.name()));
-    let mut groups = vec![
-        Group::scalar("t"),
-        Group::vector("q", q),
-        Group::vector("p", p),
-    ];
+    let j = system
+        .momentum_names()
+        .into_iter()
+        .map(|s| format!("J_{s}"));
+    let mut groups = vec![Group::scalar("t")];
+    // A rigid body: its attitude and body momentum first, then its centre of mass's q and p.
+    if system.rigid().is_some() {
+        groups.push(Group::vector(ATTITUDE, ATTITUDE_COLUMNS));
+        groups.push(Group::vector(BODY_MOMENTUM, BODY_MOMENTUM_COLUMNS));
+    }
+    groups.push(Group::vector("q", q));
+    groups.push(Group::vector("p", p));
     // A file's own `L_d` has no energy column: there is no continuous L to define one.
     if system.has_energy() {
         groups.push(Group::scalar("energy"));
@@ -75,6 +90,13 @@ pub fn layout_from_columns(names: &[String]) -> marsden_io::Result<Layout> {
     if !lambda.is_empty() {
         groups.push(Group::vector(LAMBDA, lambda));
     }
+    if ATTITUDE_COLUMNS
+        .iter()
+        .all(|c| names.iter().any(|n| n == c))
+    {
+        groups.push(Group::vector(ATTITUDE, ATTITUDE_COLUMNS));
+        groups.push(Group::vector(BODY_MOMENTUM, BODY_MOMENTUM_COLUMNS));
+    }
     for scalar in ["t", "energy", CONSTRAINT_RESIDUAL] {
         if names.iter().any(|n| n == scalar) {
             groups.push(Group::scalar(scalar));
@@ -84,10 +106,14 @@ pub fn layout_from_columns(names: &[String]) -> marsden_io::Result<Layout> {
 }
 
 /// Files a previous run may have left in an output directory (and nothing else).
-const RUN_FILES: [&str; 17] = [
+const RUN_FILES: [&str; 21] = [
     TRAJECTORY_CSV,
     SUMMARY_JSON,
     "t.npy",
+    "R.npy",
+    "Pi.npy",
+    super::rigid_plots::ATTITUDE_PNG,
+    super::rigid_plots::BODY_MOMENTUM_PNG,
     "q.npy",
     "p.npy",
     "energy.npy",

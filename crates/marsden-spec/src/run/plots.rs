@@ -36,11 +36,13 @@ pub fn draw(spec: &RunSpec, layout: &Layout) -> marsden_io::Result<Vec<String>> 
     let conserved = spec.system.energy_not_conserved().is_none();
     let opts = options(&sketch, spec.output.angles.clone(), conserved);
     let reports = plot_run(&sketch.table, dir, &opts)?;
-    Ok(reports
+    let mut files: Vec<String> = reports
         .iter()
         .filter_map(|r| r.path.file_name())
         .map(|f| f.to_string_lossy().into_owned())
-        .collect())
+        .collect();
+    files.extend(super::rigid_plots::draw(&sketch.table, dir, &opts)?);
+    Ok(files)
 }
 
 /// Reads the run in `dir` (a finished or failed one) and draws every plot its columns allow;
@@ -190,6 +192,8 @@ fn monitored(names: &[String]) -> Vec<&str> {
     };
     let mut columns: Vec<&str> = names.iter().map(String::as_str).filter(watched).collect();
     columns.extend(prefixed("q_").chain(prefixed("p_")));
+    let rigid = super::rigid_plots::COLUMNS;
+    columns.extend(rigid.iter().filter(|c| names.iter().any(|n| n == *c)));
     columns
 }
 

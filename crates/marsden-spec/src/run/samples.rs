@@ -6,7 +6,6 @@
 
 use marsden_io::RowSink;
 
-use crate::model::MomentumMap as _;
 use crate::problem::SystemSpec;
 
 /// The stored samples of a run, one column per quantity: row `k` of every column is the
@@ -17,6 +16,10 @@ pub struct Samples {
     pub coordinates: Vec<String>,
     /// Times.
     pub t: Vec<f64>,
+    /// A rigid body's attitude: nine columns, `R11 … R33` (row-major); empty otherwise.
+    pub attitude: Vec<Vec<f64>>,
+    /// A rigid body's body momentum: three columns `Π₁ … Π₃`; empty otherwise.
+    pub body_momentum: Vec<Vec<f64>>,
     /// Positions: `q[i]` is the column of coordinate `i`.
     pub q: Vec<Vec<f64>>,
     /// Momenta, per coordinate.
@@ -41,16 +44,19 @@ impl Samples {
     pub fn new(system: &SystemSpec) -> Self {
         let n = system.dof();
         let constrained = !system.constraint.components().is_empty();
+        let rigid = system.rigid().is_some();
         Self {
             coordinates: system.coordinates.clone(),
             t: Vec::new(),
+            attitude: vec![Vec::new(); if rigid { 9 } else { 0 }],
+            body_momentum: vec![Vec::new(); if rigid { 3 } else { 0 }],
             q: vec![Vec::new(); n],
             p: vec![Vec::new(); n],
             v: vec![Vec::new(); n],
             energy: Vec::new(),
             has_energy: system.has_energy(),
-            momenta: (system.symmetries.iter())
-                .map(|s| (s.name().to_owned(), Vec::new()))
+            momenta: (system.momentum_names().into_iter())
+                .map(|name| (name, Vec::new()))
                 .collect(),
             constraint_residual: constrained.then(Vec::new),
             lambda: vec![Vec::new(); system.constraint.components().len()],
@@ -71,6 +77,8 @@ impl Samples {
     pub fn file_width(&self) -> usize {
         let n = self.coordinates.len();
         1 + usize::from(self.has_energy)
+            + self.attitude.len()
+            + self.body_momentum.len()
             + 2 * n
             + self.momenta.len()
             + usize::from(self.constraint_residual.is_some())
@@ -84,6 +92,9 @@ impl RowSink for Samples {
         let mut values = row.iter().copied();
         let mut next = || values.next().unwrap_or(f64::NAN);
         self.t.push(next());
+        for column in self.attitude.iter_mut().chain(&mut self.body_momentum) {
+            column.push(next());
+        }
         for column in self.q.iter_mut().chain(&mut self.p) {
             column.push(next());
         }

@@ -136,6 +136,47 @@ pub struct Summary {
     /// and the named parameters (absent without `[sensitivity]`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sensitivity: Option<SensitivitySummary>,
+    /// A rigid body's invariants and last attitude (absent for other systems).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rigid_body: Option<RigidBodySummary>,
+}
+
+/// `rigid_body { … }`: what a rigid body's run kept besides the energy and the momenta.
+#[derive(Debug, Clone, Serialize)]
+pub struct RigidBodySummary {
+    /// `max |RᵀR − I|` over the stored samples: the attitude stays a rotation.
+    pub orthogonality_defect: f64,
+    /// The Casimir `|Π|²`: initial value and largest drift over the stored samples (constant
+    /// for a free body).
+    pub casimir: CasimirSummary,
+    /// The last good attitude, rows (body → space).
+    pub final_attitude: [[f64; 3]; 3],
+    /// The last good body momentum `Π`.
+    pub final_body_momentum: Vec<f64>,
+}
+
+/// `casimir { … }`.
+#[derive(Debug, Clone, Serialize)]
+pub struct CasimirSummary {
+    /// `|Π₀|²`.
+    pub initial: f64,
+    /// `max |(|Π_k|² − |Π₀|²)|`.
+    pub max_abs_drift: f64,
+}
+
+impl RigidBodySummary {
+    fn of(record: &marsden_engine::rigid::RigidRecord) -> Self {
+        let r = &record.final_attitude;
+        RigidBodySummary {
+            orthogonality_defect: record.monitor.max_orthogonality_defect,
+            casimir: CasimirSummary {
+                initial: record.monitor.casimir.initial,
+                max_abs_drift: record.monitor.casimir.max_abs_drift,
+            },
+            final_attitude: [[r[0], r[1], r[2]], [r[3], r[4], r[5]], [r[6], r[7], r[8]]],
+            final_body_momentum: record.final_momentum.clone(),
+        }
+    }
 }
 
 /// `energy { … }`.
@@ -266,20 +307,16 @@ impl Summary {
         files: Vec<String>,
     ) -> Self {
         let d = &record.diagnostics;
-        let momenta = spec
-            .system
-            .symmetries
-            .iter()
+        let momenta = (spec.system.momentum_names().into_iter())
             .zip(&d.maps)
-            .map(|(s, m)| {
-                use crate::model::MomentumMap as _;
+            .map(|(name, m)| {
                 let value = MomentumSummary {
                     initial: m.initial,
                     max_abs_drift: m.max_abs_drift,
                     symmetry: true,
                     checked: "not checked".to_owned(),
                 };
-                (s.name().to_owned(), value)
+                (name, value)
             })
             .collect();
         let integrator = &spec.integrator;
@@ -297,6 +334,7 @@ impl Summary {
                 LagrangianSpec::Expression(_) => "expression".to_owned(),
                 LagrangianSpec::Hamiltonian(_) => "hamiltonian".to_owned(),
                 LagrangianSpec::Discrete(_) => "discrete_lagrangian".to_owned(),
+                LagrangianSpec::Rigid(_) => "rigid_body".to_owned(),
             },
             coordinates: spec.system.coordinates.clone(),
             method: spec.method_name(),
@@ -351,6 +389,7 @@ impl Summary {
             noether_balance: record.noether_balance.clone(),
             certificate: record.certificate.clone(),
             sensitivity: None,
+            rigid_body: record.rigid.as_ref().map(RigidBodySummary::of),
         }
     }
 
