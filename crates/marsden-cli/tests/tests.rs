@@ -39,6 +39,8 @@ mod plots;
 // Sweeps that keep what users need: grids, final states, momentum maps, the energy balance of
 // forced members, `.npy` tables, the sweep plot.
 mod sweep_results;
+// `[system] rigid_body`: R19 and R20 through problem files, the Rust interface's bits, refusals.
+mod rigid;
 // `marsden run`: reference values read back from the trajectory, summary.json's fields, the
 // expression path against the Rust path, the output formats.
 mod run;
