@@ -294,3 +294,25 @@ fn rigid_keys_without_a_rigid_body_are_refused() {
     assert_eq!(run.code, 2, "{}", run.stderr);
     assert!(run.stderr.contains("`Omega` applies to a rigid body"), "{}", run.stderr);
 }
+
+#[test]
+fn a_torque_about_the_symmetry_axis_raises_the_spin_linearly() {
+    // J₁ = J₂: Euler's third equation is J₃Ω̇₃ = τ₃, so Π₃(t) = Π₃(0) + τ₃ t; the step keeps
+    // the discrete Noether balance of the body rotation about e₃ exactly: Π₃ grows by hτ₃ per
+    // step to round-off (a wrong sign of the torque would make it fall).
+    let text = "[system]\nrigid_body = { inertia = [3.0, 3.0, 1.0] }\n\
+                torques = [\"0\", \"0\", \"0.25\"]\n\
+                [initial]\nOmega = [0.4, -0.7, 2.0]\n\
+                [integrator]\nh = 0.01\nsteps = 400\n[output]\nplots = false\n";
+    let (run, _dir) = run_text(text, &[]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let table = run.trajectory();
+    let (t, pi3) = (table.values("t").unwrap(), table.values("Pi3").unwrap());
+    for k in 0..t.len() {
+        let expected = 2.0 + 0.25 * t[k];
+        assert!((pi3[k] - expected).abs() < 1e-12, "t = {}: {} vs {expected}", t[k], pi3[k]);
+    }
+    let s = run.summary();
+    assert_eq!(s["energy_not_conserved"], "torques or forces act");
+    assert!(s["energy"]["max_rel_error"].is_null());
+}

@@ -1,6 +1,7 @@
 //! A run's [`Outcome`] as the dictionary the Python `Solution` is made from: the samples as
 //! NumPy arrays (one row per stored sample; `q`, `p` and `v` with one column per coordinate,
-//! the multipliers with one per constraint),
+//! the multipliers with one per constraint; a rigid body's attitude `R` as `samples × 3 × 3`
+//! and body momentum `Pi` as `samples × 3`),
 //! `summary.json`'s text, the status, the error message and the warnings; with
 //! `[sensitivity]`, the stored Jacobians as a `samples × 2n × columns` array.
 
@@ -19,6 +20,20 @@ pub fn outcome<'py>(py: Python<'py>, outcome: &Outcome) -> PyResult<Bound<'py, P
     d.set_item("p", rows(py, &samples.p, samples.len()))?;
     d.set_item("v", rows(py, &samples.v, samples.len()))?;
     d.set_item("multipliers", rows(py, &samples.lambda, samples.len()))?;
+    // A rigid body: `R` as `samples × 3 × 3`, `Π` as `samples × 3` (absent otherwise).
+    match samples.attitude.len() {
+        9 => {
+            let attitude = &samples.attitude;
+            let at = |(k, i, j): (usize, usize, usize)| attitude[3 * i + j][k];
+            let r = Array3::from_shape_fn((samples.len(), 3, 3), at).into_pyarray(py);
+            d.set_item("R", r)?;
+            d.set_item("Pi", rows(py, &samples.body_momentum, samples.len()))?;
+        }
+        _ => {
+            d.set_item("R", py.None())?;
+            d.set_item("Pi", py.None())?;
+        }
+    }
     let Samples {
         t,
         energy,

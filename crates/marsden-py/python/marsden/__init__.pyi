@@ -52,6 +52,8 @@ class Solution:
     momenta: Dict[str, FloatArray]
     constraint_residual: Optional[FloatArray]
     multipliers: FloatArray
+    R: Optional[FloatArray]
+    Pi: Optional[FloatArray]
     summary: Dict[str, Any]
     status: str
     error: Optional[str]
@@ -61,6 +63,8 @@ class Solution:
     def __len__(self) -> int: ...
     @property
     def ok(self) -> bool: ...
+    @property
+    def quaternion(self) -> Optional[FloatArray]: ...
     def final_state(self) -> Dict[str, Any]: ...
     def to_pandas(self) -> Any: ...
     def plot(self, ax: Any = ...) -> Any: ...
@@ -105,6 +109,15 @@ class Problem:
         certify: Optional[bool] = ...,
         sensitivity: Optional[SensitivityRequest] = ...,
         sweep: Optional[Mapping[str, Any]] = ...,
+        rigid_body: Optional[Any] = ...,
+        potential: Optional[Expression] = ...,
+        torques: Optional[Sequence[Expression]] = ...,
+        body_rotation: Optional[Union[str, Sequence[str]]] = ...,
+        R0: Optional[Any] = ...,
+        quaternion0: Optional[Sequence[float]] = ...,
+        rotation_vector0: Optional[Sequence[float]] = ...,
+        Omega0: Optional[Sequence[float]] = ...,
+        Pi0: Optional[Sequence[float]] = ...,
     ) -> None: ...
     @classmethod
     def from_toml(cls, text: str, origin: str = ...) -> Problem: ...

@@ -236,3 +236,30 @@ def floats(values: Any, keyword: str) -> str:
         raise ProblemError(f"error: {keyword}: expected a list of numbers, one per "
                            f"coordinate, got {values!r}")
     return _toml.floats(values)
+
+
+def rigid_body(value: Any) -> str:
+    """``rigid_body = { inertia = …, mass = … }`` from ``{"inertia": [J1, J2, J3] or 3×3,
+    "mass": m}`` (or the inertia alone)."""
+    spec = value if isinstance(value, Mapping) else {"inertia": value}
+    unknown = set(spec) - {"inertia", "mass"}
+    if unknown:
+        raise ProblemError(f"error: rigid_body: unknown key {sorted(unknown)[0]!r}; "
+                           "the keys are 'inertia' and 'mass'")
+    items = []
+    if "inertia" in spec:
+        items.append(f"inertia = {matrix_or_vector(spec['inertia'], 'rigid_body inertia')}")
+    if spec.get("mass") is not None:
+        items.append(f"mass = {_toml.number(float(spec['mass']))}")
+    return "{ " + ", ".join(items) + " }"
+
+
+def matrix_or_vector(values: Any, keyword: str) -> str:
+    """A list of numbers, or a list of rows of numbers (a NumPy array of either)."""
+    rows = list(values) if hasattr(values, "__iter__") else None
+    if rows is None or isinstance(values, (str, bytes)):
+        raise ProblemError(f"error: {keyword}: expected numbers or rows of numbers, "
+                           f"got {values!r}")
+    if rows and hasattr(rows[0], "__iter__"):
+        return "[" + ", ".join(_toml.floats(row) for row in rows) + "]"
+    return _toml.floats(rows)

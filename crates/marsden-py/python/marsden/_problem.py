@@ -53,6 +53,12 @@ class Problem:
       ``{"rotation": "z"}``: monitored momentum maps), ``rotation`` / ``translation`` (an
       axis or a list of axes: the named symmetries ``Lz``, ``Px``, ... of Cartesian
       coordinates) and ``name``. An expression is a string, a SymPy expression or a number.
+    - a rigid body instead (a configuration on SO(3), stepped by the Lie group variational
+      integrator): ``rigid_body`` (``{"inertia": [J1, J2, J3] or a 3×3 matrix, "mass": m}``),
+      ``potential`` (``U`` in ``R11`` … ``R33``, and ``x``, ``y``, ``z`` with a mass),
+      ``torques`` (body frame), ``rotation`` (in space) / ``body_rotation`` (about body axes);
+      initially ``R0`` / ``quaternion0`` / ``rotation_vector0`` and ``Omega0`` / ``Pi0``
+      (``solution.R``, ``solution.Pi``, ``solution.quaternion``).
     - the initial state: ``q0`` and one of ``v0`` / ``p0`` (or ``bodies_file``, an N-body
       file of ``builtin="nbody"``, relative to the working directory), ``t0``, ``project``
       (project onto the constraints first).
@@ -108,6 +114,15 @@ class Problem:
         certify: Optional[bool] = None,
         sensitivity: Optional[_sensitivity.Request] = None,
         sweep: Optional[Mapping[str, Any]] = None,
+        rigid_body: Optional[Any] = None,
+        potential: Optional[Expression] = None,
+        torques: Optional[Sequence[Expression]] = None,
+        body_rotation: Optional[Union[str, Sequence[str]]] = None,
+        R0: Optional[Any] = None,
+        quaternion0: Optional[Sequence[float]] = None,
+        rotation_vector0: Optional[Sequence[float]] = None,
+        Omega0: Optional[Sequence[float]] = None,
+        Pi0: Optional[Sequence[float]] = None,
     ) -> None:
         generated = _problem_text.write(_problem_text.Keywords(
             lagrangian=lagrangian, coordinates=coordinates, parameters=parameters, q0=q0,
@@ -118,7 +133,10 @@ class Problem:
             project=project, tolerance=tolerance, max_iterations=max_iterations,
             fast_paths=fast_paths, compensated=compensated, every=every, angles=angles,
             output_dir=output_dir, output_format=output_format, plots=plots,
-            every_step=every_step, certify=certify, sensitivity=sensitivity, sweep=sweep))
+            every_step=every_step, certify=certify, sensitivity=sensitivity, sweep=sweep,
+            rigid_body=rigid_body, potential=potential, torques=torques,
+            body_rotation=body_rotation, R0=R0, quaternion0=quaternion0,
+            rotation_vector0=rotation_vector0, Omega0=Omega0, Pi0=Pi0))
         try:
             self._init(generated.text, _ORIGIN)
         except ProblemError as e:

@@ -10,8 +10,12 @@ name, builtin, coordinates,            ``[system]`` (same keys)
 parameters, lagrangian, hamiltonian,
 discrete_lagrangian, forces,
 constraints
-symmetries, rotation, translation      ``[[system.symmetry]]``
+rigid_body, potential, torques         ``[system]`` (same keys: a rigid body on SO(3))
+symmetries, rotation, translation,     ``[[system.symmetry]]``
+body_rotation
 q0, v0, p0, t0, bodies_file, project   ``[initial]`` q, v, p, t0, file, project
+R0, quaternion0, rotation_vector0,     ``[initial]`` R, quaternion, rotation_vector,
+Omega0, Pi0                            Omega, Pi
 method, h, steps, t_end, tolerance,    ``[integrator]`` (same keys)
 max_iterations, fast_paths,
 compensated
@@ -73,6 +77,15 @@ class Keywords:
     certify: Optional[bool] = None
     sensitivity: Any = None
     sweep: Optional[Mapping[str, Any]] = None
+    rigid_body: Any = None
+    potential: Any = None
+    torques: Optional[Sequence[Any]] = None
+    body_rotation: Union[None, str, Sequence[str]] = None
+    R0: Any = None
+    quaternion0: Any = None
+    rotation_vector0: Any = None
+    Omega0: Any = None
+    Pi0: Any = None
 
 
 def write(k: Keywords) -> Generated:
@@ -113,11 +126,15 @@ def _system(out: Generated, k: Keywords) -> None:
          _expression("discrete_lagrangian", k.discrete_lagrangian)),
         ("forces", "forces", _expressions("forces", k.forces)),
         ("constraints", "constraints", _expressions("constraints", k.constraints)),
+        ("rigid_body", "rigid_body", kw.maybe(kw.rigid_body, k.rigid_body)),
+        ("potential", "potential", _expression("potential", k.potential)),
+        ("torques", "torques", _expressions("torques", k.torques)),
     ])
     for name, generator in kw.symmetry_items(k.symmetries):
         kw.symmetry(out, name, generator)
     kw.named_symmetries(out, "rotation", k.rotation)
     kw.named_symmetries(out, "translation", k.translation)
+    kw.named_symmetries(out, "body_rotation", k.body_rotation)
 
 
 def _initial(out: Generated, k: Keywords) -> None:
@@ -128,6 +145,13 @@ def _initial(out: Generated, k: Keywords) -> None:
         ("p", "p0", kw.maybe(lambda p: kw.floats(p, "p0"), k.p0)),
         ("file", "bodies_file", kw.maybe(lambda f: _toml.string(_path(f)), k.bodies_file)),
         ("project", "project", kw.maybe(kw.boolean, k.project)),
+        ("R", "R0", kw.maybe(lambda r: kw.matrix_or_vector(r, "R0"), k.R0)),
+        ("quaternion", "quaternion0", kw.maybe(lambda q: kw.floats(q, "quaternion0"),
+                                                k.quaternion0)),
+        ("rotation_vector", "rotation_vector0",
+         kw.maybe(lambda v: kw.floats(v, "rotation_vector0"), k.rotation_vector0)),
+        ("Omega", "Omega0", kw.maybe(lambda w: kw.floats(w, "Omega0"), k.Omega0)),
+        ("Pi", "Pi0", kw.maybe(lambda p: kw.floats(p, "Pi0"), k.Pi0)),
     ])
 
 

@@ -25,6 +25,9 @@ class Solution:
     - ``summary``: the dictionary ``marsden run`` writes as ``summary.json``;
     - ``status`` (``"completed"``, ``"failed"``), ``error`` (the failure's message),
       ``warnings``;
+    - a rigid body's ``R`` (``k × 3 × 3``, body → space), ``Pi`` (``k × 3``, the body
+      momentum ``Π = JΩ``) and ``quaternion`` (``k × 4``, ``[w, x, y, z]`` with ``w ≥ 0``);
+      ``None`` for other systems;
     - ``sensitivity``: the run's Jacobians (:class:`marsden.Sensitivity`) when they were asked
       for (``solve(sensitivity=...)`` or a ``[sensitivity]`` table), else ``None``.
 
@@ -44,6 +47,8 @@ class Solution:
         self.momenta: Dict[str, np.ndarray] = dict(fields["momenta"])
         self.constraint_residual: Optional[np.ndarray] = fields["constraint_residual"]
         self.multipliers: np.ndarray = fields["multipliers"]
+        self.R: Optional[np.ndarray] = fields.get("R")
+        self.Pi: Optional[np.ndarray] = fields.get("Pi")
         self.summary: Dict[str, Any] = (
             json.loads(fields["summary"]) if isinstance(fields["summary"], str)
             else fields["summary"])
@@ -62,6 +67,15 @@ class Solution:
     def ok(self) -> bool:
         """Whether every requested step was taken."""
         return self.status == "completed"
+
+    @property
+    def quaternion(self) -> Optional[np.ndarray]:
+        """A rigid body's attitude as unit quaternions ``[w, x, y, z]`` (``k × 4``, ``w ≥ 0``),
+        from ``R`` by Shepperd's method (the largest of ``4w², 4x², 4y², 4z²`` first, so no
+        division by a small number); ``None`` for other systems."""
+        if self.R is None:
+            return None
+        return np.array([_quaternion(r) for r in self.R]).reshape(len(self.R), 4)
 
     def final_state(self) -> Dict[str, Any]:
         """``t``, ``q`` and ``p`` of the last good state (as ``summary.json`` has them)."""
@@ -152,6 +166,25 @@ def _relative_error(ax: Any, t: np.ndarray, values: np.ndarray, label: str, titl
     ax.set_xlabel("t")
     ax.set_ylabel(label)
     ax.set_title(title)
+
+
+def _quaternion(r: np.ndarray) -> np.ndarray:
+    """The unit quaternion ``[w, x, y, z]`` (``w ≥ 0``) of the rotation ``r`` (Shepperd 1978)."""
+    trace = r[0, 0] + r[1, 1] + r[2, 2]
+    candidates = [1 + trace, 1 + 2 * r[0, 0] - trace, 1 + 2 * r[1, 1] - trace,
+                  1 + 2 * r[2, 2] - trace]
+    i = int(np.argmax(candidates))
+    s = 2.0 * np.sqrt(candidates[i])
+    if i == 0:
+        q = [s / 4, (r[2, 1] - r[1, 2]) / s, (r[0, 2] - r[2, 0]) / s, (r[1, 0] - r[0, 1]) / s]
+    elif i == 1:
+        q = [(r[2, 1] - r[1, 2]) / s, s / 4, (r[0, 1] + r[1, 0]) / s, (r[0, 2] + r[2, 0]) / s]
+    elif i == 2:
+        q = [(r[0, 2] - r[2, 0]) / s, (r[0, 1] + r[1, 0]) / s, s / 4, (r[1, 2] + r[2, 1]) / s]
+    else:
+        q = [(r[1, 0] - r[0, 1]) / s, (r[0, 2] + r[2, 0]) / s, (r[1, 2] + r[2, 1]) / s, s / 4]
+    q = np.array(q)
+    return -q if q[0] < 0 else q
 
 
 def from_native(fields: Dict[str, Any]) -> Solution:

@@ -24,6 +24,11 @@ pub const BALANCE_NOT_AVAILABLE: &str = "not available for a method with interna
      (midpoint, trapezoid, alpha-<a>, symmetrized-<a>) for the balance";
 use crate::problem::{LagrangianSpec, RunSpec};
 
+/// Why a rigid body driven by torques or forces (or a time-dependent potential) has no energy
+/// balance.
+pub const RIGID_BALANCE_NOT_AVAILABLE: &str = "not computed for a rigid body: the discrete \
+     energy balance of the Lie group integrator's torques is not implemented";
+
 /// How a run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -385,7 +390,10 @@ impl Summary {
             energy_not_available: not_available,
             energy_balance: record.balance,
             energy_balance_not_available: (not_conserved.is_some() && record.balance.is_none())
-                .then_some(BALANCE_NOT_AVAILABLE),
+                .then_some(match record.rigid {
+                    Some(_) => RIGID_BALANCE_NOT_AVAILABLE,
+                    None => BALANCE_NOT_AVAILABLE,
+                }),
             noether_balance: record.noether_balance.clone(),
             certificate: record.certificate.clone(),
             sensitivity: None,
