@@ -17,6 +17,8 @@ run kepler
 run damped_oscillator
 run cartesian_pendulum
 run pendulum_sweep
+run heavy_top
+run free_rigid_body
 mkdir -p docs/gallery
 pick() { pngquant 16 --speed 1 --force --output "docs/gallery/$3" "$tmp/$1/$2"; }
 pick nbody configuration.png configuration.png
@@ -28,4 +30,6 @@ pick damped_oscillator energy_balance.png energy_balance.png
 pick cartesian_pendulum constraint_residual.png constraint_residual.png
 pick cartesian_pendulum multipliers.png multipliers.png
 pick pendulum_sweep sweep.png sweep.png
+pick heavy_top axis_tip.png axis_tip.png
+pick free_rigid_body body_momentum.png body_momentum.png
 du -ch docs/gallery/*.png | tail -1

@@ -50,6 +50,8 @@ fn every_catalog_system_has_an_example() {
         "kepler",
         "henon_heiles",
         "nbody",
+        "free_rigid_body",
+        "heavy_top",
     ] {
         assert!(
             root.join(format!("{name}.toml")).is_file(),

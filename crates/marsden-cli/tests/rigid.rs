@@ -48,7 +48,9 @@ fn r19_file(method: &str, h: f64, t_end: f64) -> String {
 }
 
 fn final_pi(summary: &Value) -> [f64; 3] {
-    let pi = summary["rigid_body"]["final_body_momentum"].as_array().unwrap();
+    let pi = summary["rigid_body"]["final_body_momentum"]
+        .as_array()
+        .unwrap();
     [0, 1, 2].map(|i| pi[i].as_f64().unwrap())
 }
 
@@ -65,7 +67,11 @@ fn slope(hs: &[f64], errors: &[f64]) -> f64 {
 
 #[test]
 fn r19_free_rigid_body_keeps_energy_casimir_and_spatial_momentum_to_round_off() {
-    let run = marsden("run", &example("free_rigid_body.toml"), &["--steps", "4000"]);
+    let run = marsden(
+        "run",
+        &example("free_rigid_body.toml"),
+        &["--steps", "4000"],
+    );
     assert_eq!(run.code, 0, "{}", run.stderr);
     let s = run.summary();
     assert_eq!(s["status"], "completed");
@@ -113,11 +119,17 @@ fn r19_orders_two_and_four_against_the_exact_solution_of_euler_equations() {
     let hs = [0.1, 0.05, 0.025];
     let second = errors_against_exact("trapezoid", &hs);
     let p2 = slope(&hs, &second);
-    assert!((p2 - 2.0).abs() < 0.15, "trapezoid: order {p2}, errors {second:?}");
+    assert!(
+        (p2 - 2.0).abs() < 0.15,
+        "trapezoid: order {p2}, errors {second:?}"
+    );
     let hs4 = [0.2, 0.1, 0.05];
     let fourth = errors_against_exact("triple-jump-4(trapezoid)", &hs4);
     let p4 = slope(&hs4, &fourth);
-    assert!((p4 - 4.0).abs() < 0.3, "triple jump: order {p4}, errors {fourth:?}");
+    assert!(
+        (p4 - 4.0).abs() < 0.3,
+        "triple jump: order {p4}, errors {fourth:?}"
+    );
 }
 
 #[test]
@@ -150,10 +162,18 @@ fn a_symmetry_the_body_does_not_have_is_monitored_and_said() {
     // The heavy top is not symmetric about the horizontal axis x of space.
     let text = std::fs::read_to_string(example("heavy_top.toml"))
         .unwrap()
-        .replace("rotation = \"z\"                               # about", "rotation = \"x\" # about");
+        .replace(
+            "rotation = \"z\"                               # about",
+            "rotation = \"x\" # about",
+        );
     let (run, _dir) = run_text(&text, &["--steps", "100"]);
     assert_eq!(run.code, 0, "{}", run.stderr);
-    assert!(run.stderr.contains("\"L_x\" is not a symmetry of the rigid body"), "{}", run.stderr);
+    assert!(
+        run.stderr
+            .contains("\"L_x\" is not a symmetry of the rigid body"),
+        "{}",
+        run.stderr
+    );
     assert_eq!(run.summary()["momenta"]["L_x"]["symmetry"], false);
 }
 
@@ -179,7 +199,11 @@ fn the_file_gives_the_same_bits_as_the_rust_interface() {
     let rows = &s["rigid_body"]["final_attitude"];
     for (k, expected) in lgvi.state().rotations.iter().enumerate() {
         let got = rows[k / 3][k % 3].as_f64().unwrap();
-        assert_eq!(got.to_bits(), expected.to_bits(), "R entry {k}: {got} vs {expected}");
+        assert_eq!(
+            got.to_bits(),
+            expected.to_bits(),
+            "R entry {k}: {got} vs {expected}"
+        );
     }
     for (k, expected) in lgvi.state().momenta.iter().enumerate() {
         assert_eq!(final_pi(&s)[k].to_bits(), expected.to_bits(), "Π_{k}");
@@ -204,7 +228,11 @@ fn a_body_with_a_mass_moves_its_centre_by_its_forces() {
         table.values("q_x").unwrap(),
     );
     let k = t.len() - 1;
-    assert!((z[k] - (10.0 - 0.5 * 9.81 * t[k] * t[k])).abs() < 1e-10, "z = {}", z[k]);
+    assert!(
+        (z[k] - (10.0 - 0.5 * 9.81 * t[k] * t[k])).abs() < 1e-10,
+        "z = {}",
+        z[k]
+    );
     assert!((x[k] - t[k]).abs() < 1e-12, "x = {}", x[k]);
     let s = run.summary();
     assert!(number(&s, "momenta.P_x.max_abs_drift") <= 1e-14);
@@ -219,7 +247,11 @@ fn assert_refused(edit: (&str, &str), fragments: &[&str]) {
     let (run, _dir) = run_text(&text.replace(edit.0, edit.1), &[]);
     assert_eq!(run.code, 2, "{edit:?}: {}", run.stderr);
     for f in fragments {
-        assert!(run.stderr.contains(f), "{edit:?}: lacks {f:?}:\n{}", run.stderr);
+        assert!(
+            run.stderr.contains(f),
+            "{edit:?}: lacks {f:?}:\n{}",
+            run.stderr
+        );
     }
     assert!(run.stderr.contains('^'), "no caret: {}", run.stderr);
     assert!(!run.out.exists(), "{edit:?}: something was written");
@@ -232,7 +264,10 @@ fn bad_rigid_bodies_are_refused_with_a_caret() {
         &["invalid inertia", "not positive definite"],
     );
     assert_refused(
-        ("inertia = [5.0, 5.0, 1.0]", "inertia = [[5, 1, 0], [0, 5, 0], [0, 0, 1]]"),
+        (
+            "inertia = [5.0, 5.0, 1.0]",
+            "inertia = [[5, 1, 0], [0, 5, 0], [0, 0, 1]]",
+        ),
         &["invalid inertia", "not symmetric"],
     );
     assert_refused(
@@ -249,18 +284,30 @@ fn bad_rigid_bodies_are_refused_with_a_caret() {
     );
     assert_refused(
         ("method = \"trapezoid\"", "method = \"gauss-2\""),
-        &["the method `gauss-2` has no rigid-body version", "triple-jump-4(trapezoid)"],
+        &[
+            "the method `gauss-2` has no rigid-body version",
+            "triple-jump-4(trapezoid)",
+        ],
     );
     assert_refused(
-        ("rotation_vector = [0.05, 0.0, 0.0]", "R = [[1, 0, 0], [0, 1, 0.001], [0, 0, 1]]"),
+        (
+            "rotation_vector = [0.05, 0.0, 0.0]",
+            "R = [[1, 0, 0], [0, 1, 0.001], [0, 0, 1]]",
+        ),
         &["not a rotation", "orthonormal"],
     );
     assert_refused(
-        ("rotation_vector = [0.05, 0.0, 0.0]", "rotation_vector = [0.05, 0.0, 0.0]\nquaternion = [1, 0, 0, 0]"),
+        (
+            "rotation_vector = [0.05, 0.0, 0.0]",
+            "rotation_vector = [0.05, 0.0, 0.0]\nquaternion = [1, 0, 0, 0]",
+        ),
         &["give the initial attitude once"],
     );
     assert_refused(
-        ("Omega = [0.0, 0.0, 50.0]", "Omega = [0.0, 0.0, 50.0]\nPi = [0, 0, 50]"),
+        (
+            "Omega = [0.0, 0.0, 50.0]",
+            "Omega = [0.0, 0.0, 50.0]\nPi = [0, 0, 50]",
+        ),
         &["give either `Omega` or `Pi`"],
     );
     assert_refused(
@@ -272,12 +319,18 @@ fn bad_rigid_bodies_are_refused_with_a_caret() {
         &["unknown axis `w`"],
     );
     assert_refused(
-        ("potential = \"mgl*R33\"", "potential = \"mgl*R33\"\nforces = [\"0\", \"0\", \"-1\"]"),
+        (
+            "potential = \"mgl*R33\"",
+            "potential = \"mgl*R33\"\nforces = [\"0\", \"0\", \"-1\"]",
+        ),
         &["`forces` act on the centre of mass of a body with a `mass`"],
     );
     assert_refused(
-        ("potential = \"mgl*R33\"", "potential = \"mgl*R33\"\ncoordinates = [\"a\"]"),
-        &["`coordinates` cannot be used with `rigid_body`"],
+        (
+            "potential = \"mgl*R33\"",
+            "potential = \"mgl*R33\"\ncoordinates = [\"a\"]",
+        ),
+        &["`coordinates` cannot be used with a rigid body"],
     );
     assert_refused(
         ("[output]", "[sensitivity]\ninitial = true\n[output]"),
@@ -292,7 +345,11 @@ fn rigid_keys_without_a_rigid_body_are_refused() {
         .replace("v = [0.0]", "v = [0.0]\nOmega = [1.0, 0.0, 0.0]");
     let (run, _dir) = run_text(&text, &[]);
     assert_eq!(run.code, 2, "{}", run.stderr);
-    assert!(run.stderr.contains("`Omega` applies to a rigid body"), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("`Omega` applies to a rigid body"),
+        "{}",
+        run.stderr
+    );
 }
 
 #[test]
@@ -310,9 +367,80 @@ fn a_torque_about_the_symmetry_axis_raises_the_spin_linearly() {
     let (t, pi3) = (table.values("t").unwrap(), table.values("Pi3").unwrap());
     for k in 0..t.len() {
         let expected = 2.0 + 0.25 * t[k];
-        assert!((pi3[k] - expected).abs() < 1e-12, "t = {}: {} vs {expected}", t[k], pi3[k]);
+        assert!(
+            (pi3[k] - expected).abs() < 1e-12,
+            "t = {}: {} vs {expected}",
+            t[k],
+            pi3[k]
+        );
     }
     let s = run.summary();
     assert_eq!(s["energy_not_conserved"], "torques or forces act");
     assert!(s["energy"]["max_rel_error"].is_null());
+}
+
+#[test]
+fn the_catalog_heavy_top_is_the_written_one_bit_for_bit() {
+    let written = marsden("run", &example("heavy_top.toml"), &["--steps", "500"]);
+    let text = "[system]\nbuiltin = \"heavy_top\"\n\
+                [[system.symmetry]]\nrotation = \"z\"\n\
+                [initial]\nrotation_vector = [0.05, 0.0, 0.0]\nOmega = [0.0, 0.0, 50.0]\n\
+                [integrator]\nh = 0.001\nsteps = 500\n[output]\nplots = false\n";
+    let (builtin, _dir) = run_text(text, &[]);
+    assert_eq!(builtin.code, 0, "{}", builtin.stderr);
+    let (a, b) = (written.summary(), builtin.summary());
+    assert_eq!(
+        a["rigid_body"]["final_attitude"],
+        b["rigid_body"]["final_attitude"]
+    );
+    assert_eq!(
+        a["rigid_body"]["final_body_momentum"],
+        b["rigid_body"]["final_body_momentum"]
+    );
+    // A parameter of the entry is overridden; one it does not have is an expression constant.
+    let (light, _dir) = run_text(
+        &text.replace(
+            "builtin = \"heavy_top\"",
+            "builtin = \"heavy_top\"\nparameters = { mgl = 0.0 }",
+        ),
+        &[],
+    );
+    assert_eq!(light.code, 0, "{}", light.stderr);
+    // Without gravity the top spins steadily: Π does not change.
+    let pi = final_pi(&light.summary());
+    assert!(
+        pi[0].abs() < 1e-12 && pi[1].abs() < 1e-12 && (pi[2] - 50.0).abs() < 1e-12,
+        "{pi:?}"
+    );
+    let (both, _dir) = run_text(
+        &text.replace(
+            "builtin = \"heavy_top\"",
+            "builtin = \"heavy_top\"\npotential = \"R33\"",
+        ),
+        &[],
+    );
+    assert_eq!(both.code, 2);
+    assert!(
+        both.stderr
+            .contains("`potential` is given by `builtin = \"heavy_top\"`"),
+        "{}",
+        both.stderr
+    );
+}
+
+#[test]
+fn marsden_systems_lists_the_rigid_bodies() {
+    let out = crate::util::marsden_in(&repo_root(), &["systems", "heavy_top"]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(out.status.success());
+    assert!(
+        text.contains("potential    mgl*R33") && text.contains("J3 = 1"),
+        "{text}"
+    );
+    let all = crate::util::marsden_in(&repo_root(), &["systems"]);
+    let text = String::from_utf8(all.stdout).unwrap();
+    assert!(
+        text.contains("free_rigid_body  —") && text.contains("heavy_top  —"),
+        "{text}"
+    );
 }

@@ -33,6 +33,8 @@ pub struct Plane {
     pub equal_axes: bool,
     /// The axes are angles wrapped to (−π, π]: lines break where they wrap.
     pub wrapped: (bool, bool),
+    /// The figure's title (`None`: "Configuration space").
+    pub title: Option<String>,
 }
 
 /// Draws every orbit in one panel to a PNG at `path`, one colour per orbit.
@@ -100,7 +102,10 @@ pub fn plot_configuration(
     draw_figure(
         path,
         opts,
-        "Configuration space (● start)".to_owned(),
+        format!(
+            "{} (● start)",
+            plane.title.as_deref().unwrap_or("Configuration space")
+        ),
         (1, 1),
         vec![panel],
     )

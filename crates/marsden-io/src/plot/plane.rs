@@ -40,6 +40,7 @@ pub(crate) fn plane_of(
         y_label: y.to_owned(),
         equal_axes: equal,
         wrapped: (opts.is_angle(x), opts.is_angle(y)),
+        title: None,
     };
     if !bodies.is_empty() {
         let spread = |axis: char| -> f64 {

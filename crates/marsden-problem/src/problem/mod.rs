@@ -20,6 +20,8 @@ pub mod parameters;
 pub mod raw;
 mod resolved;
 pub mod rigid;
+pub mod rigid_catalog;
+pub mod rigid_settings;
 pub mod sensitivity;
 pub mod settings;
 pub mod spec;
@@ -160,9 +162,9 @@ fn validate_raw(
     let bodies = nbody_file::read(&ck, raw.initial.as_ref())?;
     let system = system::system(&ck, raw.system.as_ref(), bodies.as_ref())?;
     let (initial, initial_spans) = match system.rigid() {
-        Some(body) => rigid::initial(&ck, raw.initial.as_ref(), body)?,
+        Some(body) => rigid_settings::initial(&ck, raw.initial.as_ref(), body)?,
         None => {
-            rigid::refuse_rigid_keys(&ck, raw)?;
+            rigid_settings::refuse_rigid_keys(&ck, raw)?;
             settings::initial(
                 &ck,
                 raw.initial.as_ref(),
@@ -181,8 +183,8 @@ fn validate_raw(
         let span = (raw.integrator.as_ref())
             .and_then(|i| i.get_ref().method.as_ref())
             .map(|m| m.span());
-        integrator.method = rigid::method(&ck, &integrator.method, span)?;
-        rigid::refuse_unsupported(&ck, raw)?;
+        integrator.method = rigid_settings::method(&ck, &integrator.method, span)?;
+        rigid_settings::refuse_unsupported(&ck, raw)?;
     }
     if !system.constraint.components().is_empty()
         && let Some(reason) = integrator.method.constraint_refusal()

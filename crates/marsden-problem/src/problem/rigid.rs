@@ -19,19 +19,15 @@
 
 use std::ops::Range;
 
-use marsden::discrete::rules::{BaseMethod, Method as CoreMethod};
 use marsden::lie::body::{Inertia, Moments};
-use marsden::lie::so3::{self, Vec3};
 use marsden_expr::{ProgramSet, Symbols};
 use toml::Spanned;
 
 use super::check::Checker;
-use super::method::Method;
 use super::parameters::Parameters;
-use super::raw::{RawInertia, RawInitial, RawProblem, RawRigidBody, RawSymmetry, RawSystem};
+use super::raw::{RawInertia, RawRigidBody, RawSymmetry, RawSystem};
 use super::resolved::{Resolved, symbols};
-use super::settings::InitialSpans;
-use super::spec::{InitialData, InitialSpec, LagrangianSpec};
+use super::spec::LagrangianSpec;
 use crate::error::Diagnostic;
 use crate::model::rigid::{ExprRigidLoads, ExprRigidPotential, INPUTS};
 
@@ -105,45 +101,6 @@ pub struct RigidInitial {
     pub momentum: [f64; 3],
 }
 
-/// Whether the file describes a rigid body.
-pub fn is_rigid(raw: &RawProblem) -> bool {
-    (raw.system.as_ref()).is_some_and(|s| s.get_ref().rigid_body.is_some())
-}
-
-/// Refuses the rigid-body keys in a file that has no `rigid_body`.
-///
-/// # Errors
-/// The first such key, with where it belongs.
-pub fn refuse_rigid_keys(ck: &Checker<'_>, raw: &RawProblem) -> Result<(), Diagnostic> {
-    let system = raw.system.as_ref().map(Spanned::get_ref);
-    let initial = raw.initial.as_ref().map(Spanned::get_ref);
-    let spans = [
-        system.and_then(|s| s.potential.as_ref().map(|v| ("potential", v.span()))),
-        system.and_then(|s| s.torques.as_ref().map(|v| ("torques", v.span()))),
-        initial.and_then(|i| {
-            i.rotation_vector
-                .as_ref()
-                .map(|v| ("rotation_vector", v.span()))
-        }),
-        initial.and_then(|i| i.r.as_ref().map(|v| ("R", v.span()))),
-        initial.and_then(|i| i.quaternion.as_ref().map(|v| ("quaternion", v.span()))),
-        initial.and_then(|i| i.omega.as_ref().map(|v| ("Omega", v.span()))),
-        initial.and_then(|i| i.pi.as_ref().map(|v| ("Pi", v.span()))),
-    ];
-    let body_rotation = system
-        .and_then(|s| s.symmetry.as_deref())
-        .into_iter()
-        .flatten()
-        .find_map(|s| s.get_ref().body_rotation.as_ref())
-        .map(|v| ("body_rotation", v.span()));
-    match spans.into_iter().chain([body_rotation]).flatten().next() {
-        Some((key, span)) => Err(ck
-            .error(Some(span), format!("`{key}` applies to a rigid body"))
-            .help("declare the body with `rigid_body = { inertia = [J1, J2, J3] }` in [system]")),
-        None => Ok(()),
-    }
-}
-
 /// Validates the `[system]` of a rigid body.
 ///
 /// # Errors
@@ -155,10 +112,9 @@ pub(super) fn system(
     body: &Spanned<RawRigidBody>,
     params: &Parameters,
 ) -> Result<Resolved, Diagnostic> {
-    refuse_coordinate_keys(ck, system)?;
+    refuse_coordinate_keys(ck, system, true)?;
     params.numbers_only(ck, "a rigid body")?;
     let raw = body.get_ref();
-    let inertia = inertia(ck, body)?;
     let mass = match &raw.mass {
         None => None,
         Some(m) => match ck.finite("rigid_body.mass", m)? {
@@ -174,11 +130,57 @@ pub(super) fn system(
     let constants: Vec<(String, f64)> = (params.numbers.iter())
         .map(|w| (w.name.clone(), w.value))
         .collect();
+    let parts = Parts {
+        inertia: inertia(ck, body)?,
+        mass,
+        potential: system.potential.as_ref().map(Potential::Written),
+        constants,
+    };
+    assemble(ck, system, parts, params)
+}
+
+/// Where a rigid body's potential comes from.
+pub(super) enum Potential<'a> {
+    /// `potential = "…"` in the file.
+    Written(&'a Spanned<String>),
+    /// A catalog entry's formula.
+    Catalog(&'a str),
+}
+
+/// The parts of a rigid body's `[system]` read so far.
+pub(super) struct Parts<'a> {
+    /// The validated inertia.
+    pub inertia: Inertia,
+    /// The mass of a free body.
+    pub mass: Option<f64>,
+    /// The potential's text, if any.
+    pub potential: Option<Potential<'a>>,
+    /// Every parameter with its value (the symbols of the expressions).
+    pub constants: Vec<(String, f64)>,
+}
+
+/// The body from its parts and the file's `torques`, `forces` and symmetries.
+///
+/// # Errors
+/// An expression naming an unknown symbol (or `x`, `y`, `z` without a mass), forces without
+/// a mass, a symmetry the body cannot have.
+pub(super) fn assemble(
+    ck: &Checker<'_>,
+    system: &RawSystem,
+    parts: Parts<'_>,
+    params: &Parameters,
+) -> Result<Resolved, Diagnostic> {
+    let Parts {
+        inertia,
+        mass,
+        potential,
+        constants,
+    } = parts;
     let inputs: Vec<String> = INPUTS.iter().map(|s| (*s).to_owned()).collect();
     let symbols = symbols(ck, inputs, &constants, params)?;
-    let potential = match &system.potential {
+    let potential = match potential {
         None => ExprRigidPotential::new(None),
-        Some(text) => {
+        Some(Potential::Written(text)) => {
             let expr = ck.parse_expr("[system] potential", text)?;
             let program = expr
                 .compile(&symbols)
@@ -186,6 +188,14 @@ pub(super) fn system(
             if mass.is_none() {
                 no_centre(ck, "potential", text.span(), program.inputs_used())?;
             }
+            ExprRigidPotential::new(Some(program))
+        }
+        Some(Potential::Catalog(text)) => {
+            let program = marsden_expr::Program::compile(text, &symbols).map_err(|e| {
+                Diagnostic::new(format!(
+                    "internal error: the catalog's potential `{text}`: {e}"
+                ))
+            })?;
             ExprRigidPotential::new(Some(program))
         }
     };
@@ -228,15 +238,21 @@ fn m_span(raw: &RawRigidBody) -> Range<usize> {
     raw.mass.as_ref().map_or(0..0, Spanned::span)
 }
 
-/// The keys of a system in coordinates, which a rigid body does not take.
-fn refuse_coordinate_keys(ck: &Checker<'_>, system: &RawSystem) -> Result<(), Diagnostic> {
+/// The keys of a system in coordinates, which a rigid body does not take (`builtin` too, unless
+/// the body is a catalog entry).
+pub(super) fn refuse_coordinate_keys(
+    ck: &Checker<'_>,
+    system: &RawSystem,
+    with_builtin: bool,
+) -> Result<(), Diagnostic> {
+    let builtin = system.builtin.as_ref().filter(|_| with_builtin);
     let keys = [
         (
             "coordinates",
             system.coordinates.as_ref().map(Spanned::span),
         ),
         ("lagrangian", system.lagrangian.as_ref().map(Spanned::span)),
-        ("builtin", system.builtin.as_ref().map(Spanned::span)),
+        ("builtin", builtin.map(Spanned::span)),
         (
             "hamiltonian",
             system.hamiltonian.as_ref().map(Spanned::span),
@@ -254,7 +270,7 @@ fn refuse_coordinate_keys(ck: &Checker<'_>, system: &RawSystem) -> Result<(), Di
         Some((key, span)) => Err(ck
             .error(
                 Some(span),
-                format!("`{key}` cannot be used with `rigid_body`"),
+                format!("`{key}` cannot be used with a rigid body"),
             )
             .note(
                 "a rigid body's configuration is its attitude R (and its centre of mass with a \
@@ -426,227 +442,4 @@ fn action(
             .help("give the body a `mass` to let its centre of mass move"));
     }
     Ok(action)
-}
-
-/// The integrator's method for a rigid body: the LGVI is the trapezoidal rule on the group, so
-/// `trapezoid` (the default) and its compositions.
-///
-/// # Errors
-/// Another rule, pointing at the method.
-pub(super) fn method(
-    ck: &Checker<'_>,
-    method: &Method,
-    span: Option<Range<usize>>,
-) -> Result<Method, Diagnostic> {
-    let Some(span) = span else {
-        return Ok(Method::Rule(CoreMethod::Single(BaseMethod::Trapezoid)));
-    };
-    match method {
-        Method::Rule(CoreMethod::Single(BaseMethod::Trapezoid))
-        | Method::Rule(CoreMethod::Composed(_, BaseMethod::Trapezoid)) => Ok(method.clone()),
-        _ => Err(ck
-            .error(Some(span), format!("the method `{method}` has no rigid-body version"))
-            .note("a rigid body is stepped by the Lie group variational integrator, the trapezoidal rule on SO(3)")
-            .help("use `trapezoid` (order 2) or a composition of it, e.g. `triple-jump-4(trapezoid)` or `kahan-li-6(trapezoid)`")),
-    }
-}
-
-/// `[initial]` of a rigid body: the attitude (`rotation_vector`, `R` or `quaternion`; default
-/// the identity), the body momentum (`Omega` or `Pi`), and with a mass the centre `q` and its
-/// `v` or `p` (default: at rest at the origin).
-///
-/// # Errors
-/// Two forms of the same datum, a matrix that is not a rotation to 1e-10, wrong lengths.
-pub(super) fn initial(
-    ck: &Checker<'_>,
-    raw: Option<&Spanned<RawInitial>>,
-    rigid: &RigidSpec,
-) -> Result<(InitialSpec, InitialSpans), Diagnostic> {
-    let Some(raw) = raw else {
-        return Err(Diagnostic::new("the problem file has no [initial] table")
-            .help("add [initial] with `Omega = [...]` (body angular velocity) or `Pi = [...]`"));
-    };
-    let table = raw.get_ref();
-    let attitude = attitude(ck, table)?;
-    let three_names: Vec<String> = CENTRE.iter().map(|c| (*c).to_owned()).collect();
-    let (momentum, data_span) = match (&table.omega, &table.pi) {
-        (Some(_), Some(pi)) => {
-            return Err(ck
-                .error(
-                    Some(pi.span()),
-                    "give either `Omega` or `Pi` in [initial], not both",
-                )
-                .help("`Omega` is the body angular velocity, `Pi = J Omega` the body momentum"));
-        }
-        (None, None) => {
-            return Err(ck
-                .error(Some(raw.span()), "[initial] needs the body angular velocity `Omega = [...]` or the body momentum `Pi = [...]`"));
-        }
-        (Some(w), None) => {
-            let w = ck.vector("initial.Omega", w, &three_names)?;
-            let pi = rigid.inertia.tensor() * Vec3::new(w[0], w[1], w[2]);
-            (
-                [pi.x, pi.y, pi.z],
-                table.omega.as_ref().map_or(0..0, Spanned::span),
-            )
-        }
-        (None, Some(p)) => {
-            let p = ck.vector("initial.Pi", p, &three_names)?;
-            ([p[0], p[1], p[2]], p_span(table))
-        }
-    };
-    let centre = |list: &Option<super::raw::SpannedList<f64>>, what: &str| match (list, rigid.mass)
-    {
-        (None, _) => Ok(None),
-        (Some(l), Some(_)) => ck.vector(what, l, &three_names).map(Some),
-        (Some(l), None) => Err(ck
-            .error(
-                Some(l.span()),
-                format!("`{}` applies to a body with a `mass`", &what[8..]),
-            )
-            .help("a body turning about a fixed point has no centre-of-mass data")),
-    };
-    let q = centre(&table.q, "initial.q")?;
-    let v = centre(&table.v, "initial.v")?;
-    let p = centre(&table.p, "initial.p")?;
-    let n = if rigid.mass.is_some() { 3 } else { 0 };
-    let data = match (v, p) {
-        (Some(_), Some(_)) => {
-            let span = table.p.as_ref().map_or(0..0, Spanned::span);
-            return Err(ck.error(Some(span), "give either `v` or `p` in [initial], not both"));
-        }
-        (None, Some(p)) => InitialData::Momentum(p),
-        (Some(v), None) => InitialData::Velocity(v),
-        (None, None) => InitialData::Velocity(vec![0.0; n]),
-    };
-    if let Some(f) = &table.file {
-        return Err(ck.error(
-            Some(f.span()),
-            "`file` gives N-body data, not a rigid body's",
-        ));
-    }
-    let t0 = table
-        .t0
-        .as_ref()
-        .map_or(Ok(0.0), |t| ck.finite("initial.t0", t))?;
-    let spec = InitialSpec {
-        t0,
-        q: q.unwrap_or_else(|| vec![0.0; n]),
-        data,
-        project: false,
-        rigid: None,
-    };
-    let spans = InitialSpans {
-        q: table.q.as_ref().map_or(data_span.clone(), Spanned::span),
-        data: data_span,
-    };
-    Ok((
-        InitialSpec {
-            rigid: Some(RigidInitial { attitude, momentum }),
-            ..spec
-        },
-        spans,
-    ))
-}
-
-fn p_span(table: &RawInitial) -> Range<usize> {
-    table.pi.as_ref().map_or(0..0, Spanned::span)
-}
-
-/// The initial attitude, row-major, from the one form written (the identity if none).
-fn attitude(ck: &Checker<'_>, table: &RawInitial) -> Result<[f64; 9], Diagnostic> {
-    let forms = [
-        table
-            .rotation_vector
-            .as_ref()
-            .map(|v| ("rotation_vector", v.span())),
-        table.r.as_ref().map(|v| ("R", v.span())),
-        table.quaternion.as_ref().map(|v| ("quaternion", v.span())),
-    ];
-    let mut written = forms.into_iter().flatten();
-    let first = written.next();
-    if let (Some((a, _)), Some((b, span))) = (first.clone(), written.next()) {
-        return Err(ck
-            .error(
-                Some(span),
-                format!("give the initial attitude once: `{a}` and `{b}` are both written"),
-            )
-            .help("`rotation_vector` (axis × angle), `R` (rows) or `quaternion` ([w, x, y, z])"));
-    }
-    let numbers = |list: &super::raw::SpannedList<f64>,
-                   what: &str,
-                   n: usize|
-     -> Result<Vec<f64>, Diagnostic> {
-        let names: Vec<String> = (0..n).map(|i| i.to_string()).collect();
-        ck.vector(what, list, &names)
-    };
-    let r = if let Some(v) = &table.rotation_vector {
-        let v = numbers(v, "initial.rotation_vector", 3)?;
-        so3::from_rotation_vector(&Vec3::new(v[0], v[1], v[2]))
-    } else if let Some(q) = &table.quaternion {
-        let w = numbers(q, "initial.quaternion", 4)?;
-        so3::from_quaternion(&[w[0], w[1], w[2], w[3]])
-            .map_err(|e| ck.error(Some(q.span()), format!("initial.quaternion: {e}")))?
-    } else if let Some(m) = &table.r {
-        let rows = matrix_rows(ck, m)?;
-        so3::attitude("initial R", &rows).map_err(|e| {
-            ck.error(Some(m.span()), format!("{e}"))
-                .help("give an orthonormal matrix with det R = 1 (to 1e-10), or `rotation_vector` / `quaternion`")
-        })?
-    } else {
-        so3::Mat3::identity()
-    };
-    Ok(so3::rows(&r))
-}
-
-fn matrix_rows(ck: &Checker<'_>, m: &Spanned<Vec<Vec<f64>>>) -> Result<[f64; 9], Diagnostic> {
-    let written = m.get_ref();
-    if written.len() != 3 || written.iter().any(|r| r.len() != 3) {
-        return Err(ck.error(
-            Some(m.span()),
-            "`R` must be a 3×3 matrix: three rows of three numbers",
-        ));
-    }
-    let mut rows = [0.0; 9];
-    for (i, row) in written.iter().enumerate() {
-        rows[3 * i..3 * i + 3].copy_from_slice(row);
-    }
-    if let Some(bad) = rows.iter().find(|v| !v.is_finite()) {
-        return Err(ck.error(
-            Some(m.span()),
-            format!("`R` has a non-finite entry ({bad})"),
-        ));
-    }
-    Ok(rows)
-}
-
-/// Refuses what a rigid-body run does not offer yet: an ensemble (`[sweep]`), derivatives
-/// (`[sensitivity]`), the certificates (`[analysis] certify`), compensated summation.
-///
-/// # Errors
-/// The first such table or key, saying so.
-pub(super) fn refuse_unsupported(ck: &Checker<'_>, raw: &RawProblem) -> Result<(), Diagnostic> {
-    let certify = (raw.analysis.as_ref())
-        .and_then(|a| a.get_ref().certify.as_ref())
-        .filter(|c| *c.get_ref())
-        .map(Spanned::span);
-    let compensated = (raw.integrator.as_ref())
-        .and_then(|i| i.get_ref().compensated.as_ref())
-        .filter(|c| *c.get_ref())
-        .map(Spanned::span);
-    let found = [
-        raw.sweep.as_ref().map(|s| ("[sweep]", s.span())),
-        raw.sensitivity
-            .as_ref()
-            .map(|s| ("[sensitivity]", s.span())),
-        certify.map(|s| ("`certify = true`", s)),
-        compensated.map(|s| ("`compensated = true`", s)),
-    ];
-    match found.into_iter().flatten().next() {
-        Some((what, span)) => Err(ck
-            .error(Some(span), format!("{what} is not available for a rigid body"))
-            .note("a rigid body's run gives its trajectory, energy, momentum maps, Casimir and orthogonality defect")
-            .help("remove it to run the body")),
-        None => Ok(()),
-    }
 }

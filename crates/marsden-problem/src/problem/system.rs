@@ -107,7 +107,14 @@ pub fn system(
     }
     let mut params = Parameters::read(ck, system)?;
     if let Some(body) = &system.rigid_body {
-        return rigid_system(ck, system, body, &params);
+        let resolved = super::rigid::system(ck, system, body, &params)?;
+        return Ok(rigid_system(resolved));
+    }
+    if let Some(name) = &system.builtin
+        && let Some(entry) = super::rigid_catalog::rigid_builtin(name.get_ref())
+    {
+        let resolved = super::rigid_catalog::system(ck, system, name, entry, &params)?;
+        return Ok(rigid_system(resolved));
     }
     if let Some(body_rotation) =
         (symmetries(system).iter()).find_map(|s| s.get_ref().body_rotation.as_ref())
@@ -168,19 +175,14 @@ pub fn system(
 }
 
 /// A rigid body's `[system]` ([`super::rigid`]): no coordinates but its centre of mass's.
-fn rigid_system(
-    ck: &Checker<'_>,
-    system: &RawSystem,
-    body: &toml::Spanned<super::raw::RawRigidBody>,
-    params: &Parameters,
-) -> Result<SystemSpec, Diagnostic> {
+fn rigid_system(resolved: Resolved) -> SystemSpec {
     let Resolved {
         lagrangian,
         coordinates,
         parameters,
         masses,
-    } = super::rigid::system(ck, system, body, params)?;
-    Ok(SystemSpec {
+    } = resolved;
+    SystemSpec {
         lagrangian,
         coordinates,
         parameters,
@@ -188,7 +190,7 @@ fn rigid_system(
         force: crate::model::ExprForce::none(),
         constraint: crate::model::ExprConstraint::none(),
         symmetries: Vec::new(),
-    })
+    }
 }
 
 /// The masses of an `[initial] file` become the `masses` parameter of `builtin = "nbody"`.
@@ -230,7 +232,8 @@ fn builtin(
     used: &[String],
 ) -> Result<Resolved, Diagnostic> {
     let Some(b) = Builtin::from_name(name.get_ref()) else {
-        let names: Vec<&str> = Builtin::ALL.iter().map(|b| b.name()).collect();
+        let rigid = super::rigid_catalog::RIGID_BUILTINS.iter().map(|b| b.name);
+        let names: Vec<&str> = Builtin::ALL.iter().map(|b| b.name()).chain(rigid).collect();
         return Err(ck
             .error(
                 Some(name.span()),
