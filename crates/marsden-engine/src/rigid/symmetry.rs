@@ -8,7 +8,7 @@
 //!
 //! [MR99]: marsden#references
 
-use marsden::lie::potential::RigidPotential;
+use marsden::lie::potential::{ExternalLoads as _, RigidPotential};
 use marsden::lie::so3::{self, Mat3, Vec3};
 use marsden::lie::state::RigidState;
 use marsden_problem::problem::rigid::{RigidAction, RigidSpec};

@@ -207,6 +207,7 @@ impl SystemSpec {
             return Some("forces act");
         }
         if let Some(r) = self.rigid() {
+            use marsden::lie::potential::ExternalLoads as _;
             return match (r.loads.is_active(), r.potential.depends_on_time()) {
                 (true, _) => Some("torques or forces act"),
                 (false, true) => Some("the potential depends on t"),

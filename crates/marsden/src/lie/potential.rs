@@ -17,7 +17,7 @@
 //!
 //! [LLM07]: crate#references
 
-use super::so3::Vec3;
+use super::so3::{Mat3, Vec3, vee};
 use crate::numerics::ad::{MultiFunction, jacobian};
 use crate::numerics::scratch::Buffer;
 use crate::scalar::Scalar;
@@ -34,6 +34,21 @@ pub trait RigidPotential {
     /// `U(t, R, x)`: `rotations` holds 9 entries per body (row-major `R11 … R33`), `positions`
     /// 3 per body (the centre of mass of a free body; zero for a body with a fixed point).
     fn value<S: Scalar>(&self, t: S, rotations: &[S], positions: &[S]) -> S;
+
+    /// The partial derivatives `∂U/∂R` (9 per body, row-major, `R`'s entries taken as
+    /// independent) and `∂U/∂x` (3 per body) in closed form, written into `d_rotations` and
+    /// `d_positions` (which arrive zeroed); `false` (the default) if the potential has none,
+    /// and the body moment is then taken by automatic differentiation of [`Self::value`].
+    fn gradient(
+        &self,
+        _t: f64,
+        _rotations: &[f64],
+        _positions: &[f64],
+        _d_rotations: &mut [f64],
+        _d_positions: &mut [f64],
+    ) -> bool {
+        false
+    }
 }
 
 /// `U = 0`: free rigid bodies (Euler's equations).
@@ -87,6 +102,25 @@ impl RigidPotential for UniformGravity {
         }
         u * self.g
     }
+
+    fn gradient(
+        &self,
+        _t: f64,
+        _rotations: &[f64],
+        _positions: &[f64],
+        d_rotations: &mut [f64],
+        d_positions: &mut [f64],
+    ) -> bool {
+        for (i, c) in self.first_moments.iter().enumerate() {
+            for (d, c) in d_rotations[9 * i + 6..9 * i + 9].iter_mut().zip(c) {
+                *d = self.g * c;
+            }
+        }
+        for (i, m) in self.masses.iter().enumerate() {
+            d_positions[3 * i + 2] = self.g * m;
+        }
+        true
+    }
 }
 
 /// External loads not derived from a potential: a body-frame torque `τᵢ` and a spatial force
@@ -99,6 +133,12 @@ impl RigidPotential for UniformGravity {
 pub trait ExternalLoads {
     /// Whether there are loads at all (skips their evaluation when not). Default `true`.
     const ACTIVE: bool = true;
+
+    /// Whether these loads act (a type that may or may not hold loads says so at run time).
+    /// Default [`Self::ACTIVE`].
+    fn is_active(&self) -> bool {
+        Self::ACTIVE
+    }
 
     /// Writes `τᵢ` (3 per body, body frame) into `torques` and `fᵢ` (3 per body, space frame;
     /// ignored for a body with a fixed point) into `forces`; both arrive zeroed.
@@ -124,7 +164,7 @@ impl ExternalLoads for NoLoads {
 
 /// The generalised forces at one configuration: `M_i + τ_i` (body frame) and `f_i − ∂U/∂x_i`
 /// (space frame), 3 numbers per body each.
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, PartialEq, Default)]
 pub struct Loads {
     /// `M_i + τ_i` per body.
     pub moments: Vec<Vec3>,
@@ -178,6 +218,25 @@ impl<U: RigidPotential> MultiFunction for Perturbed<'_, U> {
     }
 }
 
+/// `clone_from` reusing the buffers (the step saves its loads every step).
+impl Clone for Loads {
+    fn clone(&self) -> Self {
+        Self {
+            moments: self.moments.clone(),
+            forces: self.forces.clone(),
+            gradient: self.gradient.clone(),
+            scratch: self.scratch.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.moments.clone_from(&source.moments);
+        self.forces.clone_from(&source.forces);
+        self.gradient.clone_from(&source.gradient);
+        self.scratch.clone_from(&source.scratch);
+    }
+}
+
 impl Loads {
     /// Zeroed loads of `bodies` bodies.
     pub fn new(bodies: usize) -> Self {
@@ -203,7 +262,7 @@ impl Loads {
         if !U::ZERO {
             self.differentiate(potential, &config, bodies);
         }
-        if E::ACTIVE {
+        if E::ACTIVE && external.is_active() {
             self.add_external(external, &config, bodies);
         }
     }
@@ -214,6 +273,9 @@ impl Loads {
         config: &Configuration<'_>,
         bodies: usize,
     ) {
+        if self.closed_form(potential, config, bodies) {
+            return;
+        }
         let f = Perturbed {
             potential,
             t: config.t,
@@ -240,20 +302,51 @@ impl Loads {
         }
     }
 
+    /// The loads from `∂U/∂R` and `∂U/∂x` when the potential has them in closed form:
+    /// `M^ = GᵀR − RᵀG` with `G = ∂U/∂R` (the left-trivialised derivative of the module doc),
+    /// `f = −∂U/∂x`. `false` if it has not.
+    fn closed_form<U: RigidPotential>(
+        &mut self,
+        potential: &U,
+        config: &Configuration<'_>,
+        bodies: usize,
+    ) -> bool {
+        let mut d_rotations = Buffer::<f64, INLINE>::empty();
+        let d_rotations = d_rotations.filled(9 * bodies, 0.0);
+        let mut d_positions = Buffer::<f64, INLINE>::empty();
+        let d_positions = d_positions.filled(3 * bodies, 0.0);
+        let (t, rotations, positions) = (config.t, config.rotations, config.positions);
+        if !potential.gradient(t, rotations, positions, d_rotations, d_positions) {
+            return false;
+        }
+        for (i, m) in self.moments.iter_mut().enumerate() {
+            let g = Mat3::from_row_slice(&d_rotations[9 * i..9 * i + 9]);
+            let r = Mat3::from_row_slice(&rotations[9 * i..9 * i + 9]);
+            *m = vee(&(g.transpose() * r - r.transpose() * g));
+        }
+        for &body in config.free {
+            let g = &d_positions[3 * body..3 * body + 3];
+            self.forces[body] = -Vec3::new(g[0], g[1], g[2]);
+        }
+        true
+    }
+
     fn add_external<E: ExternalLoads>(
         &mut self,
         external: &E,
         config: &Configuration<'_>,
         bodies: usize,
     ) {
-        let mut torques = vec![0.0; 3 * bodies];
-        let mut forces = vec![0.0; 3 * bodies];
+        let mut torques = Buffer::<f64, INLINE>::empty();
+        let torques = torques.filled(3 * bodies, 0.0);
+        let mut forces = Buffer::<f64, INLINE>::empty();
+        let forces = forces.filled(3 * bodies, 0.0);
         external.loads(
             config.t,
             config.rotations,
             config.positions,
-            &mut torques,
-            &mut forces,
+            torques,
+            forces,
         );
         for i in 0..bodies {
             self.moments[i] += Vec3::new(torques[3 * i], torques[3 * i + 1], torques[3 * i + 2]);

@@ -78,7 +78,7 @@ impl BodyInitial {
 
 /// The state `(t, R, Π, x, p)` of `m` bodies, flat: `rotations` 9 per body (row-major),
 /// `momenta` (`Π`), `positions` (`x`) and `linear_momenta` (`p`) 3 per body.
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, PartialEq, Default)]
 pub struct RigidState {
     /// Time.
     pub t: f64,
@@ -90,6 +90,28 @@ pub struct RigidState {
     pub positions: Vec<f64>,
     /// `p_i`, 3 per body (zero for a body with a fixed point).
     pub linear_momenta: Vec<f64>,
+}
+
+/// `clone_from` field by field, so that the step's saved copy reuses its buffers (the derived
+/// one would allocate four vectors per step).
+impl Clone for RigidState {
+    fn clone(&self) -> Self {
+        Self {
+            t: self.t,
+            rotations: self.rotations.clone(),
+            momenta: self.momenta.clone(),
+            positions: self.positions.clone(),
+            linear_momenta: self.linear_momenta.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.t = source.t;
+        self.rotations.clone_from(&source.rotations);
+        self.momenta.clone_from(&source.momenta);
+        self.positions.clone_from(&source.positions);
+        self.linear_momenta.clone_from(&source.linear_momenta);
+    }
 }
 
 impl RigidState {
