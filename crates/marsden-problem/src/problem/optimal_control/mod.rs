@@ -33,7 +33,7 @@ use super::{settings, system, toml_error};
 use crate::error::Diagnostic;
 use crate::model::hamiltonian::cotangent_inputs;
 use crate::model::slots::tangent_inputs;
-use crate::model::{ExprLagrangian, ForceInputs};
+use crate::model::{ExprLagrangian, ForceInputs, Symmetry};
 use crate::source::SourceFile;
 pub use boundary::{BoundsSpec, EndSpec, RateSpec};
 use controls::Control;
@@ -74,6 +74,8 @@ pub struct OptimalControlSpec {
     pub coordinates: Vec<String>,
     /// Control names, in declared order.
     pub controls: Vec<String>,
+    /// `[[system.symmetry]]`: momentum maps whose forced Noether balance is reported.
+    pub symmetries: Vec<Symmetry>,
     /// The forces, one per coordinate, over `[q, q̇, t, u]`.
     pub force: ProgramSet,
     /// The running cost over `[q, q̇, t, u]`.
@@ -209,6 +211,7 @@ fn validate(source: SourceFile, overrides: &Overrides) -> Result<OptimalControlS
         lagrangian,
         coordinates,
         controls: names,
+        symmetries: system.symmetries,
         force: expressions.force,
         cost: expressions.cost,
         final_cost: expressions.final_cost,
