@@ -47,7 +47,9 @@ fn every_example_runs_with_reduced_steps() {
 }
 
 /// An optimal control example: `marsden run` refuses it (exit 2, pointing at `marsden
-/// optimize`); `marsden optimize` with 40 steps converges and writes its files.
+/// optimize`); `marsden optimize` converges at the file's own N (a few seconds at most: the
+/// solve is not reduced, since a local optimum found at one N need not exist at another) and
+/// writes its files.
 fn optimal_control_example(file: &std::path::Path) {
     let name = file.display();
     let run = marsden("run", file, &["--steps", "40", "--quiet"]);
@@ -57,12 +59,14 @@ fn optimal_control_example(file: &std::path::Path) {
         "{name}: {}",
         run.stderr
     );
-    let solve = marsden("optimize", file, &["--steps", "40", "--quiet"]);
+    let solve = marsden("optimize", file, &["--quiet"]);
     assert_eq!(solve.code, 0, "{name}: {}", solve.stderr);
     assert!(solve.stdout.is_empty(), "--quiet");
     let s = solve.summary();
     assert_eq!(s["optimal_control"]["status"], "converged", "{name}");
-    assert_eq!(s["steps"], 40, "{name}");
+    let steps = s["steps"].as_u64().unwrap() as usize;
+    let trajectory = marsden_io::read_csv(solve.out.join("trajectory.csv")).unwrap();
+    assert_eq!(trajectory.values("t").unwrap().len(), steps + 1, "{name}");
     for f in [
         "trajectory.csv",
         "controls.csv",

@@ -117,11 +117,14 @@ fn controls_fed_back_reproduce_the_trajectory() {
     let s = run.summary();
     let replay = s["optimal_control"]["replay_defect"].as_f64().unwrap();
     assert!(replay < 1e-9, "replay defect {replay}");
-    let noether = &s["optimal_control"]["noether_balance"]["J_x"];
+    // Rest to rest: p_x changes by 0, so the impulse Σ h u_k of the controls is 0 as well.
+    let noether = &s["optimal_control"]["noether_balance"]["Px"];
+    assert!(noether["max_defect"].as_f64().unwrap() < 1e-9, "{noether}");
     assert!(
-        noether["residual"].as_f64().unwrap().abs() < 1e-9,
+        noether["total_impulse"].as_f64().unwrap().abs() < 1e-9,
         "{noether}"
     );
+    assert_eq!(noether["steps"], 20);
 }
 
 /// The swing-up example at N = 120 reaches the local optimum an independent solver (CasADi +

@@ -30,17 +30,47 @@ pub struct Parts<'a, L, F, R> {
     pub rule: &'a R,
 }
 
-/// The forced Noether balance of one symmetry.
+/// The forced Noether balance of one symmetry, in the terms of `marsden run`'s
+/// `noether_balance`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NoetherBalance {
-    /// The symmetry's name (its momentum map is `J_<name>`).
+    /// The symmetry's name.
     pub name: String,
     /// `J(q_N, p_N) − J(q_0, p_0)`.
-    pub change: f64,
-    /// `Σ_k f_d⁻_k · ξ(q_k) + f_d⁺_k · ξ(q_{k+1})`.
-    pub work: f64,
-    /// `change − work`: zero up to the constraint tolerance when `L_d` is invariant.
-    pub residual: f64,
+    pub momentum_change: f64,
+    /// `Σ_k f_d⁻_k · ξ(q_k) + f_d⁺_k · ξ(q_{k+1})`: the discrete impulse of the controls.
+    pub total_impulse: f64,
+    /// `momentum_change − total_impulse`: zero up to the constraint tolerance when `L_d` is
+    /// invariant.
+    pub total_defect: f64,
+    /// `max_k |ΔJ_k − impulse_k|` over the steps.
+    pub max_defect: f64,
+    /// Steps.
+    pub steps: usize,
+}
+
+/// The discrete forces `(f_d⁻_k, f_d⁺_k)` of each step with its control.
+fn discrete_forces<L, F, R>(parts: &Parts<'_, L, F, R>, solution: &Solution) -> Vec<Vec<f64>>
+where
+    L: Lagrangian,
+    F: ControlForce,
+    R: Rule,
+{
+    let n = parts.lagrangian.dof();
+    (solution.u.iter().enumerate())
+        .map(|(k, u)| {
+            let frozen = FrozenControl {
+                force: parts.force,
+                u: u.clone(),
+            };
+            let fd = parts.rule.discretize_force(frozen, n);
+            let (q0, q1) = (&solution.q[k], &solution.q[k + 1]);
+            let offsets: Vec<f64> = q1.iter().zip(q0).map(|(b, a)| b - a).collect();
+            let mut forces = vec![0.0; 2 * n];
+            fd.discrete_force(solution.t[k], parts.grid.h, q0, &offsets, &mut forces);
+            forces
+        })
+        .collect()
 }
 
 /// The balance of each symmetry along `solution`.
@@ -54,42 +84,37 @@ where
     F: ControlForce,
     R: Rule,
 {
-    let (n, h) = (parts.lagrangian.dof(), parts.grid.h);
-    let mut forces = vec![0.0; 2 * n];
-    let mut per_step = Vec::with_capacity(solution.u.len());
-    for (k, u) in solution.u.iter().enumerate() {
-        let frozen = FrozenControl {
-            force: parts.force,
-            u: u.clone(),
-        };
-        let fd = parts.rule.discretize_force(frozen, n);
-        let (q0, q1) = (&solution.q[k], &solution.q[k + 1]);
-        let offsets: Vec<f64> = q1.iter().zip(q0).map(|(b, a)| b - a).collect();
-        fd.discrete_force(solution.t[k], h, q0, &offsets, &mut forces);
-        per_step.push(forces.clone());
+    if symmetries.is_empty() {
+        return Vec::new();
     }
+    let n = parts.lagrangian.dof();
+    let forces = discrete_forces(parts, solution);
     let mut scratch = Vec::new();
     let mut xi = vec![0.0; n];
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
     symmetries
         .iter()
         .map(|s| {
-            let last = solution.q.len() - 1;
-            let j =
-                |k: usize, scratch: &mut Vec<f64>| s.value(&solution.q[k], &solution.p[k], scratch);
-            let change = j(last, &mut scratch) - j(0, &mut scratch);
-            let mut work = 0.0;
-            for (k, f) in per_step.iter().enumerate() {
+            let mut j = |k: usize| s.value(&solution.q[k], &solution.p[k], &mut scratch);
+            let momenta: Vec<f64> = (0..solution.q.len()).map(&mut j).collect();
+            let (mut total_impulse, mut max_defect) = (0.0, 0.0_f64);
+            for (k, f) in forces.iter().enumerate() {
+                let mut impulse = 0.0;
                 for (side, node) in [(0, k), (1, k + 1)] {
                     s.generator().eval_into(&solution.q[node], &mut xi);
-                    let fk = &f[side * n..(side + 1) * n];
-                    work += fk.iter().zip(&xi).map(|(a, b)| a * b).sum::<f64>();
+                    impulse += dot(&f[side * n..(side + 1) * n], &xi);
                 }
+                total_impulse += impulse;
+                max_defect = max_defect.max((momenta[k + 1] - momenta[k] - impulse).abs());
             }
+            let momentum_change = momenta[momenta.len() - 1] - momenta[0];
             NoetherBalance {
                 name: s.name().to_owned(),
-                change,
-                work,
-                residual: change - work,
+                momentum_change,
+                total_impulse,
+                total_defect: momentum_change - total_impulse,
+                max_defect,
+                steps: forces.len(),
             }
         })
         .collect()

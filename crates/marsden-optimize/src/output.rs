@@ -93,8 +93,8 @@ pub struct OptimalControlSummary {
     pub kkt_residual: f64,
     /// `max |c_i|` of the forced DEL and boundary constraints.
     pub constraint_violation: f64,
-    /// Per symmetry `J_<name>`: `{change, work, residual}` of the forced Noether balance;
-    /// `null` when the file declares no symmetry.
+    /// Per symmetry: `{momentum_change, total_impulse, total_defect, max_defect, steps}` of
+    /// the forced Noether balance ([`crate::balance`]); `null` when the file declares none.
     pub noether_balance: Option<serde_json::Map<String, serde_json::Value>>,
     /// `max |(q, p)_{k+1} − Φ_k(q_k, p_k)|` over the steps replayed by the core integrator
     /// with the returned controls (`null` if a step failed).
@@ -174,14 +174,25 @@ pub fn controls_table(spec: &OptimalControlSpec, s: &Solution) -> Result<Table, 
     Table::new(columns).map_err(|e| OptimizeError::write(CONTROLS_CSV, e))
 }
 
-fn summary<'a>(spec: &'a OptimalControlSpec, o: &'a Optimized, files: Vec<String>) -> Summary<'a> {
+/// The summary of a solve; `files` lists what was written beside it (none from Python).
+pub fn summary<'a>(
+    spec: &'a OptimalControlSpec,
+    o: &'a Optimized,
+    files: Vec<String>,
+) -> Summary<'a> {
     let s = &o.solution;
     let noether = (!o.noether.is_empty()).then(|| {
         o.noether
             .iter()
             .map(|b| {
-                let value = serde_json::json!({ "change": b.change, "work": b.work, "residual": b.residual });
-                (format!("J_{}", b.name), value)
+                let value = serde_json::json!({
+                    "momentum_change": b.momentum_change,
+                    "total_impulse": b.total_impulse,
+                    "total_defect": b.total_defect,
+                    "max_defect": b.max_defect,
+                    "steps": b.steps,
+                });
+                (b.name.clone(), value)
             })
             .collect()
     });

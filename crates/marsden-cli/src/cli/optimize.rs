@@ -80,8 +80,8 @@ fn render(spec: &OptimalControlSpec, outcome: &Outcome) -> String {
     }
     for b in &o.noether {
         line(
-            &format!("Noether J_{}", b.name),
-            format!("residual {:.3e}", b.residual),
+            &format!("Noether {}", b.name),
+            format!("max defect {:.3e}", b.max_defect),
         );
     }
     line(

@@ -74,6 +74,8 @@ pub struct OptimalControlSpec {
     pub coordinates: Vec<String>,
     /// Control names, in declared order.
     pub controls: Vec<String>,
+    /// Every scalar parameter with its value, in the file's order.
+    pub parameters: Vec<(String, f64)>,
     /// `[[system.symmetry]]`: momentum maps whose forced Noether balance is reported.
     pub symmetries: Vec<Symmetry>,
     /// The forces, one per coordinate, over `[q, q̇, t, u]`.
@@ -125,6 +127,12 @@ pub fn from_toml_str(
     overrides: &Overrides,
 ) -> Result<OptimalControlSpec, Diagnostic> {
     validate(SourceFile::new(origin, text.to_owned()), overrides)
+}
+
+/// Whether problem text has an `[optimal_control]` table (`false` for text that does not
+/// parse: its error comes from the validation that follows).
+pub fn is_optimal_control(text: &str) -> bool {
+    super::raw::parse(text).is_ok_and(|raw| raw.optimal_control.is_some())
 }
 
 /// `marsden run` of a file with `[optimal_control]`: refused, pointing at `marsden optimize`.
@@ -211,6 +219,7 @@ fn validate(source: SourceFile, overrides: &Overrides) -> Result<OptimalControlS
         lagrangian,
         coordinates,
         controls: names,
+        parameters: system.parameters,
         symmetries: system.symmetries,
         force: expressions.force,
         cost: expressions.cost,
