@@ -83,3 +83,25 @@ fn simulate<L: Lagrangian, F: ControlForce, R: Rule>(
     let finite = nodes.iter().flatten().all(|x| x.is_finite());
     (nodes.len() == grid.steps + 1 && finite).then_some(nodes)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_line_holds_free_positions_at_the_other_end() {
+        let start = EndSpec {
+            q: vec![Some(0.0), None, None],
+            rate: RateSpec::Momentum(vec![None; 3]),
+        };
+        let end = EndSpec {
+            q: vec![Some(2.0), Some(1.0), None],
+            rate: RateSpec::Momentum(vec![None; 3]),
+        };
+        let nodes = line(&start, &end, 4);
+        assert_eq!(nodes.len(), 5);
+        assert_eq!(nodes[0], [0.0, 1.0, 0.0]);
+        assert_eq!(nodes[2], [1.0, 1.0, 0.0]);
+        assert_eq!(nodes[4], [2.0, 1.0, 0.0]);
+    }
+}

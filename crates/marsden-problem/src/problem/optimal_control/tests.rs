@@ -194,3 +194,24 @@ fn run_refuses_the_section_and_runs_controls_as_zero() {
     let set = spec.system.force.components();
     assert_eq!(set.eval(&[2.0, 0.0, 0.0]), [-2.0]);
 }
+
+#[test]
+fn unknown_keys_name_the_optimal_control_tables() {
+    let e = check(&edit("t_end = 1.0", "t_end = 1.0\nhorizon = 2"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("unknown key `horizon` in [optimal_control]"),
+        "{e}"
+    );
+    let e = check(&edit(
+        "end = { q = [1.0], v = [0.0] }",
+        "end = { q = [1.0], w = [0.0] }",
+    ))
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("in `start` or `end` of [optimal_control]"),
+        "{e}"
+    );
+}
