@@ -26,9 +26,9 @@ use toml::Spanned;
 use super::check::Checker;
 use super::method::Method;
 use super::parameters::Parameters;
-use super::raw::{RawProblem, RawSystem};
+use super::raw::{RawOutput, RawProblem, RawSystem};
 use super::resolved::symbols;
-use super::spec::{LagrangianSpec, OutputSpec, Overrides};
+use super::spec::{LagrangianSpec, OutputSpec, Overrides, SystemSpec};
 use super::{settings, system, toml_error};
 use crate::error::Diagnostic;
 use crate::model::hamiltonian::cotangent_inputs;
@@ -167,26 +167,13 @@ fn validate(source: SourceFile, overrides: &Overrides) -> Result<OptimalControlS
     let Some(raw_system) = raw.system.as_ref() else {
         return Err(Diagnostic::new("the problem file has no [system] table"));
     };
+    supported_system(&ck, raw_system, &system)?;
     let LagrangianSpec::Expression(lagrangian) = system.lagrangian else {
-        return Err(ck
-            .error(
-                Some(raw_system.span()),
-                "optimal control needs `lagrangian = \"...\"` in [system]",
-            )
-            .note("catalog, Hamiltonian and discrete-Lagrangian systems are not supported yet"));
+        return Err(ck.error(
+            Some(raw_system.span()),
+            "optimal control needs `lagrangian`",
+        ));
     };
-    if !system.constraint.components().is_empty() {
-        return Err(ck.error(
-            Some(raw_system.span()),
-            "optimal control with `constraints` is not supported yet",
-        ));
-    }
-    if system.force.inputs() == ForceInputs::Momenta {
-        return Err(ck.error(
-            Some(raw_system.span()),
-            "optimal control needs `forces` written in the velocities (not momenta `p_…`)",
-        ));
-    }
     let coordinates = system.coordinates;
     let expressions =
         Expressions::compile(&ck, raw_system, section, (&coordinates, &system.parameters))?;
@@ -214,6 +201,7 @@ fn validate(source: SourceFile, overrides: &Overrides) -> Result<OptimalControlS
         |n| n.get_ref().clone(),
     );
     let output = settings::output(&ck, raw.output.as_ref(), &name, overrides, &coordinates)?;
+    csv_only(&ck, raw.output.as_ref())?;
     Ok(OptimalControlSpec {
         name,
         lagrangian,
@@ -237,6 +225,59 @@ fn validate(source: SourceFile, overrides: &Overrides) -> Result<OptimalControlS
         output,
         source,
     })
+}
+
+/// What the transcription takes: an expression Lagrangian, no constraints, forces in the
+/// velocities.
+fn supported_system(
+    ck: &Checker<'_>,
+    raw_system: &Spanned<RawSystem>,
+    system: &SystemSpec,
+) -> Result<(), Diagnostic> {
+    let at = Some(raw_system.span());
+    if !matches!(system.lagrangian, LagrangianSpec::Expression(_)) {
+        return Err(ck
+            .error(
+                at,
+                "optimal control needs `lagrangian = \"...\"` in [system]",
+            )
+            .note("catalog, Hamiltonian and discrete-Lagrangian systems are not supported yet"));
+    }
+    if !system.constraint.components().is_empty() {
+        return Err(ck.error(
+            at,
+            "optimal control with `constraints` is not supported yet",
+        ));
+    }
+    if system.force.inputs() == ForceInputs::Momenta {
+        return Err(ck.error(
+            at,
+            "optimal control needs `forces` written in the velocities (not momenta `p_…`)",
+        ));
+    }
+    Ok(())
+}
+
+/// `marsden optimize` writes every node as CSV: `format = "npy"` and `every` are refused.
+fn csv_only(ck: &Checker<'_>, raw: Option<&Spanned<RawOutput>>) -> Result<(), Diagnostic> {
+    let Some(table) = raw.map(Spanned::get_ref) else {
+        return Ok(());
+    };
+    if let Some(f) = table.format.as_ref().filter(|f| f.get_ref() != "csv") {
+        return Err(ck.error(
+            Some(f.span()),
+            "`marsden optimize` writes CSV only (trajectory.csv, controls.csv)",
+        ));
+    }
+    if let Some(every) = &table.every {
+        return Err(ck
+            .error(
+                Some(every.span()),
+                "`every` is not used by `marsden optimize`",
+            )
+            .note("every node of the optimal trajectory is written"));
+    }
+    Ok(())
 }
 
 /// Sections `marsden optimize` has no use for are refused, not ignored.

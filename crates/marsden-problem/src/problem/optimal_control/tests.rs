@@ -215,3 +215,12 @@ fn unknown_keys_name_the_optimal_control_tables() {
         "{e}"
     );
 }
+
+#[test]
+fn refuses_outputs_it_does_not_write() {
+    let (e, under) = refused(&(GOOD.to_owned() + "[output]\nformat = \"npy\"\n"));
+    assert!(e.contains("writes CSV only"), "{e}");
+    assert_eq!(under, "\"npy\"");
+    let (e, _) = refused(&(GOOD.to_owned() + "[output]\nevery = 10\n"));
+    assert!(e.contains("`every` is not used"), "{e}");
+}
