@@ -79,6 +79,9 @@ PY
 
 fixtures=crates/marsden-cli/tests/fixtures
 for file in examples/*.toml $fixtures/*.toml; do
+    # Optimal control problems are solved by `marsden optimize`, which older binaries lack
+    # (`marsden run` refuses them): compared by the examples test instead.
+    grep -q '^\[optimal_control\]' "$file" && continue
     label=run-$(basename "$file" .toml)
     # The run's report has the wall time on stdout: compare its files and stderr instead.
     skip_stdout=1 both "$label" run "$file" --out @OUT@ --no-progress

@@ -14,7 +14,7 @@ fn unknown_key_names_the_key_and_its_table() {
             "4 | lagrangain = ",
             "  | ^^^^^^^^^^\n",
             "= help: did you mean `lagrangian`?",
-            "= note: valid keys in [system]: builtin, constraints, coordinates, \
+            "= note: valid keys in [system]: builtin, constraints, controls, coordinates, \
              discrete_lagrangian, forces, hamiltonian, lagrangian, name, parameters, symmetry",
         ],
     );

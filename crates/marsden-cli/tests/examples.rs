@@ -13,8 +13,15 @@ fn every_example_runs_with_reduced_steps() {
     files.sort();
     assert!(files.len() >= 10, "examples: {files:?}");
     for file in &files {
-        let run = marsden("run", file, &["--steps", "40", "--quiet"]);
         let name = file.display();
+        if std::fs::read_to_string(file)
+            .unwrap()
+            .contains("\n[optimal_control]")
+        {
+            optimal_control_example(file);
+            continue;
+        }
+        let run = marsden("run", file, &["--steps", "40", "--quiet"]);
         assert_eq!(run.code, 0, "{name}: {}", run.stderr);
         assert!(run.stdout.is_empty(), "--quiet");
         let s = run.summary();
@@ -36,6 +43,37 @@ fn every_example_runs_with_reduced_steps() {
                 "{name}: energy balance"
             ),
         }
+    }
+}
+
+/// An optimal control example: `marsden run` refuses it (exit 2, pointing at `marsden
+/// optimize`); `marsden optimize` converges at the file's own N (a few seconds at most: the
+/// solve is not reduced, since a local optimum found at one N need not exist at another) and
+/// writes its files.
+fn optimal_control_example(file: &std::path::Path) {
+    let name = file.display();
+    let run = marsden("run", file, &["--steps", "40", "--quiet"]);
+    assert_eq!(run.code, 2, "{name}: {}", run.stderr);
+    assert!(
+        run.stderr.contains("solve it with `marsden optimize`"),
+        "{name}: {}",
+        run.stderr
+    );
+    let solve = marsden("optimize", file, &["--quiet"]);
+    assert_eq!(solve.code, 0, "{name}: {}", solve.stderr);
+    assert!(solve.stdout.is_empty(), "--quiet");
+    let s = solve.summary();
+    assert_eq!(s["optimal_control"]["status"], "converged", "{name}");
+    let steps = s["steps"].as_u64().unwrap() as usize;
+    let trajectory = marsden_io::read_csv(solve.out.join("trajectory.csv")).unwrap();
+    assert_eq!(trajectory.values("t").unwrap().len(), steps + 1, "{name}");
+    for f in [
+        "trajectory.csv",
+        "controls.csv",
+        "controls.png",
+        "convergence.png",
+    ] {
+        assert!(solve.out.join(f).is_file(), "{name}: {f}");
     }
 }
 

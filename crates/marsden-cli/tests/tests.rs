@@ -32,6 +32,9 @@ mod honest;
 mod momentum_forces;
 // `[analysis] every_step`: maxima over every step, or the number of samples said.
 mod monitor;
+// `marsden optimize`: the double integrator's closed form and order, the forced DEL equations on
+// the written files, the swing-up against an independent solver, iteration limits, bad input.
+mod optimize;
 // `marsden order`: the table, the fitted orders, the CSV, the refused requests.
 mod order;
 // Plots: which pictures a run gets, angles wrapped and recorded, hostile ranges.

@@ -9,9 +9,11 @@
 //! |---|---|
 //! | [`watch`] | runs off the interpreter's lock; Ctrl-C sets the run's stop flag; progress to a Python function |
 //! | [`convert`] | an [`marsden_spec::Outcome`] as a dictionary of NumPy arrays |
+//! | [`optimize`] | `[optimal_control]` problems: checked, solved, returned as arrays |
 //! | this file | the functions Python calls and the `ProblemError` exception |
 
 mod convert;
+mod optimize;
 mod watch;
 
 use std::sync::Arc;
@@ -60,6 +62,9 @@ fn spec_of(text: &str, origin: &str, every: Option<usize>) -> PyResult<RunSpec> 
 /// the sweep's target, if any, and whether it has a `[sensitivity]` table.
 #[pyfunction]
 fn check<'py>(py: Python<'py>, text: &str, origin: &str) -> PyResult<Bound<'py, PyDict>> {
+    if marsden_problem::problem::optimal_control::is_optimal_control(text) {
+        return optimize::describe(py, text, origin);
+    }
     let spec = spec_of(text, origin, None)?;
     marsden_spec::prepare(&spec).map_err(bad)?;
     let d = PyDict::new(py);
@@ -209,5 +214,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(member, m)?)?;
     m.add_function(wrap_pyfunction!(systems, m)?)?;
+    m.add_function(wrap_pyfunction!(optimize::optimize, m)?)?;
     Ok(())
 }

@@ -133,6 +133,11 @@
 //!   automatic differentiation, optimal control and more*, SIAM Review 58 (2016).
 //! * **Bre73**: R. P. Brent, *Algorithms for Minimization without Derivatives*, Prentice-Hall
 //!   (1973), chapter 4 (the root finder `zeroin`).
+//! * **OJM11**: S. Ober-Blöbaum, O. Junge, J. E. Marsden, *Discrete mechanics and optimal
+//!   control: an analysis*, ESAIM: COCV 17 (2011) 322–352 (DMOC: `marsden-control`,
+//!   `marsden optimize`).
+//! * **BH75**: A. E. Bryson, Y.-C. Ho, *Applied Optimal Control* (1975) (the double
+//!   integrator's closed-form optimum, the reference of the optimal control tests).
 //!
 //! [MW01]: crate#references
 //! [LMO08]: crate#references

@@ -1,9 +1,10 @@
-//! The command line: `marsden run | check | order | systems | plot`, parsed with clap's derive API.
+//! The command line: `marsden run | check | optimize | order | systems | plot`, parsed with clap's derive API.
 //!
 //! Exit statuses (a contract): 0 completed, 1 the simulation failed (partial trajectory and
 //! summary still written, status "failed"), 2 bad problem file or usage (nothing run).
 
 mod check;
+mod optimize;
 mod order;
 mod plot;
 mod run;
@@ -36,6 +37,8 @@ pub enum Command {
     Run(RunArgs),
     /// Validate a problem file and print the resolved problem (nothing is run or written).
     Check(FileArgs),
+    /// Solve the file's [optimal_control] problem (DMOC): trajectory, controls, summary, plots.
+    Optimize(OptimizeArgs),
     /// Empirical order of convergence: run methods at several step sizes, fit the log–log slope.
     Order(OrderArgs),
     /// List the catalog systems (`builtin = "..."`) with coordinates, parameters, defaults.
@@ -98,6 +101,22 @@ pub struct RunArgs {
     pub threads: Option<u16>,
 }
 
+/// `marsden optimize`.
+#[derive(Debug, Args)]
+pub struct OptimizeArgs {
+    /// The problem file (TOML) with [optimal_control].
+    pub file: PathBuf,
+    /// Number of steps N (replaces `steps` of [optimal_control]).
+    #[arg(long)]
+    pub steps: Option<u64>,
+    /// Output directory (replaces `dir` of the output table).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Print nothing on stdout (errors still go to stderr).
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
 /// `marsden order`.
 #[derive(Debug, Args)]
 pub struct OrderArgs {
@@ -145,6 +164,7 @@ fn dispatch(command: Command) -> Result<Status, CliError> {
     match command {
         Command::Run(args) => run::run(&args),
         Command::Check(args) => check::check(&args),
+        Command::Optimize(args) => optimize::optimize(&args),
         Command::Order(args) => order::order(&args),
         Command::Systems { name } => systems::systems(name.as_deref()),
         Command::Plot { dir } => plot::plot(&dir),

@@ -7,6 +7,7 @@
 //! * [`plot_energy_error`] — relative energy error against time (linear, scientific ticks).
 //! * [`plot_momentum_drift`] — `J(t) − J(t₀)` per momentum map, with legend.
 //! * [`plot_constraint_residual`] — residual against time (log axis when positive).
+//! * [`plot_lines`] — named series against a common abscissa, linear or log panels.
 //! * [`plot_run`] — all of the above from a [`Table`](crate::Table) named by the
 //!   `trajectory.csv` convention.
 //!
@@ -25,6 +26,7 @@ mod constraint;
 mod downsample;
 mod energy;
 mod font;
+mod lines;
 mod momentum;
 mod multipliers;
 mod options;
@@ -40,6 +42,7 @@ pub use configuration::{Orbit, Plane, plot_configuration};
 pub use constraint::plot_constraint_residual;
 pub use energy::{plot_energy_balance, plot_energy_error};
 pub use font::FAMILY as FONT_FAMILY;
+pub use lines::{LinePanel, plot_lines};
 pub use momentum::plot_momentum_drift;
 pub use multipliers::plot_multipliers;
 pub use options::{PhaseCurve, PlotOptions, PlotReport, Series};

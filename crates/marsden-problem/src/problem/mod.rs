@@ -16,6 +16,7 @@ pub mod hamiltonian;
 pub mod method;
 pub mod named_symmetry;
 pub mod nbody_file;
+pub mod optimal_control;
 pub mod parameters;
 pub mod raw;
 mod resolved;
@@ -158,6 +159,7 @@ fn validate_raw(
     with_sweep: bool,
 ) -> Result<RunSpec, Diagnostic> {
     let ck = Checker::new(&source);
+    optimal_control::refuse_in_run(&ck, raw)?;
     discrete::refuse_unsupported(&ck, raw)?;
     let bodies = nbody_file::read(&ck, raw.initial.as_ref())?;
     let system = system::system(&ck, raw.system.as_ref(), bodies.as_ref())?;

@@ -71,6 +71,9 @@ pub struct RawProblem {
     /// `[sensitivity]`: the Jacobian of the run with respect to its initial state and
     /// parameters.
     pub sensitivity: Option<Spanned<RawSensitivity>>,
+    /// `[optimal_control]`: a DMOC problem, solved by `marsden optimize`
+    /// ([`super::optimal_control`]).
+    pub optimal_control: Option<Spanned<super::optimal_control::raw::RawOptimalControl>>,
 }
 
 /// `[sweep]`: what is swept (`parameter` or `initial`) and over what (`values` or `range`).
@@ -124,6 +127,9 @@ pub struct RawSystem {
     pub forces: Option<SpannedList<String>>,
     /// Holonomic constraints `φ(q) = 0`, one expression each.
     pub constraints: Option<SpannedList<String>>,
+    /// Names of controls `u`, piecewise constant per step, usable in `forces`
+    /// ([`super::optimal_control`]); zero in a `marsden run`.
+    pub controls: Option<SpannedList<String>>,
     /// Symmetries whose momentum maps are monitored.
     pub symmetry: Option<Vec<Spanned<RawSymmetry>>>,
     /// A rigid body instead of coordinates: its configuration is an attitude `R ∈ SO(3)`

@@ -157,9 +157,23 @@ pub fn system(
         (None, Some(b)) => builtin(ck, b, system, &params, &parsed.names())?,
         (Some(l), None) => expression(ck, l, system, &params)?,
     };
-    let tangent = symbols(ck, tangent_inputs(&coordinates), &constants, &params)?;
+    // The forces see `[system] controls` as 0: a `marsden run` is the zero-control simulation.
+    let zero = |s| super::optimal_control::controls::as_zero(ck, system, s);
+    let tangent = zero(symbols(
+        ck,
+        tangent_inputs(&coordinates),
+        &constants,
+        &params,
+    )?)?;
     let positions = symbols(ck, coordinates.clone(), &constants, &params)?;
-    let cotangent = || symbols(ck, cotangent_inputs(&coordinates), &constants, &params);
+    let cotangent = || {
+        zero(symbols(
+            ck,
+            cotangent_inputs(&coordinates),
+            &constants,
+            &params,
+        )?)
+    };
     let force = forces(ck, system, &parsed, &coordinates, (&tangent, &cotangent))?;
     let constraint = constraints(ck, system, &parsed, &coordinates, &positions)?;
     let symmetries = compile_symmetries(ck, system, &parsed, &coordinates, &positions)?;

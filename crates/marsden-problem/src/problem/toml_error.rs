@@ -44,6 +44,10 @@ fn table_of(valid: &[&str]) -> &'static str {
         "[system]"
     } else if has("generator") {
         "[[system.symmetry]]"
+    } else if has("cost") {
+        "[optimal_control]"
+    } else if has("q") && !has("project") {
+        "`start` or `end` of [optimal_control]"
     } else if has("q") {
         "[initial]"
     } else if has("method") {

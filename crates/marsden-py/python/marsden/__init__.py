@@ -24,6 +24,7 @@ from typing import Any, Dict, List
 
 from . import _native
 from ._errors import ProblemError, SimulationError
+from ._optimize import OptimalControlSolution
 from ._problem import Problem
 from ._sensitivity import Sensitivity
 from ._solution import Solution
@@ -32,6 +33,7 @@ from ._sympy import to_grammar
 
 __all__ = [
     "__version__",
+    "OptimalControlSolution",
     "Problem",
     "ProblemError",
     "Sensitivity",

@@ -17,7 +17,8 @@ FloatArray = npt.NDArray[np.float64]
 
 __version__: str
 
-__all__ = ["__version__", "Problem", "ProblemError", "Sensitivity", "SimulationError",
+__all__ = ["__version__", "OptimalControlSolution", "Problem", "ProblemError", "Sensitivity",
+           "SimulationError",
            "Solution", "sweep", "systems", "to_grammar"]
 
 SensitivityRequest = Union[bool, Sequence[str], Mapping[str, Any]]
@@ -68,6 +69,19 @@ class Solution:
     def final_state(self) -> Dict[str, Any]: ...
     def to_pandas(self) -> Any: ...
     def plot(self, ax: Any = ...) -> Any: ...
+
+class OptimalControlSolution:
+    coordinates: List[str]
+    controls: List[str]
+    t: FloatArray
+    q: FloatArray
+    p: FloatArray
+    u: FloatArray
+    cost: float
+    status: str
+    summary: Dict[str, Any]
+    @property
+    def converged(self) -> bool: ...
 
 class Problem:
     """A mechanical system, its initial state and the integrator: a problem file."""
@@ -139,6 +153,9 @@ class Problem:
     def h(self) -> float: ...
     @property
     def steps(self) -> int: ...
+    @property
+    def is_optimal_control(self) -> bool: ...
+    def optimize(self) -> OptimalControlSolution: ...
     def solve(self, every: Optional[int] = ..., progress: ProgressRequest = ...,
               sensitivity: Optional[SensitivityRequest] = ...) -> Solution: ...
     def sweep(self, parameter: Optional[str] = ..., values: Optional[Sequence[float]] = ...,

@@ -14,6 +14,7 @@ from . import _native, _sensitivity
 from . import _keywords as kw
 from . import _messages, _problem_text, _progress
 from ._errors import ProblemError
+from ._optimize import OptimalControlSolution
 from ._solution import Solution, from_native
 
 Expression = Any  # a string in the grammar, a SymPy expression or a number
@@ -245,6 +246,10 @@ class Problem:
         ``.solution`` holds the samples before the failure) or if the derivatives asked for
         could not be computed (its ``.solution`` holds the whole run).
         """
+        if self.is_optimal_control:
+            raise ProblemError(
+                "error: this problem has an [optimal_control] table: solve it with "
+                "problem.optimize()")
         if self._info.get("sweep") is not None:
             label, members = self._info["sweep"]
             raise ProblemError(
@@ -263,6 +268,33 @@ class Problem:
         except ProblemError as e:
             raise self._error(e) from None
         return from_native(fields)
+
+    @property
+    def is_optimal_control(self) -> bool:
+        """Whether the problem has an ``[optimal_control]`` table (solve it with
+        :meth:`optimize`)."""
+        return bool(self._info.get("optimal_control"))
+
+    def optimize(self) -> OptimalControlSolution:
+        """Solves the problem's ``[optimal_control]`` (discrete mechanics and optimal control,
+        as ``marsden optimize`` does, without writing files; the interpreter's lock released).
+
+        A solve that does not converge returns its last iterate, with ``status`` saying why::
+
+            >>> s = marsden.Problem.from_toml(text).optimize()
+            >>> s.status, s.cost, s.q[-1], s.u[:, 0]
+
+        Raises :class:`marsden.ProblemError` for a problem without ``[optimal_control]``.
+        """
+        if not self.is_optimal_control:
+            raise ProblemError(
+                "error: this problem has no [optimal_control] table: optimize() solves optimal "
+                "control problems\n  = help: run it with problem.solve()")
+        try:
+            fields = _native.optimize(self._text, self._origin)
+        except ProblemError as e:
+            raise self._error(e) from None
+        return OptimalControlSolution(fields)
 
     def sweep(self, parameter: Optional[str] = None, values: Optional[Sequence[float]] = None,
               executor: Any = None, **options: Any) -> List[Any]:

@@ -1,0 +1,240 @@
+//! `marsden optimize`: the double integrator against its closed form ([BH75] §2: rest to rest
+//! from 0 to 1 in T = 1 with cost ∫ ½u², optimum u(t) = 6 − 12t, cost 6), the convergence order
+//! of the discrete optimum ([OJM11] §4), the forced discrete Euler–Lagrange equations checked
+//! on the written files, the pendulum swing-up against an independent solver, the summary, and
+//! every bad input.
+
+use std::path::{Path, PathBuf};
+
+use crate::util::{Run, column, marsden, repo_root};
+
+/// The double integrator `L = ½ẋ²`, `f = u`, `C = ½u²`, rest to rest from 0 to 1 in T = 1.
+const DOUBLE_INTEGRATOR: &str = r#"[system]
+coordinates = ["x"]
+lagrangian = "0.5*x_dot^2"
+controls = ["u"]
+forces = ["u"]
+[[system.symmetry]]
+translation = "x"
+[optimal_control]
+cost = "0.5*u^2"
+t_end = 1.0
+steps = 20
+method = "midpoint"
+start = { q = [0.0], v = [0.0] }
+end = { q = [1.0], v = [0.0] }
+[output]
+plots = false
+"#;
+
+/// Writes `text` to a problem file in a fresh directory (kept alive by the returned guard).
+fn problem(text: &str) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("problem.toml");
+    std::fs::write(&path, text).unwrap();
+    (dir, path)
+}
+
+fn optimize(text: &str, extra: &[&str]) -> (tempfile::TempDir, Run) {
+    let (dir, path) = problem(text);
+    let run = marsden("optimize", &path, extra);
+    (dir, run)
+}
+
+fn table(out: &Path, name: &str) -> marsden_io::Table {
+    marsden_io::read_csv(out.join(name)).unwrap()
+}
+
+/// Least-squares slope of `log e` against `log h`.
+fn slope(h: &[f64], e: &[f64]) -> f64 {
+    let x: Vec<f64> = h.iter().map(|h| h.ln()).collect();
+    let y: Vec<f64> = e.iter().map(|e| e.ln()).collect();
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let sxy: f64 = x.iter().zip(&y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = x.iter().map(|a| (a - mx).powi(2)).sum();
+    sxy / sxx
+}
+
+/// [BH75]: the continuous optimum of the double integrator costs 6; the discrete optimum of
+/// the midpoint and trapezoid transcriptions converges to it at order 2 ([OJM11] §4), the
+/// slope fitted over N = 10, 20, 40; the controls approach u(t) = 6 − 12t.
+#[test]
+fn double_integrator_cost_converges_to_six_at_order_two() {
+    for method in ["midpoint", "trapezoid"] {
+        let text = DOUBLE_INTEGRATOR.replace("\"midpoint\"", &format!("\"{method}\""));
+        let mut errors = Vec::new();
+        let mut steps = Vec::new();
+        for n in [10, 20, 40] {
+            let (_dir, run) = optimize(&text, &["--steps", &n.to_string(), "--quiet"]);
+            assert_eq!(run.code, 0, "{method} N = {n}: {}", run.stderr);
+            let s = run.summary();
+            assert_eq!(s["optimal_control"]["status"], "converged");
+            let cost = s["optimal_control"]["cost"].as_f64().unwrap();
+            errors.push((cost - 6.0).abs());
+            steps.push(1.0 / n as f64);
+            let controls = table(&run.out, "controls.csv");
+            let (t, u) = (column(&controls, "t"), column(&controls, "u"));
+            let h = 1.0 / n as f64;
+            let worst = t
+                .iter()
+                .zip(u)
+                .map(|(t, u)| (u - (6.0 - 12.0 * (t + h / 2.0))).abs())
+                .fold(0.0, f64::max);
+            println!("{method} N = {n}: cost {cost:.12}, max |u_k − u(t_k+½)| = {worst:.3e}");
+            assert!(worst < 10.0 * h * h, "{method} N = {n}: {worst}");
+        }
+        let p = slope(&steps, &errors);
+        println!("{method}: errors {errors:?}, fitted order {p:.3}");
+        assert!((p - 2.0).abs() < 0.2, "{method}: order {p}");
+    }
+}
+
+/// The written trajectory and controls satisfy the forced discrete Euler–Lagrange equations of
+/// the midpoint rule, written out by hand for `L = ½ẋ²`, `f = u` ([MW01] §3.2,
+/// `f_d^± = (h/2) u_k`): `p_k = (x_k − x_{k−1})/h + (h/2)u_{k−1} = (x_{k+1} − x_k)/h − (h/2)u_k`,
+/// to the solver's tolerance; the core integrator replays them (summary `replay_defect`), and
+/// the momentum of the translation changes by the work of the controls (forced Noether).
+#[test]
+fn controls_fed_back_reproduce_the_trajectory() {
+    let (_dir, run) = optimize(DOUBLE_INTEGRATOR, &["--quiet"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let trajectory = table(&run.out, "trajectory.csv");
+    let controls = table(&run.out, "controls.csv");
+    let (x, p) = (column(&trajectory, "q_x"), column(&trajectory, "p_x"));
+    let u = column(&controls, "u");
+    let h = 1.0 / 20.0;
+    assert_eq!((x.len(), u.len()), (21, 20));
+    let mut worst: f64 = 0.0;
+    for k in 0..20 {
+        let right = (x[k + 1] - x[k]) / h - h / 2.0 * u[k];
+        let left = (x[k + 1] - x[k]) / h + h / 2.0 * u[k];
+        worst = worst.max((p[k] - right).abs()).max((p[k + 1] - left).abs());
+    }
+    println!("forced DEL residual on the files: {worst:.3e}");
+    assert!(worst < 1e-8, "{worst}");
+    assert!((x[0], x[20]) == (0.0, 1.0) || (x[20] - 1.0).abs() < 1e-10);
+    let s = run.summary();
+    let replay = s["optimal_control"]["replay_defect"].as_f64().unwrap();
+    assert!(replay < 1e-9, "replay defect {replay}");
+    // Rest to rest: p_x changes by 0, so the impulse Σ h u_k of the controls is 0 as well.
+    let noether = &s["optimal_control"]["noether_balance"]["Px"];
+    assert!(noether["max_defect"].as_f64().unwrap() < 1e-9, "{noether}");
+    assert!(
+        noether["total_impulse"].as_f64().unwrap().abs() < 1e-9,
+        "{noether}"
+    );
+    assert_eq!(noether["steps"], 20);
+}
+
+/// The swing-up example at N = 120 reaches the local optimum an independent solver (CasADi +
+/// IPOPT, same transcription and first iterate) found: cost 1.1192 (four digits given).
+#[test]
+fn pendulum_swing_up_matches_the_independent_optimum() {
+    let file = repo_root().join("examples/pendulum_swing_up.toml");
+    let run = marsden("optimize", &file, &["--steps", "120"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("converged"), "{}", run.stdout);
+    let s = run.summary();
+    let oc = &s["optimal_control"];
+    let cost = oc["cost"].as_f64().unwrap();
+    assert!((cost - 1.1192).abs() < 1e-4, "cost {cost}");
+    assert!(oc["kkt_residual"].as_f64().unwrap() <= 1e-8);
+    assert!(oc["constraint_violation"].as_f64().unwrap() <= 1e-10);
+    assert!(oc["noether_balance"].is_null(), "no symmetry declared");
+    assert_eq!(
+        s["history"].as_array().unwrap().len(),
+        oc["iterations"].as_u64().unwrap() as usize
+    );
+    for f in [
+        "controls.png",
+        "time_series.png",
+        "phase_portrait.png",
+        "convergence.png",
+    ] {
+        assert!(run.out.join(f).is_file(), "{f}");
+    }
+}
+
+/// Too few iterations: status "iteration limit", exit 1, and the last iterate still written.
+#[test]
+fn iteration_limit_exits_one_and_writes_the_last_iterate() {
+    let text = std::fs::read_to_string(repo_root().join("examples/pendulum_swing_up.toml"))
+        .unwrap()
+        .replace("steps = 100", "steps = 100\nmax_iterations = 2");
+    let (_dir, run) = optimize(&text, &["--quiet"]);
+    assert_eq!(run.code, 1, "{}", run.stderr);
+    assert!(
+        run.stderr.contains("status \"iteration limit\""),
+        "{}",
+        run.stderr
+    );
+    let s = run.summary();
+    let oc = &s["optimal_control"];
+    assert_eq!(oc["status"], "iteration limit");
+    assert_eq!(oc["last_iterate"], true);
+    assert_eq!(oc["iterations"], 2);
+    assert!(
+        oc["kkt_residual"].as_f64().unwrap() > 1e-8,
+        "not converged: {oc}"
+    );
+    let trajectory = table(&run.out, "trajectory.csv");
+    assert_eq!(column(&trajectory, "q_theta").len(), 101);
+    assert_eq!(column(&table(&run.out, "controls.csv"), "u").len(), 100);
+}
+
+/// Each bad input: exit 2, the message with its caret, nothing written.
+#[test]
+fn bad_inputs_exit_two_and_write_nothing() {
+    let cases = [
+        (
+            ("controls = [\"u\"]", "controls = [\"u\", \"w\"]"),
+            "control `w` is not used by any force",
+        ),
+        (
+            ("cost = \"0.5*u^2\"", "cost = \"0.5*u^2 + k*x\""),
+            "in [optimal_control] cost: unknown name `k`",
+        ),
+        (
+            (
+                "end = { q = [1.0], v = [0.0] }",
+                "end = { q = [1.0], v = [0.0], p = [0.0] }",
+            ),
+            "`end` gives both `v` and `p`",
+        ),
+        (
+            (
+                "[output]",
+                "[optimal_control.bounds]\nu = [1.0, -1.0]\n[output]",
+            ),
+            "bounds on `u`: the lower bound 1 is above the upper bound -1",
+        ),
+        (
+            ("method = \"midpoint\"", "method = \"gauss-2\""),
+            "`gauss-2` cannot be used for optimal control",
+        ),
+    ];
+    for ((from, to), message) in cases {
+        assert!(DOUBLE_INTEGRATOR.contains(from), "{from}");
+        let (_dir, run) = optimize(&DOUBLE_INTEGRATOR.replacen(from, to, 1), &[]);
+        assert_eq!(run.code, 2, "{message}: {}", run.stderr);
+        assert!(run.stderr.contains(message), "{message}: {}", run.stderr);
+        assert!(
+            run.stderr.contains("--> ") && run.stderr.contains('^'),
+            "{}",
+            run.stderr
+        );
+        assert!(!run.out.exists(), "{message}: nothing written");
+    }
+    let (_dir, run) = optimize(DOUBLE_INTEGRATOR, &[]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let (dir, path) = problem(DOUBLE_INTEGRATOR);
+    let refused = marsden("run", &path, &[]);
+    assert_eq!(refused.code, 2);
+    assert!(
+        refused.stderr.contains("solve it with `marsden optimize`"),
+        "{}",
+        refused.stderr
+    );
+    drop(dir);
+}

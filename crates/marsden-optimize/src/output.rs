@@ -1,0 +1,233 @@
+//! The files of `marsden optimize`: `trajectory.csv` (every node: `t`, `q_*`, `p_*`),
+//! `controls.csv` (`t_k` and one column per control, `u_k` acting on `[t_k, t_{k+1}]`) and
+//! `summary.json`, whose `optimal_control` object says how the solve ended.
+
+use std::path::Path;
+
+use marsden_control::{Failure, Solution, Status};
+use marsden_io::{Column, Table, write_csv};
+use marsden_problem::problem::optimal_control::OptimalControlSpec;
+use serde::Serialize;
+
+use crate::error::OptimizeError;
+use crate::solve::Optimized;
+
+/// The trajectory file.
+pub const TRAJECTORY_CSV: &str = "trajectory.csv";
+/// The controls file.
+pub const CONTROLS_CSV: &str = "controls.csv";
+/// The summary file.
+pub const SUMMARY_JSON: &str = "summary.json";
+
+/// The status as `summary.json` spells it: `"converged"`, `"failed"`, `"infeasible"` or
+/// `"iteration limit"`.
+pub fn status_name(status: &Status) -> &'static str {
+    match status {
+        Status::Converged => "converged",
+        Status::Failed(_) => "failed",
+        Status::Infeasible => "infeasible",
+        Status::IterationLimit => "iteration limit",
+    }
+}
+
+/// Why a failed solve stopped, in words.
+fn failure_text(status: &Status) -> Option<String> {
+    match status {
+        Status::Failed(Failure::NonFinite) => {
+            Some("a cost, constraint or derivative was not finite".to_owned())
+        }
+        Status::Failed(Failure::LineSearch { step }) => Some(format!(
+            "the line search found no decrease down to step {step:e}"
+        )),
+        Status::Failed(Failure::Subproblem {
+            status,
+            regularization,
+        }) => Some(format!(
+            "the QP subproblem failed ({status}) with regularization {regularization:e}"
+        )),
+        _ => None,
+    }
+}
+
+/// `summary.json`.
+#[derive(Debug, Serialize)]
+pub struct Summary<'a> {
+    /// The run's name.
+    pub name: &'a str,
+    /// The problem file.
+    pub problem_file: String,
+    /// The rule.
+    pub method: &'a str,
+    /// Steps `N`.
+    pub steps: usize,
+    /// Initial time.
+    pub t0: f64,
+    /// Final time.
+    pub t_end: f64,
+    /// Coordinate names.
+    pub coordinates: &'a [String],
+    /// Control names.
+    pub controls: &'a [String],
+    /// How the solve ended, and its checks.
+    pub optimal_control: OptimalControlSummary,
+    /// One record per SQP iteration.
+    pub history: Vec<HistoryRecord>,
+    /// The files written, relative to the output directory.
+    pub files: Vec<String>,
+}
+
+/// The `optimal_control` object of `summary.json`.
+#[derive(Debug, Serialize)]
+pub struct OptimalControlSummary {
+    /// `"converged"`, `"failed"`, `"infeasible"` or `"iteration limit"`.
+    pub status: &'static str,
+    /// Why a failed solve stopped.
+    pub failure: Option<String>,
+    /// Whether the files hold the last iterate of a solve that did not converge.
+    pub last_iterate: bool,
+    /// The discrete cost `J_d` at the returned iterate.
+    pub cost: f64,
+    /// SQP iterations taken.
+    pub iterations: usize,
+    /// The KKT residual.
+    pub kkt_residual: f64,
+    /// `max |c_i|` of the forced DEL and boundary constraints.
+    pub constraint_violation: f64,
+    /// Per symmetry: `{momentum_change, total_impulse, total_defect, max_defect, steps}` of
+    /// the forced Noether balance ([`crate::balance`]); `null` when the file declares none.
+    pub noether_balance: Option<serde_json::Map<String, serde_json::Value>>,
+    /// `max |(q, p)_{k+1} − Φ_k(q_k, p_k)|` over the steps replayed by the core integrator
+    /// with the returned controls (`null` if a step failed).
+    pub replay_defect: Option<f64>,
+    /// How the first iterate was made.
+    pub guess: &'static str,
+}
+
+/// One SQP iteration.
+#[derive(Debug, Serialize)]
+pub struct HistoryRecord {
+    /// Cost.
+    pub cost: f64,
+    /// `max |c_i|`.
+    pub violation: f64,
+    /// KKT residual.
+    pub kkt: f64,
+    /// Accepted step length.
+    pub step: f64,
+    /// Hessian regularisation.
+    pub regularization: f64,
+}
+
+/// Writes the three files into `dir` (created if needed); returns their names.
+///
+/// # Errors
+/// [`OptimizeError::Write`] naming the file.
+pub fn write(
+    dir: &Path,
+    spec: &OptimalControlSpec,
+    optimized: &Optimized,
+    plots: &[String],
+) -> Result<Vec<String>, OptimizeError> {
+    std::fs::create_dir_all(dir).map_err(|e| OptimizeError::write(dir, e))?;
+    let s = &optimized.solution;
+    let trajectory = trajectory_table(spec, s)?;
+    let path = dir.join(TRAJECTORY_CSV);
+    write_csv(&path, &trajectory).map_err(|e| OptimizeError::write(&path, e))?;
+    let controls = controls_table(spec, s)?;
+    let path = dir.join(CONTROLS_CSV);
+    write_csv(&path, &controls).map_err(|e| OptimizeError::write(&path, e))?;
+    let mut files = vec![
+        TRAJECTORY_CSV.to_owned(),
+        CONTROLS_CSV.to_owned(),
+        SUMMARY_JSON.to_owned(),
+    ];
+    files.extend(plots.iter().cloned());
+    let summary = summary(spec, optimized, files.clone());
+    let text = serde_json::to_string_pretty(&summary)
+        .map_err(|e| OptimizeError::write(SUMMARY_JSON, e))?;
+    let path = dir.join(SUMMARY_JSON);
+    std::fs::write(&path, text + "\n").map_err(|e| OptimizeError::write(&path, e))?;
+    Ok(files)
+}
+
+/// `t`, `q_<name>…`, `p_<name>…` at every node.
+pub fn trajectory_table(spec: &OptimalControlSpec, s: &Solution) -> Result<Table, OptimizeError> {
+    let mut columns = vec![Column::new("t", s.t.clone())];
+    for (prefix, nodes) in [("q", &s.q), ("p", &s.p)] {
+        for (i, name) in spec.coordinates.iter().enumerate() {
+            let values = nodes.iter().map(|x| x[i]).collect();
+            columns.push(Column::new(format!("{prefix}_{name}"), values));
+        }
+    }
+    Table::new(columns).map_err(|e| OptimizeError::write(TRAJECTORY_CSV, e))
+}
+
+/// `t_k` and one column per control.
+pub fn controls_table(spec: &OptimalControlSpec, s: &Solution) -> Result<Table, OptimizeError> {
+    let mut columns = vec![Column::new("t", s.t[..s.u.len()].to_vec())];
+    for (j, name) in spec.controls.iter().enumerate() {
+        columns.push(Column::new(
+            name.clone(),
+            s.u.iter().map(|u| u[j]).collect(),
+        ));
+    }
+    Table::new(columns).map_err(|e| OptimizeError::write(CONTROLS_CSV, e))
+}
+
+/// The summary of a solve; `files` lists what was written beside it (none from Python).
+pub fn summary<'a>(
+    spec: &'a OptimalControlSpec,
+    o: &'a Optimized,
+    files: Vec<String>,
+) -> Summary<'a> {
+    let s = &o.solution;
+    let noether = (!o.noether.is_empty()).then(|| {
+        o.noether
+            .iter()
+            .map(|b| {
+                let value = serde_json::json!({
+                    "momentum_change": b.momentum_change,
+                    "total_impulse": b.total_impulse,
+                    "total_defect": b.total_defect,
+                    "max_defect": b.max_defect,
+                    "steps": b.steps,
+                });
+                (b.name.clone(), value)
+            })
+            .collect()
+    });
+    Summary {
+        name: &spec.name,
+        problem_file: spec.source.path().display().to_string(),
+        method: &o.method,
+        steps: spec.steps,
+        t0: spec.t0,
+        t_end: spec.t_end,
+        coordinates: &spec.coordinates,
+        controls: &spec.controls,
+        optimal_control: OptimalControlSummary {
+            status: status_name(&s.status),
+            failure: failure_text(&s.status),
+            last_iterate: !s.converged(),
+            cost: s.cost,
+            iterations: s.iterations,
+            kkt_residual: s.kkt_residual,
+            constraint_violation: s.constraint_violation,
+            noether_balance: noether,
+            replay_defect: o.replay_defect,
+            guess: o.guess,
+        },
+        history: s
+            .history
+            .iter()
+            .map(|it| HistoryRecord {
+                cost: it.cost,
+                violation: it.violation,
+                kkt: it.kkt,
+                step: it.step,
+                regularization: it.regularization,
+            })
+            .collect(),
+        files,
+    }
+}

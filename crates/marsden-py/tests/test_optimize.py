@@ -1,0 +1,73 @@
+"""``Problem.optimize()``: optimal control problems (``[optimal_control]``) from Python, against
+the double integrator's closed form (Bryson & Ho 1975: rest to rest from 0 to 1 in T = 1 with
+cost ∫ ½u², optimum u(t) = 6 − 12t of cost 6) and the ``marsden optimize`` command."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+import marsden
+
+DOUBLE_INTEGRATOR = """
+[system]
+coordinates = ["x"]
+lagrangian = "0.5*x_dot^2"
+controls = ["u"]
+forces = ["u"]
+[optimal_control]
+cost = "0.5*u^2"
+t_end = 1.0
+steps = 40
+start = { q = [0.0], v = [0.0] }
+end = { q = [1.0], v = [0.0] }
+"""
+
+
+def test_double_integrator_against_the_closed_form() -> None:
+    problem = marsden.Problem.from_toml(DOUBLE_INTEGRATOR)
+    assert problem.is_optimal_control
+    s = problem.optimize()
+    assert s.status == "converged" and s.converged
+    assert s.q.shape == (41, 1) and s.p.shape == (41, 1) and s.u.shape == (40, 1)
+    # The midpoint transcription's optimum costs 6 N²/(N² − 1) → 6 at order 2.
+    assert abs(s.cost - 6.0) < 6.0 / 40**2 * 1.01
+    h = 1.0 / 40
+    midpoints = s.t[:-1] + h / 2
+    assert np.max(np.abs(s.u[:, 0] - (6 - 12 * midpoints))) < 10 * h * h
+    assert abs(s.q[-1, 0] - 1.0) < 1e-10 and abs(s.p[-1, 0]) < 1e-10
+    oc = s.summary["optimal_control"]
+    assert oc["status"] == "converged" and oc["iterations"] >= 1
+    assert oc["constraint_violation"] <= 1e-10
+
+
+def test_the_same_numbers_as_the_command(cli: str, tmp_path) -> None:
+    path = tmp_path / "di.toml"
+    path.write_text(DOUBLE_INTEGRATOR)
+    out = tmp_path / "out"
+    subprocess.run([cli, "optimize", str(path), "--out", str(out), "--quiet"], check=True)
+    summary = json.loads((out / "summary.json").read_text())
+    s = marsden.Problem.load(path).optimize()
+    assert s.cost == summary["optimal_control"]["cost"]
+
+
+def test_iteration_limit_returns_the_last_iterate() -> None:
+    text = DOUBLE_INTEGRATOR.replace("steps = 40", "steps = 40\nmax_iterations = 1")
+    text = text.replace('lagrangian = "0.5*x_dot^2"', 'lagrangian = "0.5*x_dot^2 + cos(x)"')
+    s = marsden.Problem.from_toml(text).optimize()
+    assert s.status == "iteration limit"
+    assert s.summary["optimal_control"]["last_iterate"] is True
+    assert s.u.shape == (40, 1)
+
+
+def test_bad_input_and_the_wrong_call() -> None:
+    with pytest.raises(marsden.ProblemError, match="control `w` is not used by any force"):
+        marsden.Problem.from_toml(DOUBLE_INTEGRATOR.replace('["u"]\nforces', '["u", "w"]\nforces'))
+    with pytest.raises(marsden.ProblemError, match="optimize"):
+        marsden.Problem.from_toml(DOUBLE_INTEGRATOR).solve()
+    pendulum = marsden.Problem.builtin("pendulum", q0=[1.0], v0=[0.0], h=0.1, steps=10)
+    with pytest.raises(marsden.ProblemError, match="no \\[optimal_control\\]"):
+        pendulum.optimize()
