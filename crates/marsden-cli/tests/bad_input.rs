@@ -15,7 +15,8 @@ fn unknown_key_names_the_key_and_its_table() {
             "  | ^^^^^^^^^^\n",
             "= help: did you mean `lagrangian`?",
             "= note: valid keys in [system]: builtin, constraints, controls, coordinates, \
-             discrete_lagrangian, forces, hamiltonian, lagrangian, name, parameters, symmetry",
+             discrete_lagrangian, forces, hamiltonian, lagrangian, name, parameters, potential, \
+             rigid_body, symmetry, torques",
         ],
     );
     assert_rejected(

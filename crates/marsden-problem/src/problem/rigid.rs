@@ -265,6 +265,7 @@ pub(super) fn refuse_coordinate_keys(
             "constraints",
             system.constraints.as_ref().map(Spanned::span),
         ),
+        ("controls", system.controls.as_ref().map(Spanned::span)),
     ];
     match keys.into_iter().find_map(|(k, s)| s.map(|s| (k, s))) {
         Some((key, span)) => Err(ck
