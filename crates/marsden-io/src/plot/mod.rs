@@ -7,6 +7,8 @@
 //! * [`plot_energy_error`] — relative energy error against time (linear, scientific ticks).
 //! * [`plot_momentum_drift`] — `J(t) − J(t₀)` per momentum map, with legend.
 //! * [`plot_constraint_residual`] — residual against time (log axis when positive).
+//! * [`plot_section`] — a Poincaré section's points as dots; [`plot_observables`] — named
+//!   observables against time.
 //! * [`plot_run`] — all of the above from a [`Table`](crate::Table) named by the
 //!   `trajectory.csv` convention.
 //!
@@ -33,6 +35,7 @@ mod plane;
 mod prepare;
 mod render;
 mod run;
+mod section;
 mod sweep;
 mod time_series;
 
@@ -48,5 +51,6 @@ pub use run::{
     CONFIGURATION_PNG, CONSTRAINT_RESIDUAL_PNG, ENERGY_ERROR_PNG, MOMENTUM_DRIFT_PNG,
     MULTIPLIERS_PNG, PHASE_PORTRAIT_PNG, TIME_SERIES_PNG, plot_run,
 };
+pub use section::{plot_observables, plot_section};
 pub use sweep::plot_sweep;
 pub use time_series::plot_time_series;

@@ -90,15 +90,24 @@ pub struct EventSpec {
     pub count: Option<usize>,
 }
 
-/// One axis of the Poincaré section plot: a coordinate, its velocity or its momentum.
+/// One axis of the Poincaré section plot: a coordinate or its momentum (the columns of the
+/// event records).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SectionAxis {
     /// `q_i`.
     Position(usize),
-    /// `v_i` (`<name>_dot`).
-    Velocity(usize),
     /// `p_i` (`p_<name>`).
     Momentum(usize),
+}
+
+impl SectionAxis {
+    /// The column of the event records it reads: `q_<name>` or `p_<name>`.
+    pub fn column(self, coordinates: &[String]) -> Option<String> {
+        match self {
+            SectionAxis::Position(i) => coordinates.get(i).map(|c| format!("q_{c}")),
+            SectionAxis::Momentum(i) => coordinates.get(i).map(|c| momentum_name(c)),
+        }
+    }
 }
 
 /// `[output] section`: the pair of axes, with their names as written.
@@ -363,17 +372,16 @@ fn section(
         let find = |f: &dyn Fn(&String) -> bool| c.iter().position(f);
         let axis = find(&|c| c == name)
             .map(SectionAxis::Position)
-            .or_else(|| find(&|c| &velocity_name(c) == name).map(SectionAxis::Velocity))
             .or_else(|| find(&|c| &momentum_name(c) == name).map(SectionAxis::Momentum));
         match axis {
             Some(a) => Ok((a, name.clone())),
             None => Err(ck
                 .error(
                     Some(s.span()),
-                    format!("`section` names `{name}`, which is not a coordinate, a velocity or a momentum"),
+                    format!("`section` names `{name}`, which is not a coordinate or a momentum"),
                 )
                 .help(format!(
-                    "the section's axes are among {}",
+                    "the section's axes are among {} (the columns of events.csv)",
                     what_names(c).join(", ")
                 ))),
         }
@@ -387,8 +395,6 @@ fn section(
 /// The names an axis may take.
 fn what_names(coordinates: &[String]) -> Vec<String> {
     let q = coordinates.iter().cloned();
-    let v = coordinates.iter().map(|c| velocity_name(c));
-    q.chain(v)
-        .chain(coordinates.iter().map(|c| momentum_name(c)))
+    q.chain(coordinates.iter().map(|c| momentum_name(c)))
         .collect()
 }

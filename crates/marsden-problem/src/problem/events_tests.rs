@@ -41,7 +41,7 @@ fn reads_events_observables_and_the_section() {
     let spec = load(
         "[output]
 observables = { r2 = \"x^2 + y^2\", s = \"x*p_y - y*p_x + t*k\" }
-section = [\"y\", \"y_dot\"]
+section = [\"y\", \"p_x\"]
 [[events]]
 name = \"cross\"
 when = \"r2 - 0.5\"
@@ -68,7 +68,7 @@ when = \"x\"
     );
     let section = e.section.as_ref().unwrap();
     assert_eq!(section.x.1, "y");
-    assert_eq!(section.y.1, "y_dot");
+    assert_eq!(section.y.1, "p_x");
     // `cross` reads the observable r2 = x² + y² at (x, y) = (1, 2): 5 − 0.5.
     let g = marsden::run::events::EventFunction::value(
         &e.functions()[0],

@@ -36,11 +36,18 @@ pub fn draw(spec: &RunSpec, layout: &Layout) -> marsden_io::Result<Vec<String>> 
     let conserved = spec.system.energy_not_conserved().is_none();
     let opts = options(&sketch, spec.output.angles.clone(), conserved);
     let reports = plot_run(&sketch.table, dir, &opts)?;
-    Ok(reports
+    let mut pngs: Vec<String> = reports
         .iter()
         .filter_map(|r| r.path.file_name())
         .map(|f| f.to_string_lossy().into_owned())
-        .collect())
+        .collect();
+    let observables = (&sketch.table, &opts);
+    pngs.extend(super::event_outputs::draw_observables(
+        dir,
+        spec,
+        observables,
+    )?);
+    Ok(pngs)
 }
 
 /// Reads the run in `dir` (a finished or failed one) and draws every plot its columns allow;
