@@ -71,6 +71,8 @@ impl<'de> Visitor<'de> for ObservablesVisitor {
         while let Some(entry) = map.next_entry::<Spanned<String>, Spanned<String>>()? {
             entries.push(entry);
         }
+        // The file's order (the deserializer hands a table over sorted by key).
+        entries.sort_by_key(|(key, _)| key.span().start);
         Ok(RawObservables(entries))
     }
 }

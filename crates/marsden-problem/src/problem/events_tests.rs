@@ -40,7 +40,7 @@ fn refused(tail: &str) -> (Diagnostic, String) {
 fn reads_events_observables_and_the_section() {
     let spec = load(
         "[output]
-observables = { r2 = \"x^2 + y^2\", s = \"x*p_y - y*p_x + t*k\" }
+observables = { s = \"x*p_y - y*p_x + t*k\", r2 = \"x^2 + y^2\" }
 section = [\"y\", \"p_x\"]
 [[events]]
 name = \"cross\"
@@ -55,7 +55,7 @@ when = \"x\"
     )
     .unwrap();
     let e = &spec.events;
-    assert_eq!(e.observables.names, ["r2", "s"]);
+    assert_eq!(e.observables.names, ["s", "r2"], "the file's order");
     assert_eq!(e.events.len(), 2);
     let (cross, plain) = (&e.events[0], &e.events[1]);
     assert_eq!(

@@ -44,6 +44,8 @@ fn table_of(valid: &[&str]) -> &'static str {
         "[system]"
     } else if has("generator") {
         "[[system.symmetry]]"
+    } else if has("when") {
+        "[[events]]"
     } else if has("q") {
         "[initial]"
     } else if has("method") {
@@ -100,6 +102,10 @@ mod tests {
                 "[[system.symmetry]]",
             ),
             ("[sytem]\n", "the top level of the file"),
+            (
+                "[[events]]\nwhen = \"x\"\ndirecton = \"up\"\n",
+                "[[events]]",
+            ),
         ] {
             let msg = diagnose_text(text);
             assert!(msg.contains(&format!(" in {table}\n")), "{msg}");

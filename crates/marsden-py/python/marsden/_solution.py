@@ -26,7 +26,12 @@ class Solution:
     - ``status`` (``"completed"``, ``"failed"``), ``error`` (the failure's message),
       ``warnings``;
     - ``sensitivity``: the run's Jacobians (:class:`marsden.Sensitivity`) when they were asked
-      for (``solve(sensitivity=...)`` or a ``[sensitivity]`` table), else ``None``.
+      for (``solve(sensitivity=...)`` or a ``[sensitivity]`` table), else ``None``;
+    - ``observables``: the ``[output] observables`` at the stored samples, by name
+      (``solution.observables["x2"]``, one value per row);
+    - ``events``: the crossings located by the ``[[events]]``, by event name, each a dictionary
+      ``{"t": (m,), "q": (m × n), "p": (m × n)}`` (``solution.events["x_up"]["q"][:, 1]``);
+      a run stopped by an event has ``status`` ``"stopped by event <name>"``.
 
     >>> s = pendulum.solve(every=10)
     >>> s.t[-1], s.q[-1, 0], s.summary["energy"]["max_rel_error"]
@@ -44,6 +49,9 @@ class Solution:
         self.momenta: Dict[str, np.ndarray] = dict(fields["momenta"])
         self.constraint_residual: Optional[np.ndarray] = fields["constraint_residual"]
         self.multipliers: np.ndarray = fields["multipliers"]
+        self.observables: Dict[str, np.ndarray] = dict(fields.get("observables") or {})
+        self.events: Dict[str, Dict[str, np.ndarray]] = {
+            name: dict(records) for name, records in (fields.get("events") or {}).items()}
         self.summary: Dict[str, Any] = (
             json.loads(fields["summary"]) if isinstance(fields["summary"], str)
             else fields["summary"])
