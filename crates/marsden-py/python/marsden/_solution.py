@@ -78,7 +78,7 @@ class Solution:
 
     def to_pandas(self) -> Any:
         """The samples as a ``pandas.DataFrame``: ``t``, ``q…``, ``p_…``, ``v_…``, ``energy``,
-        ``J_…`` and ``constraint_residual`` columns, as ``trajectory.csv`` (plus ``v``); a
+        ``J_…``, ``constraint_residual`` and observables' columns, as ``trajectory.csv`` (plus ``v``); a
         quantity the run does not have (``energy`` of a discrete Lagrangian) has no column."""
         try:
             import pandas as pd
@@ -97,6 +97,8 @@ class Solution:
             columns["constraint_residual"] = self.constraint_residual
         for i in range(self.multipliers.shape[1]):
             columns[f"lambda_{i}"] = self.multipliers[:, i]
+        for name, values in self.observables.items():
+            columns[name] = values
         for i, name in enumerate(self.coordinates):
             columns[f"v_{name}"] = self.v[:, i]
         return pd.DataFrame(columns)

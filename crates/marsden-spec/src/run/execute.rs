@@ -147,12 +147,12 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
     let mut record = engine.run(spec, destination, controls)?;
     let mut warnings = start.warnings.clone();
     let mut written = Vec::new();
-    if let Some(writer) = event_file.as_mut() {
-        if let Err(e) = writer.finish() {
-            record
-                .error
-                .get_or_insert(format!("writing {} failed: {e}", event_outputs::EVENTS_CSV));
-        }
+    if let Some(writer) = event_file.as_mut()
+        && let Err(e) = writer.finish()
+    {
+        record
+            .error
+            .get_or_insert(format!("writing {} failed: {e}", event_outputs::EVENTS_CSV));
     }
     if let Some(sink) = files.as_mut() {
         if let Err(e) = sink.finish() {
