@@ -21,6 +21,9 @@ mod constraints;
 mod exact;
 // `discrete_lagrangian`: R1 from the hand-written midpoint L_d, no energy, refusals.
 mod discrete;
+// `[[events]]` and observables: crossing times (R7, R10), a stop event, observables' columns,
+// bad inputs.
+mod events;
 // Every file in examples/ runs with reduced steps, as README.md quotes them.
 mod examples;
 // `[system] hamiltonian`: the same map as the Lagrangian, refusals.

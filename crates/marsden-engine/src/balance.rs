@@ -270,6 +270,11 @@ where
     fn every_step(&self) -> bool {
         true
     }
+
+    /// The inner observer's reason (an event that stopped the run, or failed to be located).
+    fn termination(&self) -> Option<marsden::Termination> {
+        self.inner.termination()
+    }
 }
 
 /// Draws the energy balance of a forced run's `series` in `dir` ([`ENERGY_BALANCE_PNG`]; such a

@@ -49,7 +49,8 @@ pub fn run(
     );
     let sink = (destination.sink, destination.with_velocity);
     let mut observer = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), controls)
-        .monitoring_every_step(spec.analysis.every_step);
+        .monitoring_every_step(spec.analysis.every_step)
+        .with_observables(&spec.events.observables);
     let clock = Instant::now();
     let result = solve(ld.clone(), spec, start, &mut observer);
     Ok(finish(observer, result, clock.elapsed().as_secs_f64()))

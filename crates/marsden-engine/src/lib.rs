@@ -21,6 +21,7 @@
 //! | forced runs | [`balance`] | the discrete energy balance of every step (R12) |
 //! | forced runs | [`noether_balance`] | the forced Noether balance of every symmetry (MW01 §3.2) |
 //! | on request | [`certify`] | symplecticity defect of the step map (on `T*N` when constrained), equivariance defect of `L_d` |
+//! | events | [`events`] | `[[events]]` located along the run, their records streamed (`events.csv`) |
 //! | per sample | [`observer`] | one row `t, q, p, energy, J…, residual`, [`diagnostics`] |
 //! | derivatives | [`sensitivity`] | `[sensitivity]`: the tangent run's Jacobians, `sensitivity.npy` |
 //! | order studies | [`order_runner`] | the reference solution and the runs of each method |
@@ -37,6 +38,7 @@ pub mod controls;
 pub mod diagnostics;
 pub mod discrete;
 pub mod engine;
+pub mod events;
 pub mod noether_balance;
 pub mod observer;
 pub mod order_runner;

@@ -118,4 +118,9 @@ impl<G: GroupAction, F: DiscreteForce, O: Observer + ?Sized> Observer
     fn every_step(&self) -> bool {
         true
     }
+
+    /// The inner observer's reason (an event that stopped the run, or failed to be located).
+    fn termination(&self) -> Option<marsden::Termination> {
+        self.inner.termination()
+    }
 }

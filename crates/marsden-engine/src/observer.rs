@@ -18,7 +18,7 @@ use marsden_io::RowSink;
 
 use crate::controls::{CHECK_EVERY, Controls, Progress};
 use crate::diagnostics::Diagnostics;
-use marsden_problem::model::MomentumMap;
+use marsden_problem::model::{MomentumMap, Observables};
 
 /// Streams samples to a [`RowSink`] and accumulates [`Diagnostics`].
 pub struct StreamObserver<'a, 's, L, C, M> {
@@ -48,6 +48,8 @@ pub struct StreamObserver<'a, 's, L, C, M> {
     pub interrupted: bool,
     /// Feed the diagnostics from every step, not only the stored rows (`[analysis] every_step`).
     monitor_every_step: bool,
+    /// `[output] observables`: columns after the others (before the velocities).
+    observables: Option<&'a Observables>,
 }
 
 /// Where a sample comes from.
@@ -94,7 +96,15 @@ impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's
             io_error: None,
             interrupted: false,
             monitor_every_step: false,
+            observables: None,
         }
+    }
+
+    /// Writes the values of `observables` at every stored state as the last columns of the
+    /// file's row (NaN where the velocities are not available).
+    pub fn with_observables(mut self, observables: &'a Observables) -> Self {
+        self.observables = (!observables.is_empty()).then_some(observables);
+        self
     }
 
     /// Feeds the diagnostics from every step (the summary's maxima are then over every step),
@@ -173,6 +183,15 @@ impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's
                 Some(Ok(lambda)) => self.row.extend_from_slice(&lambda),
                 _ => self.row.resize(self.row.len() + d, f64::NAN),
             }
+        }
+        if !finite {
+            self.velocity.fill(f64::NAN);
+        }
+        if let Some(observables) = self.observables {
+            let start = self.row.len();
+            self.row.resize(start + observables.len(), f64::NAN);
+            let state = (s.t, s.q, self.velocity.as_slice(), s.p);
+            observables.eval_into(state, &mut self.row[start..]);
         }
         if self.with_velocity {
             match finite {

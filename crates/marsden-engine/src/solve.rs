@@ -17,6 +17,7 @@ use crate::balance::{BalanceSeries, BalanceSummary, Balanced, TimeDerivative};
 use crate::certify::{Certificate, Ends, certify, without_step_jacobian};
 use crate::controls::Controls;
 use crate::diagnostics::Diagnostics;
+use crate::events::{EventTally, Watched};
 use crate::noether_balance::{NoetherBalance, NoetherBalanced};
 use crate::observer::StreamObserver;
 use crate::start;
@@ -54,6 +55,8 @@ pub struct RunRecord {
     pub certificate: Option<Certificate>,
     /// A rigid body's own invariants and last attitude (`None` for other systems).
     pub rigid: Option<crate::rigid::RigidRecord>,
+    /// What the file's `[[events]]` came to (empty without events).
+    pub events: EventTally,
 }
 
 /// `method = "exact"`: the integrator steps `L_d^E` of the problem's Lagrangian by shooting
@@ -186,6 +189,8 @@ pub struct Destination<'s> {
     pub sink: &'s mut (dyn RowSink + 's),
     /// Append `v` to every row.
     pub with_velocity: bool,
+    /// Where the event records go, as rows `event, t, q…, p…` (`None`: counted only).
+    pub events: Option<&'s mut (dyn RowSink + 's)>,
 }
 
 /// Runs `spec` with `lagrangian` by `rule` (the file's forces, constraints and symmetries),
@@ -265,7 +270,7 @@ pub struct Output {
 struct Session<'a, 's, L, F> {
     problem: Problem<&'a L, &'a F, &'a ExprConstraint>,
     options: SolveOptions,
-    observer: StreamObserver<'a, 's, L, ExprConstraint, Symmetry>,
+    observer: Watched<'a, 's, L, StreamObserver<'a, 's, L, ExprConstraint, Symmetry>>,
     clock: Instant,
 }
 
@@ -294,8 +299,11 @@ impl<'a, 's, L: Lagrangian, F: Force> Session<'a, 's, L, F> {
             s.symmetries.as_slice(),
         );
         let sink = (destination.sink, destination.with_velocity);
-        let observer = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), controls)
-            .monitoring_every_step(spec.analysis.every_step);
+        let stream = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), controls)
+            .monitoring_every_step(spec.analysis.every_step)
+            .with_observables(&spec.events.observables);
+        let events = (lagrangian, &spec.events);
+        let observer = Watched::new(stream, events, destination.events)?;
         Ok(Session {
             problem,
             options,
@@ -312,7 +320,12 @@ impl<'a, 's, L: Lagrangian, F: Force> Session<'a, 's, L, F> {
         balance: Option<Balances>,
     ) -> (RunRecord, Problem<&'a L, &'a F, &'a ExprConstraint>) {
         let wall_seconds = self.clock.elapsed().as_secs_f64();
-        let mut record = finish(self.observer, result, wall_seconds);
+        let (stream, events) = self.observer.into_parts();
+        let mut record = finish(stream, result, wall_seconds);
+        if let Some(e) = &events.io_error {
+            record.error.get_or_insert_with(|| e.clone());
+        }
+        record.events = events;
         if let Some(b) = balance {
             (record.balance, record.balance_series) = (Some(b.energy), Some(b.series));
             record.noether_balance = b.noether;
@@ -353,6 +366,7 @@ pub(super) fn finish<L: Lagrangian, C: Constraint, M: MomentumMap>(
         noether_balance: Vec::new(),
         certificate: None,
         rigid: None,
+        events: EventTally::default(),
     }
 }
 

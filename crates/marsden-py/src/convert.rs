@@ -3,8 +3,10 @@
 //! the multipliers with one per constraint; a rigid body's attitude `R` as `samples × 3 × 3`
 //! and body momentum `Pi` as `samples × 3`),
 //! `summary.json`'s text, the status, the error message and the warnings; with
-//! `[sensitivity]`, the stored Jacobians as a `samples × 2n × columns` array.
+//! `[sensitivity]`, the stored Jacobians as a `samples × 2n × columns` array; the observables
+//! by name, and the events' located crossings by event name.
 
+use marsden_spec::run::event_outputs::EventSamples;
 use marsden_spec::{Outcome, Samples};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3};
@@ -39,8 +41,15 @@ pub fn outcome<'py>(py: Python<'py>, outcome: &Outcome) -> PyResult<Bound<'py, P
         energy,
         momenta,
         constraint_residual,
+        observables,
         ..
     } = samples;
+    let named = PyDict::new(py);
+    for (name, values) in observables {
+        named.set_item(name, PyArray1::from_vec(py, values))?;
+    }
+    d.set_item("observables", named)?;
+    d.set_item("events", events(py, outcome.events.as_ref())?)?;
     d.set_item("t", PyArray1::from_vec(py, t))?;
     d.set_item("energy", PyArray1::from_vec(py, energy))?;
     let maps = PyDict::new(py);
@@ -57,7 +66,7 @@ pub fn outcome<'py>(py: Python<'py>, outcome: &Outcome) -> PyResult<Bound<'py, P
         .to_json()
         .map_err(pyo3::exceptions::PyRuntimeError::new_err)?;
     d.set_item("summary", summary)?;
-    d.set_item("status", outcome.summary.status.name())?;
+    d.set_item("status", &outcome.summary.status_text)?;
     d.set_item("error", outcome.summary.error.clone())?;
     d.set_item("warnings", outcome.warnings.clone())?;
     let jacobians = (outcome.summary.sensitivity.as_ref())
@@ -65,6 +74,32 @@ pub fn outcome<'py>(py: Python<'py>, outcome: &Outcome) -> PyResult<Bound<'py, P
         .map(|(block, samples)| sensitivity(py, &block.columns, samples))
         .transpose()?;
     d.set_item("sensitivity", jacobians)?;
+    Ok(d)
+}
+
+/// The located crossings by event name: `{name: {"t": (k,), "q": (k × n), "p": (k × n)}}`, in
+/// the file's order (an event that never fired has empty arrays).
+fn events<'py>(py: Python<'py>, records: Option<&EventSamples>) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let Some(records) = records else {
+        return Ok(d);
+    };
+    for (i, name) in records.names.iter().enumerate() {
+        let mine: Vec<usize> = (0..records.len())
+            .filter(|&k| records.event[k] == i)
+            .collect();
+        let pick = |columns: &[Vec<f64>]| -> Vec<Vec<f64>> {
+            (columns.iter())
+                .map(|c| mine.iter().map(|&k| c[k]).collect())
+                .collect()
+        };
+        let one = PyDict::new(py);
+        let t: Vec<f64> = mine.iter().map(|&k| records.t[k]).collect();
+        one.set_item("t", PyArray1::from_vec(py, t))?;
+        one.set_item("q", rows(py, &pick(&records.q), mine.len()))?;
+        one.set_item("p", rows(py, &pick(&records.p), mine.len()))?;
+        d.set_item(name, one)?;
+    }
     Ok(d)
 }
 

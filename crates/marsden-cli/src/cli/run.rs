@@ -59,7 +59,7 @@ pub fn run(args: &RunArgs) -> Result<Status, CliError> {
     let s = &outcome.summary;
     let dir = spec.output.dir.display();
     match (&s.error, s.status) {
-        (None, RunStatus::Completed) => Ok(Status::Completed),
+        (None, RunStatus::Completed | RunStatus::Stopped) => Ok(Status::Completed),
         (Some(e), _) => {
             eprintln!(
                 "error: the simulation failed after {} of {} steps: {e}\n  = note: the partial \

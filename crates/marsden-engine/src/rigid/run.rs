@@ -141,6 +141,7 @@ pub(super) fn run(
         balance_series: None,
         noether_balance: Vec::new(),
         certificate: None,
+        events: crate::events::EventTally::default(),
         rigid: Some(RigidRecord {
             monitor: writer.monitor,
             final_attitude: state.rotations.clone(),

@@ -8,6 +8,8 @@
 //! * [`plot_momentum_drift`] — `J(t) − J(t₀)` per momentum map, with legend.
 //! * [`plot_constraint_residual`] — residual against time (log axis when positive).
 //! * [`plot_lines`] — named series against a common abscissa, linear or log panels.
+//! * [`plot_section`] — a Poincaré section's points as dots; [`plot_observables`] — named
+//!   observables against time.
 //! * [`plot_run`] — all of the above from a [`Table`](crate::Table) named by the
 //!   `trajectory.csv` convention.
 //!
@@ -35,6 +37,7 @@ mod plane;
 mod prepare;
 mod render;
 mod run;
+mod section;
 mod sweep;
 mod time_series;
 
@@ -51,5 +54,6 @@ pub use run::{
     CONFIGURATION_PNG, CONSTRAINT_RESIDUAL_PNG, ENERGY_ERROR_PNG, MOMENTUM_DRIFT_PNG,
     MULTIPLIERS_PNG, PHASE_PORTRAIT_PNG, TIME_SERIES_PNG, plot_run,
 };
+pub use section::{plot_observables, plot_section};
 pub use sweep::plot_sweep;
 pub use time_series::plot_time_series;

@@ -13,6 +13,7 @@ pub mod force;
 pub mod hamiltonian;
 pub mod inputs;
 pub mod lagrangian;
+pub mod observables;
 pub mod parametric;
 pub mod rigid;
 pub mod symmetry;
@@ -22,6 +23,7 @@ pub use discrete_lagrangian::ExprDiscreteLagrangian;
 pub use force::{ExprForce, ForceInputs, LagrangianForce};
 pub use hamiltonian::{ExprHamiltonian, HamiltonianExprLagrangian};
 pub use lagrangian::ExprLagrangian;
+pub use observables::{ExprEvent, Observables};
 pub use parametric::{ExprParametric, ParametricTexts};
 pub use symmetry::{MomentumMap, Symmetry};
 

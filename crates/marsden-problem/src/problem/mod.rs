@@ -11,6 +11,9 @@
 
 pub mod check;
 pub mod discrete;
+pub mod events;
+#[cfg(test)]
+mod events_tests;
 pub mod grid;
 pub mod hamiltonian;
 pub mod method;
@@ -115,6 +118,12 @@ fn refuse_in_sweep(ck: &Checker<'_>, raw: &raw::RawProblem) -> Result<(), Diagno
             .and_then(|a| a.every_step.as_ref())
             .filter(|c| *c.get_ref())
             .map(|c| ("`every_step = true`", c.span())),
+        (raw.events.as_ref())
+            .and_then(|e| e.first())
+            .map(|e| ("[[events]]", e.span())),
+        (raw.output.as_ref())
+            .and_then(|o| o.get_ref().observables.as_ref())
+            .map(|o| ("`observables`", o.span())),
     ];
     match found.into_iter().flatten().next() {
         Some((what, span)) => Err(ck
@@ -235,6 +244,7 @@ fn validate_raw(
         refuse_in_sweep(&ck, raw)?;
     }
     let sensitivity = sensitivity::sensitivity(&ck, raw.sensitivity.as_ref(), &system)?;
+    let events = events::events(&ck, raw, &system)?;
     let system_table = raw.system.as_ref().map(|s| s.get_ref());
     let lagrangian_span = system_table
         .and_then(|s| {
@@ -263,6 +273,7 @@ fn validate_raw(
         spans,
         sweep,
         sensitivity,
+        events,
         analysis: spec::AnalysisSpec {
             every_step: (raw.analysis.as_ref())
                 .and_then(|a| a.get_ref().every_step.as_ref())

@@ -74,6 +74,9 @@ pub struct RawProblem {
     /// `[optimal_control]`: a DMOC problem, solved by `marsden optimize`
     /// ([`super::optimal_control`]).
     pub optimal_control: Option<Spanned<super::optimal_control::raw::RawOptimalControl>>,
+    /// `[[events]]`: zero crossings of expressions of the state, recorded or ending the run
+    /// ([`super::events`]).
+    pub events: Option<Vec<Spanned<super::events::RawEvent>>>,
 }
 
 /// `[sweep]`: what is swept (`parameter` or `initial`) and over what (`values` or `range`).
@@ -254,6 +257,12 @@ pub struct RawOutput {
     pub plots: Option<Spanned<bool>>,
     /// Coordinates that are angles: plots show them wrapped to (−π, π].
     pub angles: Option<SpannedList<String>>,
+    /// Named expressions of `(t, q, v, p)` written as columns after the state
+    /// ([`super::events`]).
+    pub observables: Option<Spanned<super::events::RawObservables>>,
+    /// The axes of the Poincaré section plot of the recorded events: two of the coordinates,
+    /// velocities and momenta.
+    pub section: Option<SpannedList<String>>,
 }
 
 /// A parameter value: a number, or a list of numbers (N-body masses).

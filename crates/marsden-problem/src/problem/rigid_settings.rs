@@ -261,8 +261,14 @@ pub(super) fn refuse_unsupported(ck: &Checker<'_>, raw: &RawProblem) -> Result<(
         .and_then(|i| i.get_ref().compensated.as_ref())
         .filter(|c| *c.get_ref())
         .map(Spanned::span);
+    let output = raw.output.as_ref().map(Spanned::get_ref);
     let found = [
         raw.sweep.as_ref().map(|s| ("[sweep]", s.span())),
+        (raw.events.as_ref())
+            .and_then(|e| e.first())
+            .map(|e| ("[[events]]", e.span())),
+        (output.and_then(|o| o.observables.as_ref())).map(|o| ("`observables`", o.span())),
+        (output.and_then(|o| o.section.as_ref())).map(|o| ("`section`", o.span())),
         raw.sensitivity
             .as_ref()
             .map(|s| ("[sensitivity]", s.span())),

@@ -52,6 +52,8 @@ pub struct RunSpec {
     pub analysis: AnalysisSpec,
     /// `[sensitivity]`: the derivatives computed beside the run (`None`: none).
     pub sensitivity: Option<super::SensitivitySpec>,
+    /// `[[events]]`, `[output] observables` and `[output] section` (empty without them).
+    pub events: super::events::EventsSpec,
 }
 
 impl RunSpec {

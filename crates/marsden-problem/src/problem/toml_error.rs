@@ -48,6 +48,8 @@ fn table_of(valid: &[&str]) -> &'static str {
         "[optimal_control]"
     } else if has("q") && !has("project") {
         "`start` or `end` of [optimal_control]"
+    } else if has("when") {
+        "[[events]]"
     } else if has("q") {
         "[initial]"
     } else if has("method") {
@@ -104,6 +106,10 @@ mod tests {
                 "[[system.symmetry]]",
             ),
             ("[sytem]\n", "the top level of the file"),
+            (
+                "[[events]]\nwhen = \"x\"\ndirecton = \"up\"\n",
+                "[[events]]",
+            ),
         ] {
             let msg = diagnose_text(text);
             assert!(msg.contains(&format!(" in {table}\n")), "{msg}");

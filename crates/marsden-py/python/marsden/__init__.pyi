@@ -60,6 +60,8 @@ class Solution:
     error: Optional[str]
     warnings: List[str]
     sensitivity: Optional[Sensitivity]
+    observables: Dict[str, FloatArray]
+    events: Dict[str, Dict[str, FloatArray]]
     def __init__(self, fields: Dict[str, Any]) -> None: ...
     def __len__(self) -> int: ...
     @property

@@ -29,7 +29,12 @@ class Solution:
       momentum ``Π = JΩ``) and ``quaternion`` (``k × 4``, ``[w, x, y, z]`` with ``w ≥ 0``);
       ``None`` for other systems;
     - ``sensitivity``: the run's Jacobians (:class:`marsden.Sensitivity`) when they were asked
-      for (``solve(sensitivity=...)`` or a ``[sensitivity]`` table), else ``None``.
+      for (``solve(sensitivity=...)`` or a ``[sensitivity]`` table), else ``None``;
+    - ``observables``: the ``[output] observables`` at the stored samples, by name
+      (``solution.observables["x2"]``, one value per row);
+    - ``events``: the crossings located by the ``[[events]]``, by event name, each a dictionary
+      ``{"t": (m,), "q": (m × n), "p": (m × n)}`` (``solution.events["x_up"]["q"][:, 1]``);
+      a run stopped by an event has ``status`` ``"stopped by event <name>"``.
 
     >>> s = pendulum.solve(every=10)
     >>> s.t[-1], s.q[-1, 0], s.summary["energy"]["max_rel_error"]
@@ -49,6 +54,9 @@ class Solution:
         self.multipliers: np.ndarray = fields["multipliers"]
         self.R: Optional[np.ndarray] = fields.get("R")
         self.Pi: Optional[np.ndarray] = fields.get("Pi")
+        self.observables: Dict[str, np.ndarray] = dict(fields.get("observables") or {})
+        self.events: Dict[str, Dict[str, np.ndarray]] = {
+            name: dict(records) for name, records in (fields.get("events") or {}).items()}
         self.summary: Dict[str, Any] = (
             json.loads(fields["summary"]) if isinstance(fields["summary"], str)
             else fields["summary"])
@@ -84,7 +92,7 @@ class Solution:
 
     def to_pandas(self) -> Any:
         """The samples as a ``pandas.DataFrame``: ``t``, ``q…``, ``p_…``, ``v_…``, ``energy``,
-        ``J_…`` and ``constraint_residual`` columns, as ``trajectory.csv`` (plus ``v``); a
+        ``J_…``, ``constraint_residual`` and observables' columns, as ``trajectory.csv`` (plus ``v``); a
         quantity the run does not have (``energy`` of a discrete Lagrangian) has no column."""
         try:
             import pandas as pd
@@ -103,6 +111,8 @@ class Solution:
             columns["constraint_residual"] = self.constraint_residual
         for i in range(self.multipliers.shape[1]):
             columns[f"lambda_{i}"] = self.multipliers[:, i]
+        for name, values in self.observables.items():
+            columns[name] = values
         for i, name in enumerate(self.coordinates):
             columns[f"v_{name}"] = self.v[:, i]
         return pd.DataFrame(columns)

@@ -53,6 +53,17 @@ pub fn render(outcome: &Outcome) -> String {
                 seconds(s.wall_seconds)
             ),
         ),
+        None if s.status == RunStatus::Stopped => line(
+            &mut out,
+            "stopped",
+            format!(
+                "by event {} after {} of {} steps ({span}), in {}",
+                s.stopped_by_event.as_deref().unwrap_or("?"),
+                s.steps,
+                s.steps_requested,
+                seconds(s.wall_seconds)
+            ),
+        ),
         None => line(
             &mut out,
             "completed",
@@ -140,6 +151,12 @@ pub fn render(outcome: &Outcome) -> String {
                 s.constraints.count
             ),
         );
+    }
+    if !s.events.is_empty() {
+        let counts: Vec<String> = (s.events.iter())
+            .map(|(name, n)| format!("{name}: {n} crossing{}", if *n == 1 { "" } else { "s" }))
+            .collect();
+        line(&mut out, "events", counts.join(", "));
     }
     let files: Vec<String> = s
         .output

@@ -5,6 +5,7 @@
 use std::path::PathBuf;
 
 use super::controls::Controls;
+use super::event_outputs::{self, EventSamples, EventTee};
 use super::samples::{NullSink, Samples, Tee};
 use super::sensitivity::SensitivitySummary;
 use super::solve::{Destination, RunRecord};
@@ -50,6 +51,9 @@ pub struct Outcome {
     /// `[sensitivity]`: the Jacobian at every stored step, `(t_k, J_k)` with `J_k` row-major
     /// `2n × columns` (the summary names rows and columns); kept in memory as the samples are.
     pub sensitivity: Option<Vec<(f64, Vec<f64>)>>,
+    /// `[[events]]`: the located crossings (when the samples are kept in memory and the file
+    /// has events).
+    pub events: Option<EventSamples>,
 }
 
 /// Runs `spec`: checks the initial state, creates the output directory (unless only in
@@ -82,7 +86,7 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
         }
         false => None,
     };
-    let layout = output::layout(&spec.system).map_err(|e| io("lay out the columns of", &e))?;
+    let layout = output::layout_of(spec).map_err(|e| io("lay out the columns of", &e))?;
     let mut files = match store.files() {
         true => Some(
             output::open_sink(&dir, spec.output.format, &layout)
@@ -90,16 +94,35 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
         ),
         false => None,
     };
-    let mut samples = store.memory().then(|| Samples::new(&spec.system));
+    let mut samples = store.memory().then(|| Samples::of(spec));
+    let mut event_file = match store.files() {
+        true => event_outputs::open(&dir, spec).map_err(|e| io("write the events into", &e))?,
+        false => None,
+    };
+    let has_events = !spec.events.events.is_empty();
+    let mut event_memory = (store.memory() && has_events).then(|| EventSamples::of(spec));
+    let mut event_tee;
+    let events: Option<&mut dyn marsden_io::RowSink> =
+        match (event_file.as_mut(), event_memory.as_mut()) {
+            (Some(files), Some(memory)) => {
+                event_tee = EventTee { files, memory };
+                Some(&mut event_tee)
+            }
+            (Some(files), None) => Some(files),
+            (None, Some(memory)) => Some(memory),
+            (None, None) => None,
+        };
     let (mut tee, mut null);
     let destination = match (files.as_mut(), samples.as_mut()) {
         (Some(files), None) => Destination {
             sink: files.as_mut(),
             with_velocity: false,
+            events,
         },
         (None, Some(memory)) => Destination {
             sink: memory,
             with_velocity: true,
+            events,
         },
         (Some(files), Some(memory)) => Destination {
             sink: {
@@ -110,6 +133,7 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
                 &mut tee
             },
             with_velocity: true,
+            events,
         },
         (None, None) => Destination {
             sink: {
@@ -117,11 +141,19 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
                 &mut null
             },
             with_velocity: false,
+            events,
         },
     };
     let mut record = engine.run(spec, destination, controls)?;
     let mut warnings = start.warnings.clone();
     let mut written = Vec::new();
+    if let Some(writer) = event_file.as_mut()
+        && let Err(e) = writer.finish()
+    {
+        record
+            .error
+            .get_or_insert(format!("writing {} failed: {e}", event_outputs::EVENTS_CSV));
+    }
     if let Some(sink) = files.as_mut() {
         if let Err(e) = sink.finish() {
             record
@@ -131,11 +163,20 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
         // The rows in the files: a write that failed part-way lost the rows it did not take.
         record.rows = sink.rows_written();
         written = output::trajectory_files(spec.output.format, &layout);
+        if event_file.is_some() {
+            written.push(event_outputs::EVENTS_CSV.to_owned());
+        }
         written.push(output::SUMMARY_JSON.to_owned());
         if spec.output.plots && record.rows > 0 {
             match plots::draw(spec, &layout) {
                 Ok(pngs) => written.extend(pngs),
                 Err(e) => warnings.push(format!("plots were not drawn: {e}")),
+            }
+            if has_events {
+                match event_outputs::draw_section(&dir, spec) {
+                    Ok(png) => written.push(png),
+                    Err(e) => warnings.push(format!("the section was not drawn: {e}")),
+                }
             }
             if let Some(series) = &record.balance_series
                 && let Err(e) = balance::draw(&dir, series, &mut written)
@@ -184,6 +225,7 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
         samples,
         warnings,
         sensitivity: jacobians.filter(|_| store.memory()),
+        events: event_memory,
     })
 }
 

@@ -12,7 +12,7 @@ use std::path::Path;
 
 use marsden_io::{CsvWriter, Group, Layout, NpyDirWriter, RowSink};
 
-use crate::problem::{Format, SystemSpec};
+use crate::problem::{Format, RunSpec, SystemSpec};
 
 /// The trajectory file of `format = "csv"`.
 pub const TRAJECTORY_CSV: &str = "trajectory.csv";
@@ -32,6 +32,8 @@ pub const ATTITUDE_COLUMNS: [&str; 9] = [
 pub const BODY_MOMENTUM: &str = "Pi";
 /// Its columns.
 pub const BODY_MOMENTUM_COLUMNS: [&str; 3] = ["Pi1", "Pi2", "Pi3"];
+/// Name of the observables' group (`observables.npy`); the columns are the observables' names.
+pub const OBSERVABLES: &str = "observables";
 
 /// The column layout of a system's trajectory.
 ///
@@ -68,6 +70,21 @@ pub fn layout(system: &SystemSpec) -> marsden_io::Result<Layout> {
     Layout::new(groups)
 }
 
+/// The column layout of the trajectory of `spec`: its system's ([`layout`]), then its
+/// observables (the group [`OBSERVABLES`], one column per name).
+///
+/// # Errors
+/// As [`layout`].
+pub fn layout_of(spec: &RunSpec) -> marsden_io::Result<Layout> {
+    let observables = &spec.events.observables.names;
+    if observables.is_empty() {
+        return layout(&spec.system);
+    }
+    let mut groups = layout(&spec.system)?.groups().to_vec();
+    groups.push(Group::vector(OBSERVABLES, observables.iter().cloned()));
+    Layout::new(groups)
+}
+
 /// The layout of a finished run from its column names (as `summary.json` lists them):
 /// grouped by the prefixes `q_`, `p_`, `J_`; `t`, `energy` and `constraint_residual` alone.
 ///
@@ -97,17 +114,33 @@ pub fn layout_from_columns(names: &[String]) -> marsden_io::Result<Layout> {
         groups.push(Group::vector(ATTITUDE, ATTITUDE_COLUMNS));
         groups.push(Group::vector(BODY_MOMENTUM, BODY_MOMENTUM_COLUMNS));
     }
-    for scalar in ["t", "energy", CONSTRAINT_RESIDUAL] {
+    const SCALARS: [&str; 3] = ["t", "energy", CONSTRAINT_RESIDUAL];
+    for scalar in SCALARS {
         if names.iter().any(|n| n == scalar) {
             groups.push(Group::scalar(scalar));
         }
+    }
+    // Every other name is an observable's (their names avoid the prefixes and the scalars).
+    let grouped = |n: &String| {
+        SCALARS.contains(&n.as_str())
+            || ["q_", "p_", "J_", "lambda_"]
+                .iter()
+                .any(|p| n.starts_with(p))
+    };
+    let observables: Vec<String> = names.iter().filter(|n| !grouped(n)).cloned().collect();
+    if !observables.is_empty() {
+        groups.push(Group::vector(OBSERVABLES, observables));
     }
     Layout::new(groups)
 }
 
 /// Files a previous run may have left in an output directory (and nothing else).
-const RUN_FILES: [&str; 21] = [
+const RUN_FILES: [&str; 25] = [
     TRAJECTORY_CSV,
+    marsden_engine::events::EVENTS_CSV,
+    "observables.npy",
+    super::event_outputs::SECTION_PNG,
+    super::event_outputs::OBSERVABLES_PNG,
     SUMMARY_JSON,
     "t.npy",
     "R.npy",

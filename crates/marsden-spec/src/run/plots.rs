@@ -42,6 +42,12 @@ pub fn draw(spec: &RunSpec, layout: &Layout) -> marsden_io::Result<Vec<String>> 
         .map(|f| f.to_string_lossy().into_owned())
         .collect();
     files.extend(super::rigid_plots::draw(&sketch.table, dir, &opts)?);
+    let observables = (&sketch.table, &opts);
+    files.extend(super::event_outputs::draw_observables(
+        dir,
+        spec,
+        observables,
+    )?);
     Ok(files)
 }
 

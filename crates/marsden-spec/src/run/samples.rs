@@ -1,7 +1,8 @@
 //! The stored samples of a run kept in memory ([`Samples`]), and the sinks that route rows:
 //! [`Tee`] (files and memory at once) and [`NullSink`] (sweep members keep nothing).
 //!
-//! A row is laid out as the files are (`t, q…, p…, energy, J…, constraint_residual, λ…`, see
+//! A row is laid out as the files are (`t, q…, p…, energy, J…, constraint_residual, λ…,
+//! observables…`, see
 //! [`output`](super::output)); rows bound for memory carry the velocities `v…` after that.
 
 use marsden_io::RowSink;
@@ -37,6 +38,8 @@ pub struct Samples {
     pub constraint_residual: Option<Vec<f64>>,
     /// The multipliers `λ_i`, one column per constraint.
     pub lambda: Vec<Vec<f64>>,
+    /// `[output] observables`, by name (in the file's order).
+    pub observables: Vec<(String, Vec<f64>)>,
 }
 
 impl Samples {
@@ -60,7 +63,17 @@ impl Samples {
                 .collect(),
             constraint_residual: constrained.then(Vec::new),
             lambda: vec![Vec::new(); system.constraint.components().len()],
+            observables: Vec::new(),
         }
+    }
+
+    /// Empty columns for the trajectory of `spec`: its system's, and its observables'.
+    pub fn of(spec: &crate::problem::RunSpec) -> Self {
+        let mut samples = Self::new(&spec.system);
+        samples.observables = (spec.events.observables.names.iter())
+            .map(|name| (name.clone(), Vec::new()))
+            .collect();
+        samples
     }
 
     /// Number of stored samples.
@@ -83,6 +96,7 @@ impl Samples {
             + self.momenta.len()
             + usize::from(self.constraint_residual.is_some())
             + self.lambda.len()
+            + self.observables.len()
     }
 }
 
@@ -107,7 +121,8 @@ impl RowSink for Samples {
         if let Some(column) = &mut self.constraint_residual {
             column.push(next());
         }
-        for column in self.lambda.iter_mut().chain(&mut self.v) {
+        let observables = self.observables.iter_mut().map(|(_, c)| c);
+        for column in self.lambda.iter_mut().chain(observables).chain(&mut self.v) {
             column.push(next());
         }
         Ok(())

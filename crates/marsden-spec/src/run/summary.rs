@@ -39,6 +39,8 @@ pub enum RunStatus {
     Failed,
     /// Stopped through [`Controls::stop`](super::Controls::stop); the samples are kept.
     Interrupted,
+    /// Ended by an event with `action = "stop"` (`summary.json`: "stopped by event <name>").
+    Stopped,
 }
 
 impl RunStatus {
@@ -48,24 +50,36 @@ impl RunStatus {
             RunStatus::Completed => "completed",
             RunStatus::Failed => "failed",
             RunStatus::Interrupted => "interrupted",
+            RunStatus::Stopped => "stopped",
         }
     }
 
-    /// A number for numeric tables (a sweep's `.npy`): 0 completed, 1 failed, 2 interrupted.
+    /// A number for numeric tables (a sweep's `.npy`): 0 completed, 1 failed, 2 interrupted,
+    /// 3 stopped by an event.
     pub fn code(self) -> u8 {
         match self {
             RunStatus::Completed => 0,
             RunStatus::Failed => 1,
             RunStatus::Interrupted => 2,
+            RunStatus::Stopped => 3,
         }
     }
 
-    /// The status of `record`: a failure first, then a stop.
+    /// The status of `record`: a failure first, then a stop by the user, then by an event.
     pub fn of(record: &RunRecord) -> Self {
         match (&record.error, record.interrupted) {
             (Some(_), _) => RunStatus::Failed,
             (None, true) => RunStatus::Interrupted,
+            (None, false) if record.events.stopped_by.is_some() => RunStatus::Stopped,
             (None, false) => RunStatus::Completed,
+        }
+    }
+
+    /// The status as `summary.json` writes it: the name, or "stopped by event <name>".
+    pub fn text(self, stopped_by: Option<&str>) -> String {
+        match (self, stopped_by) {
+            (RunStatus::Stopped, Some(event)) => format!("stopped by event {event}"),
+            _ => self.name().to_owned(),
         }
     }
 }
@@ -73,8 +87,15 @@ impl RunStatus {
 /// The whole summary.
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {
-    /// `"completed"`, `"failed"` or `"interrupted"`.
+    /// How the run ended (written as [`Summary::status_text`]).
+    #[serde(skip)]
     pub status: RunStatus,
+    /// `"completed"`, `"failed"`, `"interrupted"` or `"stopped by event <name>"`.
+    #[serde(rename = "status")]
+    pub status_text: String,
+    /// The event that ended the run, by name (absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stopped_by_event: Option<String>,
     /// The failure's message, or null.
     pub error: Option<String>,
     /// The run's name.
@@ -144,6 +165,10 @@ pub struct Summary {
     /// A rigid body's invariants and last attitude (absent for other systems).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rigid_body: Option<RigidBodySummary>,
+    /// `[[events]]`: the crossings recorded, per event name in the file's order (absent
+    /// without events).
+    #[serde(skip_serializing_if = "Vec::is_empty", serialize_with = "as_object")]
+    pub events: Vec<(String, usize)>,
 }
 
 /// `rigid_body { … }`: what a rigid body's run kept besides the energy and the momenta.
@@ -330,8 +355,13 @@ impl Summary {
         let error = |x: f64| if not_conserved.is_some() { f64::NAN } else { x };
         let not_available = (!spec.system.has_energy()).then_some(ENERGY_NOT_AVAILABLE);
         let available = |x: f64| if not_available.is_some() { f64::NAN } else { x };
+        let names: Vec<&str> = spec.events.events.iter().map(|e| e.name.as_str()).collect();
+        let stopped_by = (record.events.stopped_by).and_then(|i| names.get(i).copied());
+        let status = RunStatus::of(record);
         Summary {
-            status: RunStatus::of(record),
+            status,
+            status_text: status.text(stopped_by),
+            stopped_by_event: stopped_by.map(str::to_owned),
             error: record.error.clone(),
             name: spec.name.clone(),
             system: match &spec.system.lagrangian {
@@ -398,6 +428,10 @@ impl Summary {
             certificate: record.certificate.clone(),
             sensitivity: None,
             rigid_body: record.rigid.as_ref().map(RigidBodySummary::of),
+            events: (names.iter())
+                .zip(&record.events.counts)
+                .map(|(name, count)| ((*name).to_owned(), *count))
+                .collect(),
         }
     }
 

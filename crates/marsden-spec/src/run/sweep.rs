@@ -310,6 +310,7 @@ fn run_member(
     let destination = Destination {
         sink: &mut sink,
         with_velocity: false,
+        events: None,
     };
     engine.run(&spec, destination, controls)
 }

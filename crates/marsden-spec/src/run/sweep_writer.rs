@@ -102,7 +102,7 @@ impl SweepWriter {
         }
         self.rows += 1;
         match row.status {
-            RunStatus::Completed => {}
+            RunStatus::Completed | RunStatus::Stopped => {}
             RunStatus::Failed => self.failed += 1,
             RunStatus::Interrupted => self.interrupted += 1,
         }

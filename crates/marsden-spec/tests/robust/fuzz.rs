@@ -222,6 +222,7 @@ fn outcome_class(text: &str) -> Result<&'static str, TestCaseError> {
                 RunStatus::Failed if s.steps == 0 => "exit 1: failed at the first step",
                 RunStatus::Failed => "exit 1: failed part-way",
                 RunStatus::Interrupted => "exit 1: interrupted",
+                RunStatus::Stopped => "exit 0: stopped by an event",
             })
         }
     }

@@ -1,0 +1,185 @@
+//! The events of a problem file watched along its run: the core's
+//! [`EventDetector`](marsden::run::events::EventDetector) beside the observer that streams the
+//! rows ([`Watched`]), each located crossing written at once as a row
+//! `event, t, q…, p…` (`event` is the index of the event in the file's `[[events]]`).
+//!
+//! A file without events is watched by nothing: [`Watched`] then forwards every call to the
+//! streaming observer unchanged (same steps seen, same rows written). With events the run is
+//! observed at every step: the detector evaluates each `g` once per step and locates a sign
+//! change on the step's Hermite interpolant (Brent's method).
+
+use std::ops::ControlFlow;
+
+use marsden::run::events::{Event, EventDetector, EventRecord};
+use marsden::{Lagrangian, Observer, StepView, Termination};
+use marsden_io::RowSink;
+
+use marsden_problem::error::Diagnostic;
+use marsden_problem::model::ExprEvent;
+use marsden_problem::problem::events::EventsSpec;
+
+/// The file name of the event records.
+pub const EVENTS_CSV: &str = "events.csv";
+
+/// The columns of the event records of a system with `coordinates`: `event, t, q_…, p_…`.
+pub fn event_columns(coordinates: &[String]) -> Vec<String> {
+    let q = coordinates.iter().map(|c| format!("q_{c}"));
+    let p = coordinates.iter().map(|c| format!("p_{c}"));
+    ["event".to_owned(), "t".to_owned()]
+        .into_iter()
+        .chain(q)
+        .chain(p)
+        .collect()
+}
+
+/// What the events of a run came to.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct EventTally {
+    /// Crossings recorded, per event (the file's order).
+    pub counts: Vec<usize>,
+    /// The event that ended the run (`action = "stop"`), by index.
+    pub stopped_by: Option<usize>,
+    /// The first error writing a record (the run stops there).
+    pub io_error: Option<String>,
+}
+
+/// An observer `inner` and the detector of the file's events, whose records go to `sink`.
+pub struct Watched<'a, 's, L, O> {
+    /// The observer streaming the rows.
+    pub inner: O,
+    detector: Option<EventDetector<'a, L, ExprEvent<'a>>>,
+    sink: Option<&'s mut (dyn RowSink + 's)>,
+    /// Records of the detector already written.
+    written: usize,
+    row: Vec<f64>,
+    tally: EventTally,
+}
+
+impl<'a, 's, L: Lagrangian, O: Observer> Watched<'a, 's, L, O> {
+    /// `inner` alone: no events.
+    pub fn without_events(inner: O) -> Self {
+        Self {
+            inner,
+            detector: None,
+            sink: None,
+            written: 0,
+            row: Vec::new(),
+            tally: EventTally::default(),
+        }
+    }
+
+    /// `inner` and the events of `spec` on the runs of `lagrangian`, their records written to
+    /// `sink` (none: counted only).
+    ///
+    /// # Errors
+    /// The core's objection to the events (a singular declared mass matrix).
+    pub fn new(
+        inner: O,
+        (lagrangian, spec): (&'a L, &'a EventsSpec),
+        sink: Option<&'s mut (dyn RowSink + 's)>,
+    ) -> Result<Self, Diagnostic> {
+        if spec.events.is_empty() {
+            return Ok(Self::without_events(inner));
+        }
+        let events = (spec.events.iter())
+            .zip(spec.functions())
+            .map(|(e, function)| Event {
+                function,
+                direction: e.direction,
+                action: e.action,
+                count: e.count,
+            })
+            .collect();
+        let detector = EventDetector::new(lagrangian, events)
+            .map_err(|e| Diagnostic::new(format!("the events cannot be watched: {e}")))?;
+        Ok(Self {
+            inner,
+            detector: Some(detector),
+            sink,
+            written: 0,
+            row: Vec::new(),
+            tally: EventTally {
+                counts: vec![0; spec.events.len()],
+                ..EventTally::default()
+            },
+        })
+    }
+
+    /// The streaming observer and what the events came to.
+    pub fn into_parts(self) -> (O, EventTally) {
+        (self.inner, self.tally)
+    }
+
+    /// Writes the records located since the last call; `Break` on a write error.
+    fn stream(&mut self) -> ControlFlow<()> {
+        let Some(detector) = &self.detector else {
+            return ControlFlow::Continue(());
+        };
+        let new = &detector.records()[self.written..];
+        self.written += new.len();
+        for record in new {
+            self.tally.counts[record.event] += 1;
+            let Some(sink) = self.sink.as_mut() else {
+                continue;
+            };
+            fill_row(&mut self.row, record);
+            if let Err(e) = sink.write_row(&self.row) {
+                self.tally.io_error = Some(format!("writing {EVENTS_CSV} failed: {e}"));
+                return ControlFlow::Break(());
+            }
+        }
+        ControlFlow::Continue(())
+    }
+}
+
+/// `row ← [event, t, q…, p…]`.
+fn fill_row(row: &mut Vec<f64>, record: &EventRecord) {
+    row.clear();
+    // Exact: an index far below 2⁵³.
+    row.push(record.event as f64);
+    row.push(record.t);
+    row.extend_from_slice(&record.q);
+    row.extend_from_slice(&record.p);
+}
+
+impl<L: Lagrangian, O: Observer> Observer for Watched<'_, '_, L, O> {
+    fn start(&mut self, initial: &StepView<'_>) {
+        self.inner.start(initial);
+        if let Some(detector) = &mut self.detector {
+            detector.start(initial);
+        }
+    }
+
+    fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()> {
+        let flow = self.inner.observe(view);
+        let Some(detector) = &mut self.detector else {
+            return flow;
+        };
+        if flow.is_break() {
+            return flow;
+        }
+        let located = detector.observe(view);
+        if let Some(Termination::Event { event, .. }) = detector.termination() {
+            self.tally.stopped_by = Some(event);
+        }
+        let written = self.stream();
+        match (located, written) {
+            (ControlFlow::Continue(()), ControlFlow::Continue(())) => ControlFlow::Continue(()),
+            _ => ControlFlow::Break(()),
+        }
+    }
+
+    fn every_step(&self) -> bool {
+        self.detector.is_some() || self.inner.every_step()
+    }
+
+    fn cadence(&self) -> usize {
+        self.inner.cadence()
+    }
+
+    fn termination(&self) -> Option<Termination> {
+        (self.detector.as_ref())
+            .and_then(|d| d.termination())
+            .or_else(|| self.inner.termination())
+    }
+}

@@ -1,0 +1,166 @@
+//! Observables and event functions written as expressions of the state `(t, q, v, p)`.
+//!
+//! An observable (`[output] observables = { x2 = "…" }`) is compiled against the inputs
+//! `[q₁ … qₙ, q̇₁ … q̇ₙ, p₁ … pₙ, t]` (names: the coordinates, `<name>_dot`, `p_<name>`, `t`;
+//! the parameters are constants). An event's `when` is compiled against the same inputs
+//! followed by the observables' values, so `when = "x2"` reads the observable `x2`: the event
+//! function ([`ExprEvent`]) evaluates the observables first (only if its expression reads one),
+//! then `when`. Every evaluation fills its inputs on the stack
+//! ([`marsden::numerics::scratch::with_slice`]): no allocation per step.
+
+use marsden::numerics::scratch::with_slice;
+use marsden::run::events::EventFunction;
+use marsden_expr::Program;
+
+use super::hamiltonian::momentum_name;
+use super::slots::velocity_name;
+
+/// The input names of an observable, in slot order: `q…`, `q̇…`, `p…`, `t`.
+pub fn state_inputs(coordinates: &[String]) -> Vec<String> {
+    let q = coordinates.iter().cloned();
+    let v = coordinates.iter().map(|c| velocity_name(c));
+    let p = coordinates.iter().map(|c| momentum_name(c));
+    q.chain(v).chain(p).chain(["t".to_owned()]).collect()
+}
+
+/// Named expressions of the state, evaluated at every stored row (the trajectory's columns
+/// after the existing ones) and readable by the events.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Observables {
+    /// The names, in the file's order.
+    pub names: Vec<String>,
+    /// One program per name, compiled against [`state_inputs`].
+    pub programs: Vec<Program>,
+}
+
+impl Observables {
+    /// No observables.
+    pub fn none() -> Self {
+        Self::default()
+    }
+
+    /// Number of observables.
+    pub fn len(&self) -> usize {
+        self.programs.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.programs.is_empty()
+    }
+
+    /// Writes the value of every observable at `(t, q, v, p)` into `out` (its length is
+    /// [`Observables::len`]).
+    pub fn eval_into(&self, (t, q, v, p): (f64, &[f64], &[f64], &[f64]), out: &mut [f64]) {
+        let n = q.len();
+        with_slice(3 * n + 1, t, |x| {
+            fill_state(x, q, v, p);
+            for (program, value) in self.programs.iter().zip(out.iter_mut()) {
+                *value = program.eval(x);
+            }
+        });
+    }
+}
+
+/// `x[..3n] ← [q, v, p]` (slot `3n`, `t`, is filled by the caller).
+fn fill_state(x: &mut [f64], q: &[f64], v: &[f64], p: &[f64]) {
+    let n = q.len();
+    x[..n].copy_from_slice(q);
+    x[n..2 * n].copy_from_slice(v);
+    x[2 * n..3 * n].copy_from_slice(p);
+}
+
+/// An event's `when` as the core's [`EventFunction`]: `g(t, q, v, p)`, reading the observables
+/// (slots `3n + 1 …`) when it names one.
+#[derive(Debug, Clone, Copy)]
+pub struct ExprEvent<'a> {
+    /// `when`, compiled against [`state_inputs`] followed by the observables' names.
+    pub when: &'a Program,
+    /// The observables it may read.
+    pub observables: &'a Observables,
+}
+
+impl ExprEvent<'_> {
+    /// Whether `when` reads an observable (inputs past `t`).
+    fn reads_observables(&self, n: usize) -> bool {
+        self.when.inputs_used().iter().any(|&slot| slot > 3 * n)
+    }
+}
+
+impl EventFunction for ExprEvent<'_> {
+    fn value(&self, t: f64, q: &[f64], v: &[f64], p: &[f64]) -> f64 {
+        let n = q.len();
+        let m = if self.reads_observables(n) {
+            self.observables.len()
+        } else {
+            0
+        };
+        with_slice(3 * n + 1 + m, t, |x| {
+            fill_state(x, q, v, p);
+            if m > 0 {
+                let (state, values) = x.split_at_mut(3 * n + 1);
+                self.observables.eval_into((t, q, v, p), values);
+                state[3 * n] = t;
+            }
+            self.when.eval(x)
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use marsden_expr::Symbols;
+
+    fn coordinates() -> Vec<String> {
+        vec!["x".to_owned(), "y".to_owned()]
+    }
+
+    #[test]
+    fn observables_read_positions_velocities_momenta_and_time() {
+        let symbols = Symbols::with_inputs(state_inputs(&coordinates())).unwrap();
+        let texts = ["x + 10*y", "x_dot*p_y", "t"];
+        let programs = texts
+            .iter()
+            .map(|t| {
+                marsden_expr::Expr::parse(t)
+                    .unwrap()
+                    .compile(&symbols)
+                    .unwrap()
+            })
+            .collect();
+        let obs = Observables {
+            names: vec!["a".into(), "b".into(), "c".into()],
+            programs,
+        };
+        let mut out = [0.0; 3];
+        obs.eval_into((7.0, &[1.0, 2.0], &[3.0, 4.0], &[5.0, 6.0]), &mut out);
+        assert_eq!(out, [21.0, 18.0, 7.0]);
+    }
+
+    #[test]
+    fn an_event_reads_an_observable_after_the_state() {
+        let inputs = state_inputs(&coordinates());
+        let symbols = Symbols::with_inputs(&inputs).unwrap();
+        let s = marsden_expr::Expr::parse("x*y")
+            .unwrap()
+            .compile(&symbols)
+            .unwrap();
+        let obs = Observables {
+            names: vec!["s".into()],
+            programs: vec![s],
+        };
+        let with_obs =
+            Symbols::with_inputs(inputs.iter().map(String::as_str).chain(["s"])).unwrap();
+        let when = marsden_expr::Expr::parse("s - t")
+            .unwrap()
+            .compile(&with_obs)
+            .unwrap();
+        let event = ExprEvent {
+            when: &when,
+            observables: &obs,
+        };
+        let g = event.value(0.5, &[2.0, 3.0], &[0.0, 0.0], &[0.0, 0.0]);
+        assert_eq!(g, 5.5);
+    }
+}

@@ -1,0 +1,177 @@
+//! Where the events of a run go: `events.csv` (rows `event, t, q_…, p_…`, `event` the index
+//! of the event in the file's `[[events]]`, streamed as the run locates them), the in-memory
+//! records ([`EventSamples`]) and, after the run, the Poincaré section of the records
+//! (`section.png`) and the observables against time (`observables.png`).
+
+use std::path::Path;
+
+use marsden_io::{CsvWriter, PlotOptions, RowSink, Series, Table};
+
+use crate::problem::RunSpec;
+pub use marsden_engine::events::{EVENTS_CSV, event_columns};
+
+/// The Poincaré section plot of the recorded events.
+pub const SECTION_PNG: &str = "section.png";
+/// The observables against time.
+pub const OBSERVABLES_PNG: &str = "observables.png";
+
+/// The event records of a run kept in memory, one column per quantity.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct EventSamples {
+    /// The events' names, in the file's order (`event` indexes them).
+    pub names: Vec<String>,
+    /// Which event each record is of.
+    pub event: Vec<usize>,
+    /// Times of the crossings.
+    pub t: Vec<f64>,
+    /// Positions there, per coordinate.
+    pub q: Vec<Vec<f64>>,
+    /// Momenta there, per coordinate.
+    pub p: Vec<Vec<f64>>,
+}
+
+impl EventSamples {
+    /// Empty records of the events of `spec`.
+    pub fn of(spec: &RunSpec) -> Self {
+        let n = spec.system.dof();
+        Self {
+            names: spec.events.events.iter().map(|e| e.name.clone()).collect(),
+            event: Vec::new(),
+            t: Vec::new(),
+            q: vec![Vec::new(); n],
+            p: vec![Vec::new(); n],
+        }
+    }
+
+    /// Number of records.
+    pub fn len(&self) -> usize {
+        self.t.len()
+    }
+
+    /// Whether nothing was recorded.
+    pub fn is_empty(&self) -> bool {
+        self.t.is_empty()
+    }
+}
+
+impl RowSink for EventSamples {
+    fn write_row(&mut self, row: &[f64]) -> marsden_io::Result<()> {
+        let mut values = row.iter().copied();
+        let mut next = || values.next().unwrap_or(f64::NAN);
+        // The index was written from a `usize`: exact.
+        self.event.push(next() as usize);
+        self.t.push(next());
+        for column in self.q.iter_mut().chain(&mut self.p) {
+            column.push(next());
+        }
+        Ok(())
+    }
+    fn flush(&mut self) -> marsden_io::Result<()> {
+        Ok(())
+    }
+    fn finish(&mut self) -> marsden_io::Result<()> {
+        Ok(())
+    }
+    fn rows_written(&self) -> u64 {
+        self.t.len() as u64
+    }
+}
+
+/// The event records to the file and to memory.
+pub struct EventTee<'a> {
+    /// `events.csv`.
+    pub files: &'a mut dyn RowSink,
+    /// The in-memory records.
+    pub memory: &'a mut EventSamples,
+}
+
+impl RowSink for EventTee<'_> {
+    fn write_row(&mut self, row: &[f64]) -> marsden_io::Result<()> {
+        self.files.write_row(row)?;
+        self.memory.write_row(row)
+    }
+    fn flush(&mut self) -> marsden_io::Result<()> {
+        self.files.flush()
+    }
+    fn finish(&mut self) -> marsden_io::Result<()> {
+        self.files.finish()
+    }
+    fn rows_written(&self) -> u64 {
+        self.files.rows_written()
+    }
+}
+
+/// Opens `events.csv` in `dir` for the events of `spec` (`None` without events).
+///
+/// # Errors
+/// An I/O error naming the file.
+pub fn open(dir: &Path, spec: &RunSpec) -> marsden_io::Result<Option<CsvWriter<std::fs::File>>> {
+    if spec.events.events.is_empty() {
+        return Ok(None);
+    }
+    let columns = event_columns(&spec.system.coordinates);
+    CsvWriter::create(dir.join(EVENTS_CSV), &columns).map(Some)
+}
+
+/// Draws `section.png` from the `events.csv` in `dir`, in the axes of `[output] section`.
+///
+/// # Errors
+/// The records cannot be read back or the plot cannot be written, as text.
+pub fn draw_section(dir: &Path, spec: &RunSpec) -> Result<String, String> {
+    let Some(section) = &spec.events.section else {
+        return Err("the system has no coordinates".to_owned());
+    };
+    let table = marsden_io::read_csv(dir.join(EVENTS_CSV)).map_err(|e| e.to_string())?;
+    let c = &spec.system.coordinates;
+    let x = series_of(
+        &table,
+        &section.x.0.column(c).unwrap_or_default(),
+        &section.x.1,
+    )?;
+    let y = series_of(
+        &table,
+        &section.y.0.column(c).unwrap_or_default(),
+        &section.y.1,
+    )?;
+    let path = dir.join(SECTION_PNG);
+    marsden_io::plot::plot_section(&path, (x, y), &PlotOptions::default())
+        .map_err(|e| e.to_string())?;
+    Ok(SECTION_PNG.to_owned())
+}
+
+/// The column `name` of `table` as a series labelled `label`.
+fn series_of<'t>(table: &'t Table, name: &str, label: &'t str) -> Result<Series<'t>, String> {
+    let column = (table.columns().iter())
+        .find(|c| c.name == name)
+        .ok_or_else(|| format!("{EVENTS_CSV} has no column {name}"))?;
+    Ok(Series {
+        name: label,
+        values: &column.values,
+    })
+}
+
+/// Draws `observables.png` from the trajectory's sketch `table` (the columns named after the
+/// observables of `spec`).
+///
+/// # Errors
+/// The plot cannot be written.
+pub fn draw_observables(
+    dir: &Path,
+    spec: &RunSpec,
+    (table, opts): (&Table, &PlotOptions),
+) -> marsden_io::Result<Option<String>> {
+    let names = &spec.events.observables.names;
+    let find = |name: &str| table.columns().iter().find(|c| c.name == name);
+    let (Some(t), false) = (find("t"), names.is_empty()) else {
+        return Ok(None);
+    };
+    let series: Vec<Series<'_>> = (names.iter())
+        .filter_map(|name| find(name))
+        .map(|c| Series {
+            name: &c.name,
+            values: &c.values,
+        })
+        .collect();
+    marsden_io::plot::plot_observables(dir.join(OBSERVABLES_PNG), &t.values, &series, opts)?;
+    Ok(Some(OBSERVABLES_PNG.to_owned()))
+}
