@@ -5,7 +5,7 @@
 //! nodes), and each tape merges value and derivatives into one graph, so a subexpression
 //! shared by them (`cos(θ₁ − θ₂)` in `L` and in its partials) is evaluated once.
 
-use crate::derive::derivative;
+use crate::derive::{depends, derivative};
 use crate::ir::Node;
 use crate::program::Program;
 use crate::tape::{Tape, TapeBuilder};
@@ -73,6 +73,34 @@ impl Program {
             first: tape(first.clone()),
             second: tape(first.chain(&hessian)),
         })
+    }
+}
+
+impl Program {
+    /// The partial derivatives in the first `slots` input slots when none of them depends on
+    /// any input (a program linear in those slots, with constant coefficients: `mgl*R33`), as
+    /// numbers; `None` otherwise, or for a function without a symbolic derivative.
+    ///
+    /// ```
+    /// use marsden_expr::{Program, Symbols};
+    ///
+    /// let symbols = Symbols::with_inputs(["a", "b", "t"]).unwrap();
+    /// let linear = Program::compile("3*a - b/2 + t^2", &symbols).unwrap();
+    /// assert_eq!(linear.constant_gradient(2), Some(vec![3.0, -0.5]));
+    /// let curved = Program::compile("a*b", &symbols).unwrap();
+    /// assert_eq!(curved.constant_gradient(2), None);
+    /// ```
+    pub fn constant_gradient(&self, slots: usize) -> Option<Vec<f64>> {
+        let gradient: Vec<Node> = (0..slots)
+            .map(|k| derivative(self.tree(), k))
+            .collect::<Option<_>>()?;
+        if gradient.iter().any(|g| depends(g, &|_| true)) {
+            return None;
+        }
+        let tape = tape(gradient.iter());
+        let (mut regs, mut out) = (Vec::new(), vec![0.0; slots]);
+        tape.eval_into(&vec![0.0; tape.input_len()], &mut regs, &mut out);
+        Some(out)
     }
 }
 

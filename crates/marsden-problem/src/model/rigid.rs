@@ -40,6 +40,9 @@ pub struct ExprRigidPotential {
     /// `[U, ∂U/∂R11, …, ∂U/∂z, ∂U/∂t]` (`None` without a potential, or for a function
     /// without a symbolic derivative: then automatic differentiation).
     gradient: Option<Tape>,
+    /// `[∂U/∂R11, …, ∂U/∂z]` when they are constants (a potential linear in `R` and `x`, such as
+    /// a uniform field's `mgl*R33`): no evaluation per step.
+    constant: Option<Vec<f64>>,
 }
 
 thread_local! {
@@ -54,7 +57,12 @@ impl ExprRigidPotential {
             .as_ref()
             .and_then(|p| p.jet(INPUTS.len()))
             .map(|jet| jet.first().clone());
-        Self { program, gradient }
+        let constant = program.as_ref().and_then(|p| p.constant_gradient(T));
+        Self {
+            program,
+            gradient,
+            constant,
+        }
     }
 
     /// The expression's text, if there is one.
@@ -84,6 +92,11 @@ impl RigidPotential for ExprRigidPotential {
         d_rotations: &mut [f64],
         d_positions: &mut [f64],
     ) -> bool {
+        if let Some(g) = &self.constant {
+            d_rotations[..9].copy_from_slice(&g[..9]);
+            d_positions[..3].copy_from_slice(&g[9..T]);
+            return true;
+        }
         let Some(tape) = &self.gradient else {
             return false;
         };
@@ -159,6 +172,12 @@ mod tests {
         assert_eq!(dr, [0.0, 4.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 3.0]);
         assert_eq!(dx, [0.0, 0.0, 10.0]);
         assert!(!ExprRigidPotential::new(None).gradient(0.0, &r, &[0.0; 3], &mut dr, &mut dx));
+        // A uniform field: the constant gradient, the tape's numbers.
+        let top = ExprRigidPotential::new(Some(compile("20*R33 + 2*9.81*z")));
+        let (mut dr, mut dx) = ([0.0; 9], [0.0; 3]);
+        assert!(top.constant.is_some());
+        assert!(top.gradient(1.0, &r, &[0.0; 3], &mut dr, &mut dx));
+        assert_eq!((dr[8], dx[2]), (20.0, 2.0 * 9.81));
     }
 
     #[test]

@@ -294,8 +294,7 @@ fn inertia(ck: &Checker<'_>, body: &Spanned<RawRigidBody>) -> Result<Inertia, Di
     let span = written.span();
     let rows = match written.get_ref() {
         RawInertia::Principal(j) if j.len() == 3 => {
-            let rows = [j[0], 0.0, 0.0, 0.0, j[1], 0.0, 0.0, 0.0, j[2]];
-            rows
+            [j[0], 0.0, 0.0, 0.0, j[1], 0.0, 0.0, 0.0, j[2]]
         }
         RawInertia::Matrix(m) if m.len() == 3 && m.iter().all(|r| r.len() == 3) => {
             let mut rows = [0.0; 9];
