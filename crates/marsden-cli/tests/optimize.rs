@@ -4,6 +4,7 @@
 //! on the written files, the pendulum swing-up against an independent solver, the summary, and
 //! every bad input.
 
+use marsden::numerics::dense::max_or_nan;
 use std::path::{Path, PathBuf};
 
 use crate::util::{Run, column, marsden, repo_root};
@@ -80,7 +81,7 @@ fn double_integrator_cost_converges_to_six_at_order_two() {
                 .iter()
                 .zip(u)
                 .map(|(t, u)| (u - (6.0 - 12.0 * (t + h / 2.0))).abs())
-                .fold(0.0, f64::max);
+                .fold(0.0, marsden::numerics::dense::max_or_nan);
             println!("{method} N = {n}: cost {cost:.12}, max |u_k − u(t_k+½)| = {worst:.3e}");
             assert!(worst < 10.0 * h * h, "{method} N = {n}: {worst}");
         }
@@ -109,7 +110,10 @@ fn controls_fed_back_reproduce_the_trajectory() {
     for k in 0..20 {
         let right = (x[k + 1] - x[k]) / h - h / 2.0 * u[k];
         let left = (x[k + 1] - x[k]) / h + h / 2.0 * u[k];
-        worst = worst.max((p[k] - right).abs()).max((p[k + 1] - left).abs());
+        worst = max_or_nan(
+            max_or_nan(worst, (p[k] - right).abs()),
+            (p[k + 1] - left).abs(),
+        );
     }
     println!("forced DEL residual on the files: {worst:.3e}");
     assert!(worst < 1e-8, "{worst}");

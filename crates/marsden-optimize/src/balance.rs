@@ -14,6 +14,8 @@
 //!
 //! [MW01]: marsden#references
 
+// Maxima that keep a NaN: a non-finite defect must not be reported as a small one.
+use marsden::numerics::dense::max_or_nan;
 use marsden::{DiscreteForce, Initial, Lagrangian, Problem, Rule, SolveOptions, TimeGrid};
 use marsden_control::{ControlForce, FrozenControl, Solution};
 use marsden_problem::model::{MomentumMap, Symmetry};
@@ -105,7 +107,7 @@ where
                     impulse += dot(&f[side * n..(side + 1) * n], &xi);
                 }
                 total_impulse += impulse;
-                max_defect = max_defect.max((momenta[k + 1] - momenta[k] - impulse).abs());
+                max_defect = max_or_nan(max_defect, (momenta[k + 1] - momenta[k] - impulse).abs());
             }
             let momentum_change = momenta[momenta.len() - 1] - momenta[0];
             NoetherBalance {
@@ -147,7 +149,7 @@ where
         let got = step.q(1).iter().chain(step.p(1));
         let want = solution.q[k + 1].iter().chain(&solution.p[k + 1]);
         for (a, b) in got.zip(want) {
-            defect = defect.max((a - b).abs());
+            defect = max_or_nan(defect, (a - b).abs());
         }
     }
     Some(defect)

@@ -10,7 +10,9 @@
 
 use marsden::lie::potential::{ExternalLoads as _, RigidPotential};
 use marsden::lie::so3::{self, Mat3, Vec3};
+// A NaN defect (a potential that is not finite there) must not pass as a symmetry.
 use marsden::lie::state::RigidState;
+use marsden::numerics::dense::max_or_nan;
 use marsden_problem::problem::rigid::{RigidAction, RigidSpec};
 
 use super::FileRigidSystem;
@@ -35,7 +37,7 @@ pub(super) fn check(
             let defect = states
                 .iter()
                 .map(|st| defect(s.action, body, system, st))
-                .fold(0.0, f64::max);
+                .fold(0.0, max_or_nan);
             let with_loads = body.loads.is_active();
             SymmetryCheck {
                 name: s.name.clone(),
@@ -112,5 +114,5 @@ fn defect(
                 (u(&r, &moved) - u0).abs() / scale
             }
         })
-        .fold(0.0, f64::max)
+        .fold(0.0, max_or_nan)
 }

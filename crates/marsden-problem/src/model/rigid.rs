@@ -53,11 +53,15 @@ thread_local! {
 impl ExprRigidPotential {
     /// The potential of `program` over [`INPUTS`] (`None`: no potential).
     pub fn new(program: Option<Program>) -> Self {
-        let gradient = program
-            .as_ref()
-            .and_then(|p| p.jet(INPUTS.len()))
-            .map(|jet| jet.first().clone());
         let constant = program.as_ref().and_then(|p| p.constant_gradient(T));
+        // The gradient tape only where the gradient is not constant (a jet also derives the
+        // Hessian: 91 second derivatives in 13 inputs, not built when unused).
+        let gradient = match constant {
+            Some(_) => None,
+            None => (program.as_ref())
+                .and_then(|p| p.jet(INPUTS.len()))
+                .map(|jet| jet.first().clone()),
+        };
         Self {
             program,
             gradient,

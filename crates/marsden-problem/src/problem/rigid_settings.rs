@@ -122,20 +122,21 @@ pub(super) fn initial(
             ([p[0], p[1], p[2]], p_span(table))
         }
     };
-    let centre = |list: &Option<super::raw::SpannedList<f64>>, what: &str| match (list, rigid.mass)
-    {
+    let centre = |list: &Option<super::raw::SpannedList<f64>>, key: &str| match (list, rigid.mass) {
         (None, _) => Ok(None),
-        (Some(l), Some(_)) => ck.vector(what, l, &three_names).map(Some),
+        (Some(l), Some(_)) => ck
+            .vector(&format!("initial.{key}"), l, &three_names)
+            .map(Some),
         (Some(l), None) => Err(ck
             .error(
                 Some(l.span()),
-                format!("`{}` applies to a body with a `mass`", &what[8..]),
+                format!("`{key}` applies to a body with a `mass`"),
             )
             .help("a body turning about a fixed point has no centre-of-mass data")),
     };
-    let q = centre(&table.q, "initial.q")?;
-    let v = centre(&table.v, "initial.v")?;
-    let p = centre(&table.p, "initial.p")?;
+    let q = centre(&table.q, "q")?;
+    let v = centre(&table.v, "v")?;
+    let p = centre(&table.p, "p")?;
     let n = if rigid.mass.is_some() { 3 } else { 0 };
     let data = match (v, p) {
         (Some(_), Some(_)) => {
