@@ -126,6 +126,9 @@
 //!   Conference on Control Applications (2005) 962–967.
 //! * **LLM07**: T. Lee, M. Leok, N. H. McClamroch, *Lie group variational integrators for the full
 //!   body problem*, Comput. Methods Appl. Mech. Engrg. 196 (2007) 2907–2924.
+//! * **CLLM11**: N. A. Chaturvedi, T. Lee, M. Leok, N. H. McClamroch, *Nonlinear dynamics of the
+//!   3D pendulum*, J. Nonlinear Sci. 21 (2011) 3–32 (a rigid body on a spherical joint: its
+//!   vertical angular momentum is conserved).
 //! * **LL76**: L. D. Landau, E. M. Lifshitz, *Mechanics*, 3rd ed. (1976), §37 (the free
 //!   asymmetric top by Jacobi elliptic functions).
 //! * **GW08**: Griewank & Walther, *Evaluating Derivatives*, 2nd ed. (2008).

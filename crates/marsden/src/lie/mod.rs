@@ -14,7 +14,8 @@
 //! * [`state`]: a system of bodies and its state `(t, R, Π, x, p)`;
 //! * [`lgvi`]: the step and its compositions of order 4, 6, 8;
 //! * [`invariants`]: energy, spatial and body momenta, Casimir, orthogonality defect;
-//! * [`trajectory`]: a sampled run.
+//! * [`trajectory`]: a sampled run;
+//! * [`multibody`]: bodies joined by joints (spherical, revolute, prismatic, fixed, distance).
 //!
 //! ```
 //! use marsden::lie::{body::{Inertia, RigidBody}, potential::NoPotential, so3,
@@ -36,6 +37,7 @@ pub mod body;
 pub mod cayley;
 pub mod invariants;
 pub mod lgvi;
+pub mod multibody;
 pub mod potential;
 pub mod so3;
 pub mod state;

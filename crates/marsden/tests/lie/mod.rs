@@ -7,6 +7,7 @@ mod exact_free_body;
 mod failures;
 mod free_bodies;
 mod group;
+mod multibody;
 
 use marsden::NewtonOptions;
 use marsden::discrete::rules::composition::CompositionScheme;
