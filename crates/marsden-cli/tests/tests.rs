@@ -47,6 +47,9 @@ mod plots;
 mod sweep_results;
 // `[system] rigid_body`: R19 and R20 through problem files, the Rust interface's bits, refusals.
 mod rigid;
+// `[[system.body]]`, `[[system.joint]]`: R21 orders from files against reduced coordinates, R22,
+// the satellite's momentum, the chain's columns, refusals.
+mod multibody;
 // `marsden run`: reference values read back from the trajectory, summary.json's fields, the
 // expression path against the Rust path, the output formats.
 mod run;

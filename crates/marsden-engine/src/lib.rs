@@ -39,6 +39,7 @@ pub mod diagnostics;
 pub mod discrete;
 pub mod engine;
 pub mod events;
+pub mod multibody;
 pub mod noether_balance;
 pub mod observer;
 pub mod order_runner;

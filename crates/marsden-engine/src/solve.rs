@@ -55,6 +55,8 @@ pub struct RunRecord {
     pub certificate: Option<Certificate>,
     /// A rigid body's own invariants and last attitude (`None` for other systems).
     pub rigid: Option<crate::rigid::RigidRecord>,
+    /// A multibody run's joints, attitudes and momenta (`None` for other systems).
+    pub multibody: Option<crate::multibody::MultibodyRecord>,
     /// What the file's `[[events]]` came to (empty without events).
     pub events: EventTally,
 }
@@ -366,6 +368,7 @@ pub(super) fn finish<L: Lagrangian, C: Constraint, M: MomentumMap>(
         noether_balance: Vec::new(),
         certificate: None,
         rigid: None,
+        multibody: None,
         events: EventTally::default(),
     }
 }

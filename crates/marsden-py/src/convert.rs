@@ -1,7 +1,8 @@
 //! A run's [`Outcome`] as the dictionary the Python `Solution` is made from: the samples as
 //! NumPy arrays (one row per stored sample; `q`, `p` and `v` with one column per coordinate,
 //! the multipliers with one per constraint; a rigid body's attitude `R` as `samples × 3 × 3`
-//! and body momentum `Pi` as `samples × 3`),
+//! and body momentum `Pi` as `samples × 3`; jointed bodies' `attitudes` as
+//! `samples × bodies × 3 × 3` and `body_momenta` as `samples × 3·bodies`),
 //! `summary.json`'s text, the status, the error message and the warnings; with
 //! `[sensitivity]`, the stored Jacobians as a `samples × 2n × columns` array; the observables
 //! by name, and the events' located crossings by event name.
@@ -35,6 +36,15 @@ pub fn outcome<'py>(py: Python<'py>, outcome: &Outcome) -> PyResult<Bound<'py, P
             d.set_item("R", py.None())?;
             d.set_item("Pi", py.None())?;
         }
+    }
+    // Jointed bodies: every body's `R` as `samples × bodies × 3 × 3`, `Π` as
+    // `samples × 3·bodies` (the Python side splits them by body).
+    if let Some(bodies) = (outcome.summary.multibody.as_ref()).map(|m| m.bodies) {
+        let attitude = &samples.attitude;
+        let at = |(k, b, i, j): (usize, usize, usize, usize)| attitude[9 * b + 3 * i + j][k];
+        let r = numpy::ndarray::Array4::from_shape_fn((samples.len(), bodies, 3, 3), at);
+        d.set_item("attitudes", r.into_pyarray(py))?;
+        d.set_item("body_momenta", rows(py, &samples.body_momentum, samples.len()))?;
     }
     let Samples {
         t,

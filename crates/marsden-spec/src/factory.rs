@@ -4,6 +4,7 @@
 //! Everything after this call is non-generic.
 
 use marsden::Lagrangian;
+use marsden_engine::multibody::MultibodyEngine;
 use marsden_engine::rigid::RigidEngine;
 use marsden_engine::{DiscreteEngine, Engine, ExactRun, Typed};
 
@@ -29,6 +30,7 @@ pub fn engine_for(spec: &RunSpec) -> Box<dyn Engine + '_> {
         LagrangianSpec::Hamiltonian(l) => expression_engine(l, exact),
         LagrangianSpec::Discrete(ld) => Box::new(DiscreteEngine(ld)),
         LagrangianSpec::Rigid(body) => Box::new(RigidEngine(body)),
+        LagrangianSpec::Multibody(bodies) => Box::new(MultibodyEngine(bodies)),
     }
 }
 

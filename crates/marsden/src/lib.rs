@@ -100,6 +100,8 @@
 //! | R17 | symmetric rules | time reversibility; `det DF = 1`, `DFᵀJDF = J` | 1e-12 / 1e-11; 1e-8 |
 //! | R19 | free rigid body, LGVI (Moser–Veselov) | energy, `|Π|²` and `RΠ` over 10⁴ steps of `h = 0.1`; orders 2, 4, 6 against the elliptic-function solution | 1e-12; ±0.1 on the slope |
 //! | R20 | heavy symmetric top, LGVI | `e₃·RΠ`, `Π₃` to round-off; energy error bounded and `O(h²)`; `|RᵀR − I|` after 10⁶ steps | 1e-12 relative; 1e-13 |
+//! | R21 | compound double pendulum, constrained LGVI (two rods on hinges, 10 joint rows) | final hinge angles against the reduced-coordinate Lagrangian (gauss-4 at a tiny step): orders 2 and 4 (triple jump); joints closed at every step | ±0.1 / ±0.2 on the slope; 1e-13 |
+//! | R22 | 3D pendulum ([CLLM11]), constrained LGVI | vertical angular momentum about the pivot; joint residual | 1e-12 relative; 1e-13 |
 //!
 //! ## References
 //!
@@ -145,6 +147,7 @@
 //! [MW01]: crate#references
 //! [LMO08]: crate#references
 //! [LLM07]: crate#references
+//! [CLLM11]: crate#references
 //! [Jay96]: crate#references
 //! [Rei96]: crate#references
 //! [HLW06]: crate#references

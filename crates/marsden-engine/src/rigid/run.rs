@@ -147,6 +147,7 @@ pub(super) fn run(
             final_attitude: state.rotations.clone(),
             final_momentum: state.momenta.clone(),
         }),
+        multibody: None,
     })
 }
 

@@ -13,6 +13,7 @@ pub mod force;
 pub mod hamiltonian;
 pub mod inputs;
 pub mod lagrangian;
+pub mod multibody;
 pub mod observables;
 pub mod parametric;
 pub mod rigid;

@@ -23,6 +23,9 @@ pub mod optimal_control;
 pub mod parameters;
 pub mod raw;
 mod resolved;
+pub mod multibody;
+pub mod multibody_initial;
+pub mod raw_multibody;
 pub mod rigid;
 pub mod rigid_catalog;
 pub mod rigid_settings;
@@ -172,9 +175,17 @@ fn validate_raw(
     discrete::refuse_unsupported(&ck, raw)?;
     let bodies = nbody_file::read(&ck, raw.initial.as_ref())?;
     let system = system::system(&ck, raw.system.as_ref(), bodies.as_ref())?;
-    let (initial, initial_spans) = match system.rigid() {
-        Some(body) => rigid_settings::initial(&ck, raw.initial.as_ref(), body)?,
-        None => {
+    let mut system = system;
+    let (initial, initial_spans) = if let LagrangianSpec::Multibody(bodies) = &mut system.lagrangian {
+        let read = multibody_initial::initial(&ck, raw.initial.as_ref(), bodies)?;
+        if let (false, Some(raw_system)) = (read.0.project, raw.system.as_ref()) {
+            multibody_initial::check_joints(&ck, raw_system.get_ref(), bodies, read.0.t0)?;
+        }
+        read
+    } else if let Some(body) = system.rigid() {
+        rigid_settings::initial(&ck, raw.initial.as_ref(), body)?
+    } else {
+        {
             rigid_settings::refuse_rigid_keys(&ck, raw)?;
             settings::initial(
                 &ck,
@@ -184,18 +195,23 @@ fn validate_raw(
             )?
         }
     };
+    let system = system;
     // With `project = true` the start is projected onto the manifold when the run starts
     // (`run::start`), so positions off it are accepted here.
     if !initial.project {
         settings::constraints_at_start(&ck, &system.constraint, &initial.q, initial_spans.q)?;
     }
     let mut integrator = settings::integrator(&ck, raw.integrator.as_ref(), initial.t0, overrides)?;
-    if system.rigid().is_some() {
+    if system.rigid().is_some() || system.multibody().is_some() {
         let span = (raw.integrator.as_ref())
             .and_then(|i| i.get_ref().method.as_ref())
             .map(|m| m.span());
         integrator.method = rigid_settings::method(&ck, &integrator.method, span)?;
-        rigid_settings::refuse_unsupported(&ck, raw)?;
+        let what = match system.multibody() {
+            Some(_) => "a multibody system",
+            None => "a rigid body",
+        };
+        rigid_settings::refuse_unsupported(&ck, raw, what)?;
     }
     if !system.constraint.components().is_empty()
         && let Some(reason) = integrator.method.constraint_refusal()
@@ -296,7 +312,8 @@ fn run_name(raw: &raw::RawProblem, system: &SystemSpec, path: &Path) -> String {
         LagrangianSpec::Expression(_)
         | LagrangianSpec::Hamiltonian(_)
         | LagrangianSpec::Discrete(_)
-        | LagrangianSpec::Rigid(_) => path
+        | LagrangianSpec::Rigid(_)
+        | LagrangianSpec::Multibody(_) => path
             .file_stem()
             .map_or("run".to_owned(), |s| s.to_string_lossy().into_owned()),
     }

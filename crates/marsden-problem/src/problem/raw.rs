@@ -49,6 +49,8 @@ use serde::Deserialize;
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use toml::Spanned;
 
+use super::raw_multibody::{BodyOrUnknown, NamedBodyInitial, RawBody, RawJoint};
+
 /// A list of spanned values, itself spanned.
 pub type SpannedList<T> = Spanned<Vec<Spanned<T>>>;
 
@@ -143,6 +145,12 @@ pub struct RawSystem {
     pub potential: Option<Spanned<String>>,
     /// A rigid body's external torque in the body frame, three expressions like `potential`'s.
     pub torques: Option<SpannedList<String>>,
+    /// A multibody system's uniform gravitational field, acting on every body's mass.
+    pub gravity: Option<SpannedList<f64>>,
+    /// A multibody system's bodies ([`super::raw_multibody`]).
+    pub body: Option<Vec<Spanned<RawBody>>>,
+    /// A multibody system's joints.
+    pub joint: Option<Vec<Spanned<RawJoint>>>,
 }
 
 /// `rigid_body = { inertia = [..], mass = m }`.
@@ -186,9 +194,9 @@ pub struct RawSymmetry {
     pub body_rotation: Option<Spanned<String>>,
 }
 
-/// `[initial]`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// `[initial]` (deserialized by hand: its own keys, then `[initial.<body>]` tables of a
+/// multibody file, [`super::raw_multibody`]).
+#[derive(Debug, Default)]
 pub struct RawInitial {
     /// Initial time (extension; default 0).
     pub t0: Option<Spanned<f64>>,
@@ -207,16 +215,75 @@ pub struct RawInitial {
     /// A rigid body's initial attitude as a rotation vector (axis times angle).
     pub rotation_vector: Option<SpannedList<f64>>,
     /// A rigid body's initial attitude as a matrix (rows; body → space).
-    #[serde(rename = "R")]
     pub r: Option<Spanned<Vec<Vec<f64>>>>,
     /// A rigid body's initial attitude as a unit quaternion `[w, x, y, z]`.
     pub quaternion: Option<SpannedList<f64>>,
     /// A rigid body's initial angular velocity in the body frame.
-    #[serde(rename = "Omega")]
     pub omega: Option<SpannedList<f64>>,
     /// A rigid body's initial angular momentum in the body frame, `Π = JΩ`.
-    #[serde(rename = "Pi")]
     pub pi: Option<SpannedList<f64>>,
+    /// A multibody system's `[initial.<body>]` tables, in the file's order.
+    pub bodies: Vec<NamedBodyInitial>,
+}
+
+/// The keys of `[initial]` itself (besides the body tables).
+const INITIAL_KEYS: &[&str] = &[
+    "t0",
+    "q",
+    "v",
+    "p",
+    "file",
+    "project",
+    "rotation_vector",
+    "R",
+    "quaternion",
+    "Omega",
+    "Pi",
+];
+
+impl<'de> Deserialize<'de> for RawInitial {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_map(InitialVisitor)
+    }
+}
+
+/// The visitor of `[initial]`: its keys, and any other key as a body's table.
+struct InitialVisitor;
+
+impl<'de> serde::de::Visitor<'de> for InitialVisitor {
+    type Value = RawInitial;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("the table [initial]")
+    }
+
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<RawInitial, A::Error> {
+        let mut out = RawInitial::default();
+        while let Some(key) = map.next_key::<String>()? {
+            match key.as_str() {
+                "t0" => out.t0 = Some(map.next_value()?),
+                "q" => out.q = Some(map.next_value()?),
+                "v" => out.v = Some(map.next_value()?),
+                "p" => out.p = Some(map.next_value()?),
+                "file" => out.file = Some(map.next_value()?),
+                "project" => out.project = Some(map.next_value()?),
+                "rotation_vector" => out.rotation_vector = Some(map.next_value()?),
+                "R" => out.r = Some(map.next_value()?),
+                "quaternion" => out.quaternion = Some(map.next_value()?),
+                "Omega" => out.omega = Some(map.next_value()?),
+                "Pi" => out.pi = Some(map.next_value()?),
+                _ => {
+                    let seed = BodyOrUnknown {
+                        key: &key,
+                        known: INITIAL_KEYS,
+                    };
+                    let data = map.next_value_seed(seed)?;
+                    out.bodies.push(NamedBodyInitial { name: key, data });
+                }
+            }
+        }
+        Ok(out)
+    }
 }
 
 /// `[integrator]`.

@@ -181,8 +181,37 @@ fn p_span(table: &RawInitial) -> Range<usize> {
     table.pi.as_ref().map_or(0..0, Spanned::span)
 }
 
+/// The three ways an attitude is written, as a table has them.
+pub(super) struct AttitudeForms<'a> {
+    /// `rotation_vector = [...]`.
+    pub rotation_vector: Option<&'a super::raw::SpannedList<f64>>,
+    /// `R = [[...], [...], [...]]`.
+    pub r: Option<&'a Spanned<Vec<Vec<f64>>>>,
+    /// `quaternion = [w, x, y, z]`.
+    pub quaternion: Option<&'a super::raw::SpannedList<f64>>,
+    /// Where the keys are written, for the messages (`initial`, `initial.a`).
+    pub table: &'a str,
+}
+
 /// The initial attitude, row-major, from the one form written (the identity if none).
 fn attitude(ck: &Checker<'_>, table: &RawInitial) -> Result<[f64; 9], Diagnostic> {
+    attitude_of(
+        ck,
+        &AttitudeForms {
+            rotation_vector: table.rotation_vector.as_ref(),
+            r: table.r.as_ref(),
+            quaternion: table.quaternion.as_ref(),
+            table: "initial",
+        },
+    )
+}
+
+/// The attitude, row-major, from the one form written in `table` (the identity if none).
+///
+/// # Errors
+/// Two forms written, a wrong length, a quaternion of zero norm, a matrix that is not a
+/// rotation to 1e-10.
+pub(super) fn attitude_of(ck: &Checker<'_>, table: &AttitudeForms<'_>) -> Result<[f64; 9], Diagnostic> {
     let forms = [
         table
             .rotation_vector
@@ -208,14 +237,15 @@ fn attitude(ck: &Checker<'_>, table: &RawInitial) -> Result<[f64; 9], Diagnostic
         let names: Vec<String> = (0..n).map(|i| i.to_string()).collect();
         ck.vector(what, list, &names)
     };
-    let r = if let Some(v) = &table.rotation_vector {
-        let v = numbers(v, "initial.rotation_vector", 3)?;
+    let key = |k: &str| format!("{}.{k}", table.table);
+    let r = if let Some(v) = table.rotation_vector {
+        let v = numbers(v, &key("rotation_vector"), 3)?;
         so3::from_rotation_vector(&Vec3::new(v[0], v[1], v[2]))
-    } else if let Some(q) = &table.quaternion {
-        let w = numbers(q, "initial.quaternion", 4)?;
+    } else if let Some(q) = table.quaternion {
+        let w = numbers(q, &key("quaternion"), 4)?;
         so3::from_quaternion(&[w[0], w[1], w[2], w[3]])
-            .map_err(|e| ck.error(Some(q.span()), format!("initial.quaternion: {e}")))?
-    } else if let Some(m) = &table.r {
+            .map_err(|e| ck.error(Some(q.span()), format!("{}: {e}", key("quaternion"))))?
+    } else if let Some(m) = table.r {
         let rows = matrix_rows(ck, m)?;
         so3::attitude("initial R", &rows).map_err(|e| {
             ck.error(Some(m.span()), format!("{e}"))
@@ -253,7 +283,11 @@ fn matrix_rows(ck: &Checker<'_>, m: &Spanned<Vec<Vec<f64>>>) -> Result<[f64; 9],
 ///
 /// # Errors
 /// The first such table or key, saying so.
-pub(super) fn refuse_unsupported(ck: &Checker<'_>, raw: &RawProblem) -> Result<(), Diagnostic> {
+pub(super) fn refuse_unsupported(
+    ck: &Checker<'_>,
+    raw: &RawProblem,
+    what_system: &str,
+) -> Result<(), Diagnostic> {
     let certify = (raw.analysis.as_ref())
         .and_then(|a| a.get_ref().certify.as_ref())
         .filter(|c| *c.get_ref())
@@ -278,9 +312,9 @@ pub(super) fn refuse_unsupported(ck: &Checker<'_>, raw: &RawProblem) -> Result<(
     ];
     match found.into_iter().flatten().next() {
         Some((what, span)) => Err(ck
-            .error(Some(span), format!("{what} is not available for a rigid body"))
-            .note("a rigid body's run gives its trajectory, energy, momentum maps, Casimir and orthogonality defect")
-            .help("remove it to run the body")),
+            .error(Some(span), format!("{what} is not available for {what_system}"))
+            .note(format!("{what_system}'s run gives its trajectory, energy, momentum maps and the monitors of its attitudes"))
+            .help("remove it to run the system")),
         None => Ok(()),
     }
 }

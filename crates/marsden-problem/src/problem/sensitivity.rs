@@ -115,6 +115,7 @@ fn parametric(
         LagrangianSpec::Hamiltonian(_) => return Err(refuse("a `hamiltonian` system")),
         LagrangianSpec::Discrete(_) => return Err(refuse("a `discrete_lagrangian` system")),
         LagrangianSpec::Rigid(_) => return Err(refuse("a rigid body")),
+        LagrangianSpec::Multibody(_) => return Err(refuse("a multibody system")),
     };
     if system.force.is_active() && system.force.inputs() == ForceInputs::Momenta {
         return Err(ck

@@ -9,6 +9,7 @@ use std::path::PathBuf;
 use marsden::{Initial, NewtonOptions, TimeGrid};
 
 use super::method::Method;
+use super::multibody::MultibodySpec;
 use super::rigid::{RigidInitial, RigidSpec};
 use crate::catalog::{Builtin, BuiltinSystem};
 use crate::model::{
@@ -115,6 +116,8 @@ pub enum LagrangianSpec {
     Discrete(ExprDiscreteLagrangian),
     /// `rigid_body = { … }`: a rigid body on SO(3) (× ℝ³), `L = ½ΩᵀJΩ (+ ½m|ẋ|²) − U`.
     Rigid(Box<RigidSpec>),
+    /// `[[system.body]]`, `[[system.joint]]`: rigid bodies on (SO(3) × ℝ³)ᵐ joined by joints.
+    Multibody(Box<MultibodySpec>),
 }
 
 /// The key of a file's own discrete Lagrangian, `[system] discrete_lagrangian`, which is also
@@ -145,6 +148,14 @@ impl LagrangianSpec {
                     ""
                 },
                 r.potential.text().unwrap_or("0")
+            ),
+            LagrangianSpec::Multibody(m) => format!(
+                "{} rigid bod{} joined by {} joint{}: L = Σ ½ΩᵀJΩ + ½m|ẋ|² − U, U = −Σ m g·x, g = {:?}",
+                m.bodies.len(),
+                if m.bodies.len() == 1 { "y" } else { "ies" },
+                m.joints.len(),
+                if m.joints.len() == 1 { "" } else { "s" },
+                m.gravity
             ),
         }
     }
@@ -180,6 +191,14 @@ impl SystemSpec {
     pub fn rigid(&self) -> Option<&RigidSpec> {
         match &self.lagrangian {
             LagrangianSpec::Rigid(r) => Some(r),
+            _ => None,
+        }
+    }
+
+    /// The bodies and joints, if the system is a multibody one.
+    pub fn multibody(&self) -> Option<&MultibodySpec> {
+        match &self.lagrangian {
+            LagrangianSpec::Multibody(m) => Some(m),
             _ => None,
         }
     }

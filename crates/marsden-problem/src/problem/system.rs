@@ -105,6 +105,18 @@ pub fn system(
                 .note("`discrete_lagrangian` is the method itself: no continuous L goes with it"));
         }
     }
+    if super::multibody::is_multibody(system) {
+        let spec = super::multibody::system(ck, system)?;
+        return Ok(SystemSpec {
+            coordinates: spec.centre_names(),
+            lagrangian: LagrangianSpec::Multibody(Box::new(spec)),
+            parameters: Vec::new(),
+            masses: None,
+            force: crate::model::ExprForce::none(),
+            constraint: crate::model::ExprConstraint::none(),
+            symmetries: Vec::new(),
+        });
+    }
     let mut params = Parameters::read(ck, system)?;
     if let Some(body) = &system.rigid_body {
         let resolved = super::rigid::system(ck, system, body, &params)?;

@@ -42,6 +42,12 @@ fn table_of(valid: &[&str]) -> &'static str {
     let has = |key: &str| valid.contains(&key);
     if has("lagrangian") {
         "[system]"
+    } else if has("kind") && has("bodies") {
+        "[[system.joint]]"
+    } else if has("inertia") && has("name") {
+        "[[system.body]]"
+    } else if has("Omega") && !has("q") {
+        "[initial.<body>]"
     } else if has("generator") {
         "[[system.symmetry]]"
     } else if has("cost") {

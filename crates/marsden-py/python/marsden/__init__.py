@@ -27,12 +27,13 @@ from ._errors import ProblemError, SimulationError
 from ._optimize import OptimalControlSolution
 from ._problem import Problem
 from ._sensitivity import Sensitivity
-from ._solution import Solution
+from ._solution import Body, Solution
 from ._sweep import sweep
 from ._sympy import to_grammar
 
 __all__ = [
     "__version__",
+    "Body",
     "OptimalControlSolution",
     "Problem",
     "ProblemError",

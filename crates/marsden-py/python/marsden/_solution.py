@@ -28,6 +28,9 @@ class Solution:
     - a rigid body's ``R`` (``k × 3 × 3``, body → space), ``Pi`` (``k × 3``, the body
       momentum ``Π = JΩ``) and ``quaternion`` (``k × 4``, ``[w, x, y, z]`` with ``w ≥ 0``);
       ``None`` for other systems;
+    - jointed bodies' ``bodies``: by body name, a :class:`Body` with ``x``, ``p``, ``v``
+      (``k × 3``: the centre of mass, its momentum and velocity), ``R`` (``k × 3 × 3``) and
+      ``Pi`` (``k × 3``) (``solution.bodies["a"].R[-1]``); empty for other systems;
     - ``sensitivity``: the run's Jacobians (:class:`marsden.Sensitivity`) when they were asked
       for (``solve(sensitivity=...)`` or a ``[sensitivity]`` table), else ``None``;
     - ``observables``: the ``[output] observables`` at the stored samples, by name
@@ -54,6 +57,7 @@ class Solution:
         self.multipliers: np.ndarray = fields["multipliers"]
         self.R: Optional[np.ndarray] = fields.get("R")
         self.Pi: Optional[np.ndarray] = fields.get("Pi")
+        self.bodies: Dict[str, Body] = _bodies(fields, self.coordinates, self.q, self.p, self.v)
         self.observables: Dict[str, np.ndarray] = dict(fields.get("observables") or {})
         self.events: Dict[str, Dict[str, np.ndarray]] = {
             name: dict(records) for name, records in (fields.get("events") or {}).items()}
@@ -176,6 +180,44 @@ def _relative_error(ax: Any, t: np.ndarray, values: np.ndarray, label: str, titl
     ax.set_xlabel("t")
     ax.set_ylabel(label)
     ax.set_title(title)
+
+
+class Body:
+    """One body of a multibody run: its samples as NumPy arrays (one row per stored sample).
+
+    - ``x``, ``p``, ``v`` (``k × 3``): the centre of mass, its momentum ``m ẋ`` and velocity;
+    - ``R`` (``k × 3 × 3``): the attitude, body → space;
+    - ``Pi`` (``k × 3``): the body angular momentum ``Π = JΩ``.
+    """
+
+    def __init__(self, name: str, x: np.ndarray, p: np.ndarray, v: np.ndarray,
+                 R: np.ndarray, Pi: np.ndarray) -> None:
+        self.name = name
+        self.x = x
+        self.p = p
+        self.v = v
+        self.R = R
+        self.Pi = Pi
+
+    def __repr__(self) -> str:
+        return f"Body({self.name!r}, {len(self.x)} samples)"
+
+
+def _bodies(fields: Dict[str, Any], coordinates: List[str], q: np.ndarray, p: np.ndarray,
+            v: np.ndarray) -> Dict[str, "Body"]:
+    """The bodies of a multibody run, named by their centre coordinates ``<body>_x``."""
+    attitudes = fields.get("attitudes")
+    momenta = fields.get("body_momenta")
+    if attitudes is None or momenta is None:
+        return {}
+    names = [c[:-2] for c in coordinates[::3]]
+    out: Dict[str, Body] = {}
+    for b, name in enumerate(names):
+        columns = slice(3 * b, 3 * b + 3)
+        velocity = v[:, columns] if v.shape[1] == q.shape[1] else np.empty((0, 3))
+        out[name] = Body(name, q[:, columns], p[:, columns], velocity, attitudes[:, b],
+                         momenta[:, columns])
+    return out
 
 
 def _quaternion(r: np.ndarray) -> np.ndarray:

@@ -146,6 +146,34 @@ fn system(out: &mut Lines, spec: &RunSpec) {
                 out.line("mass", m.to_string());
             }
         }
+        LagrangianSpec::Multibody(m) => {
+            out.line("system", format!("{}: multibody", spec.name));
+            out.line("lagrangian", spec.system.lagrangian.describe());
+            for b in &m.bodies {
+                let j = b.inertia.principal_moments();
+                out.line(
+                    "body",
+                    format!(
+                        "{}: mass {}, principal moments [{}, {}, {}], on SO(3) × ℝ³",
+                        b.name, b.mass, j[0], j[1], j[2]
+                    ),
+                );
+            }
+            for j in &m.joints {
+                let side = |s: Option<usize>| s.map_or("ground", |b| m.bodies[b].name.as_str());
+                out.line(
+                    "joint",
+                    format!(
+                        "{}: {} between {} and {} ({} rows, stepped by SHAKE on the joints and a RATTLE projection of the momenta)",
+                        j.name,
+                        j.kind.name(),
+                        side(j.bodies[0]),
+                        side(j.bodies[1]),
+                        j.kind.rows()
+                    ),
+                );
+            }
+        }
     }
     out.line("coordinates", s.coordinates.join(", "));
     let mut params: Vec<String> = s

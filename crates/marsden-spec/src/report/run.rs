@@ -15,6 +15,11 @@ use std::fmt::Write as _;
 use crate::problem::check::count_coordinates;
 use crate::run::{Outcome, RunStatus};
 
+/// `1 body`, `2 bodies`.
+fn count(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
 /// The report of a run.
 pub fn render(outcome: &Outcome) -> String {
     let s = &outcome.summary;
@@ -24,10 +29,16 @@ pub fn render(outcome: &Outcome) -> String {
         "{}: {}, {}, {} ({}), h = {}",
         s.name,
         s.system,
-        match (&s.rigid_body, s.coordinates.is_empty()) {
-            (Some(_), true) => "on SO(3)".to_owned(),
-            (Some(_), false) => format!("on SO(3) × ℝ³ ({})", s.coordinates.join(", ")),
-            (None, _) => count_coordinates(&s.coordinates),
+        match (&s.rigid_body, &s.multibody, s.coordinates.is_empty()) {
+            (Some(_), _, true) => "on SO(3)".to_owned(),
+            (Some(_), _, false) => format!("on SO(3) × ℝ³ ({})", s.coordinates.join(", ")),
+            (None, Some(m), _) => format!(
+                "{} on (SO(3) × ℝ³)^{}, {}",
+                count(m.bodies, "body", "bodies"),
+                m.bodies,
+                count(m.joints.len(), "joint", "joints")
+            ),
+            (None, None, _) => count_coordinates(&s.coordinates),
         },
         s.method,
         match s.energy_not_available {
@@ -109,6 +120,34 @@ pub fn render(outcome: &Outcome) -> String {
                 sci(r.orthogonality_defect),
                 num(r.casimir.initial),
                 sci(r.casimir.max_abs_drift)
+            ),
+        );
+    }
+    if let Some(m) = &s.multibody {
+        let l = &m.angular_momentum;
+        let joints: Vec<String> = (m.joints.iter())
+            .map(|j| format!("{} ({}, {}–{})", j.name, j.kind, j.bodies[0], j.bodies[1]))
+            .collect();
+        line(
+            &mut out,
+            "joints",
+            format!(
+                "{}; max |RᵀR − I| = {}{over}",
+                joints.join(", "),
+                sci(m.orthogonality_defect)
+            ),
+        );
+        line(
+            &mut out,
+            "momentum",
+            format!(
+                "L = Σ RΠ + x × p: L0 = ({}, {}, {}), max |ΔL| = ({}, {}, {}){over}; monitored: conserved only about an axis through the origin that gravity and the ground joints are symmetric about",
+                num(l.initial[0]),
+                num(l.initial[1]),
+                num(l.initial[2]),
+                sci(l.max_abs_drift[0]),
+                sci(l.max_abs_drift[1]),
+                sci(l.max_abs_drift[2])
             ),
         );
     }

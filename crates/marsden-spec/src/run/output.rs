@@ -46,6 +46,9 @@ pub fn layout(system: &SystemSpec) -> marsden_io::Result<Layout> {
         .momentum_names()
         .into_iter()
         .map(|s| format!("J_{s}"));
+    if let Some(bodies) = system.multibody() {
+        return multibody_layout(bodies);
+    }
     let mut groups = vec![Group::scalar("t")];
     // A rigid body: its attitude and body momentum first, then its centre of mass's q and p.
     if system.rigid().is_some() {
@@ -70,6 +73,63 @@ pub fn layout(system: &SystemSpec) -> marsden_io::Result<Layout> {
     Layout::new(groups)
 }
 
+/// The suffixes of a body's columns in a multibody trajectory, per group.
+pub const BODY_CENTRE: [&str; 3] = ["x", "y", "z"];
+/// The suffixes of a body's momentum columns.
+pub const BODY_LINEAR_MOMENTUM: [&str; 3] = ["p_x", "p_y", "p_z"];
+
+/// The layout of jointed bodies: `t`, then per body (in the file's order) its attitude
+/// `<b>_R11 … <b>_R33` (group `R`), body momentum `<b>_Pi1 …` (`Pi`), centre `<b>_x …` (`q`) and
+/// momentum `<b>_p_x …` (`p`); `energy`, the joints' residual `constraint_residual` and the
+/// multipliers `lambda_<joint>_<i>`.
+fn multibody_layout(
+    bodies: &crate::problem::multibody::MultibodySpec,
+) -> marsden_io::Result<Layout> {
+    let groups = vec![
+        Group::scalar("t"),
+        Group::vector(ATTITUDE, bodies.body_columns(&ATTITUDE_COLUMNS)),
+        Group::vector(BODY_MOMENTUM, bodies.body_columns(&BODY_MOMENTUM_COLUMNS)),
+        Group::vector("q", bodies.body_columns(&BODY_CENTRE)),
+        Group::vector("p", bodies.body_columns(&BODY_LINEAR_MOMENTUM)),
+        Group::scalar("energy"),
+        Group::scalar(CONSTRAINT_RESIDUAL),
+        Group::vector(LAMBDA, bodies.lambda_columns()),
+    ];
+    Layout::new(groups)
+}
+
+/// The layout of a multibody run's columns (as `summary.json` lists them), or `None` for
+/// another system's: the bodies are the prefixes of the `_R11` columns.
+fn multibody_layout_from_columns(names: &[String]) -> Option<marsden_io::Result<Layout>> {
+    let bodies: Vec<&str> = (names.iter())
+        .filter_map(|n| n.strip_suffix("_R11"))
+        .filter(|b| !b.is_empty())
+        .collect();
+    if bodies.is_empty() {
+        return None;
+    }
+    let columns = |suffixes: &[&str]| -> Vec<String> {
+        (bodies.iter())
+            .flat_map(|b| suffixes.iter().map(move |s| format!("{b}_{s}")))
+            .collect()
+    };
+    let lambda: Vec<String> = (names.iter())
+        .filter(|n| n.starts_with("lambda_"))
+        .cloned()
+        .collect();
+    let groups = vec![
+        Group::scalar("t"),
+        Group::vector(ATTITUDE, columns(&ATTITUDE_COLUMNS)),
+        Group::vector(BODY_MOMENTUM, columns(&BODY_MOMENTUM_COLUMNS)),
+        Group::vector("q", columns(&BODY_CENTRE)),
+        Group::vector("p", columns(&BODY_LINEAR_MOMENTUM)),
+        Group::scalar("energy"),
+        Group::scalar(CONSTRAINT_RESIDUAL),
+        Group::vector(LAMBDA, lambda),
+    ];
+    Some(Layout::new(groups))
+}
+
 /// The column layout of the trajectory of `spec`: its system's ([`layout`]), then its
 /// observables (the group [`OBSERVABLES`], one column per name).
 ///
@@ -91,6 +151,9 @@ pub fn layout_of(spec: &RunSpec) -> marsden_io::Result<Layout> {
 /// # Errors
 /// If the names do not form a valid layout.
 pub fn layout_from_columns(names: &[String]) -> marsden_io::Result<Layout> {
+    if let Some(layout) = multibody_layout_from_columns(names) {
+        return layout;
+    }
     let with = |prefix: &str| -> Vec<String> {
         names
             .iter()

@@ -46,13 +46,20 @@ impl Samples {
     /// Empty columns for the trajectory of `system`.
     pub fn new(system: &SystemSpec) -> Self {
         let n = system.dof();
-        let constrained = !system.constraint.components().is_empty();
-        let rigid = system.rigid().is_some();
+        let multibody = system.multibody();
+        let joint_rows = multibody.map_or(0, |m| m.joint_rows());
+        let constrained = !system.constraint.components().is_empty() || multibody.is_some();
+        // One attitude per body: a rigid body's, or each of a multibody system's.
+        let bodies = match (system.rigid(), multibody) {
+            (Some(_), _) => 1,
+            (None, Some(m)) => m.bodies.len(),
+            (None, None) => 0,
+        };
         Self {
             coordinates: system.coordinates.clone(),
             t: Vec::new(),
-            attitude: vec![Vec::new(); if rigid { 9 } else { 0 }],
-            body_momentum: vec![Vec::new(); if rigid { 3 } else { 0 }],
+            attitude: vec![Vec::new(); 9 * bodies],
+            body_momentum: vec![Vec::new(); 3 * bodies],
             q: vec![Vec::new(); n],
             p: vec![Vec::new(); n],
             v: vec![Vec::new(); n],
@@ -62,7 +69,7 @@ impl Samples {
                 .map(|name| (name, Vec::new()))
                 .collect(),
             constraint_residual: constrained.then(Vec::new),
-            lambda: vec![Vec::new(); system.constraint.components().len()],
+            lambda: vec![Vec::new(); system.constraint.components().len() + joint_rows],
             observables: Vec::new(),
         }
     }

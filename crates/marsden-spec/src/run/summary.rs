@@ -165,6 +165,9 @@ pub struct Summary {
     /// A rigid body's invariants and last attitude (absent for other systems).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rigid_body: Option<RigidBodySummary>,
+    /// A multibody run's joints, attitudes and momenta (absent for other systems).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub multibody: Option<MultibodySummary>,
     /// `[[events]]`: the crossings recorded, per event name in the file's order (absent
     /// without events).
     #[serde(skip_serializing_if = "Vec::is_empty", serialize_with = "as_object")]
@@ -183,6 +186,100 @@ pub struct RigidBodySummary {
     pub final_attitude: [[f64; 3]; 3],
     /// The last good body momentum `Π`.
     pub final_body_momentum: Vec<f64>,
+}
+
+/// `multibody { … }`: what a multibody run kept besides the energy.
+#[derive(Debug, Clone, Serialize)]
+pub struct MultibodySummary {
+    /// Number of bodies.
+    pub bodies: usize,
+    /// The joints, in the file's order.
+    pub joints: Vec<JointSummary>,
+    /// `max |g|` over the stored samples and all joint rows: the joints hold.
+    pub max_joint_residual: f64,
+    /// `max |RᵀR − I|` over the stored samples and all bodies.
+    pub orthogonality_defect: f64,
+    /// The total angular momentum about the origin `Σ RΠ + x × p`: initial value and largest
+    /// drift per axis (conserved about an axis through the origin that the joints and the
+    /// field are symmetric about; monitored otherwise).
+    pub angular_momentum: AngularMomentumSummary,
+    /// Newton iterations on the joints' multipliers over the run.
+    pub joint_iterations: usize,
+    /// The last good attitude of each body, rows (body → space), by body name.
+    #[serde(serialize_with = "as_object")]
+    pub final_attitudes: Vec<(String, [[f64; 3]; 3])>,
+    /// The multipliers of the last step, by joint name (the reaction on a body is `−Σ λ ∂g/∂x`).
+    #[serde(serialize_with = "as_object")]
+    pub final_multipliers: Vec<(String, Vec<f64>)>,
+}
+
+/// One joint of `multibody.joints`.
+#[derive(Debug, Clone, Serialize)]
+pub struct JointSummary {
+    /// Its name.
+    pub name: String,
+    /// Its kind.
+    pub kind: &'static str,
+    /// The two sides (body names or `ground`).
+    pub bodies: [String; 2],
+    /// Its constraint rows.
+    pub rows: usize,
+}
+
+/// `angular_momentum { … }`.
+#[derive(Debug, Clone, Serialize)]
+pub struct AngularMomentumSummary {
+    /// `L₀`.
+    pub initial: [f64; 3],
+    /// `max_k |L_k − L₀|` per axis.
+    pub max_abs_drift: [f64; 3],
+}
+
+impl MultibodySummary {
+    fn of(
+        spec: &crate::problem::multibody::MultibodySpec,
+        record: &marsden_engine::multibody::MultibodyRecord,
+    ) -> Self {
+        let name = |s: Option<usize>| s.map_or("ground".to_owned(), |b| spec.bodies[b].name.clone());
+        let joints = (spec.joints.iter())
+            .map(|j| JointSummary {
+                name: j.name.clone(),
+                kind: j.kind.name(),
+                bodies: [name(j.bodies[0]), name(j.bodies[1])],
+                rows: j.kind.rows(),
+            })
+            .collect();
+        let r = &record.final_attitudes;
+        let final_attitudes = (spec.bodies.iter().enumerate())
+            .map(|(i, b)| {
+                let a = &r[9 * i..9 * i + 9];
+                (b.name.clone(), [[a[0], a[1], a[2]], [a[3], a[4], a[5]], [a[6], a[7], a[8]]])
+            })
+            .collect();
+        let mut offset = 0;
+        let final_multipliers = (spec.joints.iter())
+            .map(|j| {
+                let rows = j.kind.rows();
+                let values = record.final_multipliers.get(offset..offset + rows).unwrap_or_default().to_vec();
+                offset += rows;
+                (j.name.clone(), values)
+            })
+            .collect();
+        let l = &record.angular_momentum;
+        MultibodySummary {
+            bodies: spec.bodies.len(),
+            joints,
+            max_joint_residual: record.max_joint_residual,
+            orthogonality_defect: record.max_orthogonality_defect,
+            angular_momentum: AngularMomentumSummary {
+                initial: [l[0].initial, l[1].initial, l[2].initial],
+                max_abs_drift: [l[0].max_abs_drift, l[1].max_abs_drift, l[2].max_abs_drift],
+            },
+            joint_iterations: record.joint_iterations,
+            final_attitudes,
+            final_multipliers,
+        }
+    }
 }
 
 /// `casimir { … }`.
@@ -370,6 +467,7 @@ impl Summary {
                 LagrangianSpec::Hamiltonian(_) => "hamiltonian".to_owned(),
                 LagrangianSpec::Discrete(_) => "discrete_lagrangian".to_owned(),
                 LagrangianSpec::Rigid(_) => "rigid_body".to_owned(),
+                LagrangianSpec::Multibody(_) => "multibody".to_owned(),
             },
             coordinates: spec.system.coordinates.clone(),
             method: spec.method_name(),
@@ -391,7 +489,8 @@ impl Summary {
             },
             momenta,
             constraints: ConstraintSummary {
-                count: spec.system.constraint.components().len(),
+                count: spec.system.constraint.components().len()
+                    + spec.system.multibody().map_or(0, |m| m.joint_rows()),
                 max_residual: d.max_residual,
                 max_velocity_residual: d.max_velocity_residual,
             },
@@ -428,6 +527,9 @@ impl Summary {
             certificate: record.certificate.clone(),
             sensitivity: None,
             rigid_body: record.rigid.as_ref().map(RigidBodySummary::of),
+            multibody: (spec.system.multibody())
+                .zip(record.multibody.as_ref())
+                .map(|(bodies, record)| MultibodySummary::of(bodies, record)),
             events: (names.iter())
                 .zip(&record.events.counts)
                 .map(|(name, count)| ((*name).to_owned(), *count))

@@ -38,6 +38,11 @@ use crate::numerics::banded::{BandLu, Banded};
 use crate::numerics::dense::max_norm;
 use crate::numerics::newton::{Convergence, NewtonFailure, NewtonReport};
 
+/// The joints' residual at the end of a step, relative to their length scale: round-off for
+/// lengths of order one (one Newton iteration past `1e-12` reaches it: the iteration on the
+/// multipliers converges quadratically).
+pub const JOINT_TOLERANCE: f64 = 1e-14;
+
 /// Work counted over a run.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MultibodyStatistics {
@@ -276,7 +281,11 @@ impl<U: RigidPotential, E: ExternalLoads> MultibodyLgvi<U, E> {
             );
             report.residual = max_norm(&self.next_rows.values);
             report.evaluations += 1;
-            match convergence.check(&report, self.length) {
+            // The joints are closed to JOINT_TOLERANCE of their length, whatever the Newton
+            // tolerance asks of the bodies' own solves (the update rule still stops an
+            // iteration that reached round-off first).
+            let scale = self.length * JOINT_TOLERANCE / self.options.newton.residual_tolerance;
+            match convergence.check(&report, scale.min(self.length)) {
                 Ok(true) => return Ok(()),
                 Ok(false) => {}
                 Err(failure) => return Err(self.constraint_failure(failure)),

@@ -1,0 +1,231 @@
+//! The run of jointed bodies: constrained LGVI steps, a row per stored sample, the joints and
+//! invariants monitored.
+
+use std::time::Instant;
+
+use marsden::Statistics;
+use marsden::discrete::rules::Method as CoreMethod;
+use marsden::lie::invariants;
+use marsden::lie::lgvi::LgviOptions;
+use marsden::lie::multibody::gravity::GravityField;
+use marsden::lie::multibody::step::MultibodyLgvi;
+use marsden::lie::potential::NoLoads;
+use marsden::numerics::dense::max_norm;
+use marsden_problem::error::Diagnostic;
+use marsden_problem::problem::multibody::MultibodySpec;
+use marsden_problem::problem::{Method, RunSpec};
+
+use super::Begin;
+use crate::controls::{CHECK_EVERY, Controls, Progress};
+use crate::diagnostics::{Diagnostics, MapStats};
+use crate::solve::{Destination, FinalState, RunRecord};
+
+/// The stepper of a file's system (the bodies in a uniform field, no other loads).
+type Stepper = MultibodyLgvi<GravityField, NoLoads>;
+
+/// What a multibody run monitored, and where it ended.
+#[derive(Debug, Clone, Default)]
+pub struct MultibodyRecord {
+    /// `max_k max |g(R_k, x_k)|` over the stored samples: the joints' residual.
+    pub max_joint_residual: f64,
+    /// `max_k max_i |R_iᵀR_i − I|` over the stored samples.
+    pub max_orthogonality_defect: f64,
+    /// The total angular momentum about the origin, `Σ R_iΠ_i + x_i × p_i`, per axis: conserved
+    /// when the joints and the field are symmetric about that axis through the origin, and
+    /// monitored otherwise.
+    pub angular_momentum: [MapStats; 3],
+    /// The last good attitudes, 9 per body, row-major.
+    pub final_attitudes: Vec<f64>,
+    /// The last good body momenta, 3 per body.
+    pub final_body_momenta: Vec<f64>,
+    /// The multipliers of the last step (the joints' reactions).
+    pub final_multipliers: Vec<f64>,
+    /// Newton iterations on the multipliers over the run.
+    pub joint_iterations: usize,
+}
+
+/// The file's run: `spec.integrator.grid.steps` steps, rows into `destination`.
+///
+/// # Errors
+/// Only if the core refuses the step size, the Newton options or the initial state (checked
+/// when the file was read); a failed step ends the run with the rows so far and the failure.
+pub(super) fn run(
+    bodies: &MultibodySpec,
+    spec: &RunSpec,
+    begin: Begin,
+    destination: Destination<'_>,
+    controls: &Controls<'_>,
+) -> Result<RunRecord, Diagnostic> {
+    let options = LgviOptions {
+        newton: spec.integrator.newton,
+        composition: match &spec.integrator.method {
+            Method::Rule(CoreMethod::Composed(scheme, _)) => Some(*scheme),
+            _ => None,
+        },
+    };
+    let grid = spec.integrator.grid;
+    let mut lgvi = MultibodyLgvi::new(begin.system, begin.joints, begin.state, grid.h, options)
+        .map_err(|e| Diagnostic::new(format!("the multibody integrator: {e}")))?;
+    let mut writer = Rows::new(bodies, destination);
+    let started = Instant::now();
+    let every = spec.output.every.max(1);
+    let mut error = writer.sample(&lgvi);
+    let mut interrupted = false;
+    let (mut steps, mut sampled, mut most) = (0, 0, 0);
+    while error.is_none() && steps < grid.steps {
+        if controls.is_active() && steps % CHECK_EVERY == 0 {
+            if let Some(progress) = controls.progress {
+                progress(Progress {
+                    step: steps,
+                    total: grid.steps,
+                    elapsed: started.elapsed(),
+                    done: false,
+                });
+            }
+            if controls.stop_requested() {
+                interrupted = true;
+                break;
+            }
+        }
+        let before = lgvi.statistics().joint_iterations;
+        if let Err(e) = lgvi.step() {
+            error = Some(with_joint_name(bodies, &lgvi, e.to_string()));
+            break;
+        }
+        most = most.max(lgvi.statistics().joint_iterations - before);
+        steps += 1;
+        if steps % every == 0 || steps == grid.steps {
+            error = writer.sample(&lgvi);
+            sampled = steps;
+        }
+    }
+    if sampled != steps
+        && let Some(e) = writer.sample(&lgvi)
+    {
+        error.get_or_insert(e);
+    }
+    let wall_seconds = started.elapsed().as_secs_f64();
+    if let Some(progress) = controls.progress {
+        progress(Progress {
+            step: steps,
+            total: grid.steps,
+            elapsed: started.elapsed(),
+            done: true,
+        });
+    }
+    let state = lgvi.state();
+    let statistics = Statistics {
+        steps,
+        newton_iterations: lgvi.statistics().joint_iterations,
+        max_newton_iterations: most,
+        ..Statistics::default()
+    };
+    let mut record = writer.monitor;
+    record.final_attitudes.clone_from(&state.rotations);
+    record.final_body_momenta.clone_from(&state.momenta);
+    record.final_multipliers = lgvi.multipliers().to_vec();
+    record.joint_iterations = lgvi.statistics().joint_iterations;
+    Ok(RunRecord {
+        error,
+        interrupted,
+        steps,
+        final_state: FinalState {
+            t: state.t,
+            q: state.positions.clone(),
+            p: state.linear_momenta.clone(),
+        },
+        statistics,
+        wall_seconds,
+        rows: writer.rows,
+        diagnostics: writer.diagnostics,
+        balance: None,
+        balance_series: None,
+        noether_balance: Vec::new(),
+        certificate: None,
+        events: crate::events::EventTally::default(),
+        rigid: None,
+        multibody: Some(record),
+    })
+}
+
+/// A step failure's message with the joint of a constraint row named.
+fn with_joint_name(bodies: &MultibodySpec, lgvi: &Stepper, message: String) -> String {
+    let joints = lgvi.joints();
+    let worst = (0..joints.rows()).max_by(|&a, &b| {
+        let v = &lgvi.joint_rows().values;
+        v[a].abs().total_cmp(&v[b].abs())
+    });
+    match worst.map(|k| joints.joint_of_row(k)) {
+        Some(j) if message.contains("constraint") => {
+            format!("{message} (the joints' rows are numbered in the file's order; joint `{}` holds the worst at the step's start)", bodies.joints[j].name)
+        }
+        _ => message,
+    }
+}
+
+/// The row writer and the monitors.
+struct Rows<'b, 'd> {
+    bodies: &'b MultibodySpec,
+    destination: Destination<'d>,
+    row: Vec<f64>,
+    rows: u64,
+    diagnostics: Diagnostics,
+    monitor: MultibodyRecord,
+}
+
+impl<'b, 'd> Rows<'b, 'd> {
+    fn new(bodies: &'b MultibodySpec, destination: Destination<'d>) -> Self {
+        Self {
+            bodies,
+            destination,
+            row: Vec::with_capacity(64),
+            rows: 0,
+            diagnostics: Diagnostics::new(0, true),
+            monitor: MultibodyRecord::default(),
+        }
+    }
+
+    /// Stores the state of `lgvi`; the error if the row cannot be written or the state is not
+    /// finite.
+    fn sample(&mut self, lgvi: &Stepper) -> Option<String> {
+        let state = lgvi.state();
+        let energy = invariants::energy(lgvi.system(), state);
+        let residual = max_norm(&lgvi.joint_rows().values);
+        self.row.clear();
+        self.row.push(state.t);
+        self.row.extend_from_slice(&state.rotations);
+        self.row.extend_from_slice(&state.momenta);
+        self.row.extend_from_slice(&state.positions);
+        self.row.extend_from_slice(&state.linear_momenta);
+        self.row.push(energy);
+        self.row.push(residual);
+        self.row.extend_from_slice(lgvi.multipliers());
+        if self.destination.with_velocity {
+            for (i, body) in self.bodies.bodies.iter().enumerate() {
+                let p = &state.linear_momenta[3 * i..3 * i + 3];
+                self.row.extend(p.iter().map(|p| p / body.mass));
+            }
+        }
+        self.diagnostics.energy.push(state.t, energy);
+        self.diagnostics.push_residual(residual);
+        let momentum = invariants::spatial_angular_momentum(state);
+        for (stats, value) in self.monitor.angular_momentum.iter_mut().zip(momentum.iter()) {
+            stats.push(*value);
+        }
+        let record = &mut self.monitor;
+        if residual > record.max_joint_residual || residual.is_nan() {
+            record.max_joint_residual = residual;
+        }
+        let defect = invariants::orthogonality(state);
+        if defect > record.max_orthogonality_defect || defect.is_nan() {
+            record.max_orthogonality_defect = defect;
+        }
+        if let Err(e) = self.destination.sink.write_row(&self.row) {
+            return Some(format!("writing the trajectory failed: {e}"));
+        }
+        self.rows += 1;
+        (!energy.is_finite() || !self.row.iter().all(|v| v.is_finite())).then(|| {
+            format!("the state is not finite at t = {}: the step diverged", state.t)
+        })
+    }
+}
