@@ -37,6 +37,11 @@ fn final_angle(s: &Value, name: &str) -> f64 {
     entry(0, 2).atan2(entry(0, 0))
 }
 
+/// Component `axis` of `multibody.angular_momentum.<what>`.
+fn momentum(s: &Value, what: &str, axis: usize) -> f64 {
+    s["multibody"]["angular_momentum"][what][axis].as_f64().unwrap()
+}
+
 const T_END: f64 = 1.0;
 
 /// The reduced model: hinge angles `θ₁, θ₂` of two uniform rods (1 kg, 1 m, `I = 1/12` about
@@ -111,8 +116,8 @@ fn r22_three_dimensional_pendulum_keeps_its_vertical_angular_momentum() {
     assert_eq!(run.code, 0, "{}", run.stderr);
     let s = run.summary();
     assert_eq!(s["system"], "multibody");
-    let lz = number(&s, "multibody.angular_momentum.initial.2");
-    let drift = number(&s, "multibody.angular_momentum.max_abs_drift.2");
+    let lz = momentum(&s, "initial", 2);
+    let drift = momentum(&s, "max_abs_drift", 2);
     assert!(lz.abs() > 0.1, "L_z = {lz}");
     assert!(drift <= 1e-12 * lz.abs(), "L_z drift {drift:e} of {lz}");
     assert!(number(&s, "multibody.max_joint_residual") <= 1e-13);
@@ -130,10 +135,10 @@ fn free_satellite_with_a_reaction_wheel_keeps_its_total_angular_momentum() {
     assert_eq!(run.code, 0, "{}", run.stderr);
     let s = run.summary();
     let size = (0..3)
-        .map(|a| number(&s, &format!("multibody.angular_momentum.initial.{a}")).abs())
+        .map(|a| momentum(&s, "initial", a).abs())
         .fold(0.0, f64::max);
     for a in 0..3 {
-        let drift = number(&s, &format!("multibody.angular_momentum.max_abs_drift.{a}"));
+        let drift = momentum(&s, "max_abs_drift", a);
         assert!(drift <= 1e-12 * size, "axis {a}: drift {drift:e} of {size}");
     }
     assert!(number(&s, "multibody.max_joint_residual") <= 1e-13);
@@ -221,4 +226,10 @@ fn bad_bodies_joints_and_initial_tables_are_refused_with_their_messages() {
     for (text, fragments) in cases {
         refused(&text, &fragments);
     }
+}
+
+#[test]
+fn a_body_table_in_a_file_without_bodies_is_refused() {
+    let text = std::fs::read_to_string(example("pendulum.toml")).unwrap() + "\n[initial.a]\nx = [0.0, 0.0, 0.0]\n";
+    refused(&text, &["unknown table [initial.a]", "[[system.body]]"]);
 }

@@ -183,10 +183,12 @@ fn validate_raw(
         }
         read
     } else if let Some(body) = system.rigid() {
+        multibody_initial::refuse_body_tables(&ck, raw.initial.as_ref())?;
         rigid_settings::initial(&ck, raw.initial.as_ref(), body)?
     } else {
         {
             rigid_settings::refuse_rigid_keys(&ck, raw)?;
+            multibody_initial::refuse_body_tables(&ck, raw.initial.as_ref())?;
             settings::initial(
                 &ck,
                 raw.initial.as_ref(),

@@ -128,6 +128,24 @@ fn body_initial(
     })
 }
 
+/// Refuses `[initial.<name>]` tables in a file without `[[system.body]]` (the deserializer of
+/// `[initial]` reads any table in it as a body's).
+///
+/// # Errors
+/// The first such table, as an unknown key of `[initial]`.
+pub(super) fn refuse_body_tables(
+    ck: &Checker<'_>,
+    raw: Option<&Spanned<RawInitial>>,
+) -> Result<(), Diagnostic> {
+    match raw.and_then(|r| r.get_ref().bodies.first().map(|b| (r.span(), &b.name))) {
+        Some((span, name)) => Err(ck
+            .error(Some(span), format!("unknown table [initial.{name}]"))
+            .note("tables in [initial] give the initial data of the bodies of a multibody system (`[[system.body]]`)")
+            .help("write this system's initial data as keys of [initial]: `q = [...]`, `v = [...]`")),
+        None => Ok(()),
+    }
+}
+
 /// `[initial]`'s keys of systems in coordinates and of one rigid body.
 fn refuse_single_body_keys(ck: &Checker<'_>, table: &RawInitial) -> Result<(), Diagnostic> {
     let keys = [

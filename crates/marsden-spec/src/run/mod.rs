@@ -13,7 +13,7 @@
 //! | per sample | [`observer`] | one row `t, q, p, energy, J…, residual`, [`diagnostics`] |
 //! | where rows go | [`output`], [`samples`] | columns and writers of the files; in-memory [`Samples`] |
 //! | events | [`event_outputs`] | `events.csv`, in-memory [`EventSamples`](event_outputs::EventSamples), `section.png`, `observables.png` |
-//! | afterwards | [`summary`], [`plots`], [`rigid_plots`] | `summary.json`; the PNG plots (also `marsden plot`) |
+//! | afterwards | [`summary`], [`plots`], [`rigid_plots`], [`multibody_plots`] | `summary.json`; the PNG plots (also `marsden plot`) |
 //! | derivatives | [`sensitivity`] | `[sensitivity]`: the tangent run's Jacobians, `sensitivity.npy` |
 //! | sweeps | [`sweep`], [`shard`], [`sweep_table`], [`sweep_writer`] | members in parallel ([`marsden::studies::ensemble`]), one row each, streamed to the table |
 
@@ -21,6 +21,7 @@ pub mod event_outputs;
 pub mod execute;
 pub mod output;
 pub mod plots;
+pub mod multibody_plots;
 pub mod rigid_plots;
 pub mod samples;
 pub mod shard;

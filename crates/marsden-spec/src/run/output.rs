@@ -198,7 +198,7 @@ pub fn layout_from_columns(names: &[String]) -> marsden_io::Result<Layout> {
 }
 
 /// Files a previous run may have left in an output directory (and nothing else).
-const RUN_FILES: [&str; 25] = [
+const RUN_FILES: [&str; 26] = [
     TRAJECTORY_CSV,
     marsden_engine::events::EVENTS_CSV,
     "observables.npy",
@@ -210,6 +210,7 @@ const RUN_FILES: [&str; 25] = [
     "Pi.npy",
     super::rigid_plots::ATTITUDE_PNG,
     super::rigid_plots::BODY_MOMENTUM_PNG,
+    super::multibody_plots::BODIES_PNG,
     "q.npy",
     "p.npy",
     "energy.npy",

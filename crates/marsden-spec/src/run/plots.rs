@@ -42,6 +42,7 @@ pub fn draw(spec: &RunSpec, layout: &Layout) -> marsden_io::Result<Vec<String>> 
         .map(|f| f.to_string_lossy().into_owned())
         .collect();
     files.extend(super::rigid_plots::draw(&sketch.table, dir, &opts)?);
+    files.extend(super::multibody_plots::draw(&sketch.table, dir, &opts)?);
     let observables = (&sketch.table, &opts);
     files.extend(super::event_outputs::draw_observables(
         dir,
@@ -200,6 +201,8 @@ fn monitored(names: &[String]) -> Vec<&str> {
     columns.extend(prefixed("q_").chain(prefixed("p_")));
     let rigid = super::rigid_plots::COLUMNS;
     columns.extend(rigid.iter().filter(|c| names.iter().any(|n| n == *c)));
+    let centres = super::multibody_plots::columns(names);
+    columns.extend((names.iter().map(String::as_str)).filter(|n| centres.iter().any(|c| c == n)));
     columns
 }
 
