@@ -70,7 +70,11 @@ impl Check {
             args: t
                 .get("args")
                 .and_then(toml::Value::as_array)
-                .map(|a| a.iter().filter_map(|x| x.as_str().map(str::to_owned)).collect())
+                .map(|a| {
+                    a.iter()
+                        .filter_map(|x| x.as_str().map(str::to_owned))
+                        .collect()
+                })
                 .unwrap_or_default(),
             key,
             expect,
@@ -85,7 +89,10 @@ impl Check {
 
     /// Compares `found` (the value at the key) with the expectation; an error message if not.
     fn verify(&self, found: &Value) -> Result<(), String> {
-        let what = format!("{} {} {}: {}", self.command, self.file, self.key, self.reason);
+        let what = format!(
+            "{} {} {}: {}",
+            self.command, self.file, self.key, self.reason
+        );
         match &self.expect {
             Expect::Equals(s) => (found.as_str() == Some(s.as_str()))
                 .then_some(())
@@ -98,9 +105,9 @@ impl Check {
             }
             Expect::Within { value, tol } => {
                 let x = found.as_f64().ok_or_else(|| format!("{what}: {found}"))?;
-                ((x - value).abs() <= *tol).then_some(()).ok_or_else(|| {
-                    format!("{what}: found {x:e}, expected {value:e} ± {tol:e}")
-                })
+                ((x - value).abs() <= *tol)
+                    .then_some(())
+                    .ok_or_else(|| format!("{what}: found {x:e}, expected {value:e} ± {tol:e}"))
             }
         }
     }
@@ -120,10 +127,11 @@ fn checks() -> Vec<Check> {
 
 /// A dotted path into a JSON value; numbers index arrays.
 fn at<'v>(v: &'v Value, path: &str) -> &'v Value {
-    path.split('.').fold(v, |at, key| match key.parse::<usize>() {
-        Ok(i) if at.is_array() => &at[i],
-        _ => &at[key],
-    })
+    path.split('.')
+        .fold(v, |at, key| match key.parse::<usize>() {
+            Ok(i) if at.is_array() => &at[i],
+            _ => &at[key],
+        })
 }
 
 /// `marsden order FILE ARGS --csv` as JSON: `{method: {fitted_order, error: [per h]}}`.
@@ -135,7 +143,11 @@ fn order_table(file: &Path, args: &[String]) -> Value {
     all.extend(["--csv", csv.to_str().unwrap()]);
     let output = marsden_in(tmp.path(), &all);
     let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(output.status.success(), "order {}: {stderr}", file.display());
+    assert!(
+        output.status.success(),
+        "order {}: {stderr}",
+        file.display()
+    );
     let text = std::fs::read_to_string(&csv).unwrap();
     let mut methods = Map::new();
     // method,expected_order,h,steps,error,fitted_order
@@ -220,7 +232,10 @@ fn every_guide_problem_file_is_checked() {
     for entry in std::fs::read_dir(examples_dir()).unwrap() {
         let name = entry.unwrap().file_name().into_string().unwrap();
         if name.ends_with(".toml") && name != "expected.toml" {
-            assert!(checked.contains(&name), "{name} has no check in expected.toml");
+            assert!(
+                checked.contains(&name),
+                "{name} has no check in expected.toml"
+            );
         }
     }
 }
