@@ -26,6 +26,9 @@ mod discrete;
 mod events;
 // Every file in examples/ runs with reduced steps, as README.md quotes them.
 mod examples;
+// The guide (docs/guide): every problem file it shows runs, and summary.json still gives the
+// numbers its pages quote (docs/guide/examples/expected.toml).
+mod guide;
 // `[system] hamiltonian`: the same map as the Lagrangian, refusals.
 mod hamiltonian;
 // Silent wrong answers guarded: failed shootings fail, symmetries checked beyond the start,
