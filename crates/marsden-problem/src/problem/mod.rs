@@ -197,21 +197,13 @@ fn validate_raw(
         integrator.method = rigid_settings::method(&ck, &integrator.method, span)?;
         rigid_settings::refuse_unsupported(&ck, raw)?;
     }
-    if !system.constraint.components().is_empty()
-        && let Some(reason) = integrator.method.constraint_refusal()
-    {
-        let span = (raw.integrator.as_ref())
-            .and_then(|i| i.get_ref().method.as_ref())
-            .map(|m| m.span());
-        return Err(ck
-            .error(
-                span,
-                format!(
-                    "the method `{}` cannot be used with constraints",
-                    integrator.method
-                ),
-            )
-            .note(reason));
+    if !system.constraint.components().is_empty() {
+        let written = (raw.integrator.as_ref()).and_then(|i| i.get_ref().method.as_ref());
+        let name = written.map_or(integrator.method.to_string(), |m| m.get_ref().clone());
+        if let Some(refusal) = integrator.method.constraint_refusal_as_written(&name) {
+            let span = written.map(|m| m.span());
+            return Err(ck.error(span, refusal.headline).note(refusal.note));
+        }
     }
     if integrator.method == Method::Exact && system.force.is_active() {
         let span = (raw.integrator.as_ref())
