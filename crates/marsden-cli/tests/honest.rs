@@ -667,3 +667,36 @@ fn an_nbody_legend_of_64_bodies_is_capped() {
         "{stdout}"
     );
 }
+
+/// `phi = "(x^2 + y^2 - 1)^2"` with `project = true` was accepted and the run failed at step 0
+/// ("singular Newton Jacobian"); without `project` it was refused with no caret. Both are now
+/// refused when the file is read, pointing at the constraint: its gradient vanishes on its zero
+/// set (the constraint forces −Dφᵀλ cannot act, HLW06 §VII.1). The circle itself still runs.
+#[test]
+fn a_constraint_whose_gradient_vanishes_on_its_zero_set_is_refused_at_load() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = "[system]\ncoordinates = [\"x\", \"y\"]\n\
+                lagrangian = \"0.5*(x_dot^2 + y_dot^2) - y\"\n\
+                constraints = [\"(x^2 + y^2 - 1)^2\"]\n\n\
+                [initial]\nq = [0.6, -0.9]\nv = [0.0, 0.0]\nproject = true\n\n\
+                [integrator]\nh = 0.05\nsteps = 40\n";
+    let on_manifold = text.replace("-0.9]", "-0.8]").replace("project = true\n", "");
+    for (name, text) in [("projected.toml", text.to_owned()), ("on.toml", on_manifold)] {
+        let file = tmp.path().join(name);
+        std::fs::write(&file, &text).unwrap();
+        let run = marsden("run", &file, &[]);
+        assert_eq!(run.code, 2, "{name}: {}", run.stderr);
+        assert!(
+            run.stderr.contains(
+                "the gradient of constraint 0 `(x^2 + y^2 - 1)^2` vanishes on its zero set"
+            ) && run.stderr.contains("^^^"),
+            "{name}: {}",
+            run.stderr
+        );
+        assert!(!run.out.exists(), "{name}: nothing is written");
+        let circle = file.with_extension("circle.toml");
+        std::fs::write(&circle, text.replace("(x^2 + y^2 - 1)^2", "x^2 + y^2 - 1")).unwrap();
+        let run = marsden("run", &circle, &[]);
+        assert_eq!(run.code, 0, "{name}: {}", run.stderr);
+    }
+}

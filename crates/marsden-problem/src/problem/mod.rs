@@ -10,6 +10,7 @@
 //! notebook cell), [`member`] (one member of a sweep).
 
 pub mod check;
+pub mod constraint_regularity;
 pub mod discrete;
 pub mod events;
 #[cfg(test)]
@@ -149,6 +150,44 @@ pub fn validate(source: SourceFile, overrides: &Overrides) -> Result<RunSpec, Di
 /// value, validated again (without its `[sweep]`).
 ///
 /// # Errors
+/// Refuses a constraint whose gradient vanishes on its zero set
+/// ([`constraint_regularity::vanishing_gradient`]), pointing at it in `[system] constraints`.
+fn refuse_vanishing_gradient(
+    ck: &Checker<'_>,
+    raw: &raw::RawProblem,
+    constraint: &crate::model::ExprConstraint,
+    q0: &[f64],
+) -> Result<(), Diagnostic> {
+    let Some(v) = constraint_regularity::vanishing_gradient(constraint, q0) else {
+        return Ok(());
+    };
+    let item = (raw.system.as_ref())
+        .and_then(|s| s.get_ref().constraints.as_ref())
+        .and_then(|list| list.get_ref().get(v.index));
+    let text = item.map_or(String::new(), |c| format!(" `{}`", c.get_ref()));
+    let i = v.index;
+    Err(ck
+        .error(
+            item.map(|c| c.span()),
+            format!(
+                "the gradient of constraint {i}{text} vanishes on its zero set: |∇φ_{i}| = \
+                 {:.1e} at q = [{}] (where φ_{i} = 0), against {:.1e} at {:.0e} beside it",
+                v.gradient,
+                (v.at.iter().map(|x| format!("{x:.6}")))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                v.beside,
+                v.offset
+            ),
+        )
+        .note(
+            "the constraint forces −Dφ(q)ᵀλ cannot act where ∇φ = 0: the multipliers are \
+             undetermined and every step's Newton matrix is singular (φ has a multiple root \
+             there, as a square (…)^2 has)",
+        )
+        .help("write φ with a simple root, e.g. \"x^2 + y^2 - 1\" rather than its square"))
+}
+
 /// A value the problem cannot take (e.g. initial positions off the constraints).
 pub fn member(base: &RunSpec, overrides: &Overrides, k: usize) -> Result<RunSpec, Diagnostic> {
     let source = base.source.clone();
@@ -184,6 +223,7 @@ fn validate_raw(
             )?
         }
     };
+    refuse_vanishing_gradient(&ck, raw, &system.constraint, &initial.q)?;
     // With `project = true` the start is projected onto the manifold when the run starts
     // (`run::start`), so positions off it are accepted here.
     if !initial.project {
