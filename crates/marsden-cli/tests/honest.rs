@@ -680,8 +680,13 @@ fn a_constraint_whose_gradient_vanishes_on_its_zero_set_is_refused_at_load() {
                 constraints = [\"(x^2 + y^2 - 1)^2\"]\n\n\
                 [initial]\nq = [0.6, -0.9]\nv = [0.0, 0.0]\nproject = true\n\n\
                 [integrator]\nh = 0.05\nsteps = 40\n";
-    let on_manifold = text.replace("-0.9]", "-0.8]").replace("project = true\n", "");
-    for (name, text) in [("projected.toml", text.to_owned()), ("on.toml", on_manifold)] {
+    let on_manifold = text
+        .replace("-0.9]", "-0.8]")
+        .replace("project = true\n", "");
+    for (name, text) in [
+        ("projected.toml", text.to_owned()),
+        ("on.toml", on_manifold),
+    ] {
         let file = tmp.path().join(name);
         std::fs::write(&file, &text).unwrap();
         let run = marsden("run", &file, &[]);

@@ -147,7 +147,11 @@ impl<'a> Probe<'a> {
         // Settled: the last step was negligible (a root reached, simple or multiple).
         let (value, g) = self.at(i, &q);
         let g2: f64 = g.iter().map(|x| x * x).sum();
-        let last = if g2 > 0.0 { value.abs() / g2.sqrt() } else { 0.0 };
+        let last = if g2 > 0.0 {
+            value.abs() / g2.sqrt()
+        } else {
+            0.0
+        };
         (last <= settled && value.is_finite()).then_some((q, normal))
     }
 }
