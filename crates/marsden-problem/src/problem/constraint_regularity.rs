@@ -110,7 +110,7 @@ impl<'a> Probe<'a> {
             .flat_map(|d| [beside_along(d, 1.0), beside_along(d, -1.0)])
             .fold(0.0, f64::max);
         let vanishes = gradient <= VANISHING * beside || gradient == 0.0;
-        (vanishes && beside.is_finite()).then(|| VanishingGradient {
+        (vanishes && beside.is_finite()).then_some(VanishingGradient {
             index: i,
             at: q,
             gradient,
