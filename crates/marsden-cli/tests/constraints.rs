@@ -52,7 +52,12 @@ fn summary_and_console_give_the_constrained_order() {
 fn multipliers_are_written_and_plotted() {
     let run = run_ok(OFF, &[]);
     let t = run.trajectory();
-    assert_eq!(t.names().last(), Some("lambda_0"));
+    // The multipliers, then the hidden constraint's residual (added last).
+    let names: Vec<&str> = t.names().collect();
+    assert_eq!(
+        names[names.len() - 2..],
+        ["lambda_0", "constraint_velocity_residual"]
+    );
     let (y, px, py) = (column(&t, "q_y"), column(&t, "p_x"), column(&t, "p_y"));
     for (i, lambda) in column(&t, "lambda_0").iter().enumerate() {
         let expected = 0.5 * (px[i] * px[i] + py[i] * py[i] - y[i]);

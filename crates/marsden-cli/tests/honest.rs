@@ -390,3 +390,318 @@ fn plot_refuses_a_trajectory_without_line_ends() {
         "{stderr}"
     );
 }
+
+/// `galerkin-3-gauss-3` with constraints was refused as "the method `gauss-3` …": a name the
+/// user never wrote. The refusal of `run` and of `order --methods` names the written method
+/// (and says which rule it is), with the caret on the file's `method`.
+#[test]
+fn constraint_refusal_names_the_method_as_written() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("galerkin.toml");
+    let text = std::fs::read_to_string(fixture("cartesian_pendulum.toml")).unwrap();
+    let text = text.replace("h = 0.05", "method = \"galerkin-3-gauss-3\"\nh = 0.05");
+    std::fs::write(&file, text).unwrap();
+    let run = marsden("run", &file, &[]);
+    assert_eq!(run.code, 2, "{}", run.stderr);
+    assert!(
+        run.stderr
+            .contains("the method `galerkin-3-gauss-3` cannot be used with constraints")
+            && run
+                .stderr
+                .contains("`galerkin-3-gauss-3` is the rule `gauss-3`")
+            && run.stderr.contains("^^^"),
+        "{}",
+        run.stderr
+    );
+    let path = fixture("cartesian_pendulum.toml");
+    let written = "midpoint,triple-jump-4(galerkin-2-gauss-2)";
+    let args = ["order", path.to_str().unwrap(), "--methods", written];
+    let output = crate::util::marsden_in(tmp.path(), &args);
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains(
+            "the method `triple-jump-4(galerkin-2-gauss-2)` cannot be used with constraints"
+        ),
+        "{stderr}"
+    );
+}
+
+/// `marsden plot` on a trajectory.csv with bytes that are not UTF-8 (0xff) said only "stream
+/// did not contain valid UTF-8": the message names the file, in the header and in a row (with
+/// its line).
+#[test]
+fn plot_of_a_trajectory_that_is_not_utf8_names_the_file() {
+    let run = marsden("run", &fixture("damped.toml"), &[]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let csv = run.out.join("trajectory.csv");
+    let text = std::fs::read(&csv).unwrap();
+    let header_end = text.iter().position(|&b| b == b'\n').unwrap();
+    let mut in_header = text.clone();
+    in_header.insert(1, 0xff);
+    let mut in_row = text;
+    in_row.insert(header_end + 2, 0xff);
+    for (bytes, fragment) in [(in_header, "first line is not UTF-8"), (in_row, "line 2")] {
+        std::fs::write(&csv, bytes).unwrap();
+        let output = crate::util::marsden_in(run.tmp.path(), &["plot", run.out.to_str().unwrap()]);
+        let stderr = String::from_utf8(output.stderr).unwrap();
+        assert_eq!(output.status.code(), Some(2), "{stderr}");
+        assert!(
+            stderr.contains(csv.to_str().unwrap()) && stderr.contains(fragment),
+            "{stderr}"
+        );
+    }
+}
+
+/// `triple-jump-8(gauss-10)` was announced with "each step may take seconds": the warning of
+/// `marsden check` states the cost up front. One degree of freedom, 27 substeps of 10
+/// segments: u = 270 unknowns; the Jacobian and its LU factors hold 2·270²·8 B = 1.1 MiB; the
+/// Jacobian is assembled from ⌈270/4⌉² = 4624 hyper-dual evaluations of the action, each of L at
+/// its 270 Gauss nodes (1248480 evaluations of L), and factored in 2·270³/3 ≈ 1.3e7 flops
+/// (Golub–Van Loan §3.2).
+#[test]
+fn large_step_system_warning_states_unknowns_bytes_and_flops() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("composed.toml");
+    let text = "[system]\ncoordinates = [\"x\"]\nlagrangian = \"0.5*x_dot^2 - 0.5*x^2\"\n\n\
+                [initial]\nq = [1.0]\nv = [0.0]\n\n\
+                [integrator]\nmethod = \"triple-jump-8(gauss-10)\"\nh = 0.1\nsteps = 1\n";
+    std::fs::write(&file, text).unwrap();
+    let output = crate::util::marsden_in(tmp.path(), &["check", file.to_str().unwrap()]);
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert_eq!(output.status.code(), Some(0), "{stderr}");
+    for fragment in [
+        "270 unknowns",
+        "take 1.1 MiB",
+        "from 4624 evaluations of the step's action",
+        "(1248480 evaluations of L)",
+        "≈ 1.3e7 flops",
+    ] {
+        assert!(stderr.contains(fragment), "{fragment}: {stderr}");
+    }
+    assert!(!stderr.contains("may take seconds"), "{stderr}");
+}
+
+/// `constraint_residual.png` drew `|φ(q)|` only: a constrained run now writes the hidden
+/// constraint's residual `|Dφ(q)·v|` as the last column `constraint_velocity_residual` (every
+/// earlier column keeps its name and place, observables included), and the plot draws it.
+/// Cartesian pendulum (R7's system, unit mass, so `v = p`): `Dφ(q)·v = 2(x p_x + y p_y)`,
+/// recomputed here from the written `q` and `p`; RATTLE keeps it at round-off
+/// (HLW06 §VII.1).
+#[test]
+fn constrained_trajectory_records_the_hidden_constraint_residual() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("pendulum.toml");
+    let text = std::fs::read_to_string(fixture("cartesian_pendulum.toml")).unwrap();
+    let text = text.replace(
+        "plots = true",
+        "plots = true\nobservables = { r = \"sqrt(x^2 + y^2)\" }",
+    );
+    std::fs::write(&file, text).unwrap();
+    let run = marsden("run", &file, &[]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let csv = std::fs::read_to_string(run.out.join("trajectory.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    assert_eq!(
+        header,
+        [
+            "t",
+            "q_x",
+            "q_y",
+            "p_x",
+            "p_y",
+            "energy",
+            "constraint_residual",
+            "lambda_0",
+            "r",
+            "constraint_velocity_residual"
+        ]
+    );
+    let table = run.trajectory();
+    let col = |name| crate::util::column(&table, name);
+    let (x, y, px, py) = (col("q_x"), col("q_y"), col("p_x"), col("p_y"));
+    let hidden = col("constraint_velocity_residual");
+    assert_eq!(hidden.len(), 401);
+    let mut largest: f64 = 0.0;
+    for k in 0..hidden.len() {
+        let expected = (2.0 * (x[k] * px[k] + y[k] * py[k])).abs();
+        assert!(
+            (hidden[k] - expected).abs() <= 1e-13,
+            "row {k}: {} vs {expected}",
+            hidden[k]
+        );
+        largest = largest.max(hidden[k]);
+    }
+    assert!(largest < 1e-10, "max |Dφ(q)·v| = {largest:e}");
+    // The summary's maximum is over the same stored states.
+    let recorded = number(&run.summary(), "constraints.max_velocity_residual");
+    assert_eq!(recorded, largest, "summary's max |Dφ(q)·v|");
+    assert!(run.out.join("constraint_residual.png").exists());
+}
+
+/// A short run's ns/step included the JIT's compilation of its tapes. The summary says the
+/// compilation time (`jit_compile_seconds`, a part of `wall_seconds`), the report says it
+/// apart, and the time per step printed is `(wall − jit)/steps`; with `MARSDEN_JIT=0`
+/// nothing is compiled and the field is 0.
+#[test]
+fn time_per_step_leaves_out_the_jit_compilation() {
+    let run = marsden("run", &fixture("pendulum_expression.toml"), &[]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let s = run.summary();
+    let (wall, jit) = (
+        number(&s, "wall_seconds"),
+        number(&s, "jit_compile_seconds"),
+    );
+    assert!(jit > 0.0 && jit < wall, "jit {jit} s of wall {wall} s");
+    let line = run
+        .stdout
+        .lines()
+        .find(|l| l.contains("4000 steps"))
+        .unwrap_or_else(|| panic!("{}", run.stdout));
+    assert!(line.contains("of it compiling native code"), "{line}");
+    // The printed time per step, back in seconds.
+    let per_step = line
+        .split(" (")
+        .nth(1)
+        .unwrap()
+        .split("/step")
+        .next()
+        .unwrap();
+    let (value, unit) = per_step.split_once(' ').unwrap();
+    let scale = match unit {
+        "ns" => 1e-9,
+        "µs" => 1e-6,
+        "ms" => 1e-3,
+        other => panic!("unit {other} in {line}"),
+    };
+    let printed = value.parse::<f64>().unwrap() * scale;
+    let expected = (wall - jit) / 4000.0;
+    assert!(
+        (printed - expected).abs() <= 0.01 * expected + 0.5e-9,
+        "{line}: {printed:e} vs (wall − jit)/steps = {expected:e}"
+    );
+
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let path = fixture("pendulum_expression.toml");
+    let args = [
+        "run",
+        path.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_marsden"))
+        .args(args)
+        .env("MARSDEN_JIT", "0")
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(0));
+    let text = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    let s: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(number(&s, "jit_compile_seconds"), 0.0);
+    assert!(
+        !String::from_utf8(output.stdout)
+            .unwrap()
+            .contains("compiling native code")
+    );
+}
+
+/// A grid sweep's `sweep.png` drew every member against the first axis as loose dots,
+/// ignoring the second axis: it now draws one curve per value of the second axis. A grid of
+/// 2 values of `l` × 9 of `q[0]` has 9 curves, of which the plot shows the first 8 and says so.
+#[test]
+fn a_grid_sweep_plot_draws_one_curve_per_value_of_the_second_axis() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("grid.toml");
+    let text = "[system]\nbuiltin = \"pendulum\"\nparameters = { l = 1.0 }\n\n\
+                [initial]\nq = [0.5]\nv = [0.0]\n\n\
+                [integrator]\nh = 0.05\nsteps = 20\n\n[output]\nplots = false\n\n\
+                [sweep]\nparameter = \"l\"\nvalues = [0.5, 1.0]\n\n[sweep.and]\n\
+                initial = \"q[0]\"\nvalues = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9]\n";
+    std::fs::write(&file, text).unwrap();
+    let run = marsden("run", &file, &[]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let output = crate::util::marsden_in(run.tmp.path(), &["plot", run.out.to_str().unwrap()]);
+    let stdout = String::from_utf8(output.stdout).unwrap();
+    assert_eq!(output.status.code(), Some(0), "{stdout}");
+    assert!(run.out.join("sweep.png").is_file());
+    assert!(
+        stdout.contains("note: showing the first 8 of 9 combinations of q[0]"),
+        "{stdout}"
+    );
+}
+
+/// The N-body configuration plot listed every body in its legend, past the picture's bottom at
+/// N = 64: the legend names the first 8 and ends with "… 56 more", and `marsden plot` says so.
+#[test]
+fn an_nbody_legend_of_64_bodies_is_capped() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut bodies = String::from("64\n1.0 0 0 0 0 0 0\n");
+    for k in 1..64 {
+        let a = k as f64 * std::f64::consts::TAU / 63.0;
+        let r = 1.0 + (k % 4) as f64;
+        let v = 1.0 / r.sqrt();
+        bodies.push_str(&format!(
+            "1e-6 {} {} 0 {} {} 0\n",
+            r * a.cos(),
+            r * a.sin(),
+            -v * a.sin(),
+            v * a.cos()
+        ));
+    }
+    std::fs::write(tmp.path().join("bodies.txt"), bodies).unwrap();
+    let file = tmp.path().join("nbody.toml");
+    let text = "[system]\nbuiltin = \"nbody\"\nparameters = { G = 1.0, softening = 0.01 }\n\n\
+                [initial]\nfile = \"bodies.txt\"\n\n\
+                [integrator]\nmethod = \"trapezoid\"\nh = 0.01\nsteps = 20\n\n\
+                [output]\nplots = true\n";
+    std::fs::write(&file, text).unwrap();
+    let run = marsden("run", &file, &[]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.out.join("configuration.png").is_file());
+    let output = crate::util::marsden_in(run.tmp.path(), &["plot", run.out.to_str().unwrap()]);
+    let stdout = String::from_utf8(output.stdout).unwrap();
+    assert_eq!(output.status.code(), Some(0), "{stdout}");
+    assert!(
+        stdout.contains("note: the legend names the first 8 of 64 curves"),
+        "{stdout}"
+    );
+}
+
+/// `phi = "(x^2 + y^2 - 1)^2"` with `project = true` was accepted and the run failed at step 0
+/// ("singular Newton Jacobian"); without `project` it was refused with no caret. Both are now
+/// refused when the file is read, pointing at the constraint: its gradient vanishes on its zero
+/// set (the constraint forces −Dφᵀλ cannot act, HLW06 §VII.1). The circle itself still runs.
+#[test]
+fn a_constraint_whose_gradient_vanishes_on_its_zero_set_is_refused_at_load() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = "[system]\ncoordinates = [\"x\", \"y\"]\n\
+                lagrangian = \"0.5*(x_dot^2 + y_dot^2) - y\"\n\
+                constraints = [\"(x^2 + y^2 - 1)^2\"]\n\n\
+                [initial]\nq = [0.6, -0.9]\nv = [0.0, 0.0]\nproject = true\n\n\
+                [integrator]\nh = 0.05\nsteps = 40\n";
+    let on_manifold = text
+        .replace("-0.9]", "-0.8]")
+        .replace("project = true\n", "");
+    for (name, text) in [
+        ("projected.toml", text.to_owned()),
+        ("on.toml", on_manifold),
+    ] {
+        let file = tmp.path().join(name);
+        std::fs::write(&file, &text).unwrap();
+        let run = marsden("run", &file, &[]);
+        assert_eq!(run.code, 2, "{name}: {}", run.stderr);
+        assert!(
+            run.stderr.contains(
+                "the gradient of constraint 0 `(x^2 + y^2 - 1)^2` vanishes on its zero set"
+            ) && run.stderr.contains("^^^"),
+            "{name}: {}",
+            run.stderr
+        );
+        assert!(!run.out.exists(), "{name}: nothing is written");
+        let circle = file.with_extension("circle.toml");
+        std::fs::write(&circle, text.replace("(x^2 + y^2 - 1)^2", "x^2 + y^2 - 1")).unwrap();
+        let run = marsden("run", &circle, &[]);
+        assert_eq!(run.code, 0, "{name}: {}", run.stderr);
+    }
+}

@@ -165,7 +165,12 @@ fn symmetry_momentum_map_is_conserved_and_written() {
 fn constrained_run_writes_the_residual_column() {
     let run = run_ok("cartesian_pendulum.toml", &[]);
     let t = run.trajectory();
-    assert_eq!(t.names().last(), Some("lambda_0"));
+    // The multipliers, then the hidden constraint's residual (added last).
+    let names: Vec<&str> = t.names().collect();
+    assert_eq!(
+        names[names.len() - 2..],
+        ["lambda_0", "constraint_velocity_residual"]
+    );
     let max = column(&t, "constraint_residual")
         .iter()
         .fold(0.0, |m: f64, r| m.max(*r));

@@ -51,9 +51,14 @@ pub fn run(
     let mut observer = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), controls)
         .monitoring_every_step(spec.analysis.every_step)
         .with_observables(&spec.events.observables);
-    let clock = Instant::now();
+    let (clock, jit_before) = (
+        Instant::now(),
+        marsden_problem::model::jit_compile_seconds(),
+    );
     let result = solve(ld.clone(), spec, start, &mut observer);
-    Ok(finish(observer, result, clock.elapsed().as_secs_f64()))
+    let mut record = finish(observer, result, clock.elapsed().as_secs_f64());
+    record.jit_compile_seconds = marsden_problem::model::jit_compile_seconds() - jit_before;
+    Ok(record)
 }
 
 /// Steps `ld` over the spec's grid from `start`, with the file's Newton options and summation.

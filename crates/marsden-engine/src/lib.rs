@@ -48,6 +48,7 @@ pub mod sensitivity;
 pub mod serialize;
 pub mod solve;
 pub mod start;
+pub mod step_cost;
 pub mod step_system;
 pub mod tangent;
 

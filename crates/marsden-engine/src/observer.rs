@@ -1,6 +1,10 @@
 //! The observer that streams a run to disk: every `every`-th state (and the first and the last)
-//! becomes one row `t, q, p, energy, J…, residual, λ…`, written at once, and feeds the
-//! diagnostics (with the velocity-constraint residual `|Dφ(q)·v|`).
+//! becomes one row `t, q, p, energy, J…, residual, λ…, observables…, velocity residual`, written
+//! at once, and feeds the diagnostics. With constraints, `residual` is `max_i |φ_i(q)|` and
+//! the velocity residual the hidden constraint's `|Dφ(q)·v|` at `v = FL⁻¹(q, p)` ([HLW06]
+//! §VII.1: RATTLE keeps both at the Newton tolerance).
+//!
+//! [HLW06]: marsden#references
 //! Memory stays bounded whatever the number of steps; a failed run keeps every row written.
 //!
 //! The observer needs to see only the sampled steps, plus every [`CHECK_EVERY`]-th step when
@@ -167,6 +171,7 @@ impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's
             stats.push(j);
             self.row.push(j);
         }
+        let mut velocity_residual = None;
         if self.constraint.count() > 0 {
             let r = self.residual(s.q);
             self.diagnostics.push_residual(r);
@@ -175,6 +180,7 @@ impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's
                 false => f64::NAN,
             };
             self.diagnostics.push_velocity_residual(rate);
+            velocity_residual = Some(rate);
             self.row.push(r);
             let d = self.constraint.count();
             let lambda = (self.lagrangian.filter(|_| finite))
@@ -193,6 +199,8 @@ impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's
             let state = (s.t, s.q, self.velocity.as_slice(), s.p);
             observables.eval_into(state, &mut self.row[start..]);
         }
+        // The hidden constraint's residual `|Dφ(q)·v|`: the last column of the files.
+        self.row.extend(velocity_residual);
         if self.with_velocity {
             match finite {
                 true => self.row.extend_from_slice(&self.velocity),

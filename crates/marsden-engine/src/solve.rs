@@ -41,6 +41,9 @@ pub struct RunRecord {
     pub statistics: Statistics,
     /// Wall-clock seconds of the integration.
     pub wall_seconds: f64,
+    /// The part of [`RunRecord::wall_seconds`] spent compiling expressions to native code (at
+    /// their first use, inside the run).
+    pub jit_compile_seconds: f64,
     /// What was monitored.
     pub diagnostics: Diagnostics,
     /// Rows written.
@@ -274,6 +277,8 @@ struct Session<'a, 's, L, F> {
     options: SolveOptions,
     observer: Watched<'a, 's, L, StreamObserver<'a, 's, L, ExprConstraint, Symmetry>>,
     clock: Instant,
+    /// This thread's JIT compilation seconds when the clock started.
+    jit_before: f64,
 }
 
 impl<'a, 's, L: Lagrangian, F: Force> Session<'a, 's, L, F> {
@@ -311,6 +316,7 @@ impl<'a, 's, L: Lagrangian, F: Force> Session<'a, 's, L, F> {
             options,
             observer,
             clock: Instant::now(),
+            jit_before: marsden_problem::model::jit_compile_seconds(),
         })
     }
 
@@ -324,6 +330,8 @@ impl<'a, 's, L: Lagrangian, F: Force> Session<'a, 's, L, F> {
         let wall_seconds = self.clock.elapsed().as_secs_f64();
         let (stream, events) = self.observer.into_parts();
         let mut record = finish(stream, result, wall_seconds);
+        record.jit_compile_seconds =
+            marsden_problem::model::jit_compile_seconds() - self.jit_before;
         if let Some(e) = &events.io_error {
             record.error.get_or_insert_with(|| e.clone());
         }
@@ -361,6 +369,7 @@ pub(super) fn finish<L: Lagrangian, C: Constraint, M: MomentumMap>(
         final_state: final_state(&trajectory),
         statistics: trajectory.statistics,
         wall_seconds,
+        jit_compile_seconds: 0.0,
         rows: observer.rows(),
         diagnostics: observer.diagnostics,
         balance: None,

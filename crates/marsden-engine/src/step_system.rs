@@ -18,6 +18,8 @@ use marsden::discrete::DiscreteAction as _;
 use marsden::integrator::StepShape;
 use marsden::{Constraint as _, Lagrangian, Rule as _};
 
+pub use crate::step_cost::StepCost;
+
 use marsden_problem::error::Diagnostic;
 use marsden_problem::problem::RunSpec;
 
@@ -105,15 +107,20 @@ pub fn fits_in_memory<L: Lagrangian>(
     ))
 }
 
-/// A warning if `spec`'s method solves more than [`LARGE_STEP_SYSTEM`] unknowns per step.
+/// A warning if `spec`'s method solves more than [`LARGE_STEP_SYSTEM`] unknowns per step,
+/// stating the cost up front ([`StepCost`]): the unknowns, the bytes of the dense Jacobian and
+/// its LU factors, and the work of one Newton iteration.
 pub fn large_step_system<L: Lagrangian>(spec: &RunSpec, lagrangian: &L) -> Option<String> {
     let unknowns = step_unknowns(spec, lagrangian)?;
+    let rule = spec.integrator.method.rule()?;
     (unknowns > LARGE_STEP_SYSTEM).then(|| {
+        let cost = StepCost::of(rule, lagrangian.dof(), unknowns);
         format!(
             "the method `{}` solves a dense Newton system of {unknowns} unknowns every step \
-             (more than {LARGE_STEP_SYSTEM}): each step may take seconds; a composition of \
-             fewer substeps, or gauss-s with a smaller s, solves a smaller one",
-            spec.integrator.method
+             (more than {LARGE_STEP_SYSTEM}): {}; a composition of fewer substeps, or gauss-s \
+             with a smaller s, solves a smaller one",
+            spec.integrator.method,
+            cost.describe()
         )
     })
 }

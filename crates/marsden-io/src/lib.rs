@@ -32,8 +32,9 @@ pub use npy::{
     write_npy_dir,
 };
 pub use plot::{
-    PhaseCurve, PlotOptions, PlotReport, Series, plot_constraint_residual, plot_energy_balance,
-    plot_energy_error, plot_momentum_drift, plot_phase_portrait, plot_run,
+    PhaseCurve, PlotOptions, PlotReport, Series, plot_constraint_residual,
+    plot_constraint_residuals, plot_energy_balance, plot_energy_error, plot_momentum_drift,
+    plot_phase_portrait, plot_run,
 };
 pub use sink::RowSink;
 pub use table::{Column, Table, check_column_name};

@@ -266,7 +266,12 @@ fn smallest_images_with_many_notes_still_render() {
         })
         .collect();
     let r = plot_momentum_drift(dir.path().join("m.png"), &t, &maps, &opts).unwrap();
-    assert_eq!(r.notes.len(), 11, "{:?}", r.notes);
+    // One per series, the bucketing, and the legend capped at 8 of the 10 maps.
+    assert_eq!(r.notes.len(), 12, "{:?}", r.notes);
+    assert_eq!(
+        r.notes.last().map(String::as_str),
+        Some("the legend names the first 8 of 10 curves")
+    );
     assert_eq!(decode(&r.path).0, 200);
     let curves: Vec<PhaseCurve<'_>> = names
         .iter()

@@ -38,7 +38,9 @@
 mod compile;
 mod functions;
 mod native;
+mod timing;
 mod verlet;
 
 pub use compile::JitError;
 pub use native::{CompiledTape, CompiledVerlet};
+pub use timing::compile_seconds;

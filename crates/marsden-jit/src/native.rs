@@ -46,13 +46,15 @@ impl CompiledTape {
     /// [`JitError::Inputs`] if the tape reads more than `head_len + 1` inputs; otherwise as
     /// [`CompiledTape::compile`].
     pub fn compile_split(tape: &Tape, head_len: usize) -> Result<Self, JitError> {
-        let mut module = compile::host_module()?;
-        let id = compile::define(&mut module, tape, head_len)?;
-        Ok(Self {
-            code: Code::finalize(module, id)?,
-            inputs: tape.input_len(),
-            outputs: tape.len(),
-            split: head_len,
+        crate::timing::timed(|| {
+            let mut module = compile::host_module()?;
+            let id = compile::define(&mut module, tape, head_len)?;
+            Ok(Self {
+                code: Code::finalize(module, id)?,
+                inputs: tape.input_len(),
+                outputs: tape.len(),
+                split: head_len,
+            })
         })
     }
 
@@ -155,11 +157,13 @@ impl CompiledVerlet {
     /// [`JitError`] if the tape does not have `dof` outputs or reads more than `[q, t]`, the
     /// machine has no Cranelift back end, or compilation fails.
     pub fn compile(gradient: &Tape, dof: usize) -> Result<Self, JitError> {
-        let mut module = compile::host_module()?;
-        let id = verlet::define(&mut module, gradient, dof)?;
-        Ok(Self {
-            code: Code::finalize(module, id)?,
-            dof,
+        crate::timing::timed(|| {
+            let mut module = compile::host_module()?;
+            let id = verlet::define(&mut module, gradient, dof)?;
+            Ok(Self {
+                code: Code::finalize(module, id)?,
+                dof,
+            })
         })
     }
 

@@ -72,7 +72,11 @@ pub fn plan(spec: &RunSpec, request: &Request) -> Result<Plan, Diagnostic> {
         .help("study a rule, e.g. `--methods midpoint,gauss-2`"));
     }
     if spec.system.constraint.count() > 0 {
-        refuse_unconstrained_only(&methods)?;
+        let written = match &request.methods {
+            Some(list) => split_top_level(list).into_iter().map(str::trim).collect(),
+            None => Vec::new(),
+        };
+        refuse_unconstrained_only(&methods, &written)?;
     }
     let grid = spec.integrator.grid;
     let t0 = grid.t0;
@@ -103,17 +107,15 @@ pub fn plan(spec: &RunSpec, request: &Request) -> Result<Plan, Diagnostic> {
 
 /// The message `marsden run` gives for a method that cannot impose constraints (Gauss rules:
 /// no stage at the step's end), for the first such method of a study of a constrained file —
-/// before any run, instead of a failure at every step size.
-fn refuse_unconstrained_only(methods: &[Method]) -> Result<(), Diagnostic> {
-    match methods
-        .iter()
-        .find_map(|m| m.constraint_refusal().map(|reason| (m, reason)))
-    {
-        Some((method, reason)) => Err(Diagnostic::new(format!(
-            "the method `{method}` cannot be used with constraints"
-        ))
-        .note(reason)
-        .help(
+/// before any run, instead of a failure at every step size. `written` holds the names as given
+/// in `--methods` (empty for the file's method), so that the message names them.
+fn refuse_unconstrained_only(methods: &[Method], written: &[&str]) -> Result<(), Diagnostic> {
+    let refusal = methods.iter().enumerate().find_map(|(k, m)| {
+        let name = written.get(k).map_or(m.to_string(), |w| (*w).to_owned());
+        m.constraint_refusal_as_written(&name)
+    });
+    match refusal {
+        Some(refusal) => Err(Diagnostic::new(refusal.headline).note(refusal.note).help(
             "study constrained rules, e.g. `--methods midpoint,lobatto-3,triple-jump-4(trapezoid)`",
         )),
         None => Ok(()),

@@ -29,6 +29,9 @@ fn file_columns(samples: &Samples) -> Vec<(String, Vec<f64>)> {
     for (i, lambda) in samples.lambda.iter().enumerate() {
         out.push((format!("lambda_{i}"), lambda.clone()));
     }
+    if let Some(r) = &samples.constraint_velocity_residual {
+        out.push(("constraint_velocity_residual".to_owned(), r.clone()));
+    }
     out
 }
 

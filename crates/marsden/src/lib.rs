@@ -134,6 +134,8 @@
 //! * **LL76**: L. D. Landau, E. M. Lifshitz, *Mechanics*, 3rd ed. (1976), §37 (the free
 //!   asymmetric top by Jacobi elliptic functions).
 //! * **GW08**: Griewank & Walther, *Evaluating Derivatives*, 2nd ed. (2008).
+//! * **GVL13**: G. H. Golub, C. F. Van Loan, *Matrix Computations*, 4th ed. (2013), §3.2 (LU
+//!   factorisation, `2n³/3` flops).
 //! * **Sanz-Serna 2016**: J. M. Sanz-Serna, *Symplectic Runge–Kutta schemes for adjoint equations,
 //!   automatic differentiation, optimal control and more*, SIAM Review 58 (2016).
 //! * **Bre73**: R. P. Brent, *Algorithms for Minimization without Derivatives*, Prentice-Hall

@@ -69,6 +69,7 @@ pub(super) fn run(
         .map_err(|e| Diagnostic::new(format!("the rigid body's integrator: {e}")))?;
     let mut writer = Rows::new(body, destination);
     let started = Instant::now();
+    let jit_before = marsden_problem::model::jit_compile_seconds();
     let every = spec.output.every.max(1);
     let mut error = writer.sample(&lgvi);
     let mut interrupted = false;
@@ -107,6 +108,7 @@ pub(super) fn run(
         error.get_or_insert(e);
     }
     let wall_seconds = started.elapsed().as_secs_f64();
+    let jit_compile_seconds = marsden_problem::model::jit_compile_seconds() - jit_before;
     if let Some(progress) = controls.progress {
         progress(Progress {
             step: steps,
@@ -135,6 +137,7 @@ pub(super) fn run(
         },
         statistics,
         wall_seconds,
+        jit_compile_seconds,
         rows: writer.rows,
         diagnostics: writer.diagnostics,
         balance: None,

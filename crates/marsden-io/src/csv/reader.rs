@@ -71,6 +71,19 @@ fn parse_error(path: &Path, line: u64, message: String) -> Error {
     }
 }
 
+/// A read error of line `line`: bytes that are not UTF-8 are a parse error naming the file and
+/// the line (a trajectory this crate wrote is ASCII), any other an I/O error naming the file.
+fn not_text(path: &Path, line: u64, e: std::io::Error) -> Error {
+    match e.kind() {
+        std::io::ErrorKind::InvalidData => parse_error(
+            path,
+            line,
+            "bytes that are not UTF-8 text: not a trajectory this crate wrote".to_owned(),
+        ),
+        _ => Error::io("read", path, e),
+    }
+}
+
 /// Streams the rows of a CSV into the sink `make` builds from the header; with
 /// `skip_cut_last`, a final line without a line end is dropped rather than read.
 fn stream_csv<S: RowSink>(
@@ -85,11 +98,11 @@ fn stream_csv<S: RowSink>(
     // Reads one line without its end; returns (any bytes read, the line had an end).
     let mut next_line = |line: &mut String, line_no: &mut u64| -> Result<(bool, bool)> {
         line.clear();
+        *line_no += 1;
         let n = (&mut reader)
             .take(MAX_LINE)
             .read_line(line)
-            .map_err(|e| Error::io("read", path, e))?;
-        *line_no += 1;
+            .map_err(|e| not_text(path, *line_no, e))?;
         let ended = line.ends_with('\n');
         if !ended && n as u64 == MAX_LINE {
             return Err(parse_error(

@@ -52,6 +52,8 @@ pub(crate) struct Panel {
     pub equal_axes: bool,
     /// Printed above the plotting area (the first few; all are returned in the report).
     pub notes: Vec<String>,
+    /// Labelled curves left out of the legend ([`super::legend::cap_legend`]).
+    pub legend_more: usize,
 }
 
 impl Panel {
@@ -70,6 +72,7 @@ impl Panel {
             markers: Vec::new(),
             equal_axes: false,
             notes: Vec::new(),
+            legend_more: 0,
         }
     }
 
@@ -140,6 +143,7 @@ pub(crate) fn render(path: &Path, opts: &PlotOptions, fig: &mut Figure) -> Resul
         };
         let areas = body.split_evenly(fig.grid);
         for (area, panel) in areas.iter().zip(fig.panels.iter_mut()) {
+            super::legend::cap_legend(panel);
             draw_panel(area, panel).map_err(plot_err)?;
         }
         root.present().map_err(|e| plot_err(e.to_string()))?;
@@ -333,6 +337,14 @@ where
                         .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
                 }
             }
+        }
+        if panel.legend_more > 0 {
+            legend = true;
+            chart
+                .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+                .map_err(e)?
+                .label(super::legend::more_text(panel.legend_more))
+                .legend(|(x, y)| EmptyElement::at((x, y)));
         }
         for (k, cloud) in panel.clouds.iter().enumerate() {
             let color = PALETTE[k % PALETTE.len()];

@@ -4,7 +4,7 @@ use std::path::Path;
 
 use super::columns::{Columns, is_constant};
 use super::configuration::{Orbit, plot_configuration};
-use super::constraint::plot_constraint_residual;
+use super::constraint::{plot_constraint_residual, plot_constraint_residuals};
 use super::energy::plot_energy_error;
 use super::momentum::plot_momentum_drift;
 use super::multipliers::plot_multipliers;
@@ -34,7 +34,9 @@ pub const MULTIPLIERS_PNG: &str = "multipliers.png";
 /// convention: `t`; `q_<name>` paired with `p_<name>` (phase portrait, time series, and the
 /// configuration space when the names say where the points are, see `plane_of`); `energy`
 /// (its relative error, when `opts.energy_conserved`);
-/// `J_<symmetry>` (momentum drift); `constraint_residual`; `lambda_<i>` (multipliers). A plot
+/// `J_<symmetry>` (momentum drift); `constraint_residual` (with `constraint_velocity_residual`,
+/// the hidden constraint's `|Dφ(q)·v|`, as a second curve when present); `lambda_<i>`
+/// (multipliers). A plot
 /// whose columns are absent is skipped; the reports say which files were written (for
 /// `marsden plot DIR`). Coordinates named in `opts.angles` are drawn wrapped to (−π, π].
 ///
@@ -91,12 +93,12 @@ pub fn plot_run(
         )?);
     }
     if let Some(r) = table.values("constraint_residual") {
-        reports.push(plot_constraint_residual(
-            dir.join(CONSTRAINT_RESIDUAL_PNG),
-            t,
-            r,
-            opts,
-        )?);
+        let path = dir.join(CONSTRAINT_RESIDUAL_PNG);
+        let report = match table.values("constraint_velocity_residual") {
+            Some(v) => plot_constraint_residuals(path, t, r, v, opts)?,
+            None => plot_constraint_residual(path, t, r, opts)?,
+        };
+        reports.push(report);
     }
     let multipliers = series(table, "lambda_");
     if !multipliers.is_empty() {

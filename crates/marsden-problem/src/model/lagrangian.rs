@@ -190,6 +190,20 @@ fn is_packed_triangle(entries: &[(usize, usize)], n: usize) -> bool {
     entries.iter().copied().eq(triangle)
 }
 
+/// Seconds this thread has spent compiling expressions to native code (`0` without the `jit`
+/// feature). Tapes are compiled at their first use, inside a run: a run reads this before and
+/// after to report the compilation apart from its time per step.
+pub fn jit_compile_seconds() -> f64 {
+    #[cfg(feature = "jit")]
+    {
+        marsden_jit::compile_seconds()
+    }
+    #[cfg(not(feature = "jit"))]
+    {
+        0.0
+    }
+}
+
 /// Whether native code is wanted: built with the `jit` feature and not switched off by
 /// `MARSDEN_JIT=0`.
 fn jit_wanted() -> bool {

@@ -23,7 +23,7 @@ pub use constraint::ExprConstraint;
 pub use discrete_lagrangian::ExprDiscreteLagrangian;
 pub use force::{ExprForce, ForceInputs, LagrangianForce};
 pub use hamiltonian::{ExprHamiltonian, HamiltonianExprLagrangian};
-pub use lagrangian::ExprLagrangian;
+pub use lagrangian::{ExprLagrangian, jit_compile_seconds};
 pub use observables::{ExprEvent, Observables};
 pub use parametric::{ExprParametric, ParametricTexts};
 pub use symmetry::{MomentumMap, Symmetry};

@@ -145,7 +145,12 @@ impl EventsSpec {
 }
 
 /// Trajectory columns an observable may not be named after (or by their prefix).
-const COLUMNS: [&str; 3] = ["t", "energy", "constraint_residual"];
+const COLUMNS: [&str; 4] = [
+    "t",
+    "energy",
+    "constraint_residual",
+    "constraint_velocity_residual",
+];
 const PREFIXES: [&str; 4] = ["q_", "p_", "J_", "lambda_"];
 
 /// Validates `[[events]]`, `[output] observables` and `[output] section` of `raw` for
@@ -244,7 +249,7 @@ fn observables(
             return Err(at(format!(
                 "the observable `{name}` has the name of a trajectory column"
             ))
-            .note("the trajectory's columns are t, q_<name>, p_<name>, energy, J_<name>, constraint_residual, lambda_<i>")
+            .note("the trajectory's columns are t, q_<name>, p_<name>, energy, J_<name>, constraint_residual, lambda_<i>, constraint_velocity_residual")
             .help("give the observable another name"));
         }
         if !is_identifier(name) {

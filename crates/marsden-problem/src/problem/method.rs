@@ -106,6 +106,35 @@ impl Method {
     }
 }
 
+/// Why a method cannot be used with holonomic constraints, in the words of the name the user
+/// wrote ([`Method::constraint_refusal_as_written`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ConstraintRefusal {
+    /// `the method `<written>` cannot be used with constraints`.
+    pub headline: String,
+    /// Why, from the rule; it says which rule the written name is when the rule's own name
+    /// differs (`galerkin-3-gauss-3` is `gauss-3`).
+    pub note: String,
+}
+
+impl Method {
+    /// [`Method::constraint_refusal`] naming the method as `written` (in a file or on the
+    /// command line): several names parse to one rule (`galerkin-3-gauss-3` is `gauss-3`), and
+    /// the user must recognise the name in the message.
+    pub fn constraint_refusal_as_written(&self, written: &str) -> Option<ConstraintRefusal> {
+        let reason = self.constraint_refusal()?;
+        let (written, own) = (written.trim(), self.to_string());
+        let note = match written == own {
+            true => reason,
+            false => format!("`{written}` is the rule `{own}`: {reason}"),
+        };
+        Some(ConstraintRefusal {
+            headline: format!("the method `{written}` cannot be used with constraints"),
+            note,
+        })
+    }
+}
+
 impl fmt::Display for Method {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -154,6 +183,39 @@ mod tests {
         assert_eq!(Method::parse("exact").unwrap(), Method::Exact);
         assert_eq!(Method::Exact.to_string(), "exact");
         assert_eq!(Method::Exact.order(), None);
+    }
+
+    /// The refusal with constraints names the method as written: `galerkin-3-gauss-3` and a
+    /// composition of it, not only the rule's own name `gauss-3`.
+    #[test]
+    fn constraint_refusal_names_the_written_method() {
+        for written in ["galerkin-3-gauss-3", "triple-jump-4(galerkin-2-gauss-2)"] {
+            let refusal = Method::parse(written)
+                .unwrap()
+                .constraint_refusal_as_written(written)
+                .unwrap();
+            assert_eq!(
+                refusal.headline,
+                format!("the method `{written}` cannot be used with constraints")
+            );
+            assert!(
+                refusal
+                    .note
+                    .starts_with(&format!("`{written}` is the rule `")),
+                "{}",
+                refusal.note
+            );
+        }
+        let own = Method::parse("gauss-2")
+            .unwrap()
+            .constraint_refusal_as_written("gauss-2")
+            .unwrap();
+        assert!(own.note.starts_with("gauss-2 has no stage"), "{}", own.note);
+        let lobatto = Method::parse("galerkin-2-lobatto-3").unwrap();
+        assert_eq!(
+            lobatto.constraint_refusal_as_written("galerkin-2-lobatto-3"),
+            None
+        );
     }
 
     #[test]

@@ -10,6 +10,7 @@
 //! notebook cell), [`member`] (one member of a sweep).
 
 pub mod check;
+pub mod constraint_regularity;
 pub mod discrete;
 pub mod events;
 #[cfg(test)]
@@ -152,6 +153,44 @@ pub fn validate(source: SourceFile, overrides: &Overrides) -> Result<RunSpec, Di
 /// value, validated again (without its `[sweep]`).
 ///
 /// # Errors
+/// Refuses a constraint whose gradient vanishes on its zero set
+/// ([`constraint_regularity::vanishing_gradient`]), pointing at it in `[system] constraints`.
+fn refuse_vanishing_gradient(
+    ck: &Checker<'_>,
+    raw: &raw::RawProblem,
+    constraint: &crate::model::ExprConstraint,
+    q0: &[f64],
+) -> Result<(), Diagnostic> {
+    let Some(v) = constraint_regularity::vanishing_gradient(constraint, q0) else {
+        return Ok(());
+    };
+    let item = (raw.system.as_ref())
+        .and_then(|s| s.get_ref().constraints.as_ref())
+        .and_then(|list| list.get_ref().get(v.index));
+    let text = item.map_or(String::new(), |c| format!(" `{}`", c.get_ref()));
+    let i = v.index;
+    Err(ck
+        .error(
+            item.map(|c| c.span()),
+            format!(
+                "the gradient of constraint {i}{text} vanishes on its zero set: |∇φ_{i}| = \
+                 {:.1e} at q = [{}] (where φ_{i} = 0), against {:.1e} at {:.0e} beside it",
+                v.gradient,
+                (v.at.iter().map(|x| format!("{x:.6}")))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                v.beside,
+                v.offset
+            ),
+        )
+        .note(
+            "the constraint forces −Dφ(q)ᵀλ cannot act where ∇φ = 0: the multipliers are \
+             undetermined and every step's Newton matrix is singular (φ has a multiple root \
+             there, as a square (…)^2 has)",
+        )
+        .help("write φ with a simple root, e.g. \"x^2 + y^2 - 1\" rather than its square"))
+}
+
 /// A value the problem cannot take (e.g. initial positions off the constraints).
 pub fn member(base: &RunSpec, overrides: &Overrides, k: usize) -> Result<RunSpec, Diagnostic> {
     let source = base.source.clone();
@@ -198,6 +237,7 @@ fn validate_raw(
         }
     };
     let system = system;
+    refuse_vanishing_gradient(&ck, raw, &system.constraint, &initial.q)?;
     // With `project = true` the start is projected onto the manifold when the run starts
     // (`run::start`), so positions off it are accepted here.
     if !initial.project {
@@ -215,21 +255,13 @@ fn validate_raw(
         };
         rigid_settings::refuse_unsupported(&ck, raw, what)?;
     }
-    if !system.constraint.components().is_empty()
-        && let Some(reason) = integrator.method.constraint_refusal()
-    {
-        let span = (raw.integrator.as_ref())
-            .and_then(|i| i.get_ref().method.as_ref())
-            .map(|m| m.span());
-        return Err(ck
-            .error(
-                span,
-                format!(
-                    "the method `{}` cannot be used with constraints",
-                    integrator.method
-                ),
-            )
-            .note(reason));
+    if !system.constraint.components().is_empty() {
+        let written = (raw.integrator.as_ref()).and_then(|i| i.get_ref().method.as_ref());
+        let name = written.map_or(integrator.method.to_string(), |m| m.get_ref().clone());
+        if let Some(refusal) = integrator.method.constraint_refusal_as_written(&name) {
+            let span = written.map(|m| m.span());
+            return Err(ck.error(span, refusal.headline).note(refusal.note));
+        }
     }
     if integrator.method == Method::Exact && system.force.is_active() {
         let span = (raw.integrator.as_ref())

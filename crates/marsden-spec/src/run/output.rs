@@ -4,9 +4,11 @@
 //! `t, q_<name>…, p_<name>…, energy`, then `J_<symmetry>` per symmetry, then
 //! `constraint_residual` and the multipliers `lambda_<i>` (the constraint forces `−Dφ(q)ᵀλ`,
 //! implied by each stored state, `marsden::holonomic::multipliers_at`) when there are
-//! constraints. The same [`Layout`] names
+//! constraints, then the observables, and last, with constraints, the hidden constraint's
+//! residual `constraint_velocity_residual` (`max_i |(Dφ(q)·v)_i|`). The same [`Layout`] names
 //! the CSV header and the `.npy` files (`t.npy`, `q.npy`, `p.npy`, `energy.npy`, `J.npy`,
-//! `constraint_residual.npy`, `lambda.npy`).
+//! `constraint_residual.npy`, `lambda.npy`, `observables.npy`,
+//! `constraint_velocity_residual.npy`).
 
 use std::path::Path;
 
@@ -20,6 +22,9 @@ pub const TRAJECTORY_CSV: &str = "trajectory.csv";
 pub const SUMMARY_JSON: &str = "summary.json";
 /// Name of the constraint-residual column.
 pub const CONSTRAINT_RESIDUAL: &str = "constraint_residual";
+/// Name of the hidden constraint's residual column `|Dφ(q)·v|`, the last column of a
+/// constrained run (after the observables).
+pub const CONSTRAINT_VELOCITY_RESIDUAL: &str = "constraint_velocity_residual";
 /// Name of the multipliers' group (`lambda_0`, `lambda_1`, …; `lambda.npy`).
 pub const LAMBDA: &str = "lambda";
 /// A rigid body's attitude group (`R.npy`).
@@ -35,11 +40,24 @@ pub const BODY_MOMENTUM_COLUMNS: [&str; 3] = ["Pi1", "Pi2", "Pi3"];
 /// Name of the observables' group (`observables.npy`); the columns are the observables' names.
 pub const OBSERVABLES: &str = "observables";
 
-/// The column layout of a system's trajectory.
+/// The column layout of a system's trajectory (without observables: [`layout_of`]).
 ///
 /// # Errors
 /// If two columns would have the same name.
 pub fn layout(system: &SystemSpec) -> marsden_io::Result<Layout> {
+    let mut groups = system_groups(system);
+    groups.extend(velocity_residual(system));
+    Layout::new(groups)
+}
+
+/// The group of the hidden constraint's residual, last, when `system` has constraints.
+fn velocity_residual(system: &SystemSpec) -> Option<Group> {
+    let constrained = !system.constraint.components().is_empty();
+    constrained.then(|| Group::scalar(CONSTRAINT_VELOCITY_RESIDUAL))
+}
+
+/// The groups of a system's trajectory before the observables.
+fn system_groups(system: &SystemSpec) -> Vec<Group> {
     let q = system.coordinates.iter().map(|c| format!("q_{c}"));
     let p = system.coordinates.iter().map(|c| format!("p_{c}"));
     let j = system
@@ -70,7 +88,7 @@ pub fn layout(system: &SystemSpec) -> marsden_io::Result<Layout> {
             (0..d).map(|i| format!("{LAMBDA}_{i}")),
         ));
     }
-    Layout::new(groups)
+    groups
 }
 
 /// The suffixes of a body's columns in a multibody trajectory, per group.
@@ -137,16 +155,17 @@ fn multibody_layout_from_columns(names: &[String]) -> Option<marsden_io::Result<
 /// As [`layout`].
 pub fn layout_of(spec: &RunSpec) -> marsden_io::Result<Layout> {
     let observables = &spec.events.observables.names;
-    if observables.is_empty() {
-        return layout(&spec.system);
+    let mut groups = system_groups(&spec.system);
+    if !observables.is_empty() {
+        groups.push(Group::vector(OBSERVABLES, observables.iter().cloned()));
     }
-    let mut groups = layout(&spec.system)?.groups().to_vec();
-    groups.push(Group::vector(OBSERVABLES, observables.iter().cloned()));
+    groups.extend(velocity_residual(&spec.system));
     Layout::new(groups)
 }
 
 /// The layout of a finished run from its column names (as `summary.json` lists them):
-/// grouped by the prefixes `q_`, `p_`, `J_`; `t`, `energy` and `constraint_residual` alone.
+/// grouped by the prefixes `q_`, `p_`, `J_`; `t`, `energy`, `constraint_residual` and
+/// `constraint_velocity_residual` alone.
 ///
 /// # Errors
 /// If the names do not form a valid layout.
@@ -177,7 +196,12 @@ pub fn layout_from_columns(names: &[String]) -> marsden_io::Result<Layout> {
         groups.push(Group::vector(ATTITUDE, ATTITUDE_COLUMNS));
         groups.push(Group::vector(BODY_MOMENTUM, BODY_MOMENTUM_COLUMNS));
     }
-    const SCALARS: [&str; 3] = ["t", "energy", CONSTRAINT_RESIDUAL];
+    const SCALARS: [&str; 4] = [
+        "t",
+        "energy",
+        CONSTRAINT_RESIDUAL,
+        CONSTRAINT_VELOCITY_RESIDUAL,
+    ];
     for scalar in SCALARS {
         if names.iter().any(|n| n == scalar) {
             groups.push(Group::scalar(scalar));
@@ -216,6 +240,7 @@ const RUN_FILES: [&str; 26] = [
     "energy.npy",
     "J.npy",
     "constraint_residual.npy",
+    "constraint_velocity_residual.npy",
     "lambda.npy",
     marsden_io::plot::PHASE_PORTRAIT_PNG,
     marsden_io::plot::ENERGY_ERROR_PNG,
@@ -358,6 +383,7 @@ mod tests {
             "J_Lz",
             "constraint_residual",
             "lambda_0",
+            "constraint_velocity_residual",
         ]
         .map(String::from)
         .to_vec();

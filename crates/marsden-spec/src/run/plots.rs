@@ -95,7 +95,8 @@ pub const SWEEP_PNG: &str = "sweep.png";
 const BOOKKEEPING: [&str; 4] = ["member", "steps", "steps_requested", "status"];
 
 /// Draws `sweep.png` from the sweep table in `dir` (`sweep.csv`, or `sweep.npy` with the
-/// column names of `summary.json`): each per-member result against the first swept value.
+/// column names of `summary.json`): each per-member result against the first swept value, and
+/// for a grid one curve per combination of the other swept values.
 ///
 /// # Errors
 /// Bad input if the table cannot be read or has no swept column; failed if the plot cannot
@@ -143,8 +144,20 @@ pub fn draw_sweep(dir: &Path) -> Result<PlotReport, Error> {
         name: &x.name,
         values: &x.values,
     };
-    plot_sweep(dir.join(SWEEP_PNG), x, &quantities, &PlotOptions::default())
-        .map_err(|e| Error::failed(Diagnostic::new(format!("cannot draw the sweep plot: {e}"))))
+    // A grid: the other swept axes pick the curves.
+    let others: Vec<Series<'_>> = (table.columns().iter())
+        .filter(|c| c.name != x.name && is_swept(&c.name))
+        .map(|c| Series {
+            name: &c.name,
+            values: &c.values,
+        })
+        .collect();
+    let (path, opts) = (dir.join(SWEEP_PNG), PlotOptions::default());
+    match others.is_empty() {
+        true => plot_sweep(path, x, &quantities, &opts),
+        false => marsden_io::plot::plot_sweep_grid(path, x, &others, &quantities, &opts),
+    }
+    .map_err(|e| Error::failed(Diagnostic::new(format!("cannot draw the sweep plot: {e}"))))
 }
 
 /// `sweep.npy` as a table, its columns named by `names` (from `summary.json`).
@@ -187,6 +200,7 @@ fn monitored(names: &[String]) -> Vec<&str> {
     let watched = |n: &&str| {
         *n == "energy"
             || *n == "constraint_residual"
+            || *n == "constraint_velocity_residual"
             || n.starts_with("J_")
             || n.starts_with("lambda_")
     };
@@ -281,10 +295,21 @@ fn csv_header(path: &Path) -> std::io::Result<Vec<String>> {
     use std::io::BufRead;
     use std::io::Read;
     let mut line = String::new();
-    let file = std::fs::File::open(path)?;
+    let file = std::fs::File::open(path).map_err(|e| {
+        std::io::Error::new(e.kind(), format!("cannot open {}: {e}", path.display()))
+    })?;
     let n = std::io::BufReader::new(file)
         .take(marsden_io::csv::MAX_LINE)
-        .read_line(&mut line)?;
+        .read_line(&mut line)
+        .map_err(|e| {
+            let why = match e.kind() {
+                std::io::ErrorKind::InvalidData => {
+                    "its first line is not UTF-8 text: not a trajectory".to_owned()
+                }
+                _ => format!("cannot read it: {e}"),
+            };
+            std::io::Error::new(e.kind(), format!("{}: {why}", path.display()))
+        })?;
     if n as u64 == marsden_io::csv::MAX_LINE && !line.ends_with('\n') {
         return Err(std::io::Error::other(format!(
             "{}: its first line is longer than {} bytes: not a trajectory",

@@ -2,7 +2,7 @@
 //! [`Tee`] (files and memory at once) and [`NullSink`] (sweep members keep nothing).
 //!
 //! A row is laid out as the files are (`t, q…, p…, energy, J…, constraint_residual, λ…,
-//! observables…`, see
+//! observables…, constraint_velocity_residual`, see
 //! [`output`](super::output)); rows bound for memory carry the velocities `v…` after that.
 
 use marsden_io::RowSink;
@@ -40,6 +40,8 @@ pub struct Samples {
     pub lambda: Vec<Vec<f64>>,
     /// `[output] observables`, by name (in the file's order).
     pub observables: Vec<(String, Vec<f64>)>,
+    /// The hidden constraint's residual `max_i |(Dφ(q)·v)_i|`, if the system has constraints.
+    pub constraint_velocity_residual: Option<Vec<f64>>,
 }
 
 impl Samples {
@@ -71,6 +73,7 @@ impl Samples {
             constraint_residual: constrained.then(Vec::new),
             lambda: vec![Vec::new(); system.constraint.components().len() + joint_rows],
             observables: Vec::new(),
+            constraint_velocity_residual: constrained.then(Vec::new),
         }
     }
 
@@ -104,6 +107,7 @@ impl Samples {
             + usize::from(self.constraint_residual.is_some())
             + self.lambda.len()
             + self.observables.len()
+            + usize::from(self.constraint_velocity_residual.is_some())
     }
 }
 
@@ -129,7 +133,8 @@ impl RowSink for Samples {
             column.push(next());
         }
         let observables = self.observables.iter_mut().map(|(_, c)| c);
-        for column in self.lambda.iter_mut().chain(observables).chain(&mut self.v) {
+        let hidden = self.constraint_velocity_residual.iter_mut();
+        for column in (self.lambda.iter_mut().chain(observables).chain(hidden)).chain(&mut self.v) {
             column.push(next());
         }
         Ok(())

@@ -121,6 +121,9 @@ pub struct Summary {
     pub t_final: f64,
     /// Wall-clock time of the integration (streaming included, plots excluded).
     pub wall_seconds: f64,
+    /// The part of `wall_seconds` spent compiling expressions to native code (the JIT, at the
+    /// first use of each tape): left out of the time per step.
+    pub jit_compile_seconds: f64,
     /// Energy errors over the stored samples.
     pub energy: EnergySummary,
     /// Momentum maps, by symmetry name (in the file's order).
@@ -478,6 +481,7 @@ impl Summary {
             t_initial: integrator.grid.t0,
             t_final: record.final_state.t,
             wall_seconds: record.wall_seconds,
+            jit_compile_seconds: record.jit_compile_seconds,
             energy: EnergySummary {
                 initial: available(d.energy.report().initial),
                 max_abs_error: available(error(d.energy.report().max_abs_error)),
