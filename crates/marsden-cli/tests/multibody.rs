@@ -39,7 +39,9 @@ fn final_angle(s: &Value, name: &str) -> f64 {
 
 /// Component `axis` of `multibody.angular_momentum.<what>`.
 fn momentum(s: &Value, what: &str, axis: usize) -> f64 {
-    s["multibody"]["angular_momentum"][what][axis].as_f64().unwrap()
+    s["multibody"]["angular_momentum"][what][axis]
+        .as_f64()
+        .unwrap()
 }
 
 const T_END: f64 = 1.0;
@@ -76,7 +78,10 @@ fn slope(hs: &[f64], errors: &[f64]) -> f64 {
 fn errors(method: &str, hs: &[f64]) -> Vec<f64> {
     let reference = reduced_angles();
     let text = double_pendulum_text()
-        .replace("method = \"trapezoid\"", &format!("method = \"{method}\"\ntolerance = 1e-14"))
+        .replace(
+            "method = \"trapezoid\"",
+            &format!("method = \"{method}\"\ntolerance = 1e-14"),
+        )
         .replace("every = 10", "every = 1\nplots = false");
     hs.iter()
         .map(|&h| {
@@ -86,7 +91,10 @@ fn errors(method: &str, hs: &[f64]) -> Vec<f64> {
             let s = run.summary();
             // Every step is stored (`every = 1`): the joints at every step.
             let residual = number(&s, "multibody.max_joint_residual");
-            assert!(residual <= 1e-13, "{method}, h = {h}: joints open by {residual:e}");
+            assert!(
+                residual <= 1e-13,
+                "{method}, h = {h}: joints open by {residual:e}"
+            );
             let a = (final_angle(&s, "a") - reference[0]).abs();
             let b = (final_angle(&s, "b") - reference[1]).abs();
             a.max(b)
@@ -124,14 +132,22 @@ fn r22_three_dimensional_pendulum_keeps_its_vertical_angular_momentum() {
     assert!(number(&s, "multibody.orthogonality_defect") <= 1e-13);
     // The energy error is bounded (a symplectic map of fixed step), not zero.
     assert!(number(&s, "energy.max_rel_error") < 1e-3);
-    for png in ["energy_error.png", "constraint_residual.png", "multipliers.png"] {
+    for png in [
+        "energy_error.png",
+        "constraint_residual.png",
+        "multipliers.png",
+    ] {
         assert!(run.out.join(png).exists(), "{png} not drawn");
     }
 }
 
 #[test]
 fn free_satellite_with_a_reaction_wheel_keeps_its_total_angular_momentum() {
-    let run = marsden("run", &example("satellite_reaction_wheel.toml"), &["--steps", "2000"]);
+    let run = marsden(
+        "run",
+        &example("satellite_reaction_wheel.toml"),
+        &["--steps", "2000"],
+    );
     assert_eq!(run.code, 0, "{}", run.stderr);
     let s = run.summary();
     let size = (0..3)
@@ -150,8 +166,17 @@ fn a_chain_names_its_columns_by_body_and_joint() {
     assert_eq!(run.code, 0, "{}", run.stderr);
     let table = run.trajectory();
     for c in [
-        "t", "link0_x", "link9_z", "link0_R11", "link9_R33", "link0_p_x", "link3_Pi2", "energy",
-        "constraint_residual", "lambda_hinge0_0", "lambda_hinge9_4",
+        "t",
+        "link0_x",
+        "link9_z",
+        "link0_R11",
+        "link9_R33",
+        "link0_p_x",
+        "link3_Pi2",
+        "energy",
+        "constraint_residual",
+        "lambda_hinge0_0",
+        "lambda_hinge9_4",
     ] {
         assert!(table.values(c).is_some(), "no column {c}");
     }
@@ -166,7 +191,11 @@ fn refused(text: &str, fragments: &[&str]) {
     let (run, _dir) = run_text(text, &[]);
     assert_eq!(run.code, 2, "exit code; stderr:\n{}", run.stderr);
     for f in fragments {
-        assert!(run.stderr.contains(f), "message lacks {f:?}:\n{}", run.stderr);
+        assert!(
+            run.stderr.contains(f),
+            "message lacks {f:?}:\n{}",
+            run.stderr
+        );
     }
 }
 
@@ -182,7 +211,10 @@ fn a_start_off_a_joint_is_refused_with_the_joint_and_residual_and_project_closes
         "x = [-0.5886177384731581, 0.0, -1.082140465272107]",
         "x = [-0.5786177384731581, 0.0, -1.082140465272107]",
     );
-    refused(&off, &["start off joint `elbow`", "1.000e-2", "project = true"]);
+    refused(
+        &off,
+        &["start off joint `elbow`", "1.000e-2", "project = true"],
+    );
     let projected = off.replace("[initial.a]", "[initial]\nproject = true\n\n[initial.a]");
     let (run, _dir) = run_text(&projected, &["--steps", "100"]);
     assert_eq!(run.code, 0, "{}", run.stderr);
@@ -191,10 +223,8 @@ fn a_start_off_a_joint_is_refused_with_the_joint_and_residual_and_project_closes
 
 #[test]
 fn velocities_that_break_a_joint_are_refused() {
-    let text = double_pendulum_text().replace(
-        "[initial.b]\n",
-        "[initial.b]\nv = [0.0, 0.3, 0.0]\n",
-    );
+    let text =
+        double_pendulum_text().replace("[initial.b]\n", "[initial.b]\nv = [0.0, 0.3, 0.0]\n");
     refused(&text, &["initial velocities break joint `elbow`"]);
 }
 
@@ -212,16 +242,61 @@ fn redundant_joints_are_refused() {
 fn bad_bodies_joints_and_initial_tables_are_refused_with_their_messages() {
     let base = double_pendulum_text();
     let cases: Vec<(String, Vec<&str>)> = vec![
-        (base.replace("kind = \"revolute\"\nbodies = [\"a\", \"b\"]", "kind = \"hinge\"\nbodies = [\"a\", \"b\"]"), vec!["unknown joint kind `hinge`", "\"revolute\""]),
-        (base.replace("name = \"b\"", "name = \"ground\""), vec!["`ground` names the space frame"]),
-        (base.replace("[initial.b]", "[initial.c]"), vec!["[initial.c] names no body"]),
-        (base.replace("[initial.a]\n", "[initial]\nq = [1.0]\n\n[initial.a]\n"), vec!["`q` in [initial] does not say which body"]),
-        (base.replace("gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\npotential = \"a_z\""), vec!["`potential` cannot be used with `[[system.body]]`"]),
-        (base.replace("method = \"trapezoid\"", "method = \"gauss-2\""), vec!["has no rigid-body version"]),
-        (base.replace("inertia = [0.08333333333333333, 0.08333333333333333, 0.001]\n\n[[system.body]]", "\n[[system.body]]"), vec!["body `a` has no `inertia`"]),
-        (base.replace("axis = [[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]]\n\n[initial.a]", "axis = [[0.0, 1.0, 0.0]]\n\n[initial.a]"), vec!["`axis` must be two vectors"]),
-        (base.replace("[initial.a]\nrotation_vector", "[initial.a]\nOmegaa = [0.0, 0.0, 0.0]\nrotation_vector"), vec!["Omegaa", "Omega"]),
-        (format!("{base}\n[sweep]\nparameter = \"h\"\nvalues = [0.01, 0.02]\n"), vec!["not available for a multibody system"]),
+        (
+            base.replace(
+                "kind = \"revolute\"\nbodies = [\"a\", \"b\"]",
+                "kind = \"hinge\"\nbodies = [\"a\", \"b\"]",
+            ),
+            vec!["unknown joint kind `hinge`", "\"revolute\""],
+        ),
+        (
+            base.replace("name = \"b\"", "name = \"ground\""),
+            vec!["`ground` names the space frame"],
+        ),
+        (
+            base.replace("[initial.b]", "[initial.c]"),
+            vec!["[initial.c] names no body"],
+        ),
+        (
+            base.replace("[initial.a]\n", "[initial]\nq = [1.0]\n\n[initial.a]\n"),
+            vec!["`q` in [initial] does not say which body"],
+        ),
+        (
+            base.replace(
+                "gravity = [0.0, 0.0, -9.81]",
+                "gravity = [0.0, 0.0, -9.81]\npotential = \"a_z\"",
+            ),
+            vec!["`potential` cannot be used with `[[system.body]]`"],
+        ),
+        (
+            base.replace("method = \"trapezoid\"", "method = \"gauss-2\""),
+            vec!["has no rigid-body version"],
+        ),
+        (
+            base.replace(
+                "inertia = [0.08333333333333333, 0.08333333333333333, 0.001]\n\n[[system.body]]",
+                "\n[[system.body]]",
+            ),
+            vec!["body `a` has no `inertia`"],
+        ),
+        (
+            base.replace(
+                "axis = [[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]]\n\n[initial.a]",
+                "axis = [[0.0, 1.0, 0.0]]\n\n[initial.a]",
+            ),
+            vec!["`axis` must be two vectors"],
+        ),
+        (
+            base.replace(
+                "[initial.a]\nrotation_vector",
+                "[initial.a]\nOmegaa = [0.0, 0.0, 0.0]\nrotation_vector",
+            ),
+            vec!["Omegaa", "Omega"],
+        ),
+        (
+            format!("{base}\n[sweep]\nparameter = \"h\"\nvalues = [0.01, 0.02]\n"),
+            vec!["not available for a multibody system"],
+        ),
     ];
     for (text, fragments) in cases {
         refused(&text, &fragments);
@@ -230,6 +305,7 @@ fn bad_bodies_joints_and_initial_tables_are_refused_with_their_messages() {
 
 #[test]
 fn a_body_table_in_a_file_without_bodies_is_refused() {
-    let text = std::fs::read_to_string(example("pendulum.toml")).unwrap() + "\n[initial.a]\nx = [0.0, 0.0, 0.0]\n";
+    let text = std::fs::read_to_string(example("pendulum.toml")).unwrap()
+        + "\n[initial.a]\nx = [0.0, 0.0, 0.0]\n";
     refused(&text, &["unknown table [initial.a]", "[[system.body]]"]);
 }

@@ -44,7 +44,10 @@ pub fn outcome<'py>(py: Python<'py>, outcome: &Outcome) -> PyResult<Bound<'py, P
         let at = |(k, b, i, j): (usize, usize, usize, usize)| attitude[9 * b + 3 * i + j][k];
         let r = numpy::ndarray::Array4::from_shape_fn((samples.len(), bodies, 3, 3), at);
         d.set_item("attitudes", r.into_pyarray(py))?;
-        d.set_item("body_momenta", rows(py, &samples.body_momentum, samples.len()))?;
+        d.set_item(
+            "body_momenta",
+            rows(py, &samples.body_momentum, samples.len()),
+        )?;
     }
     let Samples {
         t,

@@ -1,8 +1,9 @@
 //! A multibody file's run ([`MultibodyEngine`]): the constrained Lie group variational
 //! integrator of the core (`marsden::lie::multibody`, [LMO08] on the bodies' groups) on the
 //! file's bodies and joints, its samples streamed as rows
-//! `t, <body>_R11…, <body>_Pi1…, <body>_x…, <body>_p_x…, energy, joint_residual, lambda_…`,
-//! with the joints' residuals, the attitudes' orthogonality and the total momenta monitored.
+//! `t, <body>_R11…, <body>_Pi1…, <body>_x…, <body>_p_x…, energy, constraint_residual,
+//! lambda_<joint>_<i>…, constraint_velocity_residual`, with the joints' residuals (positions
+//! and rates), the attitudes' orthogonality and the total momenta monitored.
 //!
 //! [LMO08]: marsden#references
 

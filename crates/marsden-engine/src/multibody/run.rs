@@ -10,6 +10,7 @@ use marsden::lie::lgvi::LgviOptions;
 use marsden::lie::multibody::gravity::GravityField;
 use marsden::lie::multibody::step::MultibodyLgvi;
 use marsden::lie::potential::NoLoads;
+use marsden::lie::so3::Vec3;
 use marsden::numerics::dense::max_norm;
 use marsden_problem::error::Diagnostic;
 use marsden_problem::problem::multibody::MultibodySpec;
@@ -136,6 +137,8 @@ pub(super) fn run(
         },
         statistics,
         wall_seconds,
+        // No expression of a multibody file is compiled to native code.
+        jit_compile_seconds: 0.0,
         rows: writer.rows,
         diagnostics: writer.diagnostics,
         balance: None,
@@ -157,7 +160,10 @@ fn with_joint_name(bodies: &MultibodySpec, lgvi: &Stepper, message: String) -> S
     });
     match worst.map(|k| joints.joint_of_row(k)) {
         Some(j) if message.contains("constraint") => {
-            format!("{message} (the joints' rows are numbered in the file's order; joint `{}` holds the worst at the step's start)", bodies.joints[j].name)
+            format!(
+                "{message} (the joints' rows are numbered in the file's order; joint `{}` holds the worst at the step's start)",
+                bodies.joints[j].name
+            )
         }
         _ => message,
     }
@@ -171,6 +177,10 @@ struct Rows<'b, 'd> {
     rows: u64,
     diagnostics: Diagnostics,
     monitor: MultibodyRecord,
+    /// Scratch of the velocity residual: `J⁻¹Π`, `p/m` per body, the rows' rates.
+    omega: Vec<Vec3>,
+    velocity: Vec<Vec3>,
+    rates: Vec<f64>,
 }
 
 impl<'b, 'd> Rows<'b, 'd> {
@@ -182,7 +192,32 @@ impl<'b, 'd> Rows<'b, 'd> {
             rows: 0,
             diagnostics: Diagnostics::new(0, true),
             monitor: MultibodyRecord::default(),
+            omega: Vec::new(),
+            velocity: Vec::new(),
+            rates: Vec::new(),
         }
+    }
+
+    /// The hidden constraint's residual `max_k |Σ_i ∂g_k/∂ξ_i · J_i⁻¹Π_i + ∂g_k/∂x_i · p_i/m_i|`:
+    /// the rates of the joints' rows, which the RATTLE projection sets to zero.
+    fn velocity_residual(&mut self, lgvi: &Stepper) -> f64 {
+        let state = lgvi.state();
+        let bodies = &lgvi.system().bodies;
+        self.omega.clear();
+        self.velocity.clear();
+        for (i, body) in bodies.iter().enumerate() {
+            self.omega.push(body.inertia.inverse() * state.momentum(i));
+            self.velocity
+                .push(state.linear_momentum(i) / body.mass.unwrap_or(1.0));
+        }
+        self.rates.resize(lgvi.joints().rows(), 0.0);
+        lgvi.joints().rates(
+            lgvi.joint_rows(),
+            &self.omega,
+            &self.velocity,
+            &mut self.rates,
+        );
+        max_norm(&self.rates)
     }
 
     /// Stores the state of `lgvi`; the error if the row cannot be written or the state is not
@@ -200,6 +235,8 @@ impl<'b, 'd> Rows<'b, 'd> {
         self.row.push(energy);
         self.row.push(residual);
         self.row.extend_from_slice(lgvi.multipliers());
+        let rate = self.velocity_residual(lgvi);
+        self.row.push(rate);
         if self.destination.with_velocity {
             for (i, body) in self.bodies.bodies.iter().enumerate() {
                 let p = &state.linear_momenta[3 * i..3 * i + 3];
@@ -208,8 +245,14 @@ impl<'b, 'd> Rows<'b, 'd> {
         }
         self.diagnostics.energy.push(state.t, energy);
         self.diagnostics.push_residual(residual);
+        self.diagnostics.push_velocity_residual(rate);
         let momentum = invariants::spatial_angular_momentum(state);
-        for (stats, value) in self.monitor.angular_momentum.iter_mut().zip(momentum.iter()) {
+        for (stats, value) in self
+            .monitor
+            .angular_momentum
+            .iter_mut()
+            .zip(momentum.iter())
+        {
             stats.push(*value);
         }
         let record = &mut self.monitor;
@@ -225,7 +268,10 @@ impl<'b, 'd> Rows<'b, 'd> {
         }
         self.rows += 1;
         (!energy.is_finite() || !self.row.iter().all(|v| v.is_finite())).then(|| {
-            format!("the state is not finite at t = {}: the step diverged", state.t)
+            format!(
+                "the state is not finite at t = {}: the step diverged",
+                state.t
+            )
         })
     }
 }

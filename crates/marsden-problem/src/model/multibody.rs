@@ -23,7 +23,10 @@ pub type MultibodySystem = RigidSystem<GravityField>;
 /// # Errors
 /// A body or joint the core refuses (checked when the file was read), an initial attitude that
 /// is not a rotation.
-pub fn core(spec: &MultibodySpec, t0: f64) -> Result<(MultibodySystem, JointSet, RigidState), Error> {
+pub fn core(
+    spec: &MultibodySpec,
+    t0: f64,
+) -> Result<(MultibodySystem, JointSet, RigidState), Error> {
     let bodies = (spec.bodies.iter())
         .map(|b| RigidBody::free(b.inertia, b.mass))
         .collect::<Result<Vec<_>, _>>()?;
@@ -58,9 +61,8 @@ fn joint(j: &JointSpec, state: &RigidState) -> Result<Joint, Error> {
         },
         JointKindSpec::Fixed => JointKind::Fixed { reference },
         JointKindSpec::Distance { length } => {
-            let at = |side: usize| {
-                position(j.bodies[side]) + attitude(j.bodies[side]) * points[side]
-            };
+            let at =
+                |side: usize| position(j.bodies[side]) + attitude(j.bodies[side]) * points[side];
             JointKind::Distance {
                 length: length.unwrap_or_else(|| (at(1) - at(0)).norm()),
             }

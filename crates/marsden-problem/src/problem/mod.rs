@@ -18,15 +18,15 @@ mod events_tests;
 pub mod grid;
 pub mod hamiltonian;
 pub mod method;
+pub mod multibody;
+pub mod multibody_initial;
 pub mod named_symmetry;
 pub mod nbody_file;
 pub mod optimal_control;
 pub mod parameters;
 pub mod raw;
-mod resolved;
-pub mod multibody;
-pub mod multibody_initial;
 pub mod raw_multibody;
+mod resolved;
 pub mod rigid;
 pub mod rigid_catalog;
 pub mod rigid_settings;
@@ -215,7 +215,8 @@ fn validate_raw(
     let bodies = nbody_file::read(&ck, raw.initial.as_ref())?;
     let system = system::system(&ck, raw.system.as_ref(), bodies.as_ref())?;
     let mut system = system;
-    let (initial, initial_spans) = if let LagrangianSpec::Multibody(bodies) = &mut system.lagrangian {
+    let (initial, initial_spans) = if let LagrangianSpec::Multibody(bodies) = &mut system.lagrangian
+    {
         let read = multibody_initial::initial(&ck, raw.initial.as_ref(), bodies)?;
         if let (false, Some(raw_system)) = (read.0.project, raw.system.as_ref()) {
             multibody_initial::check_joints(&ck, raw_system.get_ref(), bodies, read.0.t0)?;

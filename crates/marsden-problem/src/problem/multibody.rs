@@ -17,8 +17,9 @@
 //! ```
 //!
 //! The configuration is `(SO(3) × ℝ³)ᵐ`, one attitude and centre of mass per body; the columns
-//! are `<body>_x … <body>_z`, `<body>_R11 … <body>_R33`, `<body>_p_x …`, `<body>_Pi1 …`, then
-//! `energy`, `joint_residual` and the multipliers `lambda_<joint>_<i>`.
+//! are `<body>_R11 … <body>_R33`, `<body>_Pi1 …`, `<body>_x … <body>_z`, `<body>_p_x …`, then
+//! `energy`, `constraint_residual` (the joints'), the multipliers `lambda_<joint>_<i>` and
+//! `constraint_velocity_residual`.
 
 use std::ops::Range;
 
@@ -113,7 +114,11 @@ pub fn is_multibody(system: &RawSystem) -> bool {
 pub(super) fn system(ck: &Checker<'_>, system: &RawSystem) -> Result<MultibodySpec, Diagnostic> {
     refuse_other_keys(ck, system)?;
     let Some(raw_bodies) = system.body.as_ref().filter(|b| !b.is_empty()) else {
-        let span = system.joint.as_ref().and_then(|j| j.first()).map(Spanned::span);
+        let span = system
+            .joint
+            .as_ref()
+            .and_then(|j| j.first())
+            .map(Spanned::span);
         return Err(ck
             .error(span, "joints need bodies: the file has no [[system.body]]")
             .help("add `[[system.body]]` tables with `name`, `mass` and `inertia`"));
@@ -143,7 +148,11 @@ pub(super) fn system(ck: &Checker<'_>, system: &RawSystem) -> Result<MultibodySp
     for (index, raw) in system.joint.as_deref().unwrap_or(&[]).iter().enumerate() {
         let joint = joint(ck, raw, index, &bodies)?;
         if joints.iter().any(|j: &JointSpec| j.name == joint.name) {
-            let span = raw.get_ref().name.as_ref().map_or(raw.span(), Spanned::span);
+            let span = raw
+                .get_ref()
+                .name
+                .as_ref()
+                .map_or(raw.span(), Spanned::span);
             return Err(ck.error(Some(span), format!("two joints are named `{}`", joint.name)));
         }
         joints.push(joint);
@@ -160,23 +169,35 @@ fn body(ck: &Checker<'_>, raw: &Spanned<RawBody>, index: usize) -> Result<BodySp
     let b = raw.get_ref();
     let Some(name) = &b.name else {
         return Err(ck
-            .error(Some(raw.span()), format!("body #{} has no `name`", index + 1))
+            .error(
+                Some(raw.span()),
+                format!("body #{} has no `name`", index + 1),
+            )
             .help("its columns are `<name>_x`, `<name>_R11`, …: e.g. `name = \"link1\"`"));
     };
     if !valid_name(name.get_ref()) {
         return Err(ck
-            .error(Some(name.span()), format!("`{}` is not a valid body name", name.get_ref()))
+            .error(
+                Some(name.span()),
+                format!("`{}` is not a valid body name", name.get_ref()),
+            )
             .help("a name is letters, digits and `_`, starting with a letter"));
     }
     let Some(mass) = &b.mass else {
         return Err(ck
-            .error(Some(raw.span()), format!("body `{}` has no `mass`", name.get_ref()))
+            .error(
+                Some(raw.span()),
+                format!("body `{}` has no `mass`", name.get_ref()),
+            )
             .help("every body of a multibody system moves: give its `mass`"));
     };
     let mass = match ck.finite("mass", mass)? {
         m if m > 0.0 => m,
         m => {
-            return Err(ck.error(Some(mass_span(b)), format!("the mass must be positive, not {m}")));
+            return Err(ck.error(
+                Some(mass_span(b)),
+                format!("the mass must be positive, not {m}"),
+            ));
         }
     };
     let Some(written) = &b.inertia else {
@@ -203,9 +224,15 @@ fn valid_name(name: &str) -> bool {
 }
 
 /// The inertia of a body of a mass distribution: the triangle inequalities are required.
-fn inertia(ck: &Checker<'_>, written: &Spanned<RawInertia>, index: usize) -> Result<Inertia, Diagnostic> {
+fn inertia(
+    ck: &Checker<'_>,
+    written: &Spanned<RawInertia>,
+    index: usize,
+) -> Result<Inertia, Diagnostic> {
     let rows = match written.get_ref() {
-        RawInertia::Principal(j) if j.len() == 3 => [j[0], 0.0, 0.0, 0.0, j[1], 0.0, 0.0, 0.0, j[2]],
+        RawInertia::Principal(j) if j.len() == 3 => {
+            [j[0], 0.0, 0.0, 0.0, j[1], 0.0, 0.0, 0.0, j[2]]
+        }
         RawInertia::Matrix(m) if m.len() == 3 && m.iter().all(|r| r.len() == 3) => {
             let mut rows = [0.0; 9];
             for (i, row) in m.iter().enumerate() {
@@ -215,13 +242,18 @@ fn inertia(ck: &Checker<'_>, written: &Spanned<RawInertia>, index: usize) -> Res
         }
         _ => {
             return Err(ck
-                .error(Some(written.span()), "the inertia must be three principal moments or a 3×3 matrix")
+                .error(
+                    Some(written.span()),
+                    "the inertia must be three principal moments or a 3×3 matrix",
+                )
                 .help("e.g. `inertia = [0.0833, 0.0833, 0.001]`"));
         }
     };
     Inertia::validated(index, &rows, Moments::Physical).map_err(|e| {
         ck.error(Some(written.span()), format!("invalid inertia: {e}"))
-            .help("a body's principal moments are positive and each at most the sum of the other two")
+            .help(
+                "a body's principal moments are positive and each at most the sum of the other two",
+            )
     })
 }
 
@@ -234,40 +266,64 @@ fn joint(
     let j = raw.get_ref();
     let Some(kind) = &j.kind else {
         return Err(ck
-            .error(Some(raw.span()), format!("joint #{} has no `kind`", index + 1))
+            .error(
+                Some(raw.span()),
+                format!("joint #{} has no `kind`", index + 1),
+            )
             .help(format!("one of {}", quoted(&JOINT_KINDS))));
     };
     let Some(sides) = &j.bodies else {
         return Err(ck
-            .error(Some(raw.span()), format!("joint #{} has no `bodies`", index + 1))
+            .error(
+                Some(raw.span()),
+                format!("joint #{} has no `bodies`", index + 1),
+            )
             .help("e.g. `bodies = [\"ground\", \"a\"]` (two bodies, or the ground and a body)"));
     };
     let side_index = |name: &str| -> Result<Option<usize>, Diagnostic> {
         if name == GROUND {
             return Ok(None);
         }
-        bodies.iter().position(|b| b.name == name).map(Some).ok_or_else(|| {
-            let names: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
-            ck.error(Some(sides.span()), format!("joint #{} names an unknown body `{name}`", index + 1))
-                .help(format!("the bodies are {} (and \"ground\")", quoted(&names)))
-        })
+        bodies
+            .iter()
+            .position(|b| b.name == name)
+            .map(Some)
+            .ok_or_else(|| {
+                let names: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
+                ck.error(
+                    Some(sides.span()),
+                    format!("joint #{} names an unknown body `{name}`", index + 1),
+                )
+                .help(format!(
+                    "the bodies are {} (and \"ground\")",
+                    quoted(&names)
+                ))
+            })
     };
     let [a, b] = sides.get_ref().as_slice() else {
         return Err(ck.error(
             Some(sides.span()),
-            format!("`bodies` names {} sides; a joint joins two", sides.get_ref().len()),
+            format!(
+                "`bodies` names {} sides; a joint joins two",
+                sides.get_ref().len()
+            ),
         ));
     };
     let pair = [side_index(a)?, side_index(b)?];
     if pair[0] == pair[1] {
-        return Err(ck
-            .error(Some(sides.span()), "a joint joins two different bodies (or a body and the ground)"));
+        return Err(ck.error(
+            Some(sides.span()),
+            "a joint joins two different bodies (or a body and the ground)",
+        ));
     }
     let points = match &j.at {
         Some(at) => pair_of_vectors(ck, at, "at")?,
         None => {
             return Err(ck
-                .error(Some(raw.span()), format!("joint #{} has no `at`", index + 1))
+                .error(
+                    Some(raw.span()),
+                    format!("joint #{} has no `at`", index + 1),
+                )
                 .help("the joint point in each frame: `at = [[x, y, z], [x, y, z]]`"));
         }
     };
@@ -291,7 +347,12 @@ fn joint(
                 None => None,
                 Some(l) => match ck.finite("length", l)? {
                     l if l > 0.0 => Some(l),
-                    l => return Err(ck.error(Some(l_span(j)), format!("the length must be positive, not {l}"))),
+                    l => {
+                        return Err(ck.error(
+                            Some(l_span(j)),
+                            format!("the length must be positive, not {l}"),
+                        ));
+                    }
                 },
             },
         },
@@ -301,23 +362,40 @@ fn joint(
                 .help(format!("one of {}", quoted(&JOINT_KINDS))));
         }
     };
-    let axis_ok = matches!(kind, JointKindSpec::Revolute { .. } | JointKindSpec::Prismatic { .. });
+    let axis_ok = matches!(
+        kind,
+        JointKindSpec::Revolute { .. } | JointKindSpec::Prismatic { .. }
+    );
     if let (Some(axis), false) = (&j.axis, axis_ok) {
-        return Err(ck.error(Some(axis.span()), format!("a {kind_name} joint has no axis")));
+        return Err(ck.error(
+            Some(axis.span()),
+            format!("a {kind_name} joint has no axis"),
+        ));
     }
     if let (Some(length), false) = (&j.length, matches!(kind, JointKindSpec::Distance { .. })) {
-        return Err(ck.error(Some(length.span()), format!("a {kind_name} joint has no length")));
+        return Err(ck.error(
+            Some(length.span()),
+            format!("a {kind_name} joint has no length"),
+        ));
     }
     let name = match &j.name {
         Some(n) if valid_name(n.get_ref()) => n.get_ref().clone(),
         Some(n) => {
             return Err(ck
-                .error(Some(n.span()), format!("`{}` is not a valid joint name", n.get_ref()))
+                .error(
+                    Some(n.span()),
+                    format!("`{}` is not a valid joint name", n.get_ref()),
+                )
                 .help("a name is letters, digits and `_`, starting with a letter"));
         }
         None => format!("{kind_name}{}", index + 1),
     };
-    Ok(JointSpec { name, kind, bodies: pair, points })
+    Ok(JointSpec {
+        name,
+        kind,
+        bodies: pair,
+        points,
+    })
 }
 
 fn l_span(j: &RawJoint) -> Range<usize> {
@@ -331,8 +409,11 @@ fn need_axis<'a>(
     index: usize,
 ) -> Result<&'a Spanned<Vec<Vec<f64>>>, Diagnostic> {
     j.axis.as_ref().ok_or_else(|| {
-        ck.error(Some(raw.span()), format!("joint #{} has no `axis`", index + 1))
-            .help("the axis in each frame: `axis = [[0, 1, 0], [0, 1, 0]]`")
+        ck.error(
+            Some(raw.span()),
+            format!("joint #{} has no `axis`", index + 1),
+        )
+        .help("the axis in each frame: `axis = [[0, 1, 0], [0, 1, 0]]`")
     })
 }
 
@@ -346,11 +427,17 @@ fn pair_of_vectors(
     let shape_ok = v.len() == 2 && v.iter().all(|r| r.len() == 3);
     if !shape_ok {
         return Err(ck
-            .error(Some(written.span()), format!("`{key}` must be two vectors of three numbers, one per side"))
+            .error(
+                Some(written.span()),
+                format!("`{key}` must be two vectors of three numbers, one per side"),
+            )
             .help(format!("e.g. `{key} = [[0.0, 0.0, 0.0], [0.0, 0.0, 0.5]]`")));
     }
     if let Some(bad) = v.iter().flatten().find(|x| !x.is_finite()) {
-        return Err(ck.error(Some(written.span()), format!("`{key}` has a non-finite entry ({bad})")));
+        return Err(ck.error(
+            Some(written.span()),
+            format!("`{key}` has a non-finite entry ({bad})"),
+        ));
     }
     if key == "axis" && v.iter().any(|r| r.iter().all(|x| *x == 0.0)) {
         return Err(ck.error(Some(written.span()), "an axis must be a nonzero vector"));
@@ -359,32 +446,60 @@ fn pair_of_vectors(
 }
 
 fn quoted(names: &[&str]) -> String {
-    names.iter().map(|n| format!("\"{n}\"")).collect::<Vec<_>>().join(", ")
+    names
+        .iter()
+        .map(|n| format!("\"{n}\""))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The keys of systems in coordinates and of a single rigid body, which a multibody file does
 /// not take.
 fn refuse_other_keys(ck: &Checker<'_>, system: &RawSystem) -> Result<(), Diagnostic> {
     let keys = [
-        ("coordinates", system.coordinates.as_ref().map(Spanned::span)),
+        (
+            "coordinates",
+            system.coordinates.as_ref().map(Spanned::span),
+        ),
         ("lagrangian", system.lagrangian.as_ref().map(Spanned::span)),
         ("builtin", system.builtin.as_ref().map(Spanned::span)),
-        ("hamiltonian", system.hamiltonian.as_ref().map(Spanned::span)),
-        ("discrete_lagrangian", system.discrete_lagrangian.as_ref().map(Spanned::span)),
-        ("constraints", system.constraints.as_ref().map(Spanned::span)),
+        (
+            "hamiltonian",
+            system.hamiltonian.as_ref().map(Spanned::span),
+        ),
+        (
+            "discrete_lagrangian",
+            system.discrete_lagrangian.as_ref().map(Spanned::span),
+        ),
+        (
+            "constraints",
+            system.constraints.as_ref().map(Spanned::span),
+        ),
         ("controls", system.controls.as_ref().map(Spanned::span)),
         ("rigid_body", system.rigid_body.as_ref().map(Spanned::span)),
         ("potential", system.potential.as_ref().map(Spanned::span)),
         ("torques", system.torques.as_ref().map(Spanned::span)),
         ("forces", system.forces.as_ref().map(Spanned::span)),
         ("parameters", system.parameters.as_ref().map(Spanned::span)),
-        ("symmetry", system.symmetry.as_ref().and_then(|s| s.first()).map(Spanned::span)),
+        (
+            "symmetry",
+            system
+                .symmetry
+                .as_ref()
+                .and_then(|s| s.first())
+                .map(Spanned::span),
+        ),
     ];
     match keys.into_iter().find_map(|(k, s)| s.map(|s| (k, s))) {
         Some((key, span)) => Err(ck
-            .error(Some(span), format!("`{key}` cannot be used with `[[system.body]]`"))
-            .note("a multibody system is given by its bodies, its joints and a uniform `gravity`; \
-                   potentials, loads and declared symmetries between bodies are not available yet")),
+            .error(
+                Some(span),
+                format!("`{key}` cannot be used with `[[system.body]]`"),
+            )
+            .note(
+                "a multibody system is given by its bodies, its joints and a uniform `gravity`; \
+                   potentials, loads and declared symmetries between bodies are not available yet",
+            )),
         None => Ok(()),
     }
 }

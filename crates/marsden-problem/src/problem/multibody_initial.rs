@@ -31,16 +31,27 @@ pub(super) fn initial(
     spec: &mut MultibodySpec,
 ) -> Result<(InitialSpec, InitialSpans), Diagnostic> {
     let Some(raw) = raw else {
-        return Err(Diagnostic::new("the problem file has no [initial] table")
-            .help(format!("add a table per body, e.g. `[initial.{}]` with `x = [...]`", spec.bodies[0].name)));
+        return Err(
+            Diagnostic::new("the problem file has no [initial] table").help(format!(
+                "add a table per body, e.g. `[initial.{}]` with `x = [...]`",
+                spec.bodies[0].name
+            )),
+        );
     };
     let table = raw.get_ref();
     refuse_single_body_keys(ck, table)?;
     for named in &table.bodies {
         if !spec.bodies.iter().any(|b| b.name == named.name) {
-            let names: Vec<String> = spec.bodies.iter().map(|b| format!("[initial.{}]", b.name)).collect();
+            let names: Vec<String> = spec
+                .bodies
+                .iter()
+                .map(|b| format!("[initial.{}]", b.name))
+                .collect();
             return Err(ck
-                .error(Some(raw.span()), format!("[initial.{}] names no body", named.name))
+                .error(
+                    Some(raw.span()),
+                    format!("[initial.{}] names no body", named.name),
+                )
                 .help(format!("the bodies' tables are {}", names.join(", "))));
         }
     }
@@ -54,8 +65,14 @@ pub(super) fn initial(
         states.push(body_initial(ck, raw.span(), body, &named.data)?);
     }
     spec.initial = states;
-    let t0 = table.t0.as_ref().map_or(Ok(0.0), |t| ck.finite("initial.t0", t))?;
-    let spans = InitialSpans { q: raw.span(), data: raw.span() };
+    let t0 = table
+        .t0
+        .as_ref()
+        .map_or(Ok(0.0), |t| ck.finite("initial.t0", t))?;
+    let spans = InitialSpans {
+        q: raw.span(),
+        data: raw.span(),
+    };
     Ok((
         InitialSpec {
             t0,
@@ -86,15 +103,19 @@ fn body_initial(
             .help("the joints are checked at the initial positions (or `project = true` in [initial] moves them onto the joints)"));
     };
     let position = three(x, "x")?;
-    let either = |a: &Option<SpannedList<f64>>, b: &Option<SpannedList<f64>>, names: (&str, &str)| {
-        if let (Some(_), Some(second)) = (a, b) {
-            return Err(ck.error(
-                Some(second.span()),
-                format!("give either `{}` or `{}` in [initial.{}], not both", names.0, names.1, body.name),
-            ));
-        }
-        Ok(())
-    };
+    let either =
+        |a: &Option<SpannedList<f64>>, b: &Option<SpannedList<f64>>, names: (&str, &str)| {
+            if let (Some(_), Some(second)) = (a, b) {
+                return Err(ck.error(
+                    Some(second.span()),
+                    format!(
+                        "give either `{}` or `{}` in [initial.{}], not both",
+                        names.0, names.1, body.name
+                    ),
+                ));
+            }
+            Ok(())
+        };
     either(&data.v, &data.p, ("v", "p"))?;
     either(&data.omega, &data.pi, ("Omega", "Pi"))?;
     let linear_momentum = match (&data.v, &data.p) {
@@ -155,14 +176,22 @@ fn refuse_single_body_keys(ck: &Checker<'_>, table: &RawInitial) -> Result<(), D
         ("file", table.file.as_ref().map(Spanned::span)),
         ("R", table.r.as_ref().map(Spanned::span)),
         ("quaternion", table.quaternion.as_ref().map(Spanned::span)),
-        ("rotation_vector", table.rotation_vector.as_ref().map(Spanned::span)),
+        (
+            "rotation_vector",
+            table.rotation_vector.as_ref().map(Spanned::span),
+        ),
         ("Omega", table.omega.as_ref().map(Spanned::span)),
         ("Pi", table.pi.as_ref().map(Spanned::span)),
     ];
     match keys.into_iter().find_map(|(k, s)| s.map(|s| (k, s))) {
         Some((key, span)) => Err(ck
-            .error(Some(span), format!("`{key}` in [initial] does not say which body it is for"))
-            .help(format!("write it in the body's table, e.g. `[initial.<body>]` with `{key} = [...]`"))),
+            .error(
+                Some(span),
+                format!("`{key}` in [initial] does not say which body it is for"),
+            )
+            .help(format!(
+                "write it in the body's table, e.g. `[initial.<body>]` with `{key} = [...]`"
+            ))),
         None => Ok(()),
     }
 }
@@ -180,7 +209,13 @@ pub(super) fn check_joints(
     t0: f64,
 ) -> Result<(), Diagnostic> {
     use marsden::error::{Error, SetupError};
-    let joint_span = |j: usize| system.joint.as_ref().and_then(|list| list.get(j)).map(Spanned::span);
+    let joint_span = |j: usize| {
+        system
+            .joint
+            .as_ref()
+            .and_then(|list| list.get(j))
+            .map(Spanned::span)
+    };
     let (core, joints, state) = crate::model::multibody::core(spec, t0)
         .map_err(|e| Diagnostic::new(format!("the multibody system: {e}")))?;
     let Err(error) = marsden::lie::multibody::initial::check(&core, &joints, &state) else {
@@ -188,7 +223,11 @@ pub(super) fn check_joints(
     };
     let row_of = |index: usize| {
         let j = joints.joint_of_row(index);
-        (j, index - joints.joint_rows(j).start, joints.joint_rows(j).len())
+        (
+            j,
+            index - joints.joint_rows(j).start,
+            joints.joint_rows(j).len(),
+        )
     };
     let help = "move the bodies onto the joints, or set `project = true` in [initial] to move them there before the run";
     Err(match error {

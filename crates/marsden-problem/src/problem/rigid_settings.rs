@@ -211,7 +211,10 @@ fn attitude(ck: &Checker<'_>, table: &RawInitial) -> Result<[f64; 9], Diagnostic
 /// # Errors
 /// Two forms written, a wrong length, a quaternion of zero norm, a matrix that is not a
 /// rotation to 1e-10.
-pub(super) fn attitude_of(ck: &Checker<'_>, table: &AttitudeForms<'_>) -> Result<[f64; 9], Diagnostic> {
+pub(super) fn attitude_of(
+    ck: &Checker<'_>,
+    table: &AttitudeForms<'_>,
+) -> Result<[f64; 9], Diagnostic> {
     let forms = [
         table
             .rotation_vector

@@ -19,9 +19,9 @@
 
 pub mod event_outputs;
 pub mod execute;
+pub mod multibody_plots;
 pub mod output;
 pub mod plots;
-pub mod multibody_plots;
 pub mod rigid_plots;
 pub mod samples;
 pub mod shard;

@@ -110,6 +110,9 @@ mod tests {
         let names: Vec<String> = ["t", "a_R11", "a_R12", "link_2_R11", "q_x", "R11"]
             .map(str::to_owned)
             .to_vec();
-        assert_eq!(columns(&names), ["a_x", "a_y", "a_z", "link_2_x", "link_2_y", "link_2_z"]);
+        assert_eq!(
+            columns(&names),
+            ["a_x", "a_y", "a_z", "link_2_x", "link_2_y", "link_2_z"]
+        );
     }
 }

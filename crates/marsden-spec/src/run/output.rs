@@ -45,14 +45,18 @@ pub const OBSERVABLES: &str = "observables";
 /// # Errors
 /// If two columns would have the same name.
 pub fn layout(system: &SystemSpec) -> marsden_io::Result<Layout> {
-    let mut groups = system_groups(system);
+    let mut groups = match system.multibody() {
+        Some(bodies) => multibody_groups(bodies),
+        None => system_groups(system),
+    };
     groups.extend(velocity_residual(system));
     Layout::new(groups)
 }
 
-/// The group of the hidden constraint's residual, last, when `system` has constraints.
+/// The group of the hidden constraint's residual, last, when `system` has constraints (or
+/// joints).
 fn velocity_residual(system: &SystemSpec) -> Option<Group> {
-    let constrained = !system.constraint.components().is_empty();
+    let constrained = !system.constraint.components().is_empty() || system.multibody().is_some();
     constrained.then(|| Group::scalar(CONSTRAINT_VELOCITY_RESIDUAL))
 }
 
@@ -64,9 +68,6 @@ fn system_groups(system: &SystemSpec) -> Vec<Group> {
         .momentum_names()
         .into_iter()
         .map(|s| format!("J_{s}"));
-    if let Some(bodies) = system.multibody() {
-        return multibody_layout(bodies);
-    }
     let mut groups = vec![Group::scalar("t")];
     // A rigid body: its attitude and body momentum first, then its centre of mass's q and p.
     if system.rigid().is_some() {
@@ -96,14 +97,13 @@ pub const BODY_CENTRE: [&str; 3] = ["x", "y", "z"];
 /// The suffixes of a body's momentum columns.
 pub const BODY_LINEAR_MOMENTUM: [&str; 3] = ["p_x", "p_y", "p_z"];
 
-/// The layout of jointed bodies: `t`, then per body (in the file's order) its attitude
-/// `<b>_R11 … <b>_R33` (group `R`), body momentum `<b>_Pi1 …` (`Pi`), centre `<b>_x …` (`q`) and
-/// momentum `<b>_p_x …` (`p`); `energy`, the joints' residual `constraint_residual` and the
-/// multipliers `lambda_<joint>_<i>`.
-fn multibody_layout(
-    bodies: &crate::problem::multibody::MultibodySpec,
-) -> marsden_io::Result<Layout> {
-    let groups = vec![
+/// The groups of jointed bodies before the observables: `t`, then per body (in the file's
+/// order) its attitude `<b>_R11 … <b>_R33` (group `R`), body momentum `<b>_Pi1 …` (`Pi`), centre
+/// `<b>_x …` (`q`) and momentum `<b>_p_x …` (`p`); `energy`, the joints' residual
+/// `constraint_residual` and the multipliers `lambda_<joint>_<i>` (the velocity residual of
+/// the joints follows, last, as for every constrained system).
+fn multibody_groups(bodies: &crate::problem::multibody::MultibodySpec) -> Vec<Group> {
+    vec![
         Group::scalar("t"),
         Group::vector(ATTITUDE, bodies.body_columns(&ATTITUDE_COLUMNS)),
         Group::vector(BODY_MOMENTUM, bodies.body_columns(&BODY_MOMENTUM_COLUMNS)),
@@ -112,8 +112,7 @@ fn multibody_layout(
         Group::scalar("energy"),
         Group::scalar(CONSTRAINT_RESIDUAL),
         Group::vector(LAMBDA, bodies.lambda_columns()),
-    ];
-    Layout::new(groups)
+    ]
 }
 
 /// The layout of a multibody run's columns (as `summary.json` lists them), or `None` for
@@ -144,6 +143,7 @@ fn multibody_layout_from_columns(names: &[String]) -> Option<marsden_io::Result<
         Group::scalar("energy"),
         Group::scalar(CONSTRAINT_RESIDUAL),
         Group::vector(LAMBDA, lambda),
+        Group::scalar(CONSTRAINT_VELOCITY_RESIDUAL),
     ];
     Some(Layout::new(groups))
 }
@@ -155,7 +155,10 @@ fn multibody_layout_from_columns(names: &[String]) -> Option<marsden_io::Result<
 /// As [`layout`].
 pub fn layout_of(spec: &RunSpec) -> marsden_io::Result<Layout> {
     let observables = &spec.events.observables.names;
-    let mut groups = system_groups(&spec.system);
+    let mut groups = match spec.system.multibody() {
+        Some(bodies) => multibody_groups(bodies),
+        None => system_groups(&spec.system),
+    };
     if !observables.is_empty() {
         groups.push(Group::vector(OBSERVABLES, observables.iter().cloned()));
     }
@@ -222,7 +225,7 @@ pub fn layout_from_columns(names: &[String]) -> marsden_io::Result<Layout> {
 }
 
 /// Files a previous run may have left in an output directory (and nothing else).
-const RUN_FILES: [&str; 26] = [
+const RUN_FILES: [&str; 27] = [
     TRAJECTORY_CSV,
     marsden_engine::events::EVENTS_CSV,
     "observables.npy",

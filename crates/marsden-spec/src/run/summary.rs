@@ -243,7 +243,8 @@ impl MultibodySummary {
         spec: &crate::problem::multibody::MultibodySpec,
         record: &marsden_engine::multibody::MultibodyRecord,
     ) -> Self {
-        let name = |s: Option<usize>| s.map_or("ground".to_owned(), |b| spec.bodies[b].name.clone());
+        let name =
+            |s: Option<usize>| s.map_or("ground".to_owned(), |b| spec.bodies[b].name.clone());
         let joints = (spec.joints.iter())
             .map(|j| JointSummary {
                 name: j.name.clone(),
@@ -256,14 +257,21 @@ impl MultibodySummary {
         let final_attitudes = (spec.bodies.iter().enumerate())
             .map(|(i, b)| {
                 let a = &r[9 * i..9 * i + 9];
-                (b.name.clone(), [[a[0], a[1], a[2]], [a[3], a[4], a[5]], [a[6], a[7], a[8]]])
+                (
+                    b.name.clone(),
+                    [[a[0], a[1], a[2]], [a[3], a[4], a[5]], [a[6], a[7], a[8]]],
+                )
             })
             .collect();
         let mut offset = 0;
         let final_multipliers = (spec.joints.iter())
             .map(|j| {
                 let rows = j.kind.rows();
-                let values = record.final_multipliers.get(offset..offset + rows).unwrap_or_default().to_vec();
+                let values = record
+                    .final_multipliers
+                    .get(offset..offset + rows)
+                    .unwrap_or_default()
+                    .to_vec();
                 offset += rows;
                 (j.name.clone(), values)
             })
