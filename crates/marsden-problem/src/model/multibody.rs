@@ -49,7 +49,7 @@ fn joint(j: &JointSpec, state: &RigidState) -> Result<Joint, Error> {
     let attitude = |side: Option<usize>| side.map_or(Mat3::identity(), |b| state.rotation(b));
     let position = |side: Option<usize>| side.map_or(Vec3::zeros(), |b| state.position(b));
     let reference = attitude(j.bodies[0]).transpose() * attitude(j.bodies[1]);
-    let points = j.points.map(|p| Vec3::from(p));
+    let points = j.points.map(Vec3::from);
     let kind = match j.kind {
         JointKindSpec::Spherical => JointKind::Spherical,
         JointKindSpec::Revolute { axes } => JointKind::Revolute {
