@@ -54,6 +54,7 @@ pub fn outcome<'py>(py: Python<'py>, outcome: &Outcome) -> PyResult<Bound<'py, P
         energy,
         momenta,
         constraint_residual,
+        constraint_velocity_residual,
         observables,
         ..
     } = samples;
@@ -73,6 +74,10 @@ pub fn outcome<'py>(py: Python<'py>, outcome: &Outcome) -> PyResult<Bound<'py, P
     d.set_item(
         "constraint_residual",
         constraint_residual.map(|r| PyArray1::from_vec(py, r)),
+    )?;
+    d.set_item(
+        "constraint_velocity_residual",
+        constraint_velocity_residual.map(|r| PyArray1::from_vec(py, r)),
     )?;
     let summary = outcome
         .summary

@@ -34,6 +34,7 @@ def test_the_3d_pendulum_keeps_its_vertical_momentum_and_its_joint():
     pivot = body.x + np.einsum("kij,j->ki", body.R, [0.05, 0.0, 0.4])
     assert np.abs(pivot).max() < 1e-13
     assert s.constraint_residual.max() < 1e-13
+    assert s.constraint_velocity_residual.max() < 1e-13
     assert s.multipliers.shape == (len(s), 3)
     assert s.summary["multibody"]["joints"][0]["name"] == "pivot"
 

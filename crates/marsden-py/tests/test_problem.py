@@ -98,6 +98,10 @@ def test_constraints_forces_and_t_end():
         q0=[0.9974949866040544, -0.0707372016677029], v0=[0.0, 0.0], h=0.05, steps=200)
     s = cart.solve()
     assert s.constraint_residual is not None and np.max(s.constraint_residual) < 1e-10
+    # The hidden constraint Dφ(q)·v = 2(x v_x + y v_y) = 0, held by the RATTLE projection.
+    hidden = 2 * np.abs(s.q[:, 0] * s.v[:, 0] + s.q[:, 1] * s.v[:, 1])
+    assert np.allclose(s.constraint_velocity_residual, hidden, rtol=0, atol=1e-13)
+    assert np.max(s.constraint_velocity_residual) < 1e-10
     # R7's multiplier: with φ = x² + y² − l² and m = l = g = 1, a = −e_y − 2λq, so on the circle
     # λ = (|v|² − y)/2 (positive: the rod pulls inward; a wrong sign fails here).
     assert s.multipliers.shape == (len(s.t), 1)

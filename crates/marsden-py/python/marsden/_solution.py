@@ -19,7 +19,8 @@ class Solution:
     - ``t`` (``k``), ``q``, ``p``, ``v`` (``k × n``, one column per coordinate, in the order of
       ``coordinates``), ``energy`` (``⟨p, v⟩ − L``);
     - ``momenta``: momentum maps ``J`` by symmetry name (``solution.momenta["Lz"]``);
-    - ``constraint_residual``: ``max_i |φ_i(q)|`` (``None`` without constraints);
+    - ``constraint_residual``: ``max_i |φ_i(q)|`` (``None`` without constraints), and
+      ``constraint_velocity_residual``: the hidden constraint's ``max_i |(Dφ(q)·v)_i|``;
     - ``multipliers``: the Lagrange multipliers ``λ_i`` of the stored states, one column per
       constraint (``a = M⁻¹(… − Dφᵀλ)``; zero columns without constraints);
     - ``summary``: the dictionary ``marsden run`` writes as ``summary.json``;
@@ -54,6 +55,8 @@ class Solution:
             None if energy is None or (len(energy) == 0 and len(self.t) > 0) else energy)
         self.momenta: Dict[str, np.ndarray] = dict(fields["momenta"])
         self.constraint_residual: Optional[np.ndarray] = fields["constraint_residual"]
+        self.constraint_velocity_residual: Optional[np.ndarray] = fields.get(
+            "constraint_velocity_residual")
         self.multipliers: np.ndarray = fields["multipliers"]
         self.R: Optional[np.ndarray] = fields.get("R")
         self.Pi: Optional[np.ndarray] = fields.get("Pi")
@@ -96,7 +99,8 @@ class Solution:
 
     def to_pandas(self) -> Any:
         """The samples as a ``pandas.DataFrame``: ``t``, ``q…``, ``p_…``, ``v_…``, ``energy``,
-        ``J_…``, ``constraint_residual`` and observables' columns, as ``trajectory.csv`` (plus ``v``); a
+        ``J_…``, ``constraint_residual``, observables' columns and ``constraint_velocity_residual``,
+        as ``trajectory.csv`` (plus ``v``); a
         quantity the run does not have (``energy`` of a discrete Lagrangian) has no column."""
         try:
             import pandas as pd
@@ -117,6 +121,8 @@ class Solution:
             columns[f"lambda_{i}"] = self.multipliers[:, i]
         for name, values in self.observables.items():
             columns[name] = values
+        if self.constraint_velocity_residual is not None:
+            columns["constraint_velocity_residual"] = self.constraint_velocity_residual
         for i, name in enumerate(self.coordinates):
             columns[f"v_{name}"] = self.v[:, i]
         return pd.DataFrame(columns)
