@@ -14,9 +14,9 @@ fn unknown_key_names_the_key_and_its_table() {
             "4 | lagrangain = ",
             "  | ^^^^^^^^^^\n",
             "= help: did you mean `lagrangian`?",
-            "= note: valid keys in [system]: builtin, constraints, controls, coordinates, \
-             discrete_lagrangian, forces, hamiltonian, lagrangian, name, parameters, potential, \
-             rigid_body, symmetry, torques",
+            "= note: valid keys in [system]: body, builtin, constraints, controls, coordinates, \
+             discrete_lagrangian, forces, gravity, hamiltonian, joint, lagrangian, name, \
+             parameters, potential, rigid_body, symmetry, torques",
         ],
     );
     assert_rejected(

@@ -96,7 +96,7 @@ mod tests {
         assert!(msg.contains(" --> p.toml:3:1"), "{msg}");
         assert!(msg.contains("= help: did you mean `lagrangian`?"), "{msg}");
         assert!(
-            msg.contains("= note: valid keys in [system]: builtin, constraints"),
+            msg.contains("= note: valid keys in [system]: body, builtin, constraints"),
             "{msg}"
         );
     }
