@@ -311,10 +311,12 @@ impl Loads {
         config: &Configuration<'_>,
         bodies: usize,
     ) -> bool {
-        let mut d_rotations = Buffer::<f64, INLINE>::empty();
-        let d_rotations = d_rotations.filled(9 * bodies, 0.0);
-        let mut d_positions = Buffer::<f64, INLINE>::empty();
-        let d_positions = d_positions.filled(3 * bodies, 0.0);
+        // The AD path's buffers, reused: no allocation per step for any number of bodies.
+        let (d_rotations, d_positions) = (&mut self.scratch, &mut self.gradient);
+        d_rotations.clear();
+        d_rotations.resize(9 * bodies, 0.0);
+        d_positions.clear();
+        d_positions.resize(3 * bodies, 0.0);
         let (t, rotations, positions) = (config.t, config.rotations, config.positions);
         if !potential.gradient(t, rotations, positions, d_rotations, d_positions) {
             return false;
