@@ -39,6 +39,7 @@ pub mod diagnostics;
 pub mod discrete;
 pub mod engine;
 pub mod events;
+mod group_loop;
 pub mod multibody;
 pub mod noether_balance;
 pub mod observer;

@@ -1,8 +1,6 @@
 //! The run of jointed bodies: constrained LGVI steps, a row per stored sample, the joints and
 //! invariants monitored.
 
-use std::time::Instant;
-
 use marsden::Statistics;
 use marsden::discrete::rules::Method as CoreMethod;
 use marsden::lie::invariants;
@@ -17,8 +15,9 @@ use marsden_problem::problem::multibody::MultibodySpec;
 use marsden_problem::problem::{Method, RunSpec};
 
 use super::Begin;
-use crate::controls::{CHECK_EVERY, Controls, Progress};
+use crate::controls::Controls;
 use crate::diagnostics::{Diagnostics, MapStats};
+use crate::group_loop::{GroupStepper, LoopOutcome, drive};
 use crate::solve::{Destination, FinalState, RunRecord};
 
 /// The stepper of a file's system (the bodies in a uniform field, no other loads).
@@ -65,55 +64,21 @@ pub(super) fn run(
         },
     };
     let grid = spec.integrator.grid;
-    let mut lgvi = MultibodyLgvi::new(begin.system, begin.joints, begin.state, grid.h, options)
+    let lgvi = MultibodyLgvi::new(begin.system, begin.joints, begin.state, grid.h, options)
         .map_err(|e| Diagnostic::new(format!("the multibody integrator: {e}")))?;
     let mut writer = Rows::new(bodies, destination);
-    let started = Instant::now();
-    let every = spec.output.every.max(1);
-    let mut error = writer.sample(&lgvi);
-    let mut interrupted = false;
-    let (mut steps, mut sampled, mut most) = (0, 0, 0);
-    while error.is_none() && steps < grid.steps {
-        if controls.is_active() && steps % CHECK_EVERY == 0 {
-            if let Some(progress) = controls.progress {
-                progress(Progress {
-                    step: steps,
-                    total: grid.steps,
-                    elapsed: started.elapsed(),
-                    done: false,
-                });
-            }
-            if controls.stop_requested() {
-                interrupted = true;
-                break;
-            }
-        }
-        let before = lgvi.statistics().joint_iterations;
-        if let Err(e) = lgvi.step() {
-            error = Some(with_joint_name(bodies, &lgvi, e.to_string()));
-            break;
-        }
-        most = most.max(lgvi.statistics().joint_iterations - before);
-        steps += 1;
-        if steps % every == 0 || steps == grid.steps {
-            error = writer.sample(&lgvi);
-            sampled = steps;
-        }
-    }
-    if sampled != steps
-        && let Some(e) = writer.sample(&lgvi)
-    {
-        error.get_or_insert(e);
-    }
-    let wall_seconds = started.elapsed().as_secs_f64();
-    if let Some(progress) = controls.progress {
-        progress(Progress {
-            step: steps,
-            total: grid.steps,
-            elapsed: started.elapsed(),
-            done: true,
-        });
-    }
+    let mut stepper = Named { lgvi, bodies };
+    let outcome = drive(&mut stepper, grid.steps, spec.output.every, controls, |s| {
+        writer.sample(&s.lgvi)
+    });
+    let lgvi = stepper.lgvi;
+    let LoopOutcome {
+        steps,
+        most,
+        interrupted,
+        error,
+        wall_seconds,
+    } = outcome;
     let state = lgvi.state();
     let statistics = Statistics {
         steps,
@@ -149,6 +114,21 @@ pub(super) fn run(
         rigid: None,
         multibody: Some(record),
     })
+}
+
+/// The stepper, with the file's names for its failures.
+struct Named<'b> {
+    lgvi: Stepper,
+    bodies: &'b MultibodySpec,
+}
+
+impl GroupStepper for Named<'_> {
+    fn advance(&mut self) -> Result<(), String> {
+        (self.lgvi.step()).map_err(|e| with_joint_name(self.bodies, &self.lgvi, e.to_string()))
+    }
+    fn iterations(&self) -> usize {
+        self.lgvi.statistics().joint_iterations
+    }
 }
 
 /// A step failure's message with the joint of a constraint row named.

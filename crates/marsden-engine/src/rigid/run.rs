@@ -1,7 +1,5 @@
 //! The run of a rigid body: LGVI steps, a row per stored sample, the invariants monitored.
 
-use std::time::Instant;
-
 use marsden::Statistics;
 use marsden::discrete::rules::Method as CoreMethod;
 use marsden::lie::invariants;
@@ -13,8 +11,9 @@ use marsden_problem::problem::rigid::RigidSpec;
 use marsden_problem::problem::{Method, RunSpec};
 
 use super::FileRigidSystem;
-use crate::controls::{CHECK_EVERY, Controls, Progress};
+use crate::controls::Controls;
 use crate::diagnostics::{Diagnostics, MapStats};
+use crate::group_loop::{GroupStepper, LoopOutcome, drive};
 use crate::solve::{Destination, FinalState, RunRecord};
 
 /// What a rigid body's run monitored besides the energy and the momentum maps.
@@ -68,55 +67,17 @@ pub(super) fn run(
     let mut lgvi = Lgvi::new(begin.system, begin.state, grid.h, options)
         .map_err(|e| Diagnostic::new(format!("the rigid body's integrator: {e}")))?;
     let mut writer = Rows::new(body, destination);
-    let started = Instant::now();
     let jit_before = marsden_problem::model::jit_compile_seconds();
-    let every = spec.output.every.max(1);
-    let mut error = writer.sample(&lgvi);
-    let mut interrupted = false;
-    let (mut steps, mut sampled, mut most) = (0, 0, 0);
-    while error.is_none() && steps < grid.steps {
-        if controls.is_active() && steps % CHECK_EVERY == 0 {
-            if let Some(progress) = controls.progress {
-                progress(Progress {
-                    step: steps,
-                    total: grid.steps,
-                    elapsed: started.elapsed(),
-                    done: false,
-                });
-            }
-            if controls.stop_requested() {
-                interrupted = true;
-                break;
-            }
-        }
-        let before = lgvi.statistics().newton_iterations;
-        if let Err(e) = lgvi.step() {
-            error = Some(e.to_string());
-            break;
-        }
-        most = most.max(lgvi.statistics().newton_iterations - before);
-        steps += 1;
-        if steps % every == 0 || steps == grid.steps {
-            error = writer.sample(&lgvi);
-            sampled = steps;
-        }
-    }
-    // The last state taken is always stored (a failed or stopped run's too).
-    if sampled != steps
-        && let Some(e) = writer.sample(&lgvi)
-    {
-        error.get_or_insert(e);
-    }
-    let wall_seconds = started.elapsed().as_secs_f64();
+    let every = spec.output.every;
+    let outcome = drive(&mut lgvi, grid.steps, every, controls, |l| writer.sample(l));
     let jit_compile_seconds = marsden_problem::model::jit_compile_seconds() - jit_before;
-    if let Some(progress) = controls.progress {
-        progress(Progress {
-            step: steps,
-            total: grid.steps,
-            elapsed: started.elapsed(),
-            done: true,
-        });
-    }
+    let LoopOutcome {
+        steps,
+        most,
+        interrupted,
+        error,
+        wall_seconds,
+    } = outcome;
     let state = lgvi.state();
     let statistics = Statistics {
         steps,
@@ -152,6 +113,15 @@ pub(super) fn run(
         }),
         multibody: None,
     })
+}
+
+impl GroupStepper for Lgvi<ExprRigidPotential, ExprRigidLoads> {
+    fn advance(&mut self) -> Result<(), String> {
+        self.step().map_err(|e| e.to_string())
+    }
+    fn iterations(&self) -> usize {
+        self.statistics().newton_iterations
+    }
 }
 
 /// The row writer and the monitors.

@@ -229,26 +229,8 @@ fn inertia(
     written: &Spanned<RawInertia>,
     index: usize,
 ) -> Result<Inertia, Diagnostic> {
-    let rows = match written.get_ref() {
-        RawInertia::Principal(j) if j.len() == 3 => {
-            [j[0], 0.0, 0.0, 0.0, j[1], 0.0, 0.0, 0.0, j[2]]
-        }
-        RawInertia::Matrix(m) if m.len() == 3 && m.iter().all(|r| r.len() == 3) => {
-            let mut rows = [0.0; 9];
-            for (i, row) in m.iter().enumerate() {
-                rows[3 * i..3 * i + 3].copy_from_slice(row);
-            }
-            rows
-        }
-        _ => {
-            return Err(ck
-                .error(
-                    Some(written.span()),
-                    "the inertia must be three principal moments or a 3×3 matrix",
-                )
-                .help("e.g. `inertia = [0.0833, 0.0833, 0.001]`"));
-        }
-    };
+    let example = "e.g. `inertia = [0.0833, 0.0833, 0.001]`";
+    let rows = super::rigid::inertia_rows(ck, written, example)?;
     Inertia::validated(index, &rows, Moments::Physical).map_err(|e| {
         ck.error(Some(written.span()), format!("invalid inertia: {e}"))
             .help(

@@ -292,27 +292,43 @@ fn inertia(ck: &Checker<'_>, body: &Spanned<RawRigidBody>) -> Result<Inertia, Di
             .help("e.g. `rigid_body = { inertia = [2.0, 1.0, 0.5] }` (principal moments)"));
     };
     let span = written.span();
-    let rows = match written.get_ref() {
+    let example =
+        "e.g. `inertia = [2.0, 1.0, 0.5]` or `inertia = [[2, 0, 0], [0, 1, 0], [0, 0, 0.5]]`";
+    let rows = inertia_rows(ck, written, example)?;
+    Inertia::validated(0, &rows, Moments::Any).map_err(|e| {
+        ck.error(Some(span), format!("invalid inertia: {e}"))
+            .help("the inertia is symmetric with positive principal moments")
+    })
+}
+
+/// The nine entries (row-major) of an inertia written as three principal moments or a 3×3
+/// matrix; `example` is the help for any other shape.
+///
+/// # Errors
+/// Another shape, pointing at it.
+pub(super) fn inertia_rows(
+    ck: &Checker<'_>,
+    written: &Spanned<RawInertia>,
+    example: &str,
+) -> Result<[f64; 9], Diagnostic> {
+    match written.get_ref() {
         RawInertia::Principal(j) if j.len() == 3 => {
-            [j[0], 0.0, 0.0, 0.0, j[1], 0.0, 0.0, 0.0, j[2]]
+            Ok([j[0], 0.0, 0.0, 0.0, j[1], 0.0, 0.0, 0.0, j[2]])
         }
         RawInertia::Matrix(m) if m.len() == 3 && m.iter().all(|r| r.len() == 3) => {
             let mut rows = [0.0; 9];
             for (i, row) in m.iter().enumerate() {
                 rows[3 * i..3 * i + 3].copy_from_slice(row);
             }
-            rows
+            Ok(rows)
         }
-        _ => {
-            return Err(ck
-                .error(Some(span), "the inertia must be three principal moments or a 3×3 matrix")
-                .help("e.g. `inertia = [2.0, 1.0, 0.5]` or `inertia = [[2, 0, 0], [0, 1, 0], [0, 0, 0.5]]`"));
-        }
-    };
-    Inertia::validated(0, &rows, Moments::Any).map_err(|e| {
-        ck.error(Some(span), format!("invalid inertia: {e}"))
-            .help("the inertia is symmetric with positive principal moments")
-    })
+        _ => Err(ck
+            .error(
+                Some(written.span()),
+                "the inertia must be three principal moments or a 3×3 matrix",
+            )
+            .help(example.to_owned())),
+    }
 }
 
 /// Three expressions in the body's inputs.

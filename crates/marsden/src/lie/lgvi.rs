@@ -225,7 +225,7 @@ impl<U: RigidPotential, E: ExternalLoads> Lgvi<U, E> {
 }
 
 /// The step error of a failed Cayley solve.
-fn step_error(failure: NewtonFailure, options: &NewtonOptions) -> StepError {
+pub(crate) fn step_error(failure: NewtonFailure, options: &NewtonOptions) -> StepError {
     match failure {
         NewtonFailure::NotConverged(report) => StepError::NewtonDidNotConverge {
             iterations: report.iterations,

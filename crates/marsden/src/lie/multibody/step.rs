@@ -31,6 +31,7 @@ use super::joints::{BodyWeight, JointRows, JointSet};
 use crate::error::{Error, StepError};
 use crate::lie::cayley::solve_cayley;
 use crate::lie::lgvi::LgviOptions;
+use crate::lie::lgvi::step_error;
 use crate::lie::potential::{Configuration, ExternalLoads, Loads, RigidPotential};
 use crate::lie::so3::{Mat3, Vec3, cay_offset, hat, vee};
 use crate::lie::state::{RigidState, RigidSystem};
@@ -329,7 +330,7 @@ impl<U: RigidPotential, E: ExternalLoads> MultibodyLgvi<U, E> {
             let q = self.state.momentum(i) + 0.5 * h * moment;
             let inertia = &body.inertia;
             let (f, report) = solve_cayley(inertia.tensor(), &(h * q), &self.options.newton)
-                .map_err(|failure| cayley_error(failure, self.options.newton.residual_tolerance))?;
+                .map_err(|failure| step_error(failure, &self.options.newton))?;
             self.statistics.cayley_iterations += report.iterations;
             let offset = cay_offset(&f);
             let r = Mat3::from_row_slice(&work.start_rotations[9 * i..9 * i + 9]);
@@ -461,21 +462,4 @@ fn cayley_derivative(f: &Mat3, j_d: &Mat3) -> Mat3 {
         k.set_column(c, &vee(&(f * e * j_d + j_d * e * f.transpose())));
     }
     k
-}
-
-/// The step error of a failed Cayley solve.
-fn cayley_error(failure: NewtonFailure, tolerance: f64) -> StepError {
-    match failure {
-        NewtonFailure::NotConverged(report) => StepError::NewtonDidNotConverge {
-            iterations: report.iterations,
-            residual: report.residual,
-            tolerance,
-        },
-        NewtonFailure::Singular { iteration, pivot } => {
-            StepError::SingularJacobian { iteration, pivot }
-        }
-        NewtonFailure::NonFinite(_) => StepError::NonFinite {
-            what: "the Cayley parameters of F_k (LGVI step)",
-        },
-    }
 }
