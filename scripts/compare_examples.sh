@@ -5,7 +5,8 @@
 #
 # * every examples/*.toml and every run fixture of crates/marsden-cli/tests/fixtures/ is run by
 #   both binaries into separate output directories (`--out`): every file written must be
-#   byte-identical, except summary.json, which must be equal in every field but `wall_seconds`;
+#   byte-identical, except summary.json, which must be equal in every field but its timings
+#   (`wall_seconds`, `jit_compile_seconds`);
 #   the exit statuses and stderr must match (the output directory's name replaced);
 # * stdout of `check`, `systems`, `order`, the sweeps and every `--help` must be identical;
 # * every bad fixture (tests/fixtures/bad/) must give the same exit status and stderr.
@@ -51,7 +52,8 @@ both() {
     ok
 }
 
-# Compares the files two runs wrote: bytes, except summary.json without wall_seconds.
+# Compares the files two runs wrote: bytes, except summary.json without its timings
+# (wall_seconds, jit_compile_seconds); the top-level fields that differ go to stderr.
 same_files() {
     local label=$1
     local o="$work/old/$label/files" n="$work/new/$label/files"
@@ -68,6 +70,10 @@ import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
 for d in (a, b):
     d.pop("wall_seconds", None)
+    d.pop("jit_compile_seconds", None)
+different = sorted(k for k in set(a) | set(b) if a.get(k) != b.get(k))
+if different:
+    print("  fields: " + ", ".join(different), file=sys.stderr)
 sys.exit(0 if a == b else 1)
 PY
         else
