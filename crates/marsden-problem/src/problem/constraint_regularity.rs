@@ -19,7 +19,7 @@
 
 use marsden::Constraint;
 use marsden::numerics::ad::{MultiFunction, jacobian};
-use marsden::numerics::dense::max_norm;
+use marsden::numerics::dense::{max_norm, max_or_nan};
 
 use crate::model::ExprConstraint;
 
@@ -108,7 +108,9 @@ impl<'a> Probe<'a> {
         };
         let beside = (directions.iter())
             .flat_map(|d| [beside_along(d, 1.0), beside_along(d, -1.0)])
-            .fold(0.0, f64::max);
+            // A NaN beside the zero propagates (`f64::max` would drop it and judge the
+            // gradient against the finite samples only); the refusal then needs a finite one.
+            .fold(0.0, max_or_nan);
         let vanishes = gradient <= VANISHING * beside || gradient == 0.0;
         (vanishes && beside.is_finite()).then_some(VanishingGradient {
             index: i,
