@@ -6,7 +6,7 @@
 use marsden::analysis::diagnostics::EnergyAccumulator;
 
 /// Drift of one momentum map: `max |J_k − J_0|`.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MapStats {
     /// `J_0`.
     pub initial: f64,
@@ -32,7 +32,7 @@ impl MapStats {
 }
 
 /// Everything monitored along a run.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
 pub struct Diagnostics {
     /// Energy errors.
     pub energy: EnergyAccumulator,

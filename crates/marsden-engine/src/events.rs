@@ -14,6 +14,7 @@ use marsden::run::events::{Event, EventDetector, EventRecord};
 use marsden::{Lagrangian, Observer, StepView, Termination};
 use marsden_io::RowSink;
 
+use crate::checkpoint::EventsCheckpoint;
 use marsden_problem::error::Diagnostic;
 use marsden_problem::model::ExprEvent;
 use marsden_problem::problem::events::EventsSpec;
@@ -103,6 +104,49 @@ impl<'a, 's, L: Lagrangian, O: Observer> Watched<'a, 's, L, O> {
                 ..EventTally::default()
             },
         })
+    }
+
+    /// What the watch carries to the next step (`None` without events), its file flushed and
+    /// its position taken, for a checkpoint of the run.
+    ///
+    /// # Errors
+    /// The write error of the flush (kept in the tally too).
+    pub fn checkpoint(&mut self) -> Result<Option<EventsCheckpoint>, String> {
+        let Some(detector) = &self.detector else {
+            return Ok(None);
+        };
+        let file = match self.sink.as_mut().map(|s| s.mark()) {
+            Some(Ok(mark)) => Some(mark.into()),
+            Some(Err(e)) => {
+                let message = format!("writing {EVENTS_CSV} failed: {e}");
+                self.tally.io_error = Some(message.clone());
+                return Err(message);
+            }
+            None => None,
+        };
+        Ok(Some(EventsCheckpoint {
+            detector: detector.checkpoint(),
+            written: self.written,
+            counts: self.tally.counts.clone(),
+            file,
+        }))
+    }
+
+    /// Restores a [`Watched::checkpoint`] (`None`: the file has no events).
+    ///
+    /// # Errors
+    /// A checkpoint of other events.
+    pub fn restore(&mut self, checkpoint: Option<&EventsCheckpoint>) -> Result<(), String> {
+        match (&mut self.detector, checkpoint) {
+            (None, None) => Ok(()),
+            (Some(detector), Some(c)) if c.counts.len() == self.tally.counts.len() => {
+                detector.restore(&c.detector).map_err(|e| e.to_string())?;
+                self.written = c.written;
+                self.tally.counts.clone_from(&c.counts);
+                Ok(())
+            }
+            _ => Err("the checkpoint's events do not match the problem file's".to_owned()),
+        }
     }
 
     /// The streaming observer and what the events came to.

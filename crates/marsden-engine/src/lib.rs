@@ -34,6 +34,7 @@
 
 pub mod balance;
 pub mod certify;
+pub mod checkpoint;
 pub mod controls;
 pub mod diagnostics;
 pub mod discrete;

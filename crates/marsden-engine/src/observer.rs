@@ -20,6 +20,7 @@ use marsden::holonomic::multipliers_at;
 use marsden::{Constraint, Lagrangian, Observer, StepView, Trajectory, mechanics};
 use marsden_io::RowSink;
 
+use crate::checkpoint::StreamCheckpoint;
 use crate::controls::{CHECK_EVERY, Controls, Progress};
 use crate::diagnostics::Diagnostics;
 use marsden_problem::model::{MomentumMap, Observables};
@@ -262,6 +263,44 @@ impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's
             0.0,
             |m: f64, x| if x.is_nan() { f64::NAN } else { m.max(x.abs()) },
         )
+    }
+
+    /// What this observer carries to the next step, with its files flushed and their
+    /// positions ([`marsden_io::RowSink::mark`]), for a checkpoint of the run.
+    ///
+    /// # Errors
+    /// The write error of the flush (kept in `io_error` too).
+    pub fn checkpoint(&mut self) -> Result<StreamCheckpoint, String> {
+        let mark = self.sink.mark().map_err(|e| {
+            let message = format!("writing the trajectory failed: {e}");
+            self.io_error = Some(e);
+            message
+        })?;
+        Ok(StreamCheckpoint {
+            diagnostics: self.diagnostics.clone(),
+            velocity: self.velocity.clone(),
+            last_written: self.last_written,
+            trajectory: mark.into(),
+        })
+    }
+
+    /// Restores a [`StreamObserver::checkpoint`]: the observer of a resumed run goes on as
+    /// the checkpointed one would have (its sink was reopened at the checkpoint's mark).
+    ///
+    /// # Errors
+    /// A checkpoint of another shape (number of coordinates or momentum maps).
+    pub fn restore(&mut self, checkpoint: &StreamCheckpoint) -> Result<(), String> {
+        let d = &checkpoint.diagnostics;
+        if checkpoint.velocity.len() != self.velocity.len()
+            || d.maps.len() != self.diagnostics.maps.len()
+            || d.max_residual.is_some() != self.diagnostics.max_residual.is_some()
+        {
+            return Err("the checkpoint's monitors do not match this problem".to_owned());
+        }
+        self.diagnostics = checkpoint.diagnostics.clone();
+        self.velocity.clone_from(&checkpoint.velocity);
+        self.last_written = checkpoint.last_written;
+        Ok(())
     }
 
     /// After the run: writes the last state of `trajectory` unless it is already on disk (a

@@ -15,12 +15,15 @@ use serde::Serialize;
 
 use crate::balance::{BalanceSeries, BalanceSummary, Balanced, TimeDerivative};
 use crate::certify::{Certificate, Ends, certify, without_step_jacobian};
+use crate::checkpoint::CheckpointPlan;
+use crate::checkpoint::observer::Checkpointing;
 use crate::controls::Controls;
 use crate::diagnostics::Diagnostics;
 use crate::events::{EventTally, Watched};
 use crate::noether_balance::{NoetherBalance, NoetherBalanced};
 use crate::observer::StreamObserver;
 use crate::start;
+use marsden::run::Resumed;
 use marsden::symmetry::GroupAction;
 use marsden_problem::error::Diagnostic;
 use marsden_problem::model::{ExprConstraint, MomentumMap, Symmetry};
@@ -196,6 +199,9 @@ pub struct Destination<'s> {
     pub with_velocity: bool,
     /// Where the event records go, as rows `event, t, q…, p…` (`None`: counted only).
     pub events: Option<&'s mut (dyn RowSink + 's)>,
+    /// Checkpoints of the run, and the one it resumes from (`None`: none; the sinks of a
+    /// resumed run were reopened at the checkpoint's marks).
+    pub checkpoints: Option<&'s CheckpointPlan>,
 }
 
 /// Runs `spec` with `lagrangian` by `rule` (the file's forces, constraints and symmetries),
@@ -216,18 +222,33 @@ pub fn run_by_rule<L: Lagrangian>(
     let s = &spec.system;
     let force = s.force.on(lagrangian);
     let maps = s.symmetries.as_slice();
+    let plan = destination.checkpoints;
     let mut session = Session::open(spec, (lagrangian, &force), destination, controls)?;
     let output = Output {
         every: spec.output.every,
         time_dependent: s.depends_on_time(),
     };
-    let (result, balance) = solve_balanced(
-        (&session.problem, maps),
-        (rule, output),
-        &session.options,
-        &mut session.observer,
-    );
+    let (result, balance, checkpoint_error) = match plan {
+        None => {
+            let (result, balance) = solve_balanced(
+                (&session.problem, maps),
+                (rule, output),
+                &session.options,
+                &mut session.observer,
+            );
+            (result, balance, None)
+        }
+        // Forced and time-dependent runs (their balances) were refused with checkpoints when
+        // the file was read.
+        Some(plan) => {
+            let (result, error) = session.checkpointed(rule, plan);
+            (result, None, error)
+        }
+    };
     let (mut record, problem) = session.finish(result, balance);
+    if let Some(e) = checkpoint_error {
+        record.error.get_or_insert(e);
+    }
     if spec.analysis.certify {
         let ends = RunEnds::of(&problem, &record);
         let (names, i) = (symmetry_names(spec), &spec.integrator);
@@ -310,7 +331,12 @@ impl<'a, 's, L: Lagrangian, F: Force> Session<'a, 's, L, F> {
             .monitoring_every_step(spec.analysis.every_step)
             .with_observables(&spec.events.observables);
         let events = (lagrangian, &spec.events);
-        let observer = Watched::new(stream, events, destination.events)?;
+        let mut observer = Watched::new(stream, events, destination.events)?;
+        if let Some(c) = destination.checkpoints.and_then(|p| p.resume.as_deref()) {
+            let restored = (observer.inner.restore(&c.stream))
+                .and_then(|()| observer.restore(c.events.as_ref()));
+            restored.map_err(|e| Diagnostic::new(format!("cannot resume the run: {e}")))?;
+        }
         Ok(Session {
             problem,
             options,
@@ -318,6 +344,33 @@ impl<'a, 's, L: Lagrangian, F: Force> Session<'a, 's, L, F> {
             clock: Instant::now(),
             jit_before: marsden_problem::model::jit_compile_seconds(),
         })
+    }
+
+    /// The run with checkpoints as `plan` says, from its start or from the checkpoint it
+    /// resumes from; and why a checkpoint could not be written, if one could not.
+    fn checkpointed(
+        &mut self,
+        rule: &Rule,
+        plan: &CheckpointPlan,
+    ) -> (Result<Trajectory, Box<RunFailure>>, Option<String>) {
+        let mut watch = Checkpointing::new(&mut self.observer, plan);
+        let (problem, options) = (&self.problem, &self.options);
+        let result = match plan.resume.as_deref() {
+            None => problem.solve_with(rule, options, &mut watch),
+            Some(c) => {
+                let state = marsden::State {
+                    t: c.t,
+                    q: c.q.clone(),
+                    p: c.p.clone(),
+                };
+                let from = Resumed {
+                    step: c.step,
+                    state,
+                };
+                problem.solve_resumed(rule, options, &mut watch, (from, &c.integrator))
+            }
+        };
+        (result, watch.error)
     }
 
     /// The record of the run that ended with `result`, with its balances; and the problem,

@@ -32,6 +32,15 @@ pub enum Error {
         found: usize,
     },
 
+    /// A file a resumed run would go on writing does not match its checkpoint.
+    #[error("cannot resume writing {}: {reason}", path.display())]
+    Resume {
+        /// The file.
+        path: PathBuf,
+        /// What does not match.
+        reason: String,
+    },
+
     /// A row handed to a streaming writer does not match the header.
     #[error("{}: row {row} has {found} values but there are {expected} columns", path.display())]
     RowLength {
@@ -128,6 +137,14 @@ impl Error {
             action,
             path: path.to_path_buf(),
             source,
+        }
+    }
+
+    /// A file that does not match the checkpoint a run resumes from.
+    pub(crate) fn resume(path: &Path, reason: String) -> Self {
+        Self::Resume {
+            path: path.to_path_buf(),
+            reason,
         }
     }
 }

@@ -15,6 +15,7 @@
 //!   residual; text uses a font embedded in the crate, so no system font is needed.
 //! * [`error`] — [`Error`]: every failure is a value naming its file.
 
+pub mod atomic;
 pub mod csv;
 pub mod error;
 pub mod layout;
@@ -24,6 +25,7 @@ pub mod sink;
 pub mod table;
 pub mod thin;
 
+pub use atomic::write_atomically;
 pub use csv::{CsvWriter, read_csv, read_csv_from, read_csv_numeric, read_csv_thinned, write_csv};
 pub use error::{Error, Result};
 pub use layout::{Group, GroupKind, Layout};
@@ -36,6 +38,6 @@ pub use plot::{
     plot_constraint_residuals, plot_energy_balance, plot_energy_error, plot_momentum_drift,
     plot_phase_portrait, plot_run,
 };
-pub use sink::RowSink;
+pub use sink::{RowSink, SinkMark};
 pub use table::{Column, Table, check_column_name};
 pub use thin::{Thinned, Thinner};

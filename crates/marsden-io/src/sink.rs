@@ -30,4 +30,31 @@ pub trait RowSink {
 
     /// Number of data rows accepted so far.
     fn rows_written(&self) -> u64;
+
+    /// Flushes, and says where the output stands: the rows on disk and the length of each
+    /// file, so that a resumed run can cut the files back to this point and go on writing
+    /// ([`crate::CsvWriter::reopen`], [`crate::NpyDirWriter::reopen`]).
+    ///
+    /// Default: the flushed row count alone (a sink in memory has no files to cut).
+    ///
+    /// # Errors
+    /// An I/O error naming the file.
+    fn mark(&mut self) -> Result<SinkMark> {
+        self.flush()?;
+        Ok(SinkMark {
+            rows: self.rows_written(),
+            bytes: Vec::new(),
+        })
+    }
+}
+
+/// Where a sink's output stands after a flush ([`RowSink::mark`]): what a checkpoint records so
+/// that the files can be cut back to it when the run resumes.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct SinkMark {
+    /// Data rows on disk.
+    pub rows: u64,
+    /// The length of each file in bytes (one for a CSV, one per group of a `.npy` directory;
+    /// empty for a sink in memory).
+    pub bytes: Vec<u64>,
 }

@@ -48,14 +48,24 @@ fn bad(diagnostic: Diagnostic) -> PyErr {
 
 /// Validates problem text (`origin` names it in messages).
 fn spec_of(text: &str, origin: &str, every: Option<usize>) -> PyResult<RunSpec> {
-    let mut spec = marsden_spec::from_toml_str(text, origin, &Overrides::default()).map_err(bad)?;
-    if let Some(every) = every {
-        if every == 0 {
-            return Err(bad(Diagnostic::new("`every` must be at least 1")));
-        }
-        spec.output.every = every;
+    spec_with(text, origin, every, Overrides::default())
+}
+
+/// [`spec_of`] with further overrides (the output directory and checkpoints of `solve`).
+fn spec_with(
+    text: &str,
+    origin: &str,
+    every: Option<usize>,
+    overrides: Overrides,
+) -> PyResult<RunSpec> {
+    if every == Some(0) {
+        return Err(bad(Diagnostic::new("`every` must be at least 1")));
     }
-    Ok(spec)
+    let overrides = Overrides {
+        every: every.map(|e| e as u64),
+        ..overrides
+    };
+    marsden_spec::from_toml_str(text, origin, &overrides).map_err(bad)
 }
 
 /// Checks problem text and describes it: name, coordinates, parameters, method, `h`, steps,
@@ -89,16 +99,35 @@ fn check<'py>(py: Python<'py>, text: &str, origin: &str) -> PyResult<Bound<'py, 
 /// last), off the interpreter's lock; `progress`, a Python function, is called as
 /// `progress(step, total, elapsed_seconds, done)` every few hundred steps and at the end (an
 /// exception it raises stops the run and is raised here).
+///
+/// With `dir`, the files of `marsden run` are written there too, and with `checkpoint_every`
+/// checkpoints of the run, which [`resume`] continues.
 #[pyfunction]
-#[pyo3(signature = (text, origin, every=None, progress=None))]
+#[pyo3(signature = (text, origin, every=None, progress=None, dir=None, checkpoint_every=None))]
 fn solve<'py>(
     py: Python<'py>,
     text: &str,
     origin: &str,
     every: Option<usize>,
     progress: Option<Py<PyAny>>,
+    dir: Option<std::path::PathBuf>,
+    checkpoint_every: Option<u64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let spec = spec_of(text, origin, every)?;
+    if checkpoint_every.is_some() && dir.is_none() {
+        return Err(bad(Diagnostic::new(
+            "checkpoints are written into an output directory: give `dir` with `checkpoint_every`",
+        )));
+    }
+    let store = match dir {
+        Some(_) => Store::FilesAndMemory,
+        None => Store::Memory,
+    };
+    let overrides = Overrides {
+        out: dir,
+        checkpoint_every,
+        ..Overrides::default()
+    };
+    let spec = spec_with(text, origin, every, overrides)?;
     let stop = Arc::new(AtomicBool::new(false));
     let flag = stop.clone();
     let reporter = progress.map(|f| watch::Reporter::new(f, stop.clone()));
@@ -114,12 +143,50 @@ fn solve<'py>(
                 .then_some(&report as &dyn Fn(marsden_spec::Progress)),
             stop: Some(flag),
         };
-        marsden_spec::execute(&spec, Store::Memory, &controls)
+        marsden_spec::execute(&spec, store, &controls)
     })?;
     if let Some(error) = reporter.and_then(watch::Reporter::into_error) {
         return Err(error);
     }
     convert::outcome(py, &outcome.map_err(to_py)?)
+}
+
+/// Continues the run whose checkpoint is in `dir` to its end (as `marsden resume`): its files
+/// in `dir` become those of the uninterrupted run. Returns the run's `summary.json` as text.
+#[pyfunction]
+#[pyo3(signature = (dir, progress=None))]
+fn resume(
+    py: Python<'_>,
+    dir: std::path::PathBuf,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<String> {
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = stop.clone();
+    let reporter = progress.map(|f| watch::Reporter::new(f, stop.clone()));
+    let outcome = watch::off_the_lock(py, &stop, || {
+        let report = |p: marsden_spec::Progress| {
+            if let Some(r) = &reporter {
+                r.report(p);
+            }
+        };
+        let controls = Controls {
+            progress: reporter
+                .is_some()
+                .then_some(&report as &dyn Fn(marsden_spec::Progress)),
+            stop: Some(flag),
+        };
+        marsden_spec::run::resume::resume(&dir, &controls)
+    })?;
+    if let Some(error) = reporter.and_then(watch::Reporter::into_error) {
+        return Err(error);
+    }
+    outcome.map_err(to_py)?;
+    std::fs::read_to_string(dir.join(marsden_spec::run::output::SUMMARY_JSON)).map_err(|e| {
+        bad(Diagnostic::new(format!(
+            "cannot read the summary of {}: {e}",
+            dir.display()
+        )))
+    })
 }
 
 /// Runs every member of the `[sweep]` of problem text in parallel in this process, off the
@@ -211,6 +278,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ProblemError", m.py().get_type::<ProblemError>())?;
     m.add_function(wrap_pyfunction!(check, m)?)?;
     m.add_function(wrap_pyfunction!(solve, m)?)?;
+    m.add_function(wrap_pyfunction!(resume, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(member, m)?)?;
     m.add_function(wrap_pyfunction!(systems, m)?)?;

@@ -34,6 +34,8 @@ fn overrides_apply_to_text_too() {
         steps: Some(7),
         h: Some(0.01),
         out: Some("elsewhere".into()),
+        checkpoint_every: None,
+        every: None,
     };
     let spec = from_toml_str(PENDULUM, "p.toml", &overrides).unwrap();
     assert_eq!(

@@ -38,6 +38,8 @@ pub fn load_example(name: &str, out: &Path, steps: Option<u64>) -> RunSpec {
         steps,
         h: None,
         out: Some(out.to_owned()),
+        checkpoint_every: None,
+        every: None,
     };
     marsden_spec::load(&example(name), &overrides).unwrap_or_else(|d| panic!("{d}"))
 }

@@ -1,4 +1,4 @@
-//! The command line: `marsden run | check | optimize | order | systems | plot`, parsed with clap's derive API.
+//! The command line: `marsden run | resume | check | optimize | order | systems | plot`, parsed with clap's derive API.
 //!
 //! Exit statuses (a contract): 0 completed, 1 the simulation failed (partial trajectory and
 //! summary still written, status "failed"), 2 bad problem file or usage (nothing run).
@@ -7,6 +7,7 @@ mod check;
 mod optimize;
 mod order;
 mod plot;
+mod resume;
 mod run;
 mod systems;
 
@@ -35,6 +36,9 @@ pub struct Cli {
 pub enum Command {
     /// Run a problem file: trajectory, summary.json and plots in the output directory.
     Run(RunArgs),
+    /// Continue a run from the last checkpoint in its output directory (`checkpoint_every`):
+    /// the files it leaves are those of the uninterrupted run.
+    Resume(ResumeArgs),
     /// Validate a problem file and print the resolved problem (nothing is run or written).
     Check(FileArgs),
     /// Solve the file's [optimal_control] problem (DMOC): trajectory, controls, summary, plots.
@@ -67,6 +71,10 @@ pub struct FileArgs {
     /// Output directory (replaces `dir` of the output table).
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Save a checkpoint every N steps (replaces `checkpoint_every` of the output table);
+    /// `marsden resume DIR` continues the run from the last one.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    pub checkpoint_every: Option<u64>,
 }
 
 impl FileArgs {
@@ -76,6 +84,8 @@ impl FileArgs {
             steps: self.steps,
             h: self.h,
             out: self.out.clone(),
+            checkpoint_every: self.checkpoint_every,
+            every: None,
         }
     }
 }
@@ -99,6 +109,19 @@ pub struct RunArgs {
     /// With `[sweep]`: number of worker threads (default: one per core).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     pub threads: Option<u16>,
+}
+
+/// `marsden resume`.
+#[derive(Debug, Args)]
+pub struct ResumeArgs {
+    /// The run's output directory (holding `checkpoint.bin`).
+    pub dir: PathBuf,
+    /// Print nothing on stdout (errors still go to stderr).
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Never show the progress bar.
+    #[arg(long)]
+    pub no_progress: bool,
 }
 
 /// `marsden optimize`.
@@ -163,6 +186,7 @@ where
 fn dispatch(command: Command) -> Result<Status, CliError> {
     match command {
         Command::Run(args) => run::run(&args),
+        Command::Resume(args) => resume::resume(&args),
         Command::Check(args) => check::check(&args),
         Command::Optimize(args) => optimize::optimize(&args),
         Command::Order(args) => order::order(&args),

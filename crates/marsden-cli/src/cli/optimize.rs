@@ -18,6 +18,8 @@ pub fn optimize(args: &OptimizeArgs) -> Result<Status, CliError> {
         steps: args.steps,
         h: None,
         out: args.out.clone(),
+        checkpoint_every: None,
+        every: None,
     };
     let spec = optimal_control::load(&args.file, &overrides)?;
     let outcome = marsden_optimize::run(&spec).map_err(|e| match e {

@@ -36,7 +36,15 @@ pub fn run(args: &RunArgs) -> Result<Status, CliError> {
             .help("add [sweep] with `parameter = \"...\"` and `values = [...]`"),
         ));
     }
-    let bar = Bar::new(!args.no_progress);
+    let outcome = with_controls(args.no_progress, |controls| {
+        marsden_spec::execute(&spec, Store::Files, controls)
+    })?;
+    Ok(conclude(&spec, &outcome, args.quiet))
+}
+
+/// Runs `body` with the progress bar (unless `no_progress`) and Ctrl-C watched.
+pub(super) fn with_controls<T>(no_progress: bool, body: impl FnOnce(&Controls<'_>) -> T) -> T {
+    let bar = Bar::new(!no_progress);
     let update = |p: Progress| {
         if let Some(bar) = &bar {
             bar.update(p);
@@ -46,12 +54,16 @@ pub fn run(args: &RunArgs) -> Result<Status, CliError> {
         progress: bar.is_some().then_some(&update as &dyn Fn(Progress)),
         stop: stop_on_ctrl_c(),
     };
-    let outcome = marsden_spec::execute(&spec, Store::Files, &controls)?;
+    body(&controls)
+}
+
+/// Prints what a run came to (unless `quiet`) and its exit status.
+pub(super) fn conclude(spec: &RunSpec, outcome: &marsden_spec::Outcome, quiet: bool) -> Status {
     for warning in &outcome.warnings {
         eprintln!("warning: {warning}");
     }
-    if !args.quiet {
-        print!("{}", report::run::render(&outcome));
+    if !quiet {
+        print!("{}", report::run::render(outcome));
         if let Some(sensitivity) = &outcome.summary.sensitivity {
             println!("{}", marsden_spec::run::sensitivity::describe(sensitivity));
         }
@@ -59,14 +71,14 @@ pub fn run(args: &RunArgs) -> Result<Status, CliError> {
     let s = &outcome.summary;
     let dir = spec.output.dir.display();
     match (&s.error, s.status) {
-        (None, RunStatus::Completed | RunStatus::Stopped) => Ok(Status::Completed),
+        (None, RunStatus::Completed | RunStatus::Stopped) => Status::Completed,
         (Some(e), _) => {
             eprintln!(
                 "error: the simulation failed after {} of {} steps: {e}\n  = note: the partial \
                  trajectory and summary.json (status \"failed\") are in {dir}",
                 s.steps, s.steps_requested,
             );
-            Ok(Status::Failed)
+            Status::Failed
         }
         (None, _) => {
             eprintln!(
@@ -74,7 +86,10 @@ pub fn run(args: &RunArgs) -> Result<Status, CliError> {
                  trajectory and summary.json (status \"interrupted\") are in {dir}",
                 s.steps, s.steps_requested,
             );
-            Ok(Status::Failed)
+            if spec.output.checkpoint_every.is_some() {
+                eprintln!("  = help: `marsden resume {dir}` continues it from its last checkpoint");
+            }
+            Status::Failed
         }
     }
 }

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use super::number::format_f64;
 use crate::error::{Error, Result};
-use crate::sink::RowSink;
+use crate::sink::{RowSink, SinkMark};
 use crate::table::{Table, check_names};
 
 /// Rows are gathered in memory up to this many bytes, then handed to the file together.
@@ -67,6 +67,85 @@ impl CsvWriter<File> {
             file.seek(std::io::SeekFrom::Start(len)).map(drop)
         });
         Ok(w)
+    }
+}
+
+impl CsvWriter<File> {
+    /// Opens the file a run wrote up to `mark` ([`RowSink::mark`]) to go on writing after it:
+    /// checks that it starts with this `header` and holds at least `mark`'s bytes, cuts off
+    /// whatever was written after the mark (the rows of a run killed after its checkpoint), and
+    /// appends from there.
+    ///
+    /// # Errors
+    /// [`Error::Resume`] if the file is shorter than the mark or its header differs; an I/O
+    /// error naming `path`.
+    pub fn reopen<S: AsRef<str>>(
+        path: impl AsRef<Path>,
+        header: &[S],
+        mark: &SinkMark,
+    ) -> Result<Self> {
+        use std::io::{Read as _, Seek as _};
+        let path = path.as_ref();
+        check_names(header.iter().map(AsRef::as_ref))?;
+        let line = header
+            .iter()
+            .map(AsRef::as_ref)
+            .collect::<Vec<_>>()
+            .join(",")
+            + "\n";
+        let bytes = match mark.bytes.as_slice() {
+            [bytes] => *bytes,
+            other => {
+                return Err(Error::resume(
+                    path,
+                    format!(
+                        "the checkpoint records {} file lengths for one CSV file",
+                        other.len()
+                    ),
+                ));
+            }
+        };
+        let mut file = std::fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .open(path)
+            .map_err(|e| Error::io("open", path, e))?;
+        let length = file
+            .metadata()
+            .map_err(|e| Error::io("read the length of", path, e))?
+            .len();
+        if length < bytes {
+            return Err(Error::resume(
+                path,
+                format!("{length} bytes, but the checkpoint was taken after {bytes}"),
+            ));
+        }
+        let mut start = vec![0; line.len().min(usize::try_from(bytes).unwrap_or(usize::MAX))];
+        file.read_exact(&mut start)
+            .map_err(|e| Error::io("read", path, e))?;
+        if start != line.as_bytes() {
+            return Err(Error::resume(
+                path,
+                "its header line is not the one of this run".to_owned(),
+            ));
+        }
+        file.set_len(bytes).map_err(|e| Error::io("cut", path, e))?;
+        file.seek(std::io::SeekFrom::Start(bytes))
+            .map_err(|e| Error::io("seek in", path, e))?;
+        Ok(Self {
+            inner: Some(file),
+            path: path.to_path_buf(),
+            width: header.len(),
+            rows: mark.rows,
+            buffered: 0,
+            written: bytes,
+            cut: Some(|file, len| {
+                use std::io::Seek as _;
+                file.set_len(len)?;
+                file.seek(std::io::SeekFrom::Start(len)).map(drop)
+            }),
+            buf: String::with_capacity(SPILL_BYTES + 1024),
+        })
     }
 }
 
@@ -262,6 +341,13 @@ impl<W: Write> RowSink for CsvWriter<W> {
     }
     fn rows_written(&self) -> u64 {
         CsvWriter::rows_written(self)
+    }
+    fn mark(&mut self) -> Result<SinkMark> {
+        CsvWriter::flush(self)?;
+        Ok(SinkMark {
+            rows: self.rows,
+            bytes: vec![self.written],
+        })
     }
 }
 

@@ -7,7 +7,7 @@ use super::reader::NpyValues;
 use super::writer::{NpyShape, NpyWriter};
 use crate::error::{Error, Result};
 use crate::layout::{Group, GroupKind, Layout};
-use crate::sink::RowSink;
+use crate::sink::{RowSink, SinkMark};
 use crate::table::{Collector, Table};
 use crate::thin::{Thinned, Thinner};
 
@@ -50,6 +50,32 @@ impl NpyDirWriter {
             writers,
             width: layout.width(),
             rows: 0,
+        })
+    }
+
+    /// Opens the files a run wrote up to `mark` ([`RowSink::mark`]) to go on writing after it
+    /// ([`NpyWriter::reopen`]: data past the mark is cut off).
+    ///
+    /// # Errors
+    /// [`Error::Resume`] if a file holds fewer rows than the mark; an I/O error naming the file.
+    pub fn reopen(dir: impl AsRef<Path>, layout: &Layout, mark: &SinkMark) -> Result<Self> {
+        let dir = dir.as_ref();
+        let writers = layout
+            .groups()
+            .iter()
+            .map(|g| {
+                NpyWriter::reopen(
+                    file_of(dir, &g.name),
+                    shape_of(g.kind, g.width()),
+                    mark.rows,
+                )
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            writers,
+            width: layout.width(),
+            rows: mark.rows,
         })
     }
 
@@ -125,6 +151,15 @@ impl RowSink for NpyDirWriter {
     }
     fn rows_written(&self) -> u64 {
         NpyDirWriter::rows_written(self)
+    }
+    fn mark(&mut self) -> Result<SinkMark> {
+        NpyDirWriter::flush(self)?;
+        let rows = NpyDirWriter::rows_written(self);
+        let header = super::header::HEADER_BYTES as u64;
+        let bytes = (self.writers.iter())
+            .map(|w| header + rows * 8 * w.shape().row_width() as u64)
+            .collect();
+        Ok(SinkMark { rows, bytes })
     }
 }
 

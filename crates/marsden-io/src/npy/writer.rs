@@ -76,6 +76,47 @@ impl NpyWriter<File> {
         let file = File::create(path).map_err(|e| Error::io("create", path, e))?;
         Self::from_writer(file, path, shape)
     }
+
+    /// Opens a file this writer streamed `rows` rows into, to go on after them: cuts off any
+    /// data past those rows (the rows of a run killed after its checkpoint), rewrites the
+    /// header's count, and appends from there.
+    ///
+    /// # Errors
+    /// [`Error::Resume`] if the file holds fewer rows than `rows`; an I/O error naming `path`.
+    pub fn reopen(path: impl AsRef<Path>, shape: NpyShape, rows: u64) -> Result<Self> {
+        let path = path.as_ref();
+        let file = std::fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .open(path)
+            .map_err(|e| Error::io("open", path, e))?;
+        let row_bytes = 8 * shape.row_width() as u64;
+        let length = (rows.checked_mul(row_bytes))
+            .and_then(|data| data.checked_add(super::header::HEADER_BYTES as u64));
+        let found = (file.metadata())
+            .map_err(|e| Error::io("read the length of", path, e))?
+            .len();
+        match length {
+            Some(length) if found >= length => {
+                file.set_len(length)
+                    .map_err(|e| Error::io("cut", path, e))?;
+            }
+            _ => {
+                let reason = format!("{found} bytes, fewer than the {rows} rows of the checkpoint");
+                return Err(Error::resume(path, reason));
+            }
+        }
+        let mut w = Self {
+            inner: Some(file),
+            path: path.to_path_buf(),
+            shape,
+            rows,
+            on_disk: rows,
+            buf: Vec::with_capacity(SPILL_BYTES + 1024),
+        };
+        w.flush()?;
+        Ok(w)
+    }
 }
 
 impl<W: Write + Seek> NpyWriter<W> {

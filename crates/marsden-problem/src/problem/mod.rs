@@ -10,6 +10,7 @@
 //! notebook cell), [`member`] (one member of a sweep).
 
 pub mod check;
+pub mod checkpoints;
 pub mod constraint_regularity;
 pub mod discrete;
 pub mod events;
@@ -295,6 +296,13 @@ fn validate_raw(
         refuse_in_sweep(&ck, raw)?;
     }
     let sensitivity = sensitivity::sensitivity(&ck, raw.sensitivity.as_ref(), &system)?;
+    let kind = checkpoints::RunKind {
+        system: &system,
+        method: &integrator.method,
+        sweep: sweep.is_some(),
+        sensitivity: sensitivity.is_some(),
+    };
+    checkpoints::refuse_unsupported(&ck, raw, output.checkpoint_every, kind)?;
     let events = events::events(&ck, raw, &system)?;
     let system_table = raw.system.as_ref().map(|s| s.get_ref());
     let lagrangian_span = system_table
@@ -316,6 +324,7 @@ fn validate_raw(
     };
     Ok(RunSpec {
         source,
+        overrides: overrides.clone(),
         name,
         system,
         initial,

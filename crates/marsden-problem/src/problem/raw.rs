@@ -320,6 +320,8 @@ pub struct RawOutput {
     pub format: Option<Spanned<String>>,
     /// Store every k-th step (default 1).
     pub every: Option<Spanned<i64>>,
+    /// Save a checkpoint of the run every this many steps (none by default).
+    pub checkpoint_every: Option<Spanned<i64>>,
     /// Draw PNG plots (default true).
     pub plots: Option<Spanned<bool>>,
     /// Coordinates that are angles: plots show them wrapped to (−π, π].

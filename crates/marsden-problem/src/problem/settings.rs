@@ -342,9 +342,11 @@ pub fn output(
             }
         },
     };
-    let every = match table.and_then(|t| t.every.as_ref()) {
-        None => 1,
-        Some(e) => count(ck, "every", e)?,
+    let every = match (overrides.every, table.and_then(|t| t.every.as_ref())) {
+        (Some(0), _) => return Err(ck.error(None, "`every` must be at least 1, got 0")),
+        (Some(n), _) => usize::try_from(n).unwrap_or(usize::MAX),
+        (None, None) => 1,
+        (None, Some(e)) => count(ck, "every", e)?,
     };
     let plots = table
         .and_then(|t| t.plots.as_ref())
@@ -353,12 +355,24 @@ pub fn output(
         None => Vec::new(),
         Some(list) => angles(ck, list, coordinates)?,
     };
+    let checkpoint_every = match (
+        overrides.checkpoint_every,
+        table.and_then(|t| t.checkpoint_every.as_ref()),
+    ) {
+        (Some(0), _) => {
+            return Err(ck.error(None, "--checkpoint-every must be at least 1, got 0"));
+        }
+        (Some(n), _) => Some(usize::try_from(n).unwrap_or(usize::MAX)),
+        (None, Some(e)) => Some(count(ck, "checkpoint_every", e)?),
+        (None, None) => None,
+    };
     Ok(OutputSpec {
         dir,
         format,
         every,
         plots,
         angles,
+        checkpoint_every,
     })
 }
 

@@ -27,6 +27,10 @@ pub struct Overrides {
     pub h: Option<f64>,
     /// Replaces `[output] dir`.
     pub out: Option<PathBuf>,
+    /// Replaces `[output] checkpoint_every` (`marsden run --checkpoint-every`).
+    pub checkpoint_every: Option<u64>,
+    /// Replaces `[output] every` (Python's `solve(every=…)`).
+    pub every: Option<u64>,
 }
 
 /// A validated problem file, ready to run.
@@ -34,6 +38,8 @@ pub struct Overrides {
 pub struct RunSpec {
     /// The file it came from.
     pub source: SourceFile,
+    /// The command-line values that changed it.
+    pub overrides: Overrides,
     /// The run's name (`[system] name`, else the builtin's name, else the file's stem).
     pub name: String,
     /// What is simulated.
@@ -340,4 +346,7 @@ pub struct OutputSpec {
     pub plots: bool,
     /// Coordinates that are angles (plots wrap them to (−π, π]).
     pub angles: Vec<String>,
+    /// Save a checkpoint of the run every this many steps (`None`: never), from which
+    /// `marsden resume` continues it bit for bit.
+    pub checkpoint_every: Option<usize>,
 }

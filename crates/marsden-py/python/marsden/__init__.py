@@ -26,6 +26,7 @@ from . import _native
 from ._errors import ProblemError, SimulationError
 from ._optimize import OptimalControlSolution
 from ._problem import Problem
+from ._resume import resume
 from ._sensitivity import Sensitivity
 from ._solution import Body, Solution
 from ._sweep import sweep
@@ -40,6 +41,7 @@ __all__ = [
     "Sensitivity",
     "SimulationError",
     "Solution",
+    "resume",
     "sweep",
     "systems",
     "to_grammar",

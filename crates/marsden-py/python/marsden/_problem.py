@@ -225,7 +225,8 @@ class Problem:
         return self._info["steps"]
 
     def solve(self, every: Optional[int] = None, progress: _progress.Request = False,
-              sensitivity: Optional[_sensitivity.Request] = None) -> Solution:
+              sensitivity: Optional[_sensitivity.Request] = None,
+              dir: Optional[str] = None, checkpoint_every: Optional[int] = None) -> Solution:
         """Runs the problem (without the interpreter's lock; Ctrl-C raises
         ``KeyboardInterrupt`` within a few hundred steps) and returns the stored samples.
 
@@ -240,6 +241,14 @@ class Problem:
 
             >>> s = pendulum.solve(sensitivity=["g", "l"])
             >>> s.sensitivity.column("g")      # ∂(θ, p_θ)/∂g at the last step
+
+        ``dir``: also write the files of ``marsden run`` there (``trajectory.csv``,
+        ``summary.json``, plots). ``checkpoint_every`` (with ``dir``): save a checkpoint every
+        this many steps, so that a run killed part-way continues with
+        :func:`marsden.resume` and leaves the files of the uninterrupted run::
+
+            >>> pendulum.solve(dir="out/long", checkpoint_every=100_000)
+            >>> marsden.resume("out/long")          # after a kill, in a new process
 
         Raises :class:`marsden.ProblemError` for a problem with a sweep (run it with
         :meth:`sweep`), and :class:`marsden.SimulationError` if the run fails part-way (its
@@ -264,7 +273,8 @@ class Problem:
                                    "solve(sensitivity=...), or remove the table")
             text += _sensitivity.table(sensitivity)
         try:
-            fields = _native.solve(text, self._origin, every, _progress.callback(progress))
+            fields = _native.solve(text, self._origin, every, _progress.callback(progress),
+                                   None if dir is None else str(dir), checkpoint_every)
         except ProblemError as e:
             raise self._error(e) from None
         return from_native(fields)

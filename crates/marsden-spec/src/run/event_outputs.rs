@@ -105,12 +105,20 @@ impl RowSink for EventTee<'_> {
 ///
 /// # Errors
 /// An I/O error naming the file.
-pub fn open(dir: &Path, spec: &RunSpec) -> marsden_io::Result<Option<CsvWriter<std::fs::File>>> {
+pub fn open(
+    dir: &Path,
+    spec: &RunSpec,
+    resume_at: Option<&marsden_io::SinkMark>,
+) -> marsden_io::Result<Option<CsvWriter<std::fs::File>>> {
     if spec.events.events.is_empty() {
         return Ok(None);
     }
     let columns = event_columns(&spec.system.coordinates);
-    CsvWriter::create(dir.join(EVENTS_CSV), &columns).map(Some)
+    let path = dir.join(EVENTS_CSV);
+    match resume_at {
+        None => CsvWriter::create(path, &columns).map(Some),
+        Some(mark) => CsvWriter::reopen(path, &columns, mark).map(Some),
+    }
 }
 
 /// Draws `section.png` from the `events.csv` in `dir`, in the axes of `[output] section`.

@@ -14,6 +14,7 @@ use super::{balance, output, plots, sensitivity, start};
 use crate::error::{Diagnostic, Error};
 use crate::problem::RunSpec;
 use marsden_engine::Engine;
+use marsden_engine::checkpoint::{CHECKPOINT_FILE, CheckpointPlan, RunCheckpoint};
 
 /// Where the samples of a run go.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -65,9 +66,28 @@ pub struct Outcome {
 /// written); [`ErrorKind::Failed`](crate::ErrorKind::Failed) only if not even the summary could
 /// be written. A failed or interrupted simulation is an `Ok` outcome with that status.
 pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<Outcome, Error> {
+    execute_from(spec, store, controls, None)
+}
+
+/// [`execute`], from the checkpoint `resume` when given (`marsden resume`): the output files
+/// are not cleared but cut back to the checkpoint's marks and continued, and the run goes on
+/// from the checkpoint's step; with `[output] checkpoint_every`, checkpoints are written as
+/// the run goes.
+///
+/// # Errors
+/// As [`execute`]; also a checkpoint whose files no longer match (nothing is then changed),
+/// and checkpoints asked of a run that keeps its samples only in memory.
+pub fn execute_from(
+    spec: &RunSpec,
+    store: Store,
+    controls: &Controls<'_>,
+    resume: Option<Box<RunCheckpoint>>,
+) -> Result<Outcome, Error> {
     let engine = crate::engine_for(spec);
     let start = engine.prepare(spec)?;
     let dir = spec.output.dir.clone();
+    let plan = checkpoint_plan(spec, store, resume)?;
+    let resumed = plan.as_ref().and_then(|p| p.resume.as_deref());
     let io = |what: &str, e: &dyn std::fmt::Display| {
         Error::bad_input(Diagnostic::new(format!(
             "cannot {what} {}: {e}",
@@ -81,22 +101,38 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
             let held = output::lock(&dir).map_err(|m| {
                 Error::bad_input(Diagnostic::new(m).help("give this run another `--out` directory"))
             })?;
-            output::clear_previous(&dir).map_err(|e| io("clear the previous results in", &e))?;
+            if resumed.is_none() {
+                output::clear_previous(&dir)
+                    .map_err(|e| io("clear the previous results in", &e))?;
+            }
             Some(held)
         }
         false => None,
     };
     let layout = output::layout_of(spec).map_err(|e| io("lay out the columns of", &e))?;
-    let mut files = match store.files() {
-        true => Some(
+    let mut files = match (store.files(), resumed) {
+        (true, None) => Some(
             output::open_sink(&dir, spec.output.format, &layout)
                 .map_err(|e| io("write the trajectory into", &e))?,
         ),
-        false => None,
+        (true, Some(c)) => Some(
+            output::reopen_sink(
+                &dir,
+                spec.output.format,
+                &layout,
+                &(&c.stream.trajectory).into(),
+            )
+            .map_err(|e| Error::bad_input(Diagnostic::new(e.to_string())))?,
+        ),
+        (false, _) => None,
     };
     let mut samples = store.memory().then(|| Samples::of(spec));
+    let events_mark = resumed
+        .and_then(|c| c.events.as_ref())
+        .and_then(|e| e.file.as_ref());
     let mut event_file = match store.files() {
-        true => event_outputs::open(&dir, spec).map_err(|e| io("write the events into", &e))?,
+        true => event_outputs::open(&dir, spec, events_mark.map(Into::into).as_ref())
+            .map_err(|e| io("write the events into", &e))?,
         false => None,
     };
     let has_events = !spec.events.events.is_empty();
@@ -118,11 +154,13 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
             sink: files.as_mut(),
             with_velocity: false,
             events,
+            checkpoints: plan.as_ref(),
         },
         (None, Some(memory)) => Destination {
             sink: memory,
             with_velocity: true,
             events,
+            checkpoints: plan.as_ref(),
         },
         (Some(files), Some(memory)) => Destination {
             sink: {
@@ -134,6 +172,7 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
             },
             with_velocity: true,
             events,
+            checkpoints: plan.as_ref(),
         },
         (None, None) => Destination {
             sink: {
@@ -142,6 +181,7 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
             },
             with_velocity: false,
             events,
+            checkpoints: plan.as_ref(),
         },
     };
     let mut record = engine.run(spec, destination, controls)?;
@@ -227,6 +267,35 @@ pub fn execute(spec: &RunSpec, store: Store, controls: &Controls<'_>) -> Result<
         sensitivity: jacobians.filter(|_| store.memory()),
         events: event_memory,
     })
+}
+
+/// The checkpoints of `spec` (`[output] checkpoint_every`), resuming from `resume` if given.
+///
+/// # Errors
+/// Checkpoints asked of a run whose samples stay in memory (there is no directory to write
+/// them into, nor files to resume).
+fn checkpoint_plan(
+    spec: &RunSpec,
+    store: Store,
+    resume: Option<Box<RunCheckpoint>>,
+) -> Result<Option<CheckpointPlan>, Error> {
+    let Some(every) = spec.output.checkpoint_every else {
+        return Ok(None);
+    };
+    if !store.files() {
+        return Err(Error::bad_input(
+            Diagnostic::new(
+                "checkpoints are written into the output directory, but this run writes no files",
+            )
+            .help("give the run an output directory, or remove `checkpoint_every`"),
+        ));
+    }
+    Ok(Some(CheckpointPlan {
+        every,
+        path: spec.output.dir.join(CHECKPOINT_FILE),
+        identity: super::resume::identity(spec),
+        resume,
+    }))
 }
 
 /// What `[sensitivity]` gave: the summary's block, the file written, the stored Jacobians.

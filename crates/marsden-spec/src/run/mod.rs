@@ -5,6 +5,7 @@
 //! | step | module | what |
 //! |---|---|---|
 //! | entry point | [`execute`](fn@execute) | the whole run ([`Store`]: files, memory or both) → [`Outcome`] |
+//! | long runs | [`resume`] | checkpoints every `checkpoint_every` steps; a run continued from its last one |
 //! | caller's hold | [`controls`] | [`Progress`] callback and stop flag ([`Controls`]) |
 //! | initial state | [`start`] | `p` from `v` (or back), projection, regularity, symmetry warnings |
 //! | the run | [`solve`] | a `Problem` from the file's parts, stepped by the rule or by shooting |
@@ -22,6 +23,7 @@ pub mod execute;
 pub mod multibody_plots;
 pub mod output;
 pub mod plots;
+pub mod resume;
 pub mod rigid_plots;
 pub mod samples;
 pub mod shard;
@@ -30,7 +32,7 @@ pub mod sweep;
 pub mod sweep_table;
 pub mod sweep_writer;
 
-pub use execute::{Outcome, Store, execute};
+pub use execute::{Outcome, Store, execute, execute_from};
 pub use marsden_engine::{
     CHECK_EVERY, Controls, Progress, RunRecord, balance, certify, controls, diagnostics, discrete,
     engine, noether_balance, observer, sensitivity, solve, start, step_system,

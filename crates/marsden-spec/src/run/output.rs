@@ -225,8 +225,9 @@ pub fn layout_from_columns(names: &[String]) -> marsden_io::Result<Layout> {
 }
 
 /// Files a previous run may have left in an output directory (and nothing else).
-const RUN_FILES: [&str; 27] = [
+const RUN_FILES: [&str; 28] = [
     TRAJECTORY_CSV,
+    marsden_engine::checkpoint::CHECKPOINT_FILE,
     marsden_engine::events::EVENTS_CSV,
     "observables.npy",
     super::event_outputs::SECTION_PNG,
@@ -270,26 +271,7 @@ pub fn clear_previous(dir: &Path) -> std::io::Result<()> {
     Ok(())
 }
 
-/// Writes `bytes` to `path` through a temporary file beside it, synced and then renamed: the
-/// file is whole or absent, never truncated (the temporary one is removed on failure).
-///
-/// # Errors
-/// The I/O error.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    use std::io::Write as _;
-    let mut name = path.file_name().unwrap_or_default().to_owned();
-    name.push(".partial");
-    let temporary = path.with_file_name(name);
-    let written = std::fs::File::create(&temporary).and_then(|mut f| {
-        f.write_all(bytes)?;
-        f.sync_all()
-    });
-    let result = written.and_then(|()| std::fs::rename(&temporary, path));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&temporary);
-    }
-    result
-}
+pub use marsden_io::write_atomically;
 
 /// The lock file of an output directory.
 pub const LOCK: &str = ".marsden.lock";
@@ -355,6 +337,27 @@ pub fn open_sink(
             &layout.column_names(),
         )?),
         Format::Npy => Box::new(NpyDirWriter::create(dir, layout)?),
+    })
+}
+
+/// The trajectory files of a run resumed from a checkpoint, reopened at its `mark` (rows
+/// written after it are cut off).
+///
+/// # Errors
+/// A file that does not match the mark, or an I/O error naming it.
+pub fn reopen_sink(
+    dir: &Path,
+    format: Format,
+    layout: &Layout,
+    mark: &marsden_io::SinkMark,
+) -> marsden_io::Result<Box<dyn RowSink>> {
+    Ok(match format {
+        Format::Csv => Box::new(CsvWriter::reopen(
+            dir.join(TRAJECTORY_CSV),
+            &layout.column_names(),
+            mark,
+        )?),
+        Format::Npy => Box::new(NpyDirWriter::reopen(dir, layout, mark)?),
     })
 }
 

@@ -311,6 +311,8 @@ fn run_member(
         sink: &mut sink,
         with_velocity: false,
         events: None,
+        // Refused with `[sweep]` when the file was read.
+        checkpoints: None,
     };
     engine.run(&spec, destination, controls)
 }

@@ -22,6 +22,6 @@ pub mod trajectory;
 pub use grid::{RunOptions, TimeGrid};
 pub use observer::{Observer, StepView};
 pub use problem::{Problem, SolveOptions};
-pub use simulate::simulate;
+pub use simulate::{Resumed, simulate, simulate_from};
 pub use stepper::Stepper;
 pub use trajectory::{RunFailure, Termination, Trajectory};

@@ -3,6 +3,7 @@
 use std::ops::ControlFlow;
 
 use super::trajectory::Termination;
+use crate::integrator::IntegratorCheckpoint;
 use crate::integrator::StepReport;
 
 /// What an observer sees after each completed step.
@@ -49,6 +50,23 @@ pub trait Observer {
     /// ([`Termination::Event`]) or the failure to locate it ([`Termination::Failed`]).
     fn termination(&self) -> Option<Termination> {
         None
+    }
+    /// Whether the run should be checkpointed after `step` (default: never). The run loop
+    /// then hands [`Observer::checkpoint`] what the stepper carries; an observer that asks
+    /// for checkpoints also makes its [`Observer::cadence`] stop the loop at those steps.
+    fn checkpoint_due(&self, _step: usize) -> bool {
+        false
+    }
+    /// Saves a checkpoint of the run after the step `view` shows, with what the stepper
+    /// carries to its next step (`carried`); called after [`Observer::observe`] let the run
+    /// go on. Return `ControlFlow::Break(())` to stop the run (the checkpoint could not be
+    /// saved). Default: nothing.
+    fn checkpoint(
+        &mut self,
+        _view: &StepView<'_>,
+        _carried: &IntegratorCheckpoint,
+    ) -> ControlFlow<()> {
+        ControlFlow::Continue(())
     }
 }
 

@@ -7,13 +7,13 @@
 
 use super::grid::{RunOptions, TimeGrid};
 use super::observer::Observer;
-use super::simulate::simulate;
+use super::simulate::{Resumed, simulate, simulate_from};
 use super::trajectory::{RunFailure, Trajectory};
 use crate::discrete::rules::Rule;
 use crate::error::Error;
 use crate::error::InputError;
 use crate::holonomic::{self, Rattle};
-use crate::integrator::Integrator;
+use crate::integrator::{Integrator, IntegratorCheckpoint};
 use crate::mechanics;
 use crate::mechanics::{Constraint, Force, Initial, Lagrangian, NoForce, State, Unconstrained};
 use crate::numerics::newton::NewtonOptions;
@@ -239,6 +239,34 @@ impl<L: Lagrangian, F: Force, C: Constraint> Problem<L, F, C> {
         options: &SolveOptions,
         observer: &mut O,
     ) -> Result<Trajectory, Box<RunFailure>> {
+        self.solve_from(rule, options, observer, None)
+    }
+
+    /// [`Problem::solve_with`] from a checkpoint of the same problem, rule and options: the
+    /// integrator is built as for a fresh run, `carried` restored into it, and the run goes on
+    /// from `from` ([`simulate_from`]) — bit for bit the run that was checkpointed, if
+    /// `observer` holds what it had accumulated then.
+    ///
+    /// # Errors
+    /// As [`Problem::solve_with`]; a checkpoint of another kind of step
+    /// ([`Integrator::restore`]) fails the run before any step, with an empty trajectory.
+    pub fn solve_resumed<R: Rule, O: Observer + ?Sized>(
+        &self,
+        rule: &R,
+        options: &SolveOptions,
+        observer: &mut O,
+        (from, carried): (Resumed, &IntegratorCheckpoint),
+    ) -> Result<Trajectory, Box<RunFailure>> {
+        self.solve_from(rule, options, observer, Some((from, carried)))
+    }
+
+    fn solve_from<R: Rule, O: Observer + ?Sized>(
+        &self,
+        rule: &R,
+        options: &SolveOptions,
+        observer: &mut O,
+        resume: Option<(Resumed, &IntegratorCheckpoint)>,
+    ) -> Result<Trajectory, Box<RunFailure>> {
         // Set-up errors come back with an empty trajectory (nothing was computed).
         let failure = |error| {
             let trajectory =
@@ -258,13 +286,19 @@ impl<L: Lagrangian, F: Force, C: Constraint> Problem<L, F, C> {
             .map_err(failure)?
             .with_fast_paths(!options.general_path)
             .with_compensated_summation(options.compensated);
-        simulate(
-            &mut integrator,
-            self.start.clone(),
-            &self.grid,
-            &options.run,
-            observer,
-        )
-        .into_result()
+        let trajectory = match resume {
+            None => simulate(
+                &mut integrator,
+                self.start.clone(),
+                &self.grid,
+                &options.run,
+                observer,
+            ),
+            Some((from, carried)) => {
+                integrator.restore(carried).map_err(failure)?;
+                simulate_from(&mut integrator, from, &self.grid, &options.run, observer)
+            }
+        };
+        trajectory.into_result()
     }
 }

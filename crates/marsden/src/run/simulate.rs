@@ -26,27 +26,86 @@ where
     S: Stepper + ?Sized,
     O: Observer + ?Sized,
 {
-    let (n, d) = stepper.dims();
-    let mut traj = Trajectory::new(n, d, grid.h);
-    let stride = options.stride.max(1);
-    let mut state = start;
     let initial = StepReport::default();
-    traj.push(0, state.t, &state.q, &state.p, &[], initial);
     observer.start(&StepView {
         step: 0,
-        t: state.t,
-        q: &state.q,
-        p: &state.p,
+        t: start.t,
+        q: &start.q,
+        p: &start.p,
         multipliers: &[],
         end_multipliers: &[],
         report: &initial,
     });
     let before = stepper.statistics();
+    let from = Resumed {
+        step: 0,
+        state: start,
+    };
+    run_loop(stepper, from, (grid, options), observer, &before)
+}
+
+/// Where a resumed run starts: after `step` steps of its grid, at `state` (whose `t` is
+/// `grid.time(step)`), exactly as a checkpoint recorded them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Resumed {
+    /// Steps completed before the checkpoint.
+    pub step: usize,
+    /// The state after them.
+    pub state: State,
+}
+
+/// [`simulate`] from a checkpoint: `stepper` has been restored
+/// ([`Stepper::restore_carried`]) and `observer` holds what it had accumulated when the
+/// checkpoint was taken; the loop goes on from step `from.step` of `grid`, and the run is bit
+/// for bit the one that was checkpointed. The observer's [`Observer::start`] is not called
+/// again, and the trajectory's first sample is the resumed state; its statistics count the
+/// whole run (the restored stepper's counters include the steps before the checkpoint).
+pub fn simulate_from<S, O>(
+    stepper: &mut S,
+    from: Resumed,
+    grid: &TimeGrid,
+    options: &RunOptions,
+    observer: &mut O,
+) -> Trajectory
+where
+    S: Stepper + ?Sized,
+    O: Observer + ?Sized,
+{
+    run_loop(
+        stepper,
+        from,
+        (grid, options),
+        observer,
+        &Statistics::default(),
+    )
+}
+
+/// The loop of [`simulate`] and [`simulate_from`]: steps from `from` to the end of the grid,
+/// storing every `stride`-th state and the last, showing the steps to `observer`, checkpointing
+/// where it asks; the trajectory's statistics are the stepper's counters less `before`.
+fn run_loop<S, O>(
+    stepper: &mut S,
+    from: Resumed,
+    (grid, options): (&TimeGrid, &RunOptions),
+    observer: &mut O,
+    before: &Statistics,
+) -> Trajectory
+where
+    S: Stepper + ?Sized,
+    O: Observer + ?Sized,
+{
+    let (n, d) = stepper.dims();
+    let mut traj = Trajectory::new(n, d, grid.h);
+    let stride = options.stride.max(1);
+    let Resumed { step: mut k, state } = from;
+    let mut state = state;
+    let initial = StepReport::default();
+    traj.push(k, state.t, &state.q, &state.p, &[], initial);
+    traj.steps = k;
     let mut last_report = initial;
     // Steps between stored samples run in one call when nobody watches each step.
     let chunked = !observer.every_step();
     let cadence = observer.cadence().max(1);
-    let mut k = 0;
     while k < grid.steps {
         let chunk = if chunked {
             let to_sample = (stride - k % stride).min(cadence - k % cadence);
@@ -75,10 +134,17 @@ where
             end_multipliers: stepper.end_multipliers(),
             report: &last_report,
         };
-        let stop = observer.observe(&view).is_break();
+        let mut stop = observer.observe(&view).is_break();
         if k % stride == 0 || k == grid.steps || stop {
             let multipliers = (stepper.multipliers(), stepper.projection_multipliers());
             traj.push_sample(k, (state.t, &state.q, &state.p), multipliers, last_report);
+        }
+        if !stop
+            && k < grid.steps
+            && observer.checkpoint_due(k)
+            && let Some(carried) = stepper.carried()
+        {
+            stop = observer.checkpoint(&view, &carried).is_break();
         }
         if stop {
             traj.termination = observer
@@ -89,7 +155,7 @@ where
     }
     let multipliers = (stepper.multipliers(), stepper.projection_multipliers());
     store_last_good(&mut traj, &state, multipliers, last_report);
-    traj.statistics = difference(&stepper.statistics(), &before);
+    traj.statistics = difference(&stepper.statistics(), before);
     traj
 }
 

@@ -4,8 +4,9 @@
 //! ([`super::simulate()`]) serves both and their trajectories are alike.
 
 use crate::discrete::{DiscreteAction, DiscreteForce};
-use crate::error::Error;
+use crate::error::{Error, InputError};
 use crate::holonomic::MomentumProjection;
+use crate::integrator::IntegratorCheckpoint;
 use crate::integrator::{Integrator, Statistics, StepReport};
 use crate::mechanics::{Constraint, State};
 
@@ -57,6 +58,26 @@ pub trait Stepper {
     fn statistics(&self) -> Statistics {
         Statistics::default()
     }
+
+    /// What the stepper carries from one step to the next, for a checkpoint of the run
+    /// ([`IntegratorCheckpoint`]; default: `None`, a stepper that cannot be checkpointed).
+    fn carried(&self) -> Option<IntegratorCheckpoint> {
+        None
+    }
+
+    /// Restores what [`Stepper::carried`] returned, so that the next step is bit for bit the
+    /// one the checkpointed stepper would have taken.
+    ///
+    /// # Errors
+    /// The checkpoint belongs to another kind of step; default: this stepper cannot restore
+    /// checkpoints.
+    fn restore_carried(&mut self, _carried: &IntegratorCheckpoint) -> Result<(), Error> {
+        Err(Error::Input(InputError::InvalidOption {
+            name: "checkpoint",
+            value: f64::NAN,
+            reason: "this stepper cannot resume from a checkpoint",
+        }))
+    }
 }
 
 impl<A, F, C, P> Stepper for Integrator<A, F, C, P>
@@ -102,6 +123,12 @@ where
     }
     fn statistics(&self) -> Statistics {
         *Integrator::statistics(self)
+    }
+    fn carried(&self) -> Option<IntegratorCheckpoint> {
+        Some(Integrator::checkpoint(self))
+    }
+    fn restore_carried(&mut self, carried: &IntegratorCheckpoint) -> Result<(), Error> {
+        Integrator::restore(self, carried)
     }
 }
 

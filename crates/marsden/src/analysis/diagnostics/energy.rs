@@ -17,6 +17,7 @@ use crate::run::{Observer, StepView};
 
 /// Energy errors of a run.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct EnergyReport {
     /// Energy at the first sample.
     pub initial: f64,
@@ -39,6 +40,7 @@ pub struct EnergyReport {
 /// Accumulates energy errors sample by sample in O(1) memory (shared by the batch report, the
 /// [`EnergyMonitor`] and streaming writers that compute energies themselves).
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct EnergyAccumulator {
     report: EnergyReport,
     slope: OnlineSlope,

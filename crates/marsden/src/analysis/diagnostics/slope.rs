@@ -12,6 +12,7 @@ pub fn least_squares_slope(x: &[f64], y: &[f64]) -> f64 {
 /// Data are shifted by the first point (exact for nearby values, Sterbenz), so a large common
 /// offset does not cost accuracy.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct OnlineSlope {
     origin: (f64, f64),
     count: f64,

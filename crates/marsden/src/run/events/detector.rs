@@ -17,7 +17,8 @@ use crate::run::trajectory::Termination;
 const MAX_EVALUATIONS: usize = 200;
 
 /// A state of the run with its velocities.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Point {
     step: usize,
     t: f64,
@@ -36,6 +37,16 @@ impl Point {
             p: vec![0.0; n],
         }
     }
+}
+
+/// What an [`EventDetector`] carries from one step to the next ([`EventDetector::checkpoint`]).
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct DetectorCheckpoint {
+    before: Point,
+    g_before: Vec<f64>,
+    crossings: Vec<usize>,
+    records: Vec<EventRecord>,
 }
 
 /// A sign change found at the end of a step, located.
@@ -113,6 +124,54 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
     /// The events watched.
     pub fn events(&self) -> &[Event<G>] {
         &self.events
+    }
+
+    /// What the detector carries to the next step, for a checkpoint of the run: the state the
+    /// next step starts from with its velocities and `g` there, the crossings counted and the
+    /// records located so far.
+    pub fn checkpoint(&self) -> DetectorCheckpoint {
+        DetectorCheckpoint {
+            before: self.before.clone(),
+            g_before: self.g_before.clone(),
+            crossings: self.crossings.clone(),
+            records: self.records.clone(),
+        }
+    }
+
+    /// Restores a [`EventDetector::checkpoint`] of a detector of the same events: the next
+    /// step is looked at as the checkpointed detector would have.
+    ///
+    /// # Errors
+    /// [`InputError::DimensionMismatch`] if the checkpoint has another number of events or
+    /// coordinates; the detector is then unchanged.
+    pub fn restore(&mut self, checkpoint: &DetectorCheckpoint) -> Result<(), Error> {
+        let sizes = [
+            (
+                "checkpoint events",
+                self.g_before.len(),
+                checkpoint.g_before.len(),
+            ),
+            (
+                "checkpoint coordinates",
+                self.before.q.len(),
+                checkpoint.before.q.len(),
+            ),
+        ];
+        for (what, expected, found) in sizes {
+            if expected != found {
+                return Err(Error::Input(InputError::DimensionMismatch {
+                    what,
+                    expected,
+                    found,
+                }));
+            }
+        }
+        self.before.clone_from(&checkpoint.before);
+        self.g_before.clone_from(&checkpoint.g_before);
+        self.crossings.clone_from(&checkpoint.crossings);
+        self.records.clone_from(&checkpoint.records);
+        self.ending = None;
+        Ok(())
     }
 
     /// `after` ← the view's state with its velocities, and `g_after` ← `g` there.

@@ -39,7 +39,7 @@ mod detector;
 pub mod interpolant;
 mod legendre;
 
-pub use detector::EventDetector;
+pub use detector::{DetectorCheckpoint, EventDetector};
 
 /// A scalar function `g(t, q, v, p)` on the states of a run, whose zeros are events.
 pub trait EventFunction {

@@ -1,0 +1,345 @@
+//! Checkpoints and `marsden resume`: a run killed with SIGKILL at pseudo-random moments and
+//! resumed leaves the files of the uninterrupted run byte for byte (`summary.json`'s wall-clock
+//! times aside) — for the explicit Störmer–Verlet path, a Newton step (midpoint), a Galerkin
+//! rule (gauss-2), a constrained run (RATTLE) and a run with events, in CSV and `.npy`; bad
+//! checkpoints and changed files are refused with nothing changed.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use crate::util::{fixture, marsden_in};
+
+/// A problem of one kind of step, long enough to be killed in the middle.
+struct Case {
+    name: &'static str,
+    text: String,
+    every: &'static str,
+}
+
+fn pendulum(method: &str, steps: u64) -> String {
+    format!(
+        "[system]\nbuiltin = \"pendulum\"\n[initial]\nq = [1.0]\nv = [0.0]\n\
+         [integrator]\nmethod = \"{method}\"\nh = 0.01\nsteps = {steps}\n\
+         [output]\nevery = 100\nplots = false\n"
+    )
+}
+
+fn cases() -> Vec<Case> {
+    let constrained = "[system]\ncoordinates = [\"x\", \"y\"]\n\
+        lagrangian = \"0.5*(x_dot^2 + y_dot^2) - y\"\nconstraints = [\"x^2 + y^2 - 1\"]\n\
+        [initial]\nq = [0.9974949866040544, -0.0707372016677029]\nv = [0.0, 0.0]\n\
+        [integrator]\nmethod = \"midpoint\"\nh = 0.01\nsteps = 300000\n\
+        [output]\nevery = 50\nplots = false\n";
+    let events = "[system]\nbuiltin = \"henon_heiles\"\nparameters = { lambda = 1.0 }\n\
+        [initial]\nq = [0.0, 0.1]\nv = [0.4802776974487434, 0.1]\n\
+        [integrator]\nmethod = \"trapezoid\"\nh = 0.05\nsteps = 400000\n\
+        [[events]]\nname = \"x_up\"\nwhen = \"x\"\ndirection = \"up\"\n\
+        [output]\nevery = 100\nplots = false\nobservables = { r = \"sqrt(x^2 + y^2)\" }\n";
+    let npy =
+        pendulum("midpoint", 1_000_000).replace("plots = false", "plots = false\nformat = \"npy\"");
+    vec![
+        Case {
+            name: "explicit",
+            text: pendulum("trapezoid", 3_000_000),
+            every: "100000",
+        },
+        Case {
+            name: "midpoint",
+            text: pendulum("midpoint", 1_000_000),
+            every: "50000",
+        },
+        Case {
+            name: "gauss-2",
+            text: pendulum("gauss-2", 400_000),
+            every: "20000",
+        },
+        Case {
+            name: "constrained",
+            text: constrained.to_owned(),
+            every: "20000",
+        },
+        Case {
+            name: "events",
+            text: events.to_owned(),
+            every: "30000",
+        },
+        Case {
+            name: "npy",
+            text: npy,
+            every: "50000",
+        },
+    ]
+}
+
+/// `marsden run FILE --out OUT --checkpoint-every N -q --no-progress` as a child process.
+fn spawn_run(file: &Path, out: &Path, every: &str) -> std::process::Child {
+    Command::new(env!("CARGO_BIN_EXE_marsden"))
+        .args([
+            "run",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .args(["--checkpoint-every", every, "-q", "--no-progress"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap()
+}
+
+/// The files of a run directory, `summary.json` without its wall-clock lines.
+fn contents(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut files: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| !p.file_name().unwrap().to_str().unwrap().starts_with('.'))
+        .collect();
+    files.sort();
+    files
+        .into_iter()
+        .map(|p| {
+            let name = p.file_name().unwrap().to_str().unwrap().to_owned();
+            let bytes = std::fs::read(&p).unwrap();
+            let bytes = match name.as_str() {
+                "summary.json" => String::from_utf8(bytes)
+                    .unwrap()
+                    .lines()
+                    .filter(|l| !l.contains("wall_seconds") && !l.contains("jit_compile_seconds"))
+                    .collect::<Vec<_>>()
+                    .join("\n")
+                    .into_bytes(),
+                _ => bytes,
+            };
+            (name, bytes)
+        })
+        .collect()
+}
+
+/// A pseudo-random delay in `0..limit` ms (xorshift, seeded per attempt: reproducible).
+fn delay(seed: u64, limit: u64) -> Duration {
+    let mut x = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+    x ^= x << 13;
+    x ^= x >> 7;
+    x ^= x << 17;
+    Duration::from_millis(x % limit)
+}
+
+/// Kills a run with SIGKILL after its first checkpoint plus `wait`, then resumes it; whether
+/// the kill found the run still going.
+fn killed_and_resumed(file: &Path, out: &Path, every: &str, wait: Duration) -> bool {
+    let mut child = spawn_run(file, out, every);
+    let clock = Instant::now();
+    let checkpoint = out.join("checkpoint.bin");
+    while !checkpoint.exists() && clock.elapsed() < Duration::from_secs(60) {
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    std::thread::sleep(wait);
+    // The run may have ended already: the resume then replays its last stretch.
+    let running = child.try_wait().unwrap().is_none();
+    let _ = child.kill();
+    let _ = child.wait();
+    let resumed = marsden_in(
+        out.parent().unwrap(),
+        &["resume", out.to_str().unwrap(), "-q", "--no-progress"],
+    );
+    let stderr = String::from_utf8_lossy(&resumed.stderr);
+    assert!(resumed.status.success(), "{stderr}");
+    running
+}
+
+#[test]
+fn sigkill_at_random_moments_then_resume_equals_the_uninterrupted_run() {
+    for (c, case) in cases().into_iter().enumerate() {
+        let tmp = tempfile::tempdir().unwrap();
+        let file = tmp.path().join(format!("{}.toml", case.name));
+        std::fs::write(&file, &case.text).unwrap();
+        let whole = tmp.path().join("whole");
+        let status = spawn_run(&file, &whole, case.every).wait().unwrap();
+        assert!(status.success(), "{}", case.name);
+        let expected = contents(&whole);
+        assert!(
+            expected.iter().any(|(n, _)| n == "checkpoint.bin"),
+            "{}",
+            case.name
+        );
+        let mut killed_running = 0;
+        for attempt in 0..3 {
+            let out = tmp.path().join(format!("killed-{attempt}"));
+            let seed = (c * 10 + attempt) as u64;
+            killed_running += usize::from(killed_and_resumed(
+                &file,
+                &out,
+                case.every,
+                delay(seed, 400),
+            ));
+            let found = contents(&out);
+            let names =
+                |v: &[(String, Vec<u8>)]| v.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>();
+            assert_eq!(
+                names(&found),
+                names(&expected),
+                "{} attempt {attempt}",
+                case.name
+            );
+            for ((name, a), (_, b)) in expected.iter().zip(&found) {
+                assert!(
+                    a == b,
+                    "{}: {name} differs after kill {attempt} and resume",
+                    case.name
+                );
+            }
+        }
+    }
+}
+
+/// A finished run's directory with its checkpoint, in a temporary directory.
+fn finished_run(tmp: &Path) -> (PathBuf, PathBuf) {
+    let file = tmp.join("p.toml");
+    std::fs::write(&file, pendulum("midpoint", 20_000)).unwrap();
+    let out = tmp.join("out");
+    assert!(spawn_run(&file, &out, "5000").wait().unwrap().success());
+    (file, out)
+}
+
+/// `marsden resume` on `out`: exit code, stderr; and whether the files are untouched.
+fn refused_resume(out: &Path) -> (i32, String, bool) {
+    let before = contents(out);
+    let r = marsden_in(
+        out.parent().unwrap(),
+        &["resume", out.to_str().unwrap(), "-q"],
+    );
+    let untouched = contents(out) == before;
+    (
+        r.status.code().unwrap(),
+        String::from_utf8_lossy(&r.stderr).into_owned(),
+        untouched,
+    )
+}
+
+#[test]
+fn a_changed_problem_file_is_refused_and_nothing_is_changed() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (file, out) = finished_run(tmp.path());
+    std::fs::write(
+        &file,
+        pendulum("midpoint", 20_000).replace("q = [1.0]", "q = [1.1]"),
+    )
+    .unwrap();
+    let (code, stderr, untouched) = refused_resume(&out);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains("has changed since the checkpoint"),
+        "{stderr}"
+    );
+    assert!(untouched);
+}
+
+#[test]
+fn missing_damaged_and_future_checkpoints_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (_, out) = finished_run(tmp.path());
+    let path = out.join("checkpoint.bin");
+    let good = std::fs::read(&path).unwrap();
+    let mut flipped = good.clone();
+    let last = flipped.len() - 1;
+    flipped[last] ^= 0x40;
+    let mut future = good.clone();
+    future[8] = 9;
+    let torn = good[..good.len() / 2].to_vec();
+    let cases: [(&[u8], &str); 4] = [
+        (&flipped, "CRC-32"),
+        (&future, "format version 9"),
+        (&torn, "CRC-32"),
+        (b"not a checkpoint", "does not start with"),
+    ];
+    for (bytes, says) in cases {
+        std::fs::write(&path, bytes).unwrap();
+        let (code, stderr, untouched) = refused_resume(&out);
+        assert_eq!(code, 2, "{stderr}");
+        assert!(stderr.contains(says), "{says}: {stderr}");
+        assert!(untouched, "{says}");
+    }
+    std::fs::remove_file(&path).unwrap();
+    let (code, stderr, _) = refused_resume(&out);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("there is no checkpoint"), "{stderr}");
+}
+
+#[test]
+fn a_checkpoint_interval_of_zero_is_refused_with_a_caret() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("p.toml");
+    let text =
+        pendulum("midpoint", 100).replace("plots = false", "plots = false\ncheckpoint_every = 0");
+    std::fs::write(&file, text).unwrap();
+    let r = marsden_in(tmp.path(), &["run", "p.toml"]);
+    let stderr = String::from_utf8_lossy(&r.stderr);
+    assert_eq!(r.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("checkpoint_every must be at least 1, got 0"),
+        "{stderr}"
+    );
+    assert!(stderr.contains('^'), "{stderr}");
+    let flag = marsden_in(tmp.path(), &["run", "p.toml", "--checkpoint-every", "0"]);
+    assert_eq!(flag.status.code(), Some(2));
+    assert!(!tmp.path().join("out").exists(), "nothing written");
+}
+
+#[test]
+fn runs_that_cannot_be_checkpointed_yet_say_why() {
+    let tmp = tempfile::tempdir().unwrap();
+    let forced =
+        pendulum("midpoint", 100).replace("[initial]", "forces = [\"-0.1*theta_dot\"]\n[initial]");
+    let cases = [
+        (forced, "a forced or time-dependent run"),
+        (
+            std::fs::read_to_string(crate::util::repo_root().join("examples/heavy_top.toml"))
+                .unwrap(),
+            "a rigid body",
+        ),
+        (
+            std::fs::read_to_string(
+                crate::util::repo_root().join("examples/exact_oscillator.toml"),
+            )
+            .unwrap(),
+            "the method `exact`",
+        ),
+    ];
+    for (text, says) in cases {
+        let file = tmp.path().join("p.toml");
+        std::fs::write(&file, text).unwrap();
+        let r = marsden_in(
+            tmp.path(),
+            &["run", "p.toml", "--checkpoint-every", "10", "--out", "o"],
+        );
+        let stderr = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(2), "{stderr}");
+        assert!(stderr.contains(says), "{says}: {stderr}");
+        assert!(!tmp.path().join("o").exists(), "nothing written");
+    }
+}
+
+/// A checkpoint written by this version (format 1), kept as a fixture: later versions must
+/// still resume it. Its problem file was a temporary file, gone since, so the resume takes the
+/// problem's text from the checkpoint; the result must equal a fresh run of that text.
+#[test]
+fn a_version_one_checkpoint_fixture_still_resumes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("fixture");
+    std::fs::create_dir(&out).unwrap();
+    for name in ["checkpoint.bin", "trajectory.csv"] {
+        std::fs::copy(fixture("resume").join(name), out.join(name)).unwrap();
+    }
+    let r = marsden_in(tmp.path(), &["resume", "fixture", "-q", "--no-progress"]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let file = tmp.path().join("p.toml");
+    std::fs::write(&file, pendulum("midpoint", 20_000)).unwrap();
+    let whole = tmp.path().join("whole");
+    assert!(spawn_run(&file, &whole, "5000").wait().unwrap().success());
+    let csv = |d: &Path| std::fs::read(d.join("trajectory.csv")).unwrap();
+    assert!(
+        csv(&out) == csv(&whole),
+        "the fixture's resumed trajectory differs"
+    );
+}

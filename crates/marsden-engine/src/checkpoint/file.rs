@@ -1,0 +1,142 @@
+//! The checkpoint file, `checkpoint.bin`:
+//!
+//! | bytes | content |
+//! |---|---|
+//! | 0–7 | the magic `MARSDENC` |
+//! | 8–11 | the format version, `u32` little-endian ([`VERSION`]) |
+//! | 12–15 | the CRC-32 (IEEE) of the body, `u32` little-endian |
+//! | 16– | the body: a [`RunCheckpoint`] in postcard's encoding |
+//!
+//! Version 1 is the first. A later version that changes the body keeps reading version 1
+//! (a test reads a version-1 fixture); a file of a version this build does not know, a body
+//! whose CRC does not match (a torn or damaged file) or that does not decode is refused with
+//! the reason. Files are written through a temporary file and a rename, so a checkpoint is
+//! whole or the previous one stays.
+
+use std::path::Path;
+
+use super::RunCheckpoint;
+
+/// The first bytes of a checkpoint file.
+pub const MAGIC: &[u8; 8] = b"MARSDENC";
+/// The format version this build writes.
+pub const VERSION: u32 = 1;
+const HEADER: usize = 16;
+
+/// Why a checkpoint cannot be read.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum CheckpointError {
+    /// No checkpoint file (the run was never checkpointed, or not in this directory).
+    #[error(
+        "there is no checkpoint {path}: the run was not started with `checkpoint_every`, or was stopped before its first checkpoint"
+    )]
+    Missing {
+        /// The file looked for.
+        path: String,
+    },
+    /// It could not be read.
+    #[error("cannot read the checkpoint {path}: {reason}")]
+    Unreadable {
+        /// The file.
+        path: String,
+        /// The operating system's reason.
+        reason: String,
+    },
+    /// Not a checkpoint, or damaged.
+    #[error("the checkpoint {path} is damaged: {reason}")]
+    Corrupt {
+        /// The file.
+        path: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A format version this build cannot read.
+    #[error(
+        "the checkpoint {path} has format version {found}; this marsden reads versions 1 to {VERSION}"
+    )]
+    Version {
+        /// The file.
+        path: String,
+        /// Its version.
+        found: u32,
+    },
+}
+
+/// The bytes of a checkpoint file holding `checkpoint`.
+///
+/// # Errors
+/// postcard's error, as text (it cannot fail on these types short of running out of memory).
+pub fn encode(checkpoint: &RunCheckpoint) -> Result<Vec<u8>, String> {
+    let body = postcard::to_allocvec(checkpoint).map_err(|e| e.to_string())?;
+    let mut bytes = Vec::with_capacity(HEADER + body.len());
+    bytes.extend_from_slice(MAGIC);
+    bytes.extend_from_slice(&VERSION.to_le_bytes());
+    bytes.extend_from_slice(&crc32fast::hash(&body).to_le_bytes());
+    bytes.extend_from_slice(&body);
+    Ok(bytes)
+}
+
+/// The checkpoint in `bytes` (read from `path`, which names it in errors).
+///
+/// # Errors
+/// [`CheckpointError::Corrupt`] or [`CheckpointError::Version`].
+pub fn decode(bytes: &[u8], path: &Path) -> Result<RunCheckpoint, CheckpointError> {
+    let corrupt = |reason: String| CheckpointError::Corrupt {
+        path: path.display().to_string(),
+        reason,
+    };
+    let (Some(magic), Some(version), Some(crc)) =
+        (bytes.get(..8), bytes.get(8..12), bytes.get(12..HEADER))
+    else {
+        return Err(corrupt(format!(
+            "{} bytes, shorter than its header",
+            bytes.len()
+        )));
+    };
+    if magic != MAGIC {
+        return Err(corrupt("it does not start with `MARSDENC`".to_owned()));
+    }
+    let word = |b: &[u8]| u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+    let found = word(version);
+    if found == 0 || found > VERSION {
+        return Err(CheckpointError::Version {
+            path: path.display().to_string(),
+            found,
+        });
+    }
+    let body = &bytes[HEADER..];
+    let (expected, actual) = (word(crc), crc32fast::hash(body));
+    if expected != actual {
+        return Err(corrupt(format!(
+            "its CRC-32 is {actual:08x}, the header says {expected:08x}"
+        )));
+    }
+    postcard::from_bytes(body).map_err(|e| corrupt(format!("its body does not decode: {e}")))
+}
+
+/// Writes `checkpoint` to `path` atomically.
+///
+/// # Errors
+/// The I/O or encoding error, as text.
+pub fn save(path: &Path, checkpoint: &RunCheckpoint) -> Result<(), String> {
+    let bytes = encode(checkpoint)?;
+    marsden_io::write_atomically(path, &bytes)
+        .map_err(|e| format!("cannot write the checkpoint {}: {e}", path.display()))
+}
+
+/// Reads the checkpoint at `path`.
+///
+/// # Errors
+/// A [`CheckpointError`] saying why it cannot be used.
+pub fn load(path: &Path) -> Result<RunCheckpoint, CheckpointError> {
+    let bytes = std::fs::read(path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => CheckpointError::Missing {
+            path: path.display().to_string(),
+        },
+        _ => CheckpointError::Unreadable {
+            path: path.display().to_string(),
+            reason: e.to_string(),
+        },
+    })?;
+    decode(&bytes, path)
+}

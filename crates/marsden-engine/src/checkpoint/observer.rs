@@ -1,0 +1,123 @@
+//! The observer that checkpoints a run: it forwards every call to the observers of the run
+//! and, every `checkpoint_every` steps, asks them for what they carry, adds what the
+//! integrator carries and the state, and writes the checkpoint file atomically.
+
+use std::ops::ControlFlow;
+
+use marsden::integrator::IntegratorCheckpoint;
+use marsden::{Constraint, Lagrangian, Observer, StepView, Termination};
+
+use super::{CheckpointPlan, EventsCheckpoint, RunCheckpoint, StreamCheckpoint, file};
+use crate::events::Watched;
+use crate::observer::StreamObserver;
+use marsden_problem::model::MomentumMap;
+
+/// Observers whose accumulated state can be saved into a checkpoint.
+pub trait Carries {
+    /// What they carry to the next step, their files flushed.
+    ///
+    /// # Errors
+    /// A write error of a flush, as text.
+    fn carried(&mut self) -> Result<(StreamCheckpoint, Option<EventsCheckpoint>), String>;
+}
+
+impl<L, C, M> Carries for Watched<'_, '_, L, StreamObserver<'_, '_, L, C, M>>
+where
+    L: Lagrangian,
+    C: Constraint,
+    M: MomentumMap,
+{
+    fn carried(&mut self) -> Result<(StreamCheckpoint, Option<EventsCheckpoint>), String> {
+        let stream = self.inner.checkpoint()?;
+        Ok((stream, self.checkpoint()?))
+    }
+}
+
+/// `inner`, checkpointed as `plan` says.
+pub struct Checkpointing<'o, O> {
+    inner: &'o mut O,
+    plan: &'o CheckpointPlan,
+    /// Why a checkpoint could not be written (the run stopped there).
+    pub error: Option<String>,
+    /// Checkpoints written.
+    pub written: usize,
+}
+
+impl<'o, O: Observer + Carries> Checkpointing<'o, O> {
+    /// Checkpoints the run `inner` watches every `plan.every` steps into `plan.path`.
+    pub fn new(inner: &'o mut O, plan: &'o CheckpointPlan) -> Self {
+        Self {
+            inner,
+            plan,
+            error: None,
+            written: 0,
+        }
+    }
+
+    fn save(&mut self, view: &StepView<'_>, carried: &IntegratorCheckpoint) -> Result<(), String> {
+        let (stream, events) = self.inner.carried()?;
+        let checkpoint = RunCheckpoint {
+            identity: self.plan.identity.clone(),
+            step: view.step,
+            t: view.t,
+            q: view.q.to_vec(),
+            p: view.p.to_vec(),
+            integrator: carried.clone(),
+            stream,
+            events,
+        };
+        file::save(&self.plan.path, &checkpoint)
+    }
+}
+
+impl<O: Observer + Carries> Observer for Checkpointing<'_, O> {
+    fn start(&mut self, initial: &StepView<'_>) {
+        self.inner.start(initial);
+    }
+
+    fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()> {
+        self.inner.observe(view)
+    }
+
+    fn every_step(&self) -> bool {
+        self.inner.every_step()
+    }
+
+    /// The inner observers' cadence, and the checkpoints' steps.
+    fn cadence(&self) -> usize {
+        match self.inner.cadence() {
+            usize::MAX => self.plan.every,
+            c => gcd(c, self.plan.every),
+        }
+    }
+
+    fn termination(&self) -> Option<Termination> {
+        self.inner.termination()
+    }
+
+    fn checkpoint_due(&self, step: usize) -> bool {
+        step.is_multiple_of(self.plan.every)
+    }
+
+    fn checkpoint(
+        &mut self,
+        view: &StepView<'_>,
+        carried: &IntegratorCheckpoint,
+    ) -> ControlFlow<()> {
+        match self.save(view, carried) {
+            Ok(()) => {
+                self.written += 1;
+                ControlFlow::Continue(())
+            }
+            Err(e) => {
+                self.error = Some(e);
+                ControlFlow::Break(())
+            }
+        }
+    }
+}
+
+/// Greatest common divisor (Euclid).
+fn gcd(a: usize, b: usize) -> usize {
+    if b == 0 { a } else { gcd(b, a % b) }
+}

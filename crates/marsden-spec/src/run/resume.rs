@@ -1,0 +1,111 @@
+//! `marsden resume DIR`: a run continued from the last checkpoint in its output directory.
+//!
+//! The checkpoint names its problem file (path, SHA-256 and text) and the command-line values
+//! that changed it. The file is read again and must be unchanged — a file edited since would
+//! make the resumed run another run; a problem that never was a file (text given from Python)
+//! is taken from the checkpoint. The run's files are then cut back to the checkpoint and
+//! continued ([`super::execute::execute_from`]): what the resumed run leaves is byte for byte
+//! what the uninterrupted run leaves, the wall-clock times of `summary.json` aside.
+
+use std::path::Path;
+
+use super::controls::Controls;
+use super::execute::{Outcome, Store, execute_from};
+use crate::error::{Diagnostic, Error};
+use crate::problem::RunSpec;
+use crate::source::SourceFile;
+use marsden_engine::checkpoint::{CHECKPOINT_FILE, RunCheckpoint, RunIdentity, file};
+use marsden_problem::Overrides;
+
+/// What identifies `spec`'s run in its checkpoints: its file (made absolute when it is one),
+/// the SHA-256 and text of the problem, the command-line values that changed it.
+pub fn identity(spec: &RunSpec) -> RunIdentity {
+    let path = spec.source.path();
+    let absolute = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+    let o = &spec.overrides;
+    RunIdentity {
+        file: path.display().to_string(),
+        absolute: absolute.display().to_string(),
+        sha256: spec.source.sha256().to_owned(),
+        text: spec.source.text().to_owned(),
+        steps: o.steps,
+        h: o.h,
+        checkpoint_every: o.checkpoint_every,
+        every: o.every,
+    }
+}
+
+/// The run whose checkpoint is in `dir`, continued to its end with `controls` watching; its
+/// files written into `dir` as an uninterrupted run writes them.
+///
+/// # Errors
+/// Bad input (status 2), with nothing in `dir` changed: no checkpoint, a damaged one or one of
+/// a format version this build cannot read, a problem file changed since the checkpoint, or
+/// output files that no longer reach the checkpoint.
+pub fn resume(dir: &Path, controls: &Controls<'_>) -> Result<(RunSpec, Outcome), Error> {
+    let checkpoint = file::load(&dir.join(CHECKPOINT_FILE))
+        .map_err(|e| Error::bad_input(Diagnostic::new(e.to_string())))?;
+    let spec = spec_of(dir, &checkpoint.identity)?;
+    let outcome = execute_from(&spec, Store::Files, controls, Some(Box::new(checkpoint)))?;
+    Ok((spec, outcome))
+}
+
+/// The step a checkpoint in `dir` was taken at, and the steps of its run (for a message
+/// before resuming).
+///
+/// # Errors
+/// As [`resume`].
+pub fn peek(dir: &Path) -> Result<RunCheckpoint, Error> {
+    file::load(&dir.join(CHECKPOINT_FILE))
+        .map_err(|e| Error::bad_input(Diagnostic::new(e.to_string())))
+}
+
+/// The problem of `identity`, read again and checked unchanged, its output in `dir`.
+fn spec_of(dir: &Path, identity: &RunIdentity) -> Result<RunSpec, Error> {
+    let path = Path::new(&identity.absolute);
+    let text = match std::fs::read_to_string(path) {
+        Ok(text) => text,
+        // Never a file (a problem given as text from Python): the checkpoint's copy.
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound && !identity.text.is_empty() => {
+            identity.text.clone()
+        }
+        Err(e) => {
+            return Err(Error::bad_input(Diagnostic::new(format!(
+                "cannot read the problem file {} of the checkpoint: {e}",
+                path.display()
+            ))));
+        }
+    };
+    let source = SourceFile::new(&identity.file, text);
+    if source.sha256() != identity.sha256 {
+        return Err(Error::bad_input(
+            Diagnostic::new(format!(
+                "the problem file {} has changed since the checkpoint was taken (SHA-256 {} \
+                 then, {} now): the resumed run would be another run",
+                path.display(),
+                short(&identity.sha256),
+                short(source.sha256()),
+            ))
+            .help("restore the file as it was, or start the run again with `marsden run`"),
+        ));
+    }
+    let overrides = Overrides {
+        steps: identity.steps,
+        h: identity.h,
+        out: Some(dir.to_path_buf()),
+        checkpoint_every: identity.checkpoint_every,
+        every: identity.every,
+    };
+    let spec = marsden_problem::problem::validate(source, &overrides).map_err(Error::bad_input)?;
+    if spec.output.checkpoint_every.is_none() {
+        return Err(Error::bad_input(Diagnostic::new(
+            "the checkpoint's problem no longer asks for checkpoints",
+        )));
+    }
+    Ok(spec)
+}
+
+/// The first 12 hex digits of a SHA-256.
+fn short(sha: &str) -> &str {
+    sha.get(..12).unwrap_or(sha)
+}
