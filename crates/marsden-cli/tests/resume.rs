@@ -190,6 +190,11 @@ fn sigkill_at_random_moments_then_resume_equals_the_uninterrupted_run() {
                 );
             }
         }
+        assert!(
+            killed_running > 0,
+            "{}: every kill came after the run had ended",
+            case.name
+        );
     }
 }
 

@@ -221,3 +221,76 @@ fn mismatched_checkpoints_are_refused() {
         "{error:?}"
     );
 }
+
+/// The run loop's checkpoints: an observer that asks for a checkpoint at step `CUT`
+/// ([`marsden::Observer::checkpoint_due`]) receives what the integrator carries, and
+/// [`Problem::solve_resumed`] from it reaches the uninterrupted run's last state bit for bit,
+/// with the whole run's statistics.
+#[test]
+fn solve_resumed_from_a_run_loop_checkpoint_is_bit_for_bit() {
+    use marsden::run::Resumed;
+    use marsden::{SolveOptions, StepView};
+    use std::ops::ControlFlow;
+
+    struct TakeAt(Option<(Resumed, IntegratorCheckpoint)>);
+    impl marsden::Observer for TakeAt {
+        fn observe(&mut self, _: &StepView<'_>) -> ControlFlow<()> {
+            ControlFlow::Continue(())
+        }
+        fn checkpoint_due(&self, step: usize) -> bool {
+            step == CUT
+        }
+        fn checkpoint(
+            &mut self,
+            v: &StepView<'_>,
+            carried: &IntegratorCheckpoint,
+        ) -> ControlFlow<()> {
+            let state = State {
+                t: v.t,
+                q: v.q.to_vec(),
+                p: v.p.to_vec(),
+            };
+            self.0 = Some((
+                Resumed {
+                    step: v.step,
+                    state,
+                },
+                carried.clone(),
+            ));
+            ControlFlow::Break(())
+        }
+    }
+    let pendulum = DoublePendulum::default();
+    let grid = TimeGrid::new(0.0, H, STEPS).unwrap();
+    let problem = Problem::new(
+        pendulum,
+        marsden::Initial::velocity(&[1.0, -0.5], &[0.0, 0.3]),
+        grid,
+    )
+    .unwrap();
+    let options = SolveOptions {
+        newton: tight(),
+        ..SolveOptions::default()
+    };
+    let whole = problem.solve_with(&Midpoint, &options, &mut ()).unwrap();
+    let mut take = TakeAt(None);
+    let cut = problem.solve_with(&Midpoint, &options, &mut take).unwrap();
+    assert_eq!(cut.steps, CUT, "the checkpoint's Break stops the run there");
+    let (from, carried) = take.0.expect("a checkpoint at step CUT");
+    let bytes = postcard::to_allocvec(&carried).unwrap();
+    let carried: IntegratorCheckpoint = postcard::from_bytes(&bytes).unwrap();
+    let resumed = problem
+        .solve_resumed(&Midpoint, &options, &mut (), (from, &carried))
+        .unwrap();
+    let last = |t: &marsden::Trajectory| {
+        let i = t.len() - 1;
+        bits(&State {
+            t: t.t(i),
+            q: t.q(i).to_vec(),
+            p: t.p(i).to_vec(),
+        })
+    };
+    assert_eq!(resumed.steps, STEPS);
+    assert_eq!(last(&resumed), last(&whole));
+    assert_eq!(resumed.statistics, whole.statistics);
+}
