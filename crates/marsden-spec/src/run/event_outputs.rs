@@ -99,6 +99,10 @@ impl RowSink for EventTee<'_> {
     fn rows_written(&self) -> u64 {
         self.files.rows_written()
     }
+    /// The files' mark: what a checkpoint cuts them back to (the memory is not resumed).
+    fn mark(&mut self) -> marsden_io::Result<marsden_io::SinkMark> {
+        self.files.mark()
+    }
 }
 
 /// Opens `events.csv` in `dir` for the events of `spec` (`None` without events).

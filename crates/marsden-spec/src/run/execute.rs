@@ -207,6 +207,9 @@ pub fn execute_from(
             written.push(event_outputs::EVENTS_CSV.to_owned());
         }
         written.push(output::SUMMARY_JSON.to_owned());
+        if plan.as_ref().is_some_and(|p| p.path.exists()) {
+            written.push(CHECKPOINT_FILE.to_owned());
+        }
         if spec.output.plots && record.rows > 0 {
             match plots::draw(spec, &layout) {
                 Ok(pngs) => written.extend(pngs),

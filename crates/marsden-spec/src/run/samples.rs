@@ -173,6 +173,10 @@ impl RowSink for Tee<'_> {
     fn rows_written(&self) -> u64 {
         self.files.rows_written()
     }
+    /// The files' mark: what a checkpoint cuts them back to (the memory is not resumed).
+    fn mark(&mut self) -> marsden_io::Result<marsden_io::SinkMark> {
+        self.files.mark()
+    }
 }
 
 /// A sink that keeps nothing (sweep members write no trajectory).

@@ -1,0 +1,62 @@
+"""Checkpoints from Python: ``Problem.solve(dir=..., checkpoint_every=...)`` writes them, a
+process killed with SIGKILL part-way is continued by ``marsden.resume(dir)``, and the files it
+leaves are those of the uninterrupted run byte for byte."""
+
+from __future__ import annotations
+
+import os
+import pathlib
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import pytest
+
+import marsden
+
+TEXT = textwrap.dedent("""\
+    [system]
+    builtin = "pendulum"
+    [initial]
+    q = [1.0]
+    v = [0.0]
+    [integrator]
+    method = "midpoint"
+    h = 0.01
+    steps = 1500000
+    [output]
+    every = 500
+    plots = false
+    """)
+
+
+def test_a_killed_solve_resumes_to_the_uninterrupted_files(tmp_path: pathlib.Path) -> None:
+    whole = tmp_path / "whole"
+    s = marsden.Problem.from_toml(TEXT).solve(dir=str(whole), checkpoint_every=100_000)
+    assert s.ok and (whole / "checkpoint.bin").exists()
+    killed = tmp_path / "killed"
+    script = (f"import marsden; marsden.Problem.from_toml({TEXT!r}).solve("
+              f"dir={str(killed)!r}, checkpoint_every=100_000)")
+    child = subprocess.Popen([sys.executable, "-c", script])
+    deadline = time.time() + 60
+    while not (killed / "checkpoint.bin").exists() and time.time() < deadline:
+        time.sleep(0.005)
+    running = child.poll() is None
+    os.kill(child.pid, signal.SIGKILL)
+    child.wait()
+    summary = marsden.resume(killed)
+    assert summary["status"] == "completed" and summary["steps"] == 1_500_000
+    assert (killed / "trajectory.csv").read_bytes() == (whole / "trajectory.csv").read_bytes()
+    assert (killed / "checkpoint.bin").read_bytes() == (whole / "checkpoint.bin").read_bytes()
+    # The solution in memory of the whole run is what the files hold.
+    assert summary["final_state"]["q"] == list(s.q[-1])
+    assert running, "the kill came after the run had ended: lengthen the run"
+
+
+def test_checkpoints_need_a_directory_and_resume_needs_a_checkpoint(tmp_path: pathlib.Path) -> None:
+    with pytest.raises(marsden.ProblemError, match="give `dir` with `checkpoint_every`"):
+        marsden.Problem.from_toml(TEXT).solve(checkpoint_every=10)
+    with pytest.raises(marsden.ProblemError, match="there is no checkpoint"):
+        marsden.resume(tmp_path)
