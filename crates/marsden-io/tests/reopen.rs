@@ -2,6 +2,8 @@
 //! run killed after its checkpoint) are cut off, and going on from the mark gives the bytes of
 //! a file written in one go.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
 use marsden_io::{CsvWriter, Group, Layout, NpyDirWriter, RowSink};
 
 fn rows() -> Vec<Vec<f64>> {
