@@ -128,10 +128,23 @@ fn solve<'py>(
         ..Overrides::default()
     };
     let spec = spec_with(text, origin, every, overrides)?;
+    let outcome = watched(py, progress, |controls| {
+        marsden_spec::execute(&spec, store, controls)
+    })?;
+    convert::outcome(py, &outcome.map_err(to_py)?)
+}
+
+/// Runs `work` off the interpreter's lock with the caller's `progress` function and Ctrl-C
+/// watched (see [`solve`]); the exception the function raised, if it raised one.
+fn watched<T: Send>(
+    py: Python<'_>,
+    progress: Option<Py<PyAny>>,
+    work: impl FnOnce(&Controls<'_>) -> T + Send,
+) -> PyResult<T> {
     let stop = Arc::new(AtomicBool::new(false));
     let flag = stop.clone();
     let reporter = progress.map(|f| watch::Reporter::new(f, stop.clone()));
-    let outcome = watch::off_the_lock(py, &stop, || {
+    let result = watch::off_the_lock(py, &stop, || {
         let report = |p: marsden_spec::Progress| {
             if let Some(r) = &reporter {
                 r.report(p);
@@ -143,12 +156,12 @@ fn solve<'py>(
                 .then_some(&report as &dyn Fn(marsden_spec::Progress)),
             stop: Some(flag),
         };
-        marsden_spec::execute(&spec, store, &controls)
+        work(&controls)
     })?;
-    if let Some(error) = reporter.and_then(watch::Reporter::into_error) {
-        return Err(error);
+    match reporter.and_then(watch::Reporter::into_error) {
+        Some(error) => Err(error),
+        None => Ok(result),
     }
-    convert::outcome(py, &outcome.map_err(to_py)?)
 }
 
 /// Continues the run whose checkpoint is in `dir` to its end (as `marsden resume`): its files
@@ -160,26 +173,9 @@ fn resume(
     dir: std::path::PathBuf,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<String> {
-    let stop = Arc::new(AtomicBool::new(false));
-    let flag = stop.clone();
-    let reporter = progress.map(|f| watch::Reporter::new(f, stop.clone()));
-    let outcome = watch::off_the_lock(py, &stop, || {
-        let report = |p: marsden_spec::Progress| {
-            if let Some(r) = &reporter {
-                r.report(p);
-            }
-        };
-        let controls = Controls {
-            progress: reporter
-                .is_some()
-                .then_some(&report as &dyn Fn(marsden_spec::Progress)),
-            stop: Some(flag),
-        };
-        marsden_spec::run::resume::resume(&dir, &controls)
+    let outcome = watched(py, progress, |controls| {
+        marsden_spec::run::resume::resume(&dir, controls)
     })?;
-    if let Some(error) = reporter.and_then(watch::Reporter::into_error) {
-        return Err(error);
-    }
     outcome.map_err(to_py)?;
     std::fs::read_to_string(dir.join(marsden_spec::run::output::SUMMARY_JSON)).map_err(|e| {
         bad(Diagnostic::new(format!(
