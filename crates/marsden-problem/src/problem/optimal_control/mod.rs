@@ -187,8 +187,13 @@ fn validate(source: SourceFile, overrides: &Overrides) -> Result<OptimalControlS
         .iter()
         .map(|c| c.name.clone())
         .collect();
-    let (control_bounds, state_bounds) =
-        boundary::bounds(&ck, table.bounds.as_ref(), &names, &coordinates)?;
+    let (control_bounds, state_bounds) = boundary::bounds(
+        &ck,
+        table.bounds.as_ref(),
+        &names,
+        &coordinates,
+        (&start, &end),
+    )?;
     let guess = options::guess(&ck, table.guess.as_ref())?;
     let solver = options::solver(&ck, table)?;
     let name = raw_system.get_ref().name.as_ref().map_or_else(
