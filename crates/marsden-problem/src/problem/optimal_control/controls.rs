@@ -78,6 +78,25 @@ pub fn as_zero(
     Ok(symbols)
 }
 
+/// The symbols of a `marsden run`'s forces: the controls as inputs read from the
+/// `control_table` ([`super::super::control_table`]) if one is given, else as 0 ([`as_zero`]).
+///
+/// # Errors
+/// As [`declared`].
+pub fn for_run(
+    ck: &Checker<'_>,
+    system: &RawSystem,
+    symbols: Symbols,
+) -> Result<Symbols, Diagnostic> {
+    match super::super::control_table::given(system) {
+        true => {
+            let controls = declared(ck, system, &symbols)?;
+            as_inputs(ck, &controls, symbols)
+        }
+        false => as_zero(ck, system, symbols),
+    }
+}
+
 /// `symbols` with the controls as input slots after the existing ones, in declared order.
 ///
 /// # Errors

@@ -163,10 +163,18 @@ fn validate(source: SourceFile, overrides: &Overrides) -> Result<OptimalControlS
         );
     };
     refuse_sections(&ck, &raw)?;
-    let system = system::system(&ck, raw.system.as_ref(), None)?;
     let Some(raw_system) = raw.system.as_ref() else {
         return Err(Diagnostic::new("the problem file has no [system] table"));
     };
+    if let Some(file) = &raw_system.get_ref().control_table {
+        return Err(ck
+            .error(
+                Some(file.span()),
+                "`control_table` feeds the controls to `marsden run`; `marsden optimize` computes them",
+            )
+            .help("remove it here, or run the file without [optimal_control]"));
+    }
+    let system = system::system(&ck, raw.system.as_ref(), None)?;
     supported_system(&ck, raw_system, &system)?;
     let LagrangianSpec::Expression(lagrangian) = system.lagrangian else {
         return Err(ck.error(
