@@ -323,3 +323,33 @@ fn state_bounds_excluding_the_end_exit_two() {
     assert!(run.stderr.contains('^'), "{}", run.stderr);
     assert!(!run.out.exists());
 }
+
+/// `examples/orbit_transfer.toml`: the low-thrust transfer from the circle r = 1 to r = 1.5
+/// (μ = 1) converges and ends on the target circle — r = 1.5, p_r = 0, angular momentum
+/// p_θ = √1.5 and the energy of a circle, H = ½(p_r² + p_θ²/r²) − 1/r = −1/(2r) = −1/3 — and
+/// a longer transfer needs less thrust: the cost falls as T grows over 6, 8, 12 (a physical
+/// check, not a number of the code's).
+#[test]
+fn orbit_transfer_ends_on_the_target_circle_and_costs_less_when_longer() {
+    let text = std::fs::read_to_string(repo_root().join("examples/orbit_transfer.toml")).unwrap();
+    let mut costs = Vec::new();
+    for t_end in [6.0, 8.0, 12.0] {
+        let text = text.replace("t_end = 8.0", &format!("t_end = {t_end:?}"));
+        let (_dir, run) = optimize(&text, &["--quiet"]);
+        assert_eq!(run.code, 0, "T = {t_end}: {}", run.stderr);
+        let oc = &run.summary()["optimal_control"];
+        assert_eq!(oc["status"], "converged", "{oc}");
+        let trajectory = table(&run.out, "trajectory.csv");
+        let last = |name: &str| *column(&trajectory, name).last().unwrap();
+        let (r, p_r, p_theta) = (last("q_r"), last("p_r"), last("p_theta"));
+        let energy = 0.5 * (p_r * p_r + p_theta * p_theta / (r * r)) - 1.0 / r;
+        println!("T = {t_end}: r = {r}, p_r = {p_r:e}, p_θ = {p_theta}, H = {energy}");
+        assert!((r - 1.5).abs() < 1e-9, "r = {r}");
+        assert!(p_r.abs() < 1e-9, "p_r = {p_r}");
+        assert!((p_theta - 1.5_f64.sqrt()).abs() < 1e-9, "p_θ = {p_theta}");
+        assert!((energy + 1.0 / 3.0).abs() < 1e-9, "H = {energy}");
+        costs.push(oc["cost"].as_f64().unwrap());
+    }
+    println!("costs for T = 6, 8, 12: {costs:?}");
+    assert!(costs.windows(2).all(|w| w[1] < w[0]), "{costs:?}");
+}

@@ -184,7 +184,9 @@ fn on_the_grid(
     }
     for (k, &t) in times.iter().enumerate() {
         let want = grid.t0 + k as f64 * grid.h;
-        if !((t - want).abs() <= TIME_TOLERANCE * want.abs().max(grid.h)) {
+        // Written so that a NaN time is refused too.
+        let fits = (t - want).abs() <= TIME_TOLERANCE * want.abs().max(grid.h);
+        if !fits {
             return Err(ck
                 .error(
                     at,
