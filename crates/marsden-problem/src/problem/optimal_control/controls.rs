@@ -1,7 +1,7 @@
 //! `[system] controls`: the names of the controls `u`, checked, and the symbol tables the
 //! forces compile against — with the controls as the constant 0 for a `marsden run` (the
 //! forward simulation with zero controls), as extra input slots after `[q, q̇, t]` for
-//! `marsden optimize`.
+//! `marsden optimize` and for a run that reads them from a `control_table`.
 
 use std::ops::Range;
 

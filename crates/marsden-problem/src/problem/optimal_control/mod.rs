@@ -7,7 +7,8 @@
 //! the same inputs and the final cost `Φ(q_N, p_N)` reads `[q, p, t]` (momenta named
 //! `p_<coordinate>`). The rule must be a two-point rule (midpoint, trapezoid, `alpha-<a>`,
 //! `symmetrized-<a>`), the transcription's scope. A file with `[optimal_control]` is refused by
-//! `marsden run` (see [`refuse_in_run`]); `[system] controls` alone run as zero controls.
+//! `marsden run` (see [`refuse_in_run`]); `[system] controls` alone run as zero controls, or
+//! as the values of a `[system] control_table` ([`super::control_table`]).
 //!
 //! [OJM11]: marsden#references
 
