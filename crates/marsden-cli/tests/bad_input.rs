@@ -14,7 +14,8 @@ fn unknown_key_names_the_key_and_its_table() {
             "4 | lagrangain = ",
             "  | ^^^^^^^^^^\n",
             "= help: did you mean `lagrangian`?",
-            "= note: valid keys in [system]: body, builtin, constraints, controls, coordinates, \
+            "= note: valid keys in [system]: body, builtin, constraints, control_table, controls, \
+             coordinates, \
              discrete_lagrangian, forces, gravity, hamiltonian, joint, lagrangian, name, \
              parameters, potential, rigid_body, symmetry, torques",
         ],

@@ -242,3 +242,114 @@ fn bad_inputs_exit_two_and_write_nothing() {
     );
     drop(dir);
 }
+
+/// The double integrator must travel 1 in T = 1 with |u| ≤ 1: impossible, since rest to rest
+/// with |u| ≤ 1 covers at most T²/4 = 0.25 (bang-bang, [BH75] §3). The dynamics are linear, so
+/// the QP's checked certificate proves the discrete problem infeasible: status "infeasible",
+/// exit 1, the bound on `u` named, the last iterate still written.
+#[test]
+fn unreachable_target_is_reported_infeasible_with_the_bound_named() {
+    let text = DOUBLE_INTEGRATOR.replacen(
+        "[output]",
+        "[optimal_control.bounds]\nu = [-1.0, 1.0]\n[output]",
+        1,
+    );
+    let (_dir, run) = optimize(&text, &["--quiet"]);
+    assert_eq!(run.code, 1, "{}", run.stderr);
+    assert!(
+        run.stderr.contains("status \"infeasible\""),
+        "{}",
+        run.stderr
+    );
+    assert!(run.stderr.contains("the bounds on `u`"), "{}", run.stderr);
+    let oc = &run.summary()["optimal_control"];
+    assert_eq!(oc["status"], "infeasible");
+    assert_eq!(oc["last_iterate"], true);
+    assert!(
+        oc["failure"]
+            .as_str()
+            .unwrap()
+            .contains("at the first iterate"),
+        "{oc}"
+    );
+    let trajectory = table(&run.out, "trajectory.csv");
+    assert_eq!(column(&trajectory, "q_x").len(), 21);
+    // The unconstrained optimum u = 6 − 12t stays within |u| ≤ 6: bounds ±6.5 converge.
+    let text = text.replace("u = [-1.0, 1.0]", "u = [-6.5, 6.5]");
+    let (_dir, run) = optimize(&text, &["--quiet"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+}
+
+/// The two-link manipulator with torques bounded by ±1.5 (the example has ±2): the
+/// linearisation at the straight-line first iterate cannot meet the bounds, and the status says
+/// so ("infeasible", both torques' bounds named) rather than a solver stall.
+#[test]
+fn two_link_manipulator_with_tight_torques_is_infeasible_at_the_first_iterate() {
+    let text = std::fs::read_to_string(repo_root().join("examples/two_link_manipulator.toml"))
+        .unwrap()
+        .replace("[-2.0, 2.0]", "[-1.5, 1.5]")
+        .replace("dir = \"out/two_link_manipulator\"", "plots = false");
+    let (_dir, run) = optimize(&text, &["--quiet"]);
+    assert_eq!(run.code, 1, "{}", run.stderr);
+    let oc = &run.summary()["optimal_control"];
+    assert_eq!(oc["status"], "infeasible", "{oc}");
+    assert!(
+        oc["failure"]
+            .as_str()
+            .unwrap()
+            .contains("the bounds on `tau1`, `tau2`"),
+        "{oc}"
+    );
+    assert_eq!(column(&table(&run.out, "controls.csv"), "tau1").len(), 100);
+}
+
+/// State bounds that exclude a fixed end position: refused at load time (exit 2, caret at the
+/// bounds), nothing solved or written.
+#[test]
+fn state_bounds_excluding_the_end_exit_two() {
+    let text = DOUBLE_INTEGRATOR.replacen(
+        "[output]",
+        "[optimal_control.bounds]\nx = [-1.0, 0.5]\n[output]",
+        1,
+    );
+    let (_dir, run) = optimize(&text, &[]);
+    assert_eq!(run.code, 2, "{}", run.stderr);
+    assert!(
+        run.stderr
+            .contains("bounds on `x` = [-1, 0.5] exclude its `end` value 1"),
+        "{}",
+        run.stderr
+    );
+    assert!(run.stderr.contains('^'), "{}", run.stderr);
+    assert!(!run.out.exists());
+}
+
+/// `examples/orbit_transfer.toml`: the low-thrust transfer from the circle r = 1 to r = 1.5
+/// (μ = 1) converges and ends on the target circle — r = 1.5, p_r = 0, angular momentum
+/// p_θ = √1.5 and the energy of a circle, H = ½(p_r² + p_θ²/r²) − 1/r = −1/(2r) = −1/3 — and
+/// a longer transfer needs less thrust: the cost falls as T grows over 6, 8, 12 (a physical
+/// check, not a number of the code's).
+#[test]
+fn orbit_transfer_ends_on_the_target_circle_and_costs_less_when_longer() {
+    let text = std::fs::read_to_string(repo_root().join("examples/orbit_transfer.toml")).unwrap();
+    let mut costs = Vec::new();
+    for t_end in [6.0, 8.0, 12.0] {
+        let text = text.replace("t_end = 8.0", &format!("t_end = {t_end:?}"));
+        let (_dir, run) = optimize(&text, &["--quiet"]);
+        assert_eq!(run.code, 0, "T = {t_end}: {}", run.stderr);
+        let oc = &run.summary()["optimal_control"];
+        assert_eq!(oc["status"], "converged", "{oc}");
+        let trajectory = table(&run.out, "trajectory.csv");
+        let last = |name: &str| *column(&trajectory, name).last().unwrap();
+        let (r, p_r, p_theta) = (last("q_r"), last("p_r"), last("p_theta"));
+        let energy = 0.5 * (p_r * p_r + p_theta * p_theta / (r * r)) - 1.0 / r;
+        println!("T = {t_end}: r = {r}, p_r = {p_r:e}, p_θ = {p_theta}, H = {energy}");
+        assert!((r - 1.5).abs() < 1e-9, "r = {r}");
+        assert!(p_r.abs() < 1e-9, "p_r = {p_r}");
+        assert!((p_theta - 1.5_f64.sqrt()).abs() < 1e-9, "p_θ = {p_theta}");
+        assert!((energy + 1.0 / 3.0).abs() < 1e-9, "H = {energy}");
+        costs.push(oc["cost"].as_f64().unwrap());
+    }
+    println!("costs for T = 6, 8, 12: {costs:?}");
+    assert!(costs.windows(2).all(|w| w[1] < w[0]), "{costs:?}");
+}

@@ -43,6 +43,9 @@ mod monitor;
 // `marsden optimize`: the double integrator's closed form and order, the forced DEL equations on
 // the written files, the swing-up against an independent solver, iteration limits, bad input.
 mod optimize;
+// `[system] control_table`: optimal controls fed to `marsden run` reproduce the optimal
+// trajectory; tables that do not fit the run refused.
+mod replay;
 // `marsden order`: the table, the fitted orders, the CSV, the refused requests.
 mod order;
 // Plots: which pictures a run gets, angles wrapped and recorded, hostile ranges.

@@ -80,5 +80,5 @@ pub use error::ControlError;
 pub use guess::{FrozenControl, SampledControl};
 pub use model::{ControlForce, Effort, FinalCost, InputMap, NoFinalCost, RunningCost};
 pub use problem::{Boundary, Bounds, Guess, OptimalControl, Rate};
-pub use solution::{Failure, Iteration, Solution, Status};
+pub use solution::{Failure, Infeasibility, Iteration, Solution, Status};
 pub use sqp::SqpOptions;

@@ -9,6 +9,14 @@
 //! upper triangle in compressed sparse columns. Clarabel's duals `y` satisfy
 //! `P d + g + Aᵀy = 0`: the rows of `J` give the multipliers `λ` of the Lagrangian
 //! `f + λᵀc` directly.
+//!
+//! Infeasibility is reported only with a checked Farkas certificate ([NW06] §12.2): `y` with
+//! `y ≥ 0` on the bound rows, `Aᵀy ≈ 0` and `bᵀy < 0`. For any `d` meeting the constraints,
+//! `yᵀ(b − Ad) = yᵀs ≥ 0`, so `bᵀy ≥ (Aᵀy)ᵀd ≥ −‖Aᵀy‖∞‖d‖₁`: no step with
+//! `‖d‖₁ < |bᵀy| / ‖Aᵀy‖∞` (at least 10⁶ here) meets them. The certificate does not involve
+//! the Hessian, so it holds whatever the regularisation.
+//!
+//! [NW06]: crate#references
 
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
@@ -50,11 +58,22 @@ pub struct QpSolution {
 pub enum QpOutcome {
     /// Solved (to full or reduced accuracy).
     Solved(QpSolution),
-    /// The constraints are inconsistent.
-    Infeasible,
+    /// The constraints are inconsistent: Clarabel's certificate, checked.
+    Infeasible(Certificate),
     /// Anything else, in the solver's words.
     Failed(String),
 }
+
+/// A checked certificate of primal infeasibility: which simple bounds it leans on.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Certificate {
+    /// The variables whose upper or lower bound carries a weight of the certificate (at least
+    /// 10⁻⁶ of its largest weight), in increasing order.
+    pub bounded: Vec<usize>,
+}
+
+/// The smallest `|bᵀy| / ‖Aᵀy‖∞` accepted: no step shorter than this (in ℓ1) is feasible.
+const CERTIFIED_RADIUS: f64 = 1e6;
 
 impl Subproblem<'_> {
     /// Solves the subproblem with `H + δI`.
@@ -124,9 +143,45 @@ impl Subproblem<'_> {
                 })
             }
             SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
-                QpOutcome::Infeasible
+                match self.certificate(&a, &b, &s.z) {
+                    Some(certificate) => QpOutcome::Infeasible(certificate),
+                    None => {
+                        QpOutcome::Failed(format!("{:?} (certificate not confirmed)", s.status))
+                    }
+                }
             }
             status => QpOutcome::Failed(format!("{status:?}")),
         }
+    }
+}
+
+impl Subproblem<'_> {
+    /// Checks Clarabel's certificate `y` against `A` and `b` (see the module's doc).
+    fn certificate(&self, a: &CscMatrix<f64>, b: &[f64], y: &[f64]) -> Option<Certificate> {
+        let weight = y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let bty: f64 = b.iter().zip(y).map(|(b, y)| b * y).sum();
+        let bounds = &y[self.rows..];
+        if !(weight > 0.0 && bty < 0.0) || bounds.iter().any(|&v| v < -1e-9 * weight) {
+            return None;
+        }
+        // Aᵀy, column by column of the compressed sparse columns.
+        let aty = (0..a.n).map(|c| {
+            (a.colptr[c]..a.colptr[c + 1])
+                .map(|i| a.nzval[i] * y[a.rowval[i]])
+                .sum::<f64>()
+        });
+        let residual = aty.fold(0.0_f64, |m, v| m.max(v.abs()));
+        if residual * CERTIFIED_RADIUS > -bty {
+            return None;
+        }
+        let (upper, lower) = bounds.split_at(self.upper.len());
+        let mut bounded: Vec<usize> = (self.upper.iter().zip(upper))
+            .chain(self.lower.iter().zip(lower))
+            .filter(|(_, w)| **w >= 1e-6 * weight)
+            .map(|((i, _), _)| *i)
+            .collect();
+        bounded.sort_unstable();
+        bounded.dedup();
+        Some(Certificate { bounded })
     }
 }

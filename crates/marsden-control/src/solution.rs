@@ -8,10 +8,23 @@ pub enum Status {
     Converged,
     /// The iteration stopped for the reason given.
     Failed(Failure),
-    /// The linearised constraints have no solution within the bounds (the QP solver proved it).
-    Infeasible,
+    /// The linearised constraints have no solution within the bounds: the QP solver's
+    /// certificate, checked ([`crate::qp`]). For dynamics linear in `(q, u)` this proves the
+    /// problem infeasible; otherwise it is a statement about the iterate's linearisation.
+    Infeasible(Infeasibility),
     /// The iteration budget was spent first.
     IterationLimit,
+}
+
+/// Where a subproblem was proved infeasible, and which bounds its certificate leans on.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Infeasibility {
+    /// The SQP iteration whose subproblem it was (0: at the first iterate).
+    pub iteration: usize,
+    /// The controls (indices) whose bounds the certificate uses, at some step.
+    pub controls: Vec<usize>,
+    /// The coordinates (indices) whose bounds the certificate uses, at some node.
+    pub coordinates: Vec<usize>,
 }
 
 /// Why an iteration failed.

@@ -7,7 +7,7 @@ use crate::error::ControlError;
 use crate::guess;
 use crate::model::{ControlForce, FinalCost, RunningCost};
 use crate::problem::OptimalControl;
-use crate::solution::Solution;
+use crate::solution::{Infeasibility, Solution, Status};
 use crate::sqp::{self, Program, SqpOptions, SqpOutcome, VariableBounds};
 use crate::transcription::step::{Augmented, CostLagrangian, StepParts};
 use crate::transcription::{Evaluation, Layout, Transcription};
@@ -159,8 +159,15 @@ where
         let mut p = vec![e.momenta[..n].iter().map(|x| -x).collect::<Vec<f64>>()];
         p.extend((0..steps).map(|k| e.momenta[2 * n * k + n..2 * n * (k + 1)].to_vec()));
         let (start_multipliers, end_multipliers) = program.boundary_multipliers(&outcome.lambda);
+        let status = match (outcome.status, &outcome.certificate) {
+            (Status::Infeasible(mut infeasibility), Some(certificate)) => {
+                locate(&mut infeasibility, &layout, &certificate.bounded);
+                Status::Infeasible(infeasibility)
+            }
+            (status, _) => status,
+        };
         Solution {
-            status: outcome.status,
+            status,
             cost: e.cost,
             iterations: outcome.history.len(),
             kkt_residual: outcome.kkt,
@@ -175,6 +182,23 @@ where
             history: outcome.history,
         }
     }
+}
+
+/// The controls and coordinates of the bounded unknowns `variables` of `layout`.
+fn locate(infeasibility: &mut Infeasibility, layout: &Layout, variables: &[usize]) {
+    let block = layout.n + layout.m;
+    for &i in variables {
+        let within = i % block;
+        let list = match within < layout.n {
+            true => (&mut infeasibility.coordinates, within),
+            false => (&mut infeasibility.controls, within - layout.n),
+        };
+        if !list.0.contains(&list.1) {
+            list.0.push(list.1);
+        }
+    }
+    infeasibility.controls.sort_unstable();
+    infeasibility.coordinates.sort_unstable();
 }
 
 fn check_options(options: &SqpOptions) -> Result<(), ControlError> {

@@ -14,8 +14,8 @@
 //!
 //! [NW06]: crate#references
 
-use crate::qp::{QpOutcome, QpSolution, Subproblem};
-use crate::solution::{Failure, Iteration, Status};
+use crate::qp::{Certificate, QpOutcome, QpSolution, Subproblem};
+use crate::solution::{Failure, Infeasibility, Iteration, Status};
 use crate::transcription::Evaluation;
 
 /// What the SQP iteration needs of a program.
@@ -63,6 +63,8 @@ pub struct SqpOutcome {
     pub kkt: f64,
     /// One record per iteration.
     pub history: Vec<Iteration>,
+    /// The checked certificate of an infeasible subproblem (status `Infeasible`).
+    pub certificate: Option<Certificate>,
 }
 
 /// Simple bounds on the unknowns, `lower ≤ z ≤ upper` (infinite: none).
@@ -89,7 +91,12 @@ struct Iterate {
 
 impl Iterate {
     fn finish(self, status: Status) -> SqpOutcome {
+        self.finish_with(status, None)
+    }
+
+    fn finish_with(self, status: Status, certificate: Option<Certificate>) -> SqpOutcome {
         SqpOutcome {
+            certificate,
             status,
             z: self.z,
             lambda: self.lambda,
@@ -137,7 +144,14 @@ pub fn solve<P: Program>(
         };
         let (qp, delta) = match regularised_step(&sub, &mut last_delta) {
             Ok(step) => step,
-            Err(status) => return it.finish(status),
+            Err(Stop::Infeasible(certificate)) => {
+                let status = Status::Infeasible(Infeasibility {
+                    iteration: it.history.len(),
+                    ..Infeasibility::default()
+                });
+                return it.finish_with(status, Some(certificate));
+            }
+            Err(Stop::Failed(failure)) => return it.finish(Status::Failed(failure)),
         };
         it.lambda.clone_from(&qp.lambda);
         it.kkt = kkt_residual(&it.e, &qp, (&upper, &lower));
@@ -170,21 +184,31 @@ pub fn solve<P: Program>(
     it.finish(Status::IterationLimit)
 }
 
+/// Why no step was found.
+enum Stop {
+    /// The subproblem's constraints are inconsistent (a checked certificate).
+    Infeasible(Certificate),
+    /// Anything else.
+    Failed(Failure),
+}
+
 /// The subproblem's solution with the smallest regularisation `δ` that gives a step of
 /// positive curvature: `δ = 0`, then a third of the last nonzero `δ` (at least 1e-6), growing
-/// eightfold up to `MAX_DELTA`. The solver's infeasibility certificate is trusted only there,
-/// for a strongly convex subproblem (feasibility does not depend on the Hessian).
-fn regularised_step(
-    sub: &Subproblem<'_>,
-    last_delta: &mut f64,
-) -> Result<(QpSolution, f64), Status> {
+/// eightfold up to `MAX_DELTA`. A checked infeasibility certificate stops the search at once:
+/// feasibility does not depend on the Hessian, and a larger `δ` only degrades the solver's
+/// scaling until it can no longer tell (it then stalls at its iteration limit).
+fn regularised_step(sub: &Subproblem<'_>, last_delta: &mut f64) -> Result<(QpSolution, f64), Stop> {
     let mut delta = 0.0;
     loop {
         let outcome = sub.solve(delta);
-        if let QpOutcome::Solved(s) = &outcome
-            && curvature_ok(sub.hessian, delta, &s.step)
-        {
-            return Ok((s.clone(), delta));
+        match &outcome {
+            QpOutcome::Solved(s) if curvature_ok(sub.hessian, delta, &s.step) => {
+                return Ok((s.clone(), delta));
+            }
+            QpOutcome::Infeasible(certificate) => {
+                return Err(Stop::Infeasible(certificate.clone()));
+            }
+            _ => {}
         }
         if delta < MAX_DELTA {
             delta = match (delta, *last_delta) {
@@ -195,17 +219,14 @@ fn regularised_step(
             *last_delta = delta;
             continue;
         }
-        return Err(match outcome {
-            QpOutcome::Infeasible => Status::Infeasible,
-            QpOutcome::Solved(_) => Status::Failed(Failure::Subproblem {
-                status: "negative curvature".to_string(),
-                regularization: delta,
-            }),
-            QpOutcome::Failed(status) => Status::Failed(Failure::Subproblem {
-                status,
-                regularization: delta,
-            }),
-        });
+        let status = match outcome {
+            QpOutcome::Failed(status) => status,
+            _ => "negative curvature".to_string(),
+        };
+        return Err(Stop::Failed(Failure::Subproblem {
+            status,
+            regularization: delta,
+        }));
     }
 }
 

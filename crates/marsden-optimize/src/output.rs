@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use marsden_control::{Failure, Solution, Status};
+use marsden_control::{Failure, Infeasibility, Solution, Status};
 use marsden_io::{Column, Table, write_csv};
 use marsden_problem::problem::optimal_control::OptimalControlSpec;
 use serde::Serialize;
@@ -25,14 +25,16 @@ pub fn status_name(status: &Status) -> &'static str {
     match status {
         Status::Converged => "converged",
         Status::Failed(_) => "failed",
-        Status::Infeasible => "infeasible",
+        Status::Infeasible(_) => "infeasible",
         Status::IterationLimit => "iteration limit",
     }
 }
 
-/// Why a failed solve stopped, in words.
-fn failure_text(status: &Status) -> Option<String> {
+/// Why a solve that did not converge stopped, in words (`None` for converged and for the
+/// iteration limit, whose status says it all).
+pub fn failure_text(spec: &OptimalControlSpec, status: &Status) -> Option<String> {
     match status {
+        Status::Infeasible(i) => Some(infeasibility_text(spec, i)),
         Status::Failed(Failure::NonFinite) => {
             Some("a cost, constraint or derivative was not finite".to_owned())
         }
@@ -47,6 +49,31 @@ fn failure_text(status: &Status) -> Option<String> {
         )),
         _ => None,
     }
+}
+
+/// The infeasible subproblem in words: where, and which bounds its certificate uses.
+fn infeasibility_text(spec: &OptimalControlSpec, i: &Infeasibility) -> String {
+    let at = match i.iteration {
+        0 => "at the first iterate".to_owned(),
+        k => format!("at SQP iteration {k}"),
+    };
+    let names = (i.controls.iter().filter_map(|&j| spec.controls.get(j)))
+        .chain(
+            i.coordinates
+                .iter()
+                .filter_map(|&j| spec.coordinates.get(j)),
+        )
+        .map(|n| format!("`{n}`"))
+        .collect::<Vec<_>>();
+    let bounds = match names.is_empty() {
+        true => "no bound: the boundary conditions contradict the dynamics".to_owned(),
+        false => format!("the bounds on {}", names.join(", ")),
+    };
+    format!(
+        "the linearised dynamics and boundary conditions {at} cannot be met within the bounds \
+         (a checked certificate of the QP solver, using {bounds}); loosen those bounds, \
+         lengthen t_end, or start from another guess"
+    )
 }
 
 /// `summary.json`.
@@ -207,7 +234,7 @@ pub fn summary<'a>(
         controls: &spec.controls,
         optimal_control: OptimalControlSummary {
             status: status_name(&s.status),
-            failure: failure_text(&s.status),
+            failure: failure_text(spec, &s.status),
             last_iterate: !s.converged(),
             cost: s.cost,
             iterations: s.iterations,

@@ -39,10 +39,15 @@ pub fn optimize(args: &OptimizeArgs) -> Result<Status, CliError> {
         return Ok(Status::Completed);
     }
     eprintln!(
-        "error: the optimal control solve ended with status \"{}\" after {} iterations\n  = note: \
-         the last iterate and summary.json (status \"{}\") are in {}",
+        "error: the optimal control solve ended with status \"{}\" after {} iterations",
         output::status_name(&s.status),
         s.iterations,
+    );
+    if let Some(reason) = output::failure_text(&spec, &s.status) {
+        eprintln!("  = note: {reason}");
+    }
+    eprintln!(
+        "  = note: the last iterate and summary.json (status \"{}\") are in {}",
         output::status_name(&s.status),
         spec.output.dir.display(),
     );

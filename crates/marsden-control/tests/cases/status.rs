@@ -30,6 +30,11 @@ fn bounds_that_exclude_the_end_state_are_reported_infeasible() {
     // The swing-up must reach θ = π; the state bounds stop it at 2.
     let problem = swing_up(30).with_state_bounds(&[-1.0], &[2.0]).unwrap();
     let s = problem.solve(&Midpoint, &SqpOptions::default()).unwrap();
-    assert_eq!(s.status, Status::Infeasible);
+    let Status::Infeasible(infeasibility) = &s.status else {
+        panic!("status {:?}", s.status);
+    };
+    // The certificate leans on the bound of the only coordinate, none of a control.
+    assert_eq!(infeasibility.coordinates, [0]);
+    assert!(infeasibility.controls.is_empty());
     assert!(s.q.iter().all(|q| (-1.0..=2.0).contains(&q[0])));
 }

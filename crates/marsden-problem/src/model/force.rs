@@ -13,6 +13,9 @@
 use marsden::forces::{FromHamiltonian, HamiltonianForce};
 use marsden::{Force, Lagrangian, Scalar};
 
+use std::sync::Arc;
+
+use super::control_table::{ControlTable, with_controls};
 use super::inputs::with_inputs;
 use marsden_expr::ProgramSet;
 
@@ -56,6 +59,7 @@ pub enum ForceInputs {
 pub struct ExprForce {
     components: ProgramSet,
     inputs: ForceInputs,
+    controls: Option<Arc<ControlTable>>,
 }
 
 impl ExprForce {
@@ -66,7 +70,23 @@ impl ExprForce {
 
     /// Wraps one program per coordinate, compiled against `[q, q̇, t]` or `[q, p, t]`.
     pub fn with_inputs(components: ProgramSet, inputs: ForceInputs) -> Self {
-        Self { components, inputs }
+        Self {
+            components,
+            inputs,
+            controls: None,
+        }
+    }
+
+    /// The same force with its expressions reading the controls of `table` after
+    /// `[q, q̇, t]` (or `[q, p, t]`): programs compiled with the controls as those inputs.
+    pub fn with_control_table(mut self, table: ControlTable) -> Self {
+        self.controls = Some(Arc::new(table));
+        self
+    }
+
+    /// The control table the force reads, if any.
+    pub fn control_table(&self) -> Option<&ControlTable> {
+        self.controls.as_deref()
     }
 
     /// No force.
@@ -91,23 +111,27 @@ impl ExprForce {
 
     /// The Lagrangian force `f_L` of these expressions for the Lagrangian `lagrangian`.
     pub fn on<'a, L: Lagrangian>(&'a self, lagrangian: &'a L) -> LagrangianForce<'a, L> {
+        let controls = self.controls.as_deref();
         match self.inputs {
-            ForceInputs::Velocities => LagrangianForce::Velocities(Velocities(&self.components)),
+            ForceInputs::Velocities => {
+                LagrangianForce::Velocities(Velocities(&self.components, controls))
+            }
             ForceInputs::Momenta => LagrangianForce::Momenta(FromHamiltonian::new(
                 lagrangian,
-                Momenta(&self.components),
+                Momenta(&self.components, controls),
             )),
         }
     }
 }
 
-/// Expressions over `[q, q̇, t]` as a force.
+/// Expressions over `[q, q̇, t]` (then the controls of the table, if any) as a force.
 #[derive(Debug, Clone, Copy)]
-pub struct Velocities<'a>(&'a ProgramSet);
+pub struct Velocities<'a>(&'a ProgramSet, Option<&'a ControlTable>);
 
-/// Expressions over `[q, p, t]` as a Hamiltonian force.
+/// Expressions over `[q, p, t]` (then the controls of the table, if any) as a Hamiltonian
+/// force.
 #[derive(Debug, Clone, Copy)]
-pub struct Momenta<'a>(&'a ProgramSet);
+pub struct Momenta<'a>(&'a ProgramSet, Option<&'a ControlTable>);
 
 /// `f_L` of a problem file's force: the expressions themselves, or `f_H ∘ FL`.
 #[derive(Debug)]
@@ -129,10 +153,10 @@ impl<L> Copy for LagrangianForce<'_, L> {}
 impl Force for Velocities<'_> {
     #[inline]
     fn force<S: Scalar>(&self, t: S, q: &[S], v: &[S], out: &mut [S]) {
-        if self.0.is_empty() {
-            out.iter_mut().for_each(|f| *f = S::from(0.0));
-        } else {
-            with_inputs(q, v, t, |x| self.0.eval_into(x, out));
+        match (self.0.is_empty(), self.1) {
+            (true, _) => out.iter_mut().for_each(|f| *f = S::from(0.0)),
+            (false, None) => with_inputs(q, v, t, |x| self.0.eval_into(x, out)),
+            (false, Some(u)) => with_controls((q, v, t), u, |x| self.0.eval_into(x, out)),
         }
     }
 
@@ -144,7 +168,10 @@ impl Force for Velocities<'_> {
 impl HamiltonianForce for Momenta<'_> {
     #[inline]
     fn hamiltonian_force<S: Scalar>(&self, t: S, q: &[S], p: &[S], out: &mut [S]) {
-        with_inputs(q, p, t, |x| self.0.eval_into(x, out));
+        match self.1 {
+            None => with_inputs(q, p, t, |x| self.0.eval_into(x, out)),
+            Some(u) => with_controls((q, p, t), u, |x| self.0.eval_into(x, out)),
+        }
     }
 }
 

@@ -8,6 +8,7 @@
 //! does no string work and no allocation.
 
 pub mod constraint;
+pub mod control_table;
 pub mod discrete_lagrangian;
 pub mod force;
 pub mod hamiltonian;
@@ -20,6 +21,7 @@ pub mod rigid;
 pub mod symmetry;
 
 pub use constraint::ExprConstraint;
+pub use control_table::ControlTable;
 pub use discrete_lagrangian::ExprDiscreteLagrangian;
 pub use force::{ExprForce, ForceInputs, LagrangianForce};
 pub use hamiltonian::{ExprHamiltonian, HamiltonianExprLagrangian};

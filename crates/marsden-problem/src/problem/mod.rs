@@ -12,6 +12,7 @@
 pub mod check;
 pub mod checkpoints;
 pub mod constraint_regularity;
+pub mod control_table;
 pub mod discrete;
 pub mod events;
 #[cfg(test)]
@@ -246,6 +247,9 @@ fn validate_raw(
         settings::constraints_at_start(&ck, &system.constraint, &initial.q, initial_spans.q)?;
     }
     let mut integrator = settings::integrator(&ck, raw.integrator.as_ref(), initial.t0, overrides)?;
+    let mut system = system;
+    control_table::attach(&ck, raw, &mut system, &integrator)?;
+    let system = system;
     if system.rigid().is_some() || system.multibody().is_some() {
         let span = (raw.integrator.as_ref())
             .and_then(|i| i.get_ref().method.as_ref())

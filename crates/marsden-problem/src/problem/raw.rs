@@ -135,6 +135,9 @@ pub struct RawSystem {
     /// Names of controls `u`, piecewise constant per step, usable in `forces`
     /// ([`super::optimal_control`]); zero in a `marsden run`.
     pub controls: Option<SpannedList<String>>,
+    /// A table of the controls per step (`t` and one column per control), read by
+    /// `marsden run` ([`super::control_table`]); without it the controls are zero.
+    pub control_table: Option<Spanned<String>>,
     /// Symmetries whose momentum maps are monitored.
     pub symmetry: Option<Vec<Spanned<RawSymmetry>>>,
     /// A rigid body instead of coordinates: its configuration is an attitude `R ∈ SO(3)`

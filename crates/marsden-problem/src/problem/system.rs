@@ -169,8 +169,9 @@ pub fn system(
         (None, Some(b)) => builtin(ck, b, system, &params, &parsed.names())?,
         (Some(l), None) => expression(ck, l, system, &params)?,
     };
-    // The forces see `[system] controls` as 0: a `marsden run` is the zero-control simulation.
-    let zero = |s| super::optimal_control::controls::as_zero(ck, system, s);
+    // The forces see `[system] controls` as 0 (a `marsden run` is the zero-control simulation)
+    // or, with a `control_table`, as inputs after `[q, q̇, t]` read from the table.
+    let zero = |s| super::optimal_control::controls::for_run(ck, system, s);
     let tangent = zero(symbols(
         ck,
         tangent_inputs(&coordinates),

@@ -139,12 +139,15 @@ fn components(
 /// control bounds and state bounds.
 ///
 /// # Errors
-/// An unknown name, a list that is not two numbers, NaN, `lo > hi`, a name given twice.
+/// An unknown name, a list that is not two numbers, NaN, `lo > hi`, a name given twice, a
+/// coordinate's bounds that exclude its fixed `start` or `end` position (no trajectory could
+/// meet both).
 pub fn bounds(
     ck: &Checker<'_>,
     raw: Option<&Spanned<Ordered<SpannedList<f64>>>>,
     controls: &[String],
     coordinates: &[String],
+    ends: (&EndSpec, &EndSpec),
 ) -> Result<(BoundsSpec, BoundsSpec), Diagnostic> {
     let mut on_u = BoundsSpec::none(controls.len());
     let mut on_q = BoundsSpec::none(coordinates.len());
@@ -158,8 +161,8 @@ pub fn bounds(
             controls.iter().position(|c| c == name),
             coordinates.iter().position(|c| c == name),
         ) {
-            (Some(j), _) => (&mut on_u, j),
-            (None, Some(i)) => (&mut on_q, i),
+            (Some(j), _) => (&mut on_u, j, false),
+            (None, Some(i)) => (&mut on_q, i, true),
             (None, None) => {
                 let names = controls.iter().chain(coordinates).map(String::as_str);
                 return Err(ck
@@ -197,9 +200,38 @@ pub fn bounds(
                 format!("bounds on `{name}`: the lower bound {lo} is above the upper bound {hi}"),
             ));
         }
-        let (bounds, index) = target;
+        let (bounds, index, coordinate) = target;
+        if coordinate {
+            excludes_an_end(ck, at.clone(), (name, index, lo, hi), ends)?;
+        }
         bounds.lower[index] = lo;
         bounds.upper[index] = hi;
     }
     Ok((on_u, on_q))
+}
+
+/// Refuses the bounds `[lo, hi]` of coordinate `index` if they exclude its fixed position at
+/// `start` or `end`.
+fn excludes_an_end(
+    ck: &Checker<'_>,
+    at: Option<std::ops::Range<usize>>,
+    (name, index, lo, hi): (&str, usize, f64, f64),
+    (start, end): (&EndSpec, &EndSpec),
+) -> Result<(), Diagnostic> {
+    for (which, spec) in [("start", start), ("end", end)] {
+        if let Some(q) = spec.q.get(index).copied().flatten()
+            && !(lo..=hi).contains(&q)
+        {
+            return Err(ck
+                .error(
+                    at,
+                    format!("bounds on `{name}` = [{lo}, {hi}] exclude its `{which}` value {q}"),
+                )
+                .note("the bounds hold at every node, the first and the last included")
+                .help(format!(
+                    "widen the bounds to contain {q}, or change `{which}`"
+                )));
+        }
+    }
+    Ok(())
 }

@@ -1,7 +1,7 @@
 //! `[system] controls`: the names of the controls `u`, checked, and the symbol tables the
 //! forces compile against — with the controls as the constant 0 for a `marsden run` (the
 //! forward simulation with zero controls), as extra input slots after `[q, q̇, t]` for
-//! `marsden optimize`.
+//! `marsden optimize` and for a run that reads them from a `control_table`.
 
 use std::ops::Range;
 
@@ -76,6 +76,25 @@ pub fn as_zero(
             .map_err(|e| ck.error(Some(control.span.clone()), e.to_string()))?;
     }
     Ok(symbols)
+}
+
+/// The symbols of a `marsden run`'s forces: the controls as inputs read from the
+/// `control_table` ([`super::super::control_table`]) if one is given, else as 0 ([`as_zero`]).
+///
+/// # Errors
+/// As [`declared`].
+pub fn for_run(
+    ck: &Checker<'_>,
+    system: &RawSystem,
+    symbols: Symbols,
+) -> Result<Symbols, Diagnostic> {
+    match super::super::control_table::given(system) {
+        true => {
+            let controls = declared(ck, system, &symbols)?;
+            as_inputs(ck, &controls, symbols)
+        }
+        false => as_zero(ck, system, symbols),
+    }
 }
 
 /// `symbols` with the controls as input slots after the existing ones, in declared order.

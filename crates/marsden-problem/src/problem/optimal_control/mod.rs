@@ -7,7 +7,8 @@
 //! the same inputs and the final cost `Φ(q_N, p_N)` reads `[q, p, t]` (momenta named
 //! `p_<coordinate>`). The rule must be a two-point rule (midpoint, trapezoid, `alpha-<a>`,
 //! `symmetrized-<a>`), the transcription's scope. A file with `[optimal_control]` is refused by
-//! `marsden run` (see [`refuse_in_run`]); `[system] controls` alone run as zero controls.
+//! `marsden run` (see [`refuse_in_run`]); `[system] controls` alone run as zero controls, or
+//! as the values of a `[system] control_table` ([`super::control_table`]).
 //!
 //! [OJM11]: marsden#references
 
@@ -163,10 +164,18 @@ fn validate(source: SourceFile, overrides: &Overrides) -> Result<OptimalControlS
         );
     };
     refuse_sections(&ck, &raw)?;
-    let system = system::system(&ck, raw.system.as_ref(), None)?;
     let Some(raw_system) = raw.system.as_ref() else {
         return Err(Diagnostic::new("the problem file has no [system] table"));
     };
+    if let Some(file) = &raw_system.get_ref().control_table {
+        return Err(ck
+            .error(
+                Some(file.span()),
+                "`control_table` feeds the controls to `marsden run`; `marsden optimize` computes them",
+            )
+            .help("remove it here, or run the file without [optimal_control]"));
+    }
+    let system = system::system(&ck, raw.system.as_ref(), None)?;
     supported_system(&ck, raw_system, &system)?;
     let LagrangianSpec::Expression(lagrangian) = system.lagrangian else {
         return Err(ck.error(
@@ -187,8 +196,13 @@ fn validate(source: SourceFile, overrides: &Overrides) -> Result<OptimalControlS
         .iter()
         .map(|c| c.name.clone())
         .collect();
-    let (control_bounds, state_bounds) =
-        boundary::bounds(&ck, table.bounds.as_ref(), &names, &coordinates)?;
+    let (control_bounds, state_bounds) = boundary::bounds(
+        &ck,
+        table.bounds.as_ref(),
+        &names,
+        &coordinates,
+        (&start, &end),
+    )?;
     let guess = options::guess(&ck, table.guess.as_ref())?;
     let solver = options::solver(&ck, table)?;
     let name = raw_system.get_ref().name.as_ref().map_or_else(
