@@ -29,6 +29,8 @@ mod examples;
 // The guide (docs/guide): every problem file it shows runs, and summary.json still gives the
 // numbers its pages quote (docs/guide/examples/expected.toml).
 mod guide;
+// Numbers written as constant expressions (`h = "2*pi/100"`).
+mod numbers;
 // Checkpoints and `marsden resume`: killed runs resumed byte for byte, refusals.
 mod resume;
 // `[system] hamiltonian`: the same map as the Lagrangian, refusals.

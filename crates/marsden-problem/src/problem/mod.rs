@@ -24,6 +24,7 @@ pub mod multibody;
 pub mod multibody_initial;
 pub mod named_symmetry;
 pub mod nbody_file;
+pub mod number;
 pub mod optimal_control;
 pub mod parameters;
 pub mod raw;

@@ -264,10 +264,11 @@ impl<'de> serde::de::Visitor<'de> for InitialVisitor {
         let mut out = RawInitial::default();
         while let Some(key) = map.next_key::<String>()? {
             match key.as_str() {
-                "t0" => out.t0 = Some(map.next_value()?),
-                "q" => out.q = Some(map.next_value()?),
-                "v" => out.v = Some(map.next_value()?),
-                "p" => out.p = Some(map.next_value()?),
+                // Numbers or constant expressions ([`super::number`]).
+                "t0" => out.t0 = Some(super::number::unwrap(map.next_value()?)),
+                "q" => out.q = Some(super::number::list(map.next_value()?)),
+                "v" => out.v = Some(super::number::list(map.next_value()?)),
+                "p" => out.p = Some(super::number::list(map.next_value()?)),
                 "file" => out.file = Some(map.next_value()?),
                 "project" => out.project = Some(map.next_value()?),
                 "rotation_vector" => out.rotation_vector = Some(map.next_value()?),
@@ -295,11 +296,13 @@ impl<'de> serde::de::Visitor<'de> for InitialVisitor {
 pub struct RawIntegrator {
     /// Method name (default `midpoint`).
     pub method: Option<Spanned<String>>,
-    /// Time step.
+    /// Time step (a number or a constant expression, [`super::number`]).
+    #[serde(default, deserialize_with = "super::number::spanned")]
     pub h: Option<Spanned<f64>>,
     /// Number of steps (exactly one of `steps` and `t_end`).
     pub steps: Option<Spanned<i64>>,
-    /// Final time (exactly one of `steps` and `t_end`).
+    /// Final time (exactly one of `steps` and `t_end`; a number or a constant expression).
+    #[serde(default, deserialize_with = "super::number::spanned")]
     pub t_end: Option<Spanned<f64>>,
     /// Newton residual tolerance (default 1e-12).
     pub tolerance: Option<Spanned<f64>>,
