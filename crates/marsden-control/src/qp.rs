@@ -22,6 +22,7 @@ use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettings, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus, ZeroConeT,
 };
+use marsden::numerics::dense::max_or_nan;
 
 /// The data of one subproblem (everything but the regularisation `δ`).
 pub struct Subproblem<'a> {
@@ -158,7 +159,8 @@ impl Subproblem<'_> {
 impl Subproblem<'_> {
     /// Checks Clarabel's certificate `y` against `A` and `b` (see the module's doc).
     fn certificate(&self, a: &CscMatrix<f64>, b: &[f64], y: &[f64]) -> Option<Certificate> {
-        let weight = y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        // NaN-propagating maxima: a NaN anywhere must not pass as a certificate.
+        let weight = y.iter().map(|v| v.abs()).fold(0.0, max_or_nan);
         let bty: f64 = b.iter().zip(y).map(|(b, y)| b * y).sum();
         let bounds = &y[self.rows..];
         if !(weight > 0.0 && bty < 0.0) || bounds.iter().any(|&v| v < -1e-9 * weight) {
@@ -170,8 +172,8 @@ impl Subproblem<'_> {
                 .map(|i| a.nzval[i] * y[a.rowval[i]])
                 .sum::<f64>()
         });
-        let residual = aty.fold(0.0_f64, |m, v| m.max(v.abs()));
-        if residual * CERTIFIED_RADIUS > -bty {
+        let residual = aty.map(f64::abs).fold(0.0, max_or_nan);
+        if residual.is_nan() || residual * CERTIFIED_RADIUS > -bty {
             return None;
         }
         let (upper, lower) = bounds.split_at(self.upper.len());
