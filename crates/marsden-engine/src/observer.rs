@@ -375,7 +375,7 @@ impl<L: Lagrangian, C: Constraint, M: MomentumMap> Observer for StreamObserver<'
     }
 }
 
-/// Greatest common divisor (Euclid).
-fn gcd(a: usize, b: usize) -> usize {
+/// Greatest common divisor (Euclid): the steps at which two cadences both stop the run loop.
+pub(crate) fn gcd(a: usize, b: usize) -> usize {
     if b == 0 { a } else { gcd(b, a % b) }
 }

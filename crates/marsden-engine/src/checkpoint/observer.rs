@@ -9,7 +9,7 @@ use marsden::{Constraint, Lagrangian, Observer, StepView, Termination};
 
 use super::{CheckpointPlan, EventsCheckpoint, RunCheckpoint, StreamCheckpoint, file};
 use crate::events::Watched;
-use crate::observer::StreamObserver;
+use crate::observer::{StreamObserver, gcd};
 use marsden_problem::model::MomentumMap;
 
 /// Observers whose accumulated state can be saved into a checkpoint.
@@ -115,9 +115,4 @@ impl<O: Observer + Carries> Observer for Checkpointing<'_, O> {
             }
         }
     }
-}
-
-/// Greatest common divisor (Euclid).
-fn gcd(a: usize, b: usize) -> usize {
-    if b == 0 { a } else { gcd(b, a % b) }
 }
