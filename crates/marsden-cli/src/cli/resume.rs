@@ -22,7 +22,7 @@ pub fn resume(args: &ResumeArgs) -> Result<Status, CliError> {
         );
     }
     let (spec, outcome) = with_controls(args.no_progress, |controls| {
-        resume::resume(&args.dir, controls)
+        resume::resume_from(&args.dir, checkpoint, controls)
     })?;
     Ok(conclude(&spec, &outcome, args.quiet))
 }

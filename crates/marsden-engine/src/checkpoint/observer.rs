@@ -39,8 +39,6 @@ pub struct Checkpointing<'o, O> {
     plan: &'o CheckpointPlan,
     /// Why a checkpoint could not be written (the run stopped there).
     pub error: Option<String>,
-    /// Checkpoints written.
-    pub written: usize,
 }
 
 impl<'o, O: Observer + Carries> Checkpointing<'o, O> {
@@ -50,7 +48,6 @@ impl<'o, O: Observer + Carries> Checkpointing<'o, O> {
             inner,
             plan,
             error: None,
-            written: 0,
         }
     }
 
@@ -105,10 +102,7 @@ impl<O: Observer + Carries> Observer for Checkpointing<'_, O> {
         carried: &IntegratorCheckpoint,
     ) -> ControlFlow<()> {
         match self.save(view, carried) {
-            Ok(()) => {
-                self.written += 1;
-                ControlFlow::Continue(())
-            }
+            Ok(()) => ControlFlow::Continue(()),
             Err(e) => {
                 self.error = Some(e);
                 ControlFlow::Break(())

@@ -43,15 +43,24 @@ pub fn identity(spec: &RunSpec) -> RunIdentity {
 /// a format version this build cannot read, a problem file changed since the checkpoint, or
 /// output files that no longer reach the checkpoint.
 pub fn resume(dir: &Path, controls: &Controls<'_>) -> Result<(RunSpec, Outcome), Error> {
-    let checkpoint = file::load(&dir.join(CHECKPOINT_FILE))
-        .map_err(|e| Error::bad_input(Diagnostic::new(e.to_string())))?;
+    resume_from(dir, peek(dir)?, controls)
+}
+
+/// [`resume`] from `checkpoint`, already read from `dir` ([`peek`]).
+///
+/// # Errors
+/// As [`resume`].
+pub fn resume_from(
+    dir: &Path,
+    checkpoint: RunCheckpoint,
+    controls: &Controls<'_>,
+) -> Result<(RunSpec, Outcome), Error> {
     let spec = spec_of(dir, &checkpoint.identity)?;
     let outcome = execute_from(&spec, Store::Files, controls, Some(Box::new(checkpoint)))?;
     Ok((spec, outcome))
 }
 
-/// The step a checkpoint in `dir` was taken at, and the steps of its run (for a message
-/// before resuming).
+/// The checkpoint in `dir`, read and checked (its format version and CRC-32).
 ///
 /// # Errors
 /// As [`resume`].
