@@ -89,7 +89,7 @@ fn spawn_run(file: &Path, out: &Path, every: &str) -> std::process::Child {
 }
 
 /// The files of a run directory, `summary.json` without its wall-clock lines.
-fn contents(dir: &Path) -> Vec<(String, Vec<u8>)> {
+pub(crate) fn contents(dir: &Path) -> Vec<(String, Vec<u8>)> {
     let mut files: Vec<_> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -117,7 +117,7 @@ fn contents(dir: &Path) -> Vec<(String, Vec<u8>)> {
 }
 
 /// A pseudo-random delay in `0..limit` ms (xorshift, seeded per attempt: reproducible).
-fn delay(seed: u64, limit: u64) -> Duration {
+pub(crate) fn delay(seed: u64, limit: u64) -> Duration {
     let mut x = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
     x ^= x << 13;
     x ^= x >> 7;

@@ -29,10 +29,14 @@ mod examples;
 // The guide (docs/guide): every problem file it shows runs, and summary.json still gives the
 // numbers its pages quote (docs/guide/examples/expected.toml).
 mod guide;
+// A `t_end` off the grid: one shorter last step.
+mod last_step;
 // Numbers written as constant expressions (`h = "2*pi/100"`).
 mod numbers;
 // Checkpoints and `marsden resume`: killed runs resumed byte for byte, refusals.
 mod resume;
+// A sweep's checkpoints: killed sweeps resumed byte for byte, shards.
+mod resume_sweep;
 // `[system] hamiltonian`: the same map as the Lagrangian, refusals.
 mod hamiltonian;
 // Silent wrong answers guarded: failed shootings fail, symmetries checked beyond the start,

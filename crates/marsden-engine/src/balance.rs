@@ -28,7 +28,7 @@ use std::ops::ControlFlow;
 
 use marsden::discrete::DiscreteForce;
 use marsden::numerics::ad::{MultiFunction, nested_gradient};
-use marsden::{Force, Lagrangian, Observer, Scalar, StepView, mechanics};
+use marsden::{Force, Lagrangian, Observer, Scalar, StepView, TimeGrid, mechanics};
 use serde::Serialize;
 
 /// File name of the energy-balance plot, drawn instead of the energy-error plot.
@@ -156,6 +156,9 @@ pub struct Balanced<'o, L, F, T, O: ?Sized> {
     force: F,
     /// The rule's discretisation of [`TimeDerivative`], for a Lagrangian depending on `t`.
     time: Option<T>,
+    /// The run's steps (`h`, perhaps a shorter last one).
+    grid: TimeGrid,
+    /// The size of the step being balanced.
     h: f64,
     inner: &'o mut O,
     /// State of the previous step: `t_k`, `q_k`, `E_k`.
@@ -177,12 +180,12 @@ where
     O: Observer + ?Sized,
 {
     /// The balance of a run of `lagrangian` with the two-point discrete force `force`, the
-    /// discretised [`TimeDerivative`] `time` of a Lagrangian depending on `t`, and step `h`,
-    /// around `inner`; the series keeps every `every`-th of `total` steps.
+    /// discretised [`TimeDerivative`] `time` of a Lagrangian depending on `t`, on the steps of
+    /// `grid`, around `inner`; the series keeps every `every`-th step.
     pub fn new(
         lagrangian: &'o L,
-        (force, time, h): (F, Option<T>, f64),
-        (every, total): (usize, usize),
+        (force, time, grid): (F, Option<T>, &TimeGrid),
+        every: usize,
         inner: &'o mut O,
     ) -> Self {
         let n = lagrangian.dof();
@@ -190,14 +193,15 @@ where
             lagrangian,
             force,
             time,
-            h,
+            grid: *grid,
+            h: grid.h,
             inner,
             previous: (0.0, vec![0.0; n], f64::NAN),
             velocity: vec![0.0; n],
             delta: vec![0.0; n],
             f: vec![0.0; 2 * n],
             summary: BalanceSummary::default(),
-            series: BalanceSeries::new(every, total),
+            series: BalanceSeries::new(every, grid.steps),
         }
     }
 
@@ -258,6 +262,7 @@ where
     }
 
     fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()> {
+        self.h = self.grid.step_size(view.step - 1);
         let e = self.energy(view.t, view.q, view.p);
         let work = self.work(view.q);
         let time_work = self.time_work();

@@ -23,7 +23,7 @@ use std::ops::ControlFlow;
 use marsden::analysis::diagnostics::{BalanceMonitor, BalanceReport};
 use marsden::discrete::DiscreteForce;
 use marsden::symmetry::GroupAction;
-use marsden::{Observer, StepView};
+use marsden::{Observer, StepView, TimeGrid};
 use serde::Serialize;
 
 /// `noether_balance { <symmetry>: { … } }` of `summary.json`.
@@ -69,16 +69,16 @@ pub struct NoetherBalanced<'o, G, F, O: ?Sized> {
 
 impl<'o, G: GroupAction, F: DiscreteForce, O: Observer + ?Sized> NoetherBalanced<'o, G, F, O> {
     /// The balances of `actions` (named by `names`) under the two-point discrete force `force`
-    /// with step `h`, around `inner`.
+    /// on the steps of `grid`, around `inner`.
     pub fn new(
         (names, actions): (Vec<String>, &'o [G]),
-        (force, h): (&'o F, f64),
+        (force, grid): (&'o F, &TimeGrid),
         inner: &'o mut O,
     ) -> Self {
         let monitors = names
             .into_iter()
             .zip(actions)
-            .map(|(name, g)| (name, BalanceMonitor::new(g, force, h)))
+            .map(|(name, g)| (name, BalanceMonitor::on_grid(g, force, grid)))
             .collect();
         Self { monitors, inner }
     }

@@ -149,15 +149,14 @@ where
     }
     let force = rule.discretize_force(problem.force(), l.dof());
     let noether_force = rule.discretize_force(problem.force(), l.dof());
-    let h = problem.grid().h;
-    let total = problem.grid().steps;
+    let grid = problem.grid();
     let names = maps
         .iter()
         .map(|m| MomentumMap::name(m).to_owned())
         .collect();
-    let mut noether = NoetherBalanced::new((names, maps), (&noether_force, h), observer);
+    let mut noether = NoetherBalanced::new((names, maps), (&noether_force, grid), observer);
     let time = time_dependent.then(|| rule.discretize_force(TimeDerivative(l), l.dof()));
-    let mut balanced = Balanced::new(l, (force, time, h), (every, total), &mut noether);
+    let mut balanced = Balanced::new(l, (force, time, grid), every, &mut noether);
     let result = problem.solve_with(rule, options, &mut balanced);
     let balances = Balances {
         energy: balanced.summary,

@@ -42,14 +42,6 @@ def test_steps_and_t_end_both():
     speaks_keywords(text)
 
 
-def test_t_end_off_the_grid_says_give_steps():
-    """The mistake of the first Kepler example: t_end = 20π is no whole number of h = 0.01."""
-    import math
-
-    text = message(**{**without("steps"), "h": 0.01, "t_end": 20 * math.pi})
-    assert "is not a whole number of steps" in text and "or give steps=" in text, text
-    assert "--> in t_end=" in text, text
-    speaks_keywords(text)
 
 
 def test_missing_h_says_give_h():

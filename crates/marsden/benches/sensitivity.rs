@@ -37,6 +37,7 @@ fn grid() -> TimeGrid {
         t0: 0.0,
         h: 0.01,
         steps: STEPS,
+        end: None,
     })
 }
 

@@ -114,7 +114,8 @@ pub struct RunArgs {
 /// `marsden resume`.
 #[derive(Debug, Args)]
 pub struct ResumeArgs {
-    /// The run's output directory (holding `checkpoint.bin`).
+    /// The run's output directory (holding `checkpoint.bin`, or a sweep's
+    /// `sweep-checkpoint.bin`).
     pub dir: PathBuf,
     /// Print nothing on stdout (errors still go to stderr).
     #[arg(short, long)]
@@ -122,6 +123,12 @@ pub struct ResumeArgs {
     /// Never show the progress bar.
     #[arg(long)]
     pub no_progress: bool,
+    /// A sweep: the shard to resume, when several shards ran into `DIR`.
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<Shard>,
+    /// A sweep: number of worker threads (default: one per core).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+    pub threads: Option<u16>,
 }
 
 /// `marsden optimize`.

@@ -1,17 +1,23 @@
-//! `marsden resume DIR [--quiet] [--no-progress]`: the run whose checkpoint is in `DIR`,
-//! continued from it to its end (`[output] checkpoint_every` or `--checkpoint-every` wrote
-//! it). Exit statuses as `marsden run`; 2, with nothing changed, for a missing or damaged
+//! `marsden resume DIR [--quiet] [--no-progress] [--shard I/N] [--threads N]`: the run whose
+//! checkpoint is in `DIR`, continued from it to its end (`[output] checkpoint_every` or
+//! `--checkpoint-every` wrote it); a sweep's checkpoint continues the sweep (its finished
+//! members kept; `--shard` picks one shard's when several ran into `DIR`). Exit statuses as `marsden run`; 2, with nothing changed, for a missing or damaged
 //! checkpoint, a version this build cannot read, or a problem file changed since.
 
-use marsden_spec::run::resume;
+use marsden_spec::run::resume::{self, Found};
+use marsden_spec::run::sweep::SweepOptions;
+use marsden_spec::run::sweep_checkpoint::SweepCheckpoint;
 
 use super::ResumeArgs;
-use super::run::{conclude, with_controls};
+use super::run::{conclude, conclude_sweep, stop_on_ctrl_c, with_controls};
 use crate::error::{CliError, Status};
 
-/// Continues the run in `args.dir`.
+/// Continues the run (or the sweep) in `args.dir`.
 pub fn resume(args: &ResumeArgs) -> Result<Status, CliError> {
-    let checkpoint = resume::peek(&args.dir)?;
+    let checkpoint = match resume::find(&args.dir, args.shard)? {
+        Found::Run(checkpoint) => *checkpoint,
+        Found::Sweep(checkpoint) => return resume_sweep(args, *checkpoint),
+    };
     if !args.quiet {
         println!(
             "resuming {} from step {} (t = {}), its checkpoint in {}",
@@ -25,4 +31,26 @@ pub fn resume(args: &ResumeArgs) -> Result<Status, CliError> {
         resume::resume_from(&args.dir, checkpoint, controls)
     })?;
     Ok(conclude(&spec, &outcome, args.quiet))
+}
+
+/// Continues the sweep of `checkpoint` in `args.dir`.
+fn resume_sweep(args: &ResumeArgs, checkpoint: SweepCheckpoint) -> Result<Status, CliError> {
+    if !args.quiet {
+        println!(
+            "resuming the sweep of {} after {} member{} (shard {}/{}), its checkpoint in {}",
+            checkpoint.identity.absolute,
+            checkpoint.counts.rows,
+            if checkpoint.counts.rows == 1 { "" } else { "s" },
+            checkpoint.shard.0,
+            checkpoint.shard.1,
+            args.dir.display()
+        );
+    }
+    let options = SweepOptions {
+        threads: args.threads.map(usize::from),
+        stop: stop_on_ctrl_c(),
+        ..SweepOptions::default()
+    };
+    let (spec, outcome) = resume::resume_sweep(&args.dir, checkpoint, options)?;
+    Ok(conclude_sweep(&spec, &outcome, args.quiet))
 }

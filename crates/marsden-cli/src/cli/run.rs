@@ -8,7 +8,7 @@
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use marsden_spec::run::sweep::{self, SweepOptions};
+use marsden_spec::run::sweep::{self, SweepOptions, SweepOutcome};
 use marsden_spec::run::{RunStatus, sweep_table};
 use marsden_spec::{Controls, Diagnostic, Progress, RunSpec, Store, SweepSpec, report};
 
@@ -99,10 +99,16 @@ fn run_sweep(args: &RunArgs, spec: &RunSpec, sweep: &SweepSpec) -> Result<Status
         shard: args.shard.unwrap_or_default(),
         threads: args.threads.map(usize::from),
         stop: stop_on_ctrl_c(),
+        resume: None,
     };
     let outcome = sweep::execute(spec, sweep, &args.file.overrides(), &options)?;
+    Ok(conclude_sweep(spec, &outcome, args.quiet))
+}
+
+/// Prints what a sweep came to (unless `quiet`) and its exit status.
+pub(super) fn conclude_sweep(spec: &RunSpec, outcome: &SweepOutcome, quiet: bool) -> Status {
     let plural = |n: usize| if n == 1 { "" } else { "s" };
-    if !args.quiet {
+    if !quiet {
         println!(
             "{}: sweep of {} over {} member{} ({} run here), {}",
             spec.name,
@@ -132,7 +138,7 @@ fn run_sweep(args: &RunArgs, spec: &RunSpec, sweep: &SweepSpec) -> Result<Status
     }
     let table = outcome.dir.join(&outcome.files[0]);
     match (outcome.not_completed(), outcome.interrupted) {
-        (0, _) => Ok(Status::Completed),
+        (0, _) => Status::Completed,
         (n, 1..) => {
             eprintln!(
                 "error: the sweep was interrupted: {n} of {} member{} did not complete (rows \
@@ -141,7 +147,7 @@ fn run_sweep(args: &RunArgs, spec: &RunSpec, sweep: &SweepSpec) -> Result<Status
                 plural(outcome.members_run),
                 table.display()
             );
-            Ok(Status::Failed)
+            Status::Failed
         }
         (n, 0) => {
             eprintln!(
@@ -150,14 +156,14 @@ fn run_sweep(args: &RunArgs, spec: &RunSpec, sweep: &SweepSpec) -> Result<Status
                 plural(outcome.members_run),
                 table.display()
             );
-            Ok(Status::Failed)
+            Status::Failed
         }
     }
 }
 
 /// A flag that the first Ctrl-C sets (the second one exits with 130); `None` if the handler
 /// cannot be installed (then Ctrl-C ends the process as usual).
-fn stop_on_ctrl_c() -> Option<Arc<AtomicBool>> {
+pub(super) fn stop_on_ctrl_c() -> Option<Arc<AtomicBool>> {
     let stop = Arc::new(AtomicBool::new(false));
     let flag = Arc::clone(&stop);
     let handler = move || {

@@ -5,7 +5,7 @@
 //! | 0–7 | the magic `MARSDENC` |
 //! | 8–11 | the format version, `u32` little-endian ([`VERSION`]) |
 //! | 12–15 | the CRC-32 (IEEE) of the body, `u32` little-endian |
-//! | 16– | the body: a [`RunCheckpoint`] in postcard's encoding |
+//! | 16– | the body: a [`RunCheckpoint`] (or, for a sweep, the sweep's checkpoint) in postcard's encoding |
 //!
 //! Version 1 is the first. A later version that changes the body keeps reading version 1
 //! (a test reads a version-1 fixture); a file of a version this build does not know, a body
@@ -15,7 +15,8 @@
 
 use std::path::Path;
 
-use super::RunCheckpoint;
+use serde::Serialize;
+use serde::de::DeserializeOwned;
 
 /// The first bytes of a checkpoint file.
 pub const MAGIC: &[u8; 8] = b"MARSDENC";
@@ -66,7 +67,7 @@ pub enum CheckpointError {
 ///
 /// # Errors
 /// postcard's error, as text (it cannot fail on these types short of running out of memory).
-pub fn encode(checkpoint: &RunCheckpoint) -> Result<Vec<u8>, String> {
+pub fn encode<T: Serialize>(checkpoint: &T) -> Result<Vec<u8>, String> {
     let body = postcard::to_allocvec(checkpoint).map_err(|e| e.to_string())?;
     let mut bytes = Vec::with_capacity(HEADER + body.len());
     bytes.extend_from_slice(MAGIC);
@@ -80,7 +81,7 @@ pub fn encode(checkpoint: &RunCheckpoint) -> Result<Vec<u8>, String> {
 ///
 /// # Errors
 /// [`CheckpointError::Corrupt`] or [`CheckpointError::Version`].
-pub fn decode(bytes: &[u8], path: &Path) -> Result<RunCheckpoint, CheckpointError> {
+pub fn decode<T: DeserializeOwned>(bytes: &[u8], path: &Path) -> Result<T, CheckpointError> {
     let corrupt = |reason: String| CheckpointError::Corrupt {
         path: path.display().to_string(),
         reason,
@@ -118,7 +119,7 @@ pub fn decode(bytes: &[u8], path: &Path) -> Result<RunCheckpoint, CheckpointErro
 ///
 /// # Errors
 /// The I/O or encoding error, as text.
-pub fn save(path: &Path, checkpoint: &RunCheckpoint) -> Result<(), String> {
+pub fn save<T: Serialize>(path: &Path, checkpoint: &T) -> Result<(), String> {
     let bytes = encode(checkpoint)?;
     marsden_io::write_atomically(path, &bytes)
         .map_err(|e| format!("cannot write the checkpoint {}: {e}", path.display()))
@@ -128,7 +129,7 @@ pub fn save(path: &Path, checkpoint: &RunCheckpoint) -> Result<(), String> {
 ///
 /// # Errors
 /// A [`CheckpointError`] saying why it cannot be used.
-pub fn load(path: &Path) -> Result<RunCheckpoint, CheckpointError> {
+pub fn load<T: DeserializeOwned>(path: &Path) -> Result<T, CheckpointError> {
     let bytes = std::fs::read(path).map_err(|e| match e.kind() {
         std::io::ErrorKind::NotFound => CheckpointError::Missing {
             path: path.display().to_string(),

@@ -5,7 +5,8 @@
 //! resumed run is bit for bit the uninterrupted one. That is built for the runs of a rule on a
 //! Lagrangian (a catalog system, an expression `L` or `H`), with or without constraints and
 //! events; the other kinds of run are refused here, before anything is written, with the
-//! reason.
+//! reason. A sweep checkpoints its finished members instead (each member reruns whole), so a
+//! sweep of any kind of member takes `checkpoint_every` and is not checked here.
 
 use super::check::Checker;
 use super::method::Method;
@@ -20,8 +21,6 @@ pub struct RunKind<'s> {
     pub system: &'s SystemSpec,
     /// The integrator's method.
     pub method: &'s Method,
-    /// The file has `[sweep]`.
-    pub sweep: bool,
     /// The file has `[sensitivity]`.
     pub sensitivity: bool,
 }
@@ -62,7 +61,6 @@ fn unsupported(run: RunKind<'_>) -> Option<&'static str> {
         LagrangianSpec::Rigid(_) => "a rigid body",
         LagrangianSpec::Multibody(_) => "a multibody system",
         _ if *run.method == Method::Exact => "the method `exact` (a shooting per step)",
-        _ if run.sweep => "a sweep (its members run in one go)",
         _ if run.sensitivity => "a run with [sensitivity] (its tangent matrices are not saved)",
         _ if run.system.force.is_active() || run.system.depends_on_time() => {
             "a forced or time-dependent run (its energy balance is not saved)"

@@ -19,6 +19,7 @@ pub mod events;
 mod events_tests;
 pub mod grid;
 pub mod hamiltonian;
+pub mod last_step;
 pub mod method;
 pub mod multibody;
 pub mod multibody_initial;
@@ -248,6 +249,7 @@ fn validate_raw(
         settings::constraints_at_start(&ck, &system.constraint, &initial.q, initial_spans.q)?;
     }
     let mut integrator = settings::integrator(&ck, raw.integrator.as_ref(), initial.t0, overrides)?;
+    last_step::refuse_unsupported(&ck, raw, &system, &integrator.grid)?;
     let mut system = system;
     control_table::attach(&ck, raw, &mut system, &integrator)?;
     let system = system;
@@ -304,10 +306,12 @@ fn validate_raw(
     let kind = checkpoints::RunKind {
         system: &system,
         method: &integrator.method,
-        sweep: sweep.is_some(),
         sensitivity: sensitivity.is_some(),
     };
-    checkpoints::refuse_unsupported(&ck, raw, output.checkpoint_every, kind)?;
+    // A sweep (and each of its members) checkpoints whole members, whatever they are.
+    if raw.sweep.is_none() {
+        checkpoints::refuse_unsupported(&ck, raw, output.checkpoint_every, kind)?;
+    }
     let events = events::events(&ck, raw, &system)?;
     let system_table = raw.system.as_ref().map(|s| s.get_ref());
     let lagrangian_span = system_table

@@ -174,8 +174,11 @@ pub fn integrator(
     let method = method(ck, table.method.as_ref())?;
     let h = step_size(ck, raw, overrides.h)?;
     let (steps, t_end) = steps(ck, raw, t0, h, overrides.steps)?;
-    let grid =
-        TimeGrid::new(t0, h, steps).map_err(|e| ck.error(Some(raw.span()), e.to_string()))?;
+    let grid = match t_end {
+        Some(end) => TimeGrid::ending_at(t0, end, h),
+        None => TimeGrid::new(t0, h, steps),
+    };
+    let grid = grid.map_err(|e| ck.error(Some(raw.span()), e.to_string()))?;
     check_grid(&grid).map_err(|m| {
         let at = table.h.as_ref().map_or(raw.span(), Spanned::span);
         ck.error(Some(at), m)

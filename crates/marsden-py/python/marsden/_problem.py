@@ -64,8 +64,9 @@ class Problem:
       file of ``builtin="nbody"``, relative to the working directory), ``t0``, ``project``
       (project onto the constraints first).
     - the integrator: ``method`` (default ``midpoint``; ``trapezoid``, ``gauss-2``,
-      ``lobatto-3``, ...), ``h`` and one of ``steps`` / ``t_end`` (a whole number of steps),
-      ``tolerance``, ``max_iterations``, ``fast_paths``, ``compensated``.
+      ``lobatto-3``, ...), ``h`` and one of ``steps`` / ``t_end`` (a ``t_end`` off the
+      grid of ``h`` ends with one shorter step), ``tolerance``, ``max_iterations``,
+      ``fast_paths``, ``compensated``.
     - the output: ``every`` (store every k-th step), ``angles`` (coordinates that are
       angles: plots wrap them), and for a file run by ``marsden run``: ``output_dir``,
       ``output_format`` (``csv``, ``npy``) and ``plots``.

@@ -74,8 +74,9 @@ pub fn render(outcome: &Outcome) -> String {
             &mut out,
             "completed",
             format!(
-                "{} steps, {span}, in {}",
+                "{} steps{}, {span}, in {}",
                 s.steps,
+                last_step_text(s.last_step),
                 timing(s.wall_seconds, s.jit_compile_seconds, s.steps)
             ),
         ),
@@ -396,5 +397,13 @@ mod tests {
         assert_eq!(num(5000.0), "5000");
         assert_eq!(num(0.0), "0");
         assert_eq!(num(f64::NAN), "NaN");
+    }
+}
+
+/// `" (the last one h = …, to end at t_end)"` for a grid with a shorter last step.
+fn last_step_text(last: Option<f64>) -> String {
+    match last {
+        Some(h) => format!(" (the last one shorter, h = {}, to end at t_end)", num(h)),
+        None => String::new(),
     }
 }

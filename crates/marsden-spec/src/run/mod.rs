@@ -29,6 +29,7 @@ pub mod samples;
 pub mod shard;
 pub mod summary;
 pub mod sweep;
+pub mod sweep_checkpoint;
 pub mod sweep_table;
 pub mod sweep_writer;
 

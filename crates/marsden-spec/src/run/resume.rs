@@ -5,12 +5,17 @@
 //! make the resumed run another run; a problem that never was a file (text given from Python)
 //! is taken from the checkpoint. The run's files are then cut back to the checkpoint and
 //! continued ([`super::execute::execute_from`]): what the resumed run leaves is byte for byte
-//! what the uninterrupted run leaves, the wall-clock times of `summary.json` aside.
+//! what the uninterrupted run leaves, the wall-clock times of `summary.json` aside. A sweep's
+//! checkpoint ([`super::sweep_checkpoint`]) resumes the sweep: its finished members kept, the
+//! others run.
 
 use std::path::Path;
 
 use super::controls::Controls;
 use super::execute::{Outcome, Store, execute_from};
+use super::shard::Shard;
+use super::sweep::{self, SweepOptions, SweepOutcome};
+use super::sweep_checkpoint::{self, SweepCheckpoint};
 use crate::error::{Diagnostic, Error};
 use crate::problem::RunSpec;
 use crate::source::SourceFile;
@@ -55,7 +60,7 @@ pub fn resume_from(
     checkpoint: RunCheckpoint,
     controls: &Controls<'_>,
 ) -> Result<(RunSpec, Outcome), Error> {
-    let spec = spec_of(dir, &checkpoint.identity)?;
+    let (spec, _) = spec_of(dir, &checkpoint.identity)?;
     let outcome = execute_from(&spec, Store::Files, controls, Some(Box::new(checkpoint)))?;
     Ok((spec, outcome))
 }
@@ -69,8 +74,75 @@ pub fn peek(dir: &Path) -> Result<RunCheckpoint, Error> {
         .map_err(|e| Error::bad_input(Diagnostic::new(e.to_string())))
 }
 
-/// The problem of `identity`, read again and checked unchanged, its output in `dir`.
-fn spec_of(dir: &Path, identity: &RunIdentity) -> Result<RunSpec, Error> {
+/// The checkpoint of what ran in a directory: a run's, or a sweep's.
+#[derive(Debug)]
+pub enum Found {
+    /// A single run's (`checkpoint.bin`).
+    Run(Box<RunCheckpoint>),
+    /// A sweep's (`sweep-checkpoint.bin`, or a shard's).
+    Sweep(Box<SweepCheckpoint>),
+}
+
+/// The checkpoint in `dir`: the run's if there is one, else the sweep's — of `shard` when
+/// given, else the only one there.
+///
+/// # Errors
+/// As [`resume`]; also several shards' checkpoints in `dir` and no `shard` to choose one.
+pub fn find(dir: &Path, shard: Option<Shard>) -> Result<Found, Error> {
+    if let Some(shard) = shard {
+        return sweep_checkpoint::load(&sweep_checkpoint::path(dir, shard))
+            .map(|c| Found::Sweep(Box::new(c)));
+    }
+    if dir.join(CHECKPOINT_FILE).exists() {
+        return peek(dir).map(|c| Found::Run(Box::new(c)));
+    }
+    match sweep_checkpoint::find(dir).as_slice() {
+        [] => peek(dir).map(|c| Found::Run(Box::new(c))),
+        [one] => sweep_checkpoint::load(one).map(|c| Found::Sweep(Box::new(c))),
+        several => {
+            let names: Vec<String> = (several.iter())
+                .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+                .collect();
+            Err(Error::bad_input(
+                Diagnostic::new(format!(
+                    "{} holds the checkpoints of several shards of a sweep: {}",
+                    dir.display(),
+                    names.join(", ")
+                ))
+                .help("resume one of them with `--shard i/n`"),
+            ))
+        }
+    }
+}
+
+/// The sweep whose checkpoint is `checkpoint` (read from `dir`), continued: the table cut
+/// back to it, the members after it run with `options`' threads and stop flag.
+///
+/// # Errors
+/// As [`resume`].
+pub fn resume_sweep(
+    dir: &Path,
+    checkpoint: SweepCheckpoint,
+    options: SweepOptions,
+) -> Result<(RunSpec, SweepOutcome), Error> {
+    let (spec, overrides) = spec_of(dir, &checkpoint.identity)?;
+    let Some(sweep) = spec.sweep.clone() else {
+        return Err(Error::bad_input(Diagnostic::new(
+            "the checkpoint is a sweep's, but its problem has no [sweep]",
+        )));
+    };
+    let options = SweepOptions {
+        shard: checkpoint.shard(),
+        resume: Some(Box::new(checkpoint)),
+        ..options
+    };
+    let outcome = sweep::execute(&spec, &sweep, &overrides, &options)?;
+    Ok((spec, outcome))
+}
+
+/// The problem of `identity`, read again and checked unchanged, its output in `dir`; and the
+/// command-line values it was run with.
+fn spec_of(dir: &Path, identity: &RunIdentity) -> Result<(RunSpec, Overrides), Error> {
     let path = Path::new(&identity.absolute);
     let text = match std::fs::read_to_string(path) {
         Ok(text) => text,
@@ -111,7 +183,7 @@ fn spec_of(dir: &Path, identity: &RunIdentity) -> Result<RunSpec, Error> {
             "the checkpoint's problem no longer asks for checkpoints",
         )));
     }
-    Ok(spec)
+    Ok((spec, overrides))
 }
 
 /// The first 12 hex digits of a SHA-256.

@@ -111,6 +111,10 @@ pub struct Summary {
     pub order: Option<u32>,
     /// Time step.
     pub h: f64,
+    /// The size of the last step when `t_end` is not a whole number of steps (a shorter,
+    /// still variational step ending at `t_end` exactly); absent on a uniform grid.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub last_step: Option<f64>,
     /// Steps completed.
     pub steps: usize,
     /// Steps requested.
@@ -484,6 +488,7 @@ impl Summary {
             method: spec.method_name(),
             order: spec.method_order(),
             h: integrator.grid.h,
+            last_step: integrator.grid.last_step(),
             steps: record.steps,
             steps_requested: integrator.grid.steps,
             t_initial: integrator.grid.t0,

@@ -22,6 +22,7 @@ use super::samples::NullSink;
 use super::shard::Shard;
 use super::solve::{Destination, RunRecord};
 use super::summary::RunStatus;
+use super::sweep_checkpoint::{self, SweepCheckpoint};
 use super::sweep_table::{SweepColumns, SweepRow};
 use super::sweep_writer::SweepWriter;
 use crate::error::{Diagnostic, Error};
@@ -83,6 +84,9 @@ pub struct SweepOptions {
     pub threads: Option<usize>,
     /// Set it to stop the members running and skip the others (their rows say [`NOT_RUN`]).
     pub stop: Option<Arc<AtomicBool>>,
+    /// The checkpoint the sweep resumes from (`marsden resume`): its table is cut back to it
+    /// and the members after it run.
+    pub resume: Option<Box<SweepCheckpoint>>,
 }
 
 /// Runs the members of `base`'s sweep selected by `options.shard` and writes the table
@@ -113,18 +117,40 @@ pub fn execute(
     })?;
     let columns = SweepColumns::of(base, sweep);
     let failed = |e: String| Error::failed(Diagnostic::new(e));
-    let mut writer = SweepWriter::create(&dir, options.shard, columns.clone(), base.output.format)
-        .map_err(failed)?;
+    let (mut writer, done) = open_table(base, &dir, &columns, options)?;
+    let checkpoints = base.output.checkpoint_every.is_some();
+    let identity = checkpoints.then(|| super::resume::identity(base));
+    let chunk_size = match checkpoints {
+        true => {
+            2 * pool
+                .as_ref()
+                .map_or_else(rayon::current_num_threads, |p| p.current_num_threads())
+        }
+        false => CHUNK,
+    };
     let mut shown = Vec::new();
-    let mut members = options.shard.iter(sweep.count());
+    let mut members = options.shard.iter(sweep.count()).skip(done);
     loop {
-        let chunk: Vec<usize> = members.by_ref().take(CHUNK).collect();
+        let chunk: Vec<usize> = members.by_ref().take(chunk_size).collect();
         if chunk.is_empty() {
             break;
         }
-        for row in run_rows(base, sweep, overrides, &chunk, options, pool.as_ref()) {
+        let rows = run_rows(base, sweep, overrides, &chunk, options, pool.as_ref());
+        let whole = rows.iter().all(|r| r.status != RunStatus::Interrupted);
+        for row in rows {
             writer.push(&row).map_err(failed)?;
             keep(&mut shown, row);
+        }
+        if let (Some(identity), true) = (&identity, whole) {
+            let (table, counts) = writer.mark().map_err(failed)?;
+            let shard = (options.shard.index, options.shard.count);
+            let checkpoint = SweepCheckpoint {
+                identity: identity.clone(),
+                shard,
+                table,
+                counts,
+            };
+            sweep_checkpoint::save(&dir, &checkpoint).map_err(failed)?;
         }
     }
     let (members_run, failed_count, interrupted) = writer.counts();
@@ -153,6 +179,32 @@ pub fn execute(
         interrupted,
         warnings,
     })
+}
+
+/// The table of the sweep, created, or reopened at the checkpoint it resumes from; and the
+/// number of the shard's members already in it.
+fn open_table(
+    base: &RunSpec,
+    dir: &std::path::Path,
+    columns: &SweepColumns,
+    options: &SweepOptions,
+) -> Result<(SweepWriter, usize), Error> {
+    let format = base.output.format;
+    let failed = |e: String| Error::failed(Diagnostic::new(e));
+    match &options.resume {
+        Some(c) => {
+            let parts = (options.shard, columns.clone(), format);
+            let writer = SweepWriter::reopen(dir, parts, &c.table, c.counts.clone())
+                .map_err(|e| Error::bad_input(Diagnostic::new(e)))?;
+            Ok((writer, c.counts.rows))
+        }
+        None => {
+            sweep_checkpoint::remove_stale(dir, options.shard).map_err(failed)?;
+            let writer =
+                SweepWriter::create(dir, options.shard, columns.clone(), format).map_err(failed)?;
+            Ok((writer, 0))
+        }
+    }
 }
 
 /// Keeps `row` for the console if it is among the first [`SHOWN`], or among the first

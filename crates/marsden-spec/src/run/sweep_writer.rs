@@ -5,10 +5,12 @@
 //! the worst energy error or balance defect and the first failures' messages.
 
 use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::{BufWriter, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
+use marsden_engine::checkpoint::Mark;
 use marsden_io::{NpyShape, NpyWriter};
+use serde::{Deserialize, Serialize};
 use serde_json::json;
 
 use super::shard::Shard;
@@ -26,6 +28,22 @@ enum Table {
     Npy(NpyWriter<File>),
 }
 
+/// What the writer has counted of the rows so far (what `summary.json` reports), kept in a
+/// sweep's checkpoint.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct SweepCounts {
+    /// Rows written.
+    pub rows: usize,
+    /// Members that failed.
+    pub failed: usize,
+    /// Members interrupted.
+    pub interrupted: usize,
+    /// The worst energy error or balance defect.
+    pub worst: Option<f64>,
+    /// The first failures' messages, by member.
+    pub failures: Vec<(usize, String)>,
+}
+
 /// Streams the rows of a sweep (a shard's or the whole sweep's) into `dir`.
 pub struct SweepWriter {
     dir: PathBuf,
@@ -33,11 +51,7 @@ pub struct SweepWriter {
     columns: SweepColumns,
     table: Table,
     table_name: String,
-    rows: usize,
-    failed: usize,
-    interrupted: usize,
-    worst: Option<f64>,
-    failures: Vec<(usize, String)>,
+    counts: SweepCounts,
 }
 
 impl SweepWriter {
@@ -77,12 +91,73 @@ impl SweepWriter {
             columns,
             table,
             table_name,
-            rows: 0,
-            failed: 0,
-            interrupted: 0,
-            worst: None,
-            failures: Vec::new(),
+            counts: SweepCounts::default(),
         })
+    }
+
+    /// Opens the table a killed sweep left in `dir` to go on after its checkpoint: cuts off
+    /// the rows written after `mark` and takes up the `counts` of that moment.
+    ///
+    /// # Errors
+    /// The table is missing or shorter than the mark, or cannot be opened, as text naming it.
+    pub fn reopen(
+        dir: &Path,
+        (shard, columns, format): (Shard, SweepColumns, Format),
+        mark: &Mark,
+        counts: SweepCounts,
+    ) -> Result<Self, String> {
+        let suffix = shard.suffix();
+        let (table_name, table) = match format {
+            Format::Csv => {
+                let name = format!("sweep{suffix}.csv");
+                let bytes = mark.bytes.first().copied().unwrap_or(0);
+                let file = cut_to(&dir.join(&name), bytes)?;
+                (name, Table::Csv(BufWriter::new(file)))
+            }
+            Format::Npy => {
+                let name = format!("sweep{suffix}.npy");
+                let width = columns.numeric_names().len() + 1;
+                let shape = NpyShape::Matrix { columns: width };
+                let writer = NpyWriter::reopen(dir.join(&name), shape, mark.rows)
+                    .map_err(|e| e.to_string())?;
+                (name, Table::Npy(writer))
+            }
+        };
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            shard,
+            columns,
+            table,
+            table_name,
+            counts,
+        })
+    }
+
+    /// Flushes the table and says where it stands, with the counts so far (for a checkpoint).
+    ///
+    /// # Errors
+    /// The table cannot be flushed, as text naming it.
+    pub fn mark(&mut self) -> Result<(Mark, SweepCounts), String> {
+        let path = self.dir.join(&self.table_name);
+        let bytes = match &mut self.table {
+            Table::Csv(w) => {
+                w.flush().map_err(|e| cannot("write", &path, &e))?;
+                let meta = w.get_ref().metadata();
+                vec![
+                    meta.map_err(|e| cannot("read the length of", &path, &e))?
+                        .len(),
+                ]
+            }
+            Table::Npy(w) => {
+                w.flush().map_err(|e| e.to_string())?;
+                Vec::new()
+            }
+        };
+        let mark = Mark {
+            rows: self.counts.rows as u64,
+            bytes,
+        };
+        Ok((mark, self.counts.clone()))
     }
 
     /// Appends a row and counts it.
@@ -100,27 +175,32 @@ impl SweepWriter {
                 w.write_row(&numeric).map_err(|e| e.to_string())?;
             }
         }
-        self.rows += 1;
+        let c = &mut self.counts;
+        c.rows += 1;
         match row.status {
             RunStatus::Completed | RunStatus::Stopped => {}
-            RunStatus::Failed => self.failed += 1,
-            RunStatus::Interrupted => self.interrupted += 1,
+            RunStatus::Failed => c.failed += 1,
+            RunStatus::Interrupted => c.interrupted += 1,
         }
-        if let (Some(e), true) = (&row.error, self.failures.len() < FAILURES_KEPT) {
-            self.failures.push((row.member, e.clone()));
+        if let (Some(e), true) = (&row.error, c.failures.len() < FAILURES_KEPT) {
+            c.failures.push((row.member, e.clone()));
         }
         let preserved = row
             .preserved(self.columns.preserved)
             .map_or(f64::NAN, |p| p.0);
         if preserved.is_finite() {
-            self.worst = Some(self.worst.map_or(preserved, |w| w.max(preserved)));
+            c.worst = Some(c.worst.map_or(preserved, |w| w.max(preserved)));
         }
         Ok(())
     }
 
     /// Members counted so far: (run, failed, interrupted).
     pub fn counts(&self) -> (usize, usize, usize) {
-        (self.rows, self.failed, self.interrupted)
+        (
+            self.counts.rows,
+            self.counts.failed,
+            self.counts.interrupted,
+        )
     }
 
     /// Closes the table and writes `summary.json`; returns the file names written.
@@ -147,7 +227,8 @@ impl SweepWriter {
     /// method, `h` and the swept values of the first and last members.
     fn summary(&self, total: usize, base: &RunSpec) -> serde_json::Value {
         let steps = base.integrator.grid.steps;
-        let status = match (self.failed, self.interrupted) {
+        let c = &self.counts;
+        let status = match (c.failed, c.interrupted) {
             (0, 0) => "completed",
             (0, _) => "interrupted",
             _ => "failed",
@@ -158,11 +239,11 @@ impl SweepWriter {
             columns.push("error".to_owned());
         }
         let preserved = match self.columns.preserved {
-            Preserved::Energy => json!({ "energy": { "max_rel_error": self.worst } }),
-            Preserved::Balance => json!({ "energy_balance": { "max_defect": self.worst } }),
+            Preserved::Energy => json!({ "energy": { "max_rel_error": c.worst } }),
+            Preserved::Balance => json!({ "energy_balance": { "max_defect": c.worst } }),
             Preserved::Nothing => json!({ "energy_not_available": ENERGY_NOT_AVAILABLE }),
         };
-        let failures: Vec<serde_json::Value> = self
+        let failures: Vec<serde_json::Value> = c
             .failures
             .iter()
             .map(|(member, error)| json!({ "member": member, "error": error }))
@@ -174,9 +255,9 @@ impl SweepWriter {
             "swept_columns": self.columns.swept,
             "members": total,
             "shard": { "index": self.shard.index, "count": self.shard.count },
-            "members_run": self.rows,
-            "failed": self.failed,
-            "interrupted": self.interrupted,
+            "members_run": c.rows,
+            "failed": c.failed,
+            "interrupted": c.interrupted,
             "steps": steps,
             "method": base.method_name(),
             "order": base.method_order(),
@@ -197,6 +278,27 @@ impl SweepWriter {
         }
         summary
     }
+}
+
+/// `path` opened for writing at `bytes`, what came after cut off.
+fn cut_to(path: &Path, bytes: u64) -> Result<File, String> {
+    let mut file = std::fs::OpenOptions::new()
+        .write(true)
+        .open(path)
+        .map_err(|e| cannot("open", path, &e))?;
+    let found = (file.metadata())
+        .map_err(|e| cannot("read the length of", path, &e))?
+        .len();
+    if found < bytes {
+        return Err(format!(
+            "{} has {found} bytes, fewer than the {bytes} of the checkpoint",
+            path.display()
+        ));
+    }
+    file.set_len(bytes).map_err(|e| cannot("cut", path, &e))?;
+    file.seek(SeekFrom::End(0))
+        .map_err(|e| cannot("seek in", path, &e))?;
+    Ok(file)
 }
 
 fn cannot(what: &str, path: &Path, e: &std::io::Error) -> String {

@@ -66,7 +66,7 @@ impl<L: Lagrangian> Problem<L> {
     /// Validates the initial data (lengths, finiteness, regularity of `L` there) and completes
     /// it: velocities give momenta by `FL`, momenta give velocities by `FH`.
     pub fn new(lagrangian: L, initial: Initial, grid: TimeGrid) -> Result<Self, Error> {
-        TimeGrid::new(grid.t0, grid.h, grid.steps)?;
+        grid.validate()?;
         let n = lagrangian.dof();
         let t = grid.t0;
         let given = match initial {
@@ -156,7 +156,8 @@ impl<L: Lagrangian, F: Force, C: Constraint> Problem<L, F, C> {
 
     /// Replaces the time grid.
     pub fn with_grid(mut self, grid: TimeGrid) -> Result<Self, Error> {
-        self.grid = TimeGrid::new(grid.t0, grid.h, grid.steps)?;
+        grid.validate()?;
+        self.grid = grid;
         self.start.t = grid.t0;
         Ok(self)
     }

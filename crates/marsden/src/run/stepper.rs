@@ -98,8 +98,8 @@ where
         Integrator::statistics(self).steps
     }
     /// The explicit path runs the chunk in its own loop ([`Integrator::advance`]: times
-    /// `state.t + j h` inside the chunk, as the explicit kernels count them); the others step
-    /// one by one at the grid's times.
+    /// `state.t + j h` inside the chunk, as the explicit kernels count them), a shorter last
+    /// step on its own; the others step one by one at the grid's times.
     fn advance_on(
         &mut self,
         state: &mut State,
@@ -107,8 +107,13 @@ where
         k: usize,
         steps: usize,
     ) -> Result<StepReport, Error> {
-        match self.is_explicit() {
+        let uniform = grid.uniform_steps(k, steps);
+        match self.is_explicit() && uniform == steps {
             true => Integrator::advance(self, state, grid.h, steps),
+            false if self.is_explicit() => {
+                Integrator::advance(self, state, grid.h, uniform)?;
+                step_by_step(self, state, grid, k + uniform, steps - uniform)
+            }
             false => step_by_step(self, state, grid, k, steps),
         }
     }
@@ -132,7 +137,8 @@ where
     }
 }
 
-/// `steps` single steps from grid point `k`, the time of each new state set to the grid's.
+/// `steps` single steps from grid point `k`, each of the grid's size for it
+/// ([`TimeGrid::step_size`]), the time of each new state set to the grid's.
 fn step_by_step<S: Stepper + ?Sized>(
     stepper: &mut S,
     state: &mut State,
@@ -142,7 +148,7 @@ fn step_by_step<S: Stepper + ?Sized>(
 ) -> Result<StepReport, Error> {
     let mut report = StepReport::default();
     for j in 1..=steps {
-        report = stepper.advance(state, grid.h, 1)?;
+        report = stepper.advance(state, grid.step_size(k + j - 1), 1)?;
         state.t = grid.time(k + j);
     }
     Ok(report)

@@ -56,7 +56,7 @@ impl<D: SensitiveStep + Clone> Checkpoints<D> {
             if k.is_multiple_of(every) {
                 stored.push((state.clone(), stepper.clone()));
             }
-            stepper.step(&mut state, grid.h)?;
+            stepper.step(&mut state, grid.step_size(k))?;
             state.t = grid.time(k + 1);
             if watch(k + 1).is_break() {
                 return Ok((Self { every, stored }, state, Some(k + 1)));
@@ -104,7 +104,7 @@ impl<D: SensitiveStep + Clone> Checkpoints<D> {
             let (state, jac) = (&mut next[0], &mut segment.jacobians[i]);
             state.clone_from(&done[i]);
             jac.resize(width, 0.0);
-            stepper.step_with_sensitivity(state, grid.h, jac)?;
+            stepper.step_with_sensitivity(state, grid.step_size(first + i), jac)?;
             state.t = grid.time(first + i + 1);
         }
         Ok(())

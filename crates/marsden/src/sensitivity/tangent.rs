@@ -151,7 +151,7 @@ where
     }
     let mut termination = Termination::Completed;
     for k in 0..grid.steps {
-        stepper.step_with_sensitivity(&mut current.state, grid.h, &mut step)?;
+        stepper.step_with_sensitivity(&mut current.state, grid.step_size(k), &mut step)?;
         current.state.t = grid.time(k + 1);
         current.step = k + 1;
         propagate(&step, &current.jacobian, m, columns, &mut next);

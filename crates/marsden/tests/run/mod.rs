@@ -4,5 +4,6 @@ mod bad_input;
 mod checkpoint;
 mod ensemble;
 mod events;
+mod last_step;
 mod maps_and_runs;
 mod nbody_file;

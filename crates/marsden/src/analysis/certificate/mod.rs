@@ -150,10 +150,10 @@ pub fn certify<D: DifferentiableStep + ?Sized>(
     let mut state = start;
     for k in 0..grid.steps {
         if k % every == 0 {
-            stepper.step_with_jacobian(&mut state, grid.h, &mut jac)?;
+            stepper.step_with_jacobian(&mut state, grid.step_size(k), &mut jac)?;
             report.record(k, symplectic_defect(&jac, n));
         } else {
-            stepper.step(&mut state, grid.h)?;
+            stepper.step(&mut state, grid.step_size(k))?;
         }
         state.t = grid.time(k + 1);
     }

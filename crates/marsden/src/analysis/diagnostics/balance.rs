@@ -29,8 +29,8 @@ use std::ops::ControlFlow;
 
 use crate::discrete::DiscreteForce;
 use crate::error::Error;
-use crate::run::Trajectory;
 use crate::run::{Observer, StepView};
+use crate::run::{TimeGrid, Trajectory};
 use crate::symmetry::{GroupAction, momentum_map, validate};
 
 /// The per-step momentum balance of one group action over a run.
@@ -155,6 +155,8 @@ pub struct BalanceMonitor<'a, G, F> {
     balance: Balance<'a, G, F>,
     previous: Option<(f64, Vec<f64>, Vec<f64>)>,
     error: Option<Error>,
+    /// The run's grid, when its last step is shorter than `h` ([`BalanceMonitor::on_grid`]).
+    grid: Option<TimeGrid>,
 }
 
 impl<'a, G: GroupAction, F: DiscreteForce> BalanceMonitor<'a, G, F> {
@@ -164,6 +166,16 @@ impl<'a, G: GroupAction, F: DiscreteForce> BalanceMonitor<'a, G, F> {
             balance: Balance::new(action, force, h),
             previous: None,
             error: None,
+            grid: None,
+        }
+    }
+
+    /// A monitor of the steps of `grid`, each discretised with its own size
+    /// ([`TimeGrid::step_size`]: `h`, or a shorter last step).
+    pub fn on_grid(action: &'a G, force: &'a F, grid: &TimeGrid) -> Self {
+        Self {
+            grid: Some(*grid),
+            ..Self::new(action, force, grid.h)
         }
     }
 
@@ -188,6 +200,9 @@ impl<G: GroupAction, F: DiscreteForce> Observer for BalanceMonitor<'_, G, F> {
         let Some((t, q, p)) = self.previous.as_mut() else {
             return ControlFlow::Break(());
         };
+        if let Some(grid) = &self.grid {
+            self.balance.h = grid.step_size(view.step - 1);
+        }
         self.balance.step(
             view.step - 1,
             *t,
