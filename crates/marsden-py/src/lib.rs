@@ -164,8 +164,9 @@ fn watched<T: Send>(
     }
 }
 
-/// Continues the run whose checkpoint is in `dir` to its end (as `marsden resume`): its files
-/// in `dir` become those of the uninterrupted run. Returns the run's `summary.json` as text.
+/// Continues the run (or the sweep) whose checkpoint is in `dir` to its end (as `marsden
+/// resume`): its files in `dir` become those of the uninterrupted run. Returns the run's (or
+/// the sweep's) `summary.json` as text.
 #[pyfunction]
 #[pyo3(signature = (dir, progress=None))]
 fn resume(
@@ -173,11 +174,21 @@ fn resume(
     dir: std::path::PathBuf,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<String> {
-    let outcome = watched(py, progress, |controls| {
-        marsden_spec::run::resume::resume(&dir, controls)
+    use marsden_spec::run::resume::{self, Found};
+    let outcome = watched(py, progress, |controls| match resume::find(&dir, None)? {
+        Found::Run(checkpoint) => resume::resume_from(&dir, *checkpoint, controls)
+            .map(|_| marsden_spec::run::output::SUMMARY_JSON.to_owned()),
+        Found::Sweep(checkpoint) => {
+            let summary = format!("summary{}.json", checkpoint.shard().suffix());
+            let options = SweepOptions {
+                stop: controls.stop.clone(),
+                ..SweepOptions::default()
+            };
+            resume::resume_sweep(&dir, *checkpoint, options).map(|_| summary)
+        }
     })?;
-    outcome.map_err(to_py)?;
-    std::fs::read_to_string(dir.join(marsden_spec::run::output::SUMMARY_JSON)).map_err(|e| {
+    let summary = outcome.map_err(to_py)?;
+    std::fs::read_to_string(dir.join(summary)).map_err(|e| {
         bad(Diagnostic::new(format!(
             "cannot read the summary of {}: {e}",
             dir.display()

@@ -60,3 +60,44 @@ def test_checkpoints_need_a_directory_and_resume_needs_a_checkpoint(tmp_path: pa
         marsden.Problem.from_toml(TEXT).solve(checkpoint_every=10)
     with pytest.raises(marsden.ProblemError, match="there is no checkpoint"):
         marsden.resume(tmp_path)
+
+
+SWEEP = textwrap.dedent("""\
+    [system]
+    builtin = "pendulum"
+    [initial]
+    q = [1.0]
+    v = [0.0]
+    [integrator]
+    method = "midpoint"
+    h = 0.01
+    steps = 300000
+    [output]
+    plots = false
+    checkpoint_every = 1
+    [sweep]
+    initial = "q[0]"
+    range = { start = 0.2, stop = 2.4, count = 12 }
+    """)
+
+
+def test_a_killed_sweep_of_the_command_resumes_from_python(tmp_path: pathlib.Path, cli: str) -> None:
+    """A sweep run by ``marsden run`` and killed part-way: ``marsden.resume`` keeps the members
+    in its table, runs the others, and the table is the uninterrupted sweep's byte for byte."""
+    problem = tmp_path / "sweep.toml"
+    problem.write_text(SWEEP)
+    whole, killed = tmp_path / "whole", tmp_path / "killed"
+    args = ["-q", "--no-progress", "--threads", "2"]
+    subprocess.run([cli, "run", str(problem), "--out", str(whole), *args], check=True)
+    child = subprocess.Popen([cli, "run", str(problem), "--out", str(killed), *args])
+    deadline = time.time() + 60
+    while not (killed / "sweep-checkpoint.bin").exists() and time.time() < deadline:
+        time.sleep(0.005)
+    running = child.poll() is None
+    os.kill(child.pid, signal.SIGKILL)
+    child.wait()
+    summary = marsden.resume(killed)
+    assert summary["kind"] == "sweep" and summary["status"] == "completed"
+    assert summary["members_run"] == 12
+    assert (killed / "sweep.csv").read_bytes() == (whole / "sweep.csv").read_bytes()
+    assert running, "the kill came after the sweep had ended: lengthen the members"

@@ -362,6 +362,14 @@ fn seconds(s: f64) -> String {
     }
 }
 
+/// `" (the last one shorter, h = …, to end at t_end)"` for a grid with a shorter last step.
+fn last_step_text(last: Option<f64>) -> String {
+    match last {
+        Some(h) => format!(" (the last one shorter, h = {}, to end at t_end)", num(h)),
+        None => String::new(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -397,13 +405,5 @@ mod tests {
         assert_eq!(num(5000.0), "5000");
         assert_eq!(num(0.0), "0");
         assert_eq!(num(f64::NAN), "NaN");
-    }
-}
-
-/// `" (the last one h = …, to end at t_end)"` for a grid with a shorter last step.
-fn last_step_text(last: Option<f64>) -> String {
-    match last {
-        Some(h) => format!(" (the last one shorter, h = {}, to end at t_end)", num(h)),
-        None => String::new(),
     }
 }
