@@ -127,3 +127,52 @@ mod tests {
         assert!(e.contains("not a finite number"), "{e}");
     }
 }
+
+/// Constant expressions beyond the grid and the initial state: parameters (scalars and lists),
+/// the Newton tolerance, and a sweep's values and range, read through the whole validation.
+#[cfg(test)]
+mod in_a_file {
+    use crate::{Overrides, from_toml_str};
+    use std::f64::consts::PI;
+
+    const TEXT: &str = "[system]\ncoordinates = [\"x\"]\n\
+        parameters = { w = \"2*pi\" }\n\
+        lagrangian = \"0.5*x_dot^2 - 0.5*w^2*x^2\"\n\
+        [initial]\nq = [1]\nv = [0]\n\
+        [integrator]\nh = 0.01\nsteps = 10\ntolerance = \"1e-12/10\"\n\
+        [sweep]\nparameter = \"w\"\nvalues = [\"pi\", \"2*pi\"]\n";
+
+    #[test]
+    fn parameters_tolerance_and_sweep_values_take_constant_expressions() {
+        let spec = from_toml_str(TEXT, "p.toml", &Overrides::default()).unwrap();
+        let w = spec
+            .system
+            .parameters
+            .iter()
+            .find(|(n, _)| n == "w")
+            .unwrap();
+        assert_eq!(w.1, 2.0 * PI);
+        assert_eq!(spec.integrator.newton.residual_tolerance, 1e-12 / 10.0);
+        let sweep = spec.sweep.unwrap();
+        assert_eq!(
+            (sweep.values_of(0), sweep.values_of(1)),
+            (vec![PI], vec![2.0 * PI])
+        );
+        let ranged = TEXT.replace(
+            "values = [\"pi\", \"2*pi\"]",
+            "range = { start = \"pi/2\", stop = \"pi\", count = 3 }",
+        );
+        let sweep = from_toml_str(&ranged, "p.toml", &Overrides::default())
+            .unwrap()
+            .sweep;
+        assert_eq!(sweep.unwrap().values_of(0), vec![PI / 2.0]);
+    }
+
+    #[test]
+    fn a_parameter_naming_an_unknown_symbol_is_refused_with_its_place() {
+        let text = TEXT.replace("w = \"2*pi\"", "w = \"2*pj\"");
+        let e = from_toml_str(&text, "p.toml", &Overrides::default()).unwrap_err();
+        let shown = e.to_string();
+        assert!(shown.contains("pj"), "{shown}");
+    }
+}

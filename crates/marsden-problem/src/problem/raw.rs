@@ -89,7 +89,8 @@ pub struct RawSweep {
     pub parameter: Option<Spanned<String>>,
     /// An initial value: `q[i]`, `v[i]` or `p[i]`.
     pub initial: Option<Spanned<String>>,
-    /// The values, as a list.
+    /// The values, as a list (numbers or constant expressions).
+    #[serde(default, deserialize_with = "super::number::spanned_list")]
     pub values: Option<SpannedList<f64>>,
     /// The values, evenly spaced from `start` to `stop` (both included).
     pub range: Option<Spanned<RawRange>>,
@@ -101,9 +102,11 @@ pub struct RawSweep {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawRange {
-    /// First value.
+    /// First value (a number or a constant expression).
+    #[serde(default, deserialize_with = "super::number::spanned")]
     pub start: Option<Spanned<f64>>,
     /// Last value (included).
+    #[serde(default, deserialize_with = "super::number::spanned")]
     pub stop: Option<Spanned<f64>>,
     /// Number of values (at least 1).
     pub count: Option<Spanned<i64>>,
@@ -304,7 +307,8 @@ pub struct RawIntegrator {
     /// Final time (exactly one of `steps` and `t_end`; a number or a constant expression).
     #[serde(default, deserialize_with = "super::number::spanned")]
     pub t_end: Option<Spanned<f64>>,
-    /// Newton residual tolerance (default 1e-12).
+    /// Newton residual tolerance (default 1e-12; a number or a constant expression).
+    #[serde(default, deserialize_with = "super::number::spanned")]
     pub tolerance: Option<Spanned<f64>>,
     /// Newton iterations per step (default 50).
     pub max_iterations: Option<Spanned<i64>>,
@@ -361,7 +365,7 @@ impl<'de> Visitor<'de> for ParameterVisitor {
     type Value = RawParameter;
 
     fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("a number or a list of numbers")
+        f.write_str("a number, a constant expression such as \"2*pi\", or a list of them")
     }
 
     fn visit_f64<E: de::Error>(self, v: f64) -> Result<RawParameter, E> {
@@ -376,10 +380,17 @@ impl<'de> Visitor<'de> for ParameterVisitor {
         Ok(RawParameter::Number(v as f64))
     }
 
+    /// `l = "2*pi"`: a constant expression ([`super::number`]).
+    fn visit_str<E: de::Error>(self, v: &str) -> Result<RawParameter, E> {
+        super::number::constant(v)
+            .map(RawParameter::Number)
+            .map_err(E::custom)
+    }
+
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<RawParameter, A::Error> {
         let mut values = Vec::new();
-        while let Some(v) = seq.next_element::<f64>()? {
-            values.push(v);
+        while let Some(v) = seq.next_element::<super::number::Number>()? {
+            values.push(v.0);
         }
         Ok(RawParameter::List(values))
     }
