@@ -221,6 +221,35 @@ fn the_henon_heiles_section_example_records_its_crossings() {
     );
 }
 
+/// With `format = "npy"` the records go to `events.npy` (a `records × (2 + 2n)` array, its
+/// columns in `summary.json`): the same numbers, bit for bit, as `events.csv` of the same run in
+/// CSV; the section is drawn from them.
+#[test]
+fn with_npy_output_the_records_are_events_npy_with_the_csv_numbers() {
+    let path = crate::util::repo_root().join("examples/henon_heiles_section.toml");
+    let text = std::fs::read_to_string(&path)
+        .unwrap()
+        .replace("steps = 260000", "steps = 40000");
+    let csv = run_text(&text);
+    let npy = run_text(&text.replace("[output]\n", "[output]\nformat = \"npy\"\n"));
+    let array = marsden_io::read_npy(npy.out.join("events.npy")).unwrap();
+    let table = events(&csv);
+    let names = npy.summary()["output"]["event_columns"].clone();
+    let names: Vec<String> = serde_json::from_value(names).unwrap();
+    assert_eq!(names, ["event", "t", "q_x", "q_y", "p_x", "p_y"]);
+    assert_eq!(array.shape, [table.n_rows() as u64, 6]);
+    assert!(table.n_rows() > 100, "{} records", table.n_rows());
+    for (j, name) in names.iter().enumerate() {
+        let from_csv = column(&table, name);
+        let from_npy: Vec<f64> = (0..table.n_rows()).map(|i| array.data[6 * i + j]).collect();
+        assert_eq!(from_csv, from_npy.as_slice(), "{name}");
+    }
+    assert!(!npy.out.join("events.csv").exists());
+    assert!(npy.out.join("section.png").exists());
+    let files = npy.summary()["output"]["files"].to_string();
+    assert!(files.contains("events.npy"), "{files}");
+}
+
 const HEAD: &str = "[system]
 coordinates = [\"x\"]
 parameters = { k = 1.0 }

@@ -1,7 +1,7 @@
 //! Checkpoints and `marsden resume`: a run killed with SIGKILL at pseudo-random moments and
 //! resumed leaves the files of the uninterrupted run byte for byte (`summary.json`'s wall-clock
 //! times aside) — for the explicit Störmer–Verlet path, a Newton step (midpoint), a Galerkin
-//! rule (gauss-2), a constrained run (RATTLE) and a run with events, in CSV and `.npy`; bad
+//! rule (gauss-2), a constrained run (RATTLE) and runs with events, in CSV and `.npy`; bad
 //! checkpoints and changed files are refused with nothing changed.
 
 use std::path::{Path, PathBuf};
@@ -36,8 +36,12 @@ fn cases() -> Vec<Case> {
         [integrator]\nmethod = \"trapezoid\"\nh = 0.05\nsteps = 400000\n\
         [[events]]\nname = \"x_up\"\nwhen = \"x\"\ndirection = \"up\"\n\
         [output]\nevery = 100\nplots = false\nobservables = { r = \"sqrt(x^2 + y^2)\" }\n";
-    let npy =
-        pendulum("midpoint", 1_000_000).replace("plots = false", "plots = false\nformat = \"npy\"");
+    let npy = pendulum("midpoint", 1_000_000)
+        .replace("plots = false", "plots = false\nformat = \"npy\"")
+        .replace(
+            "[output]",
+            "[[events]]\nname = \"down\"\nwhen = \"theta\"\ndirection = \"down\"\n[output]",
+        );
     vec![
         Case {
             name: "explicit",

@@ -118,7 +118,7 @@ impl<'a, 's, L: Lagrangian, O: Observer> Watched<'a, 's, L, O> {
         let file = match self.sink.as_mut().map(|s| s.mark()) {
             Some(Ok(mark)) => Some(mark.into()),
             Some(Err(e)) => {
-                let message = format!("writing {EVENTS_CSV} failed: {e}");
+                let message = format!("writing the event records failed: {e}");
                 self.tally.io_error = Some(message.clone());
                 return Err(message);
             }
@@ -168,7 +168,7 @@ impl<'a, 's, L: Lagrangian, O: Observer> Watched<'a, 's, L, O> {
             };
             fill_row(&mut self.row, record);
             if let Err(e) = sink.write_row(&self.row) {
-                self.tally.io_error = Some(format!("writing {EVENTS_CSV} failed: {e}"));
+                self.tally.io_error = Some(format!("writing the event records failed: {e}"));
                 return ControlFlow::Break(());
             }
         }

@@ -1,13 +1,15 @@
 //! Where the events of a run go: `events.csv` (rows `event, t, q_…, p_…`, `event` the index
-//! of the event in the file's `[[events]]`, streamed as the run locates them), the in-memory
-//! records ([`EventSamples`]) and, after the run, the Poincaré section of the records
-//! (`section.png`) and the observables against time (`observables.png`).
+//! of the event in the file's `[[events]]`, streamed as the run locates them) or, with
+//! `[output] format = "npy"`, `events.npy` (the same rows as a `records × (2 + 2n)` array,
+//! its column names in `summary.json`'s `output.event_columns`), the in-memory records
+//! ([`EventSamples`]) and, after the run, the Poincaré section of the records (`section.png`)
+//! and the observables against time (`observables.png`).
 
 use std::path::Path;
 
-use marsden_io::{CsvWriter, PlotOptions, RowSink, Series, Table};
+use marsden_io::{CsvWriter, Group, Layout, NpyDirWriter, PlotOptions, RowSink, Series, Table};
 
-use crate::problem::RunSpec;
+use crate::problem::{Format, RunSpec};
 pub use marsden_engine::events::{EVENTS_CSV, event_columns};
 
 /// The Poincaré section plot of the recorded events.
@@ -79,7 +81,7 @@ impl RowSink for EventSamples {
 
 /// The event records to the file and to memory.
 pub struct EventTee<'a> {
-    /// `events.csv`.
+    /// `events.csv` or `events.npy`.
     pub files: &'a mut dyn RowSink,
     /// The in-memory records.
     pub memory: &'a mut EventSamples,
@@ -105,7 +107,25 @@ impl RowSink for EventTee<'_> {
     }
 }
 
-/// Opens `events.csv` in `dir` for the events of `spec` (`None` without events).
+/// `events.npy`, the records with `[output] format = "npy"`.
+pub const EVENTS_NPY: &str = "events.npy";
+
+/// The file of the event records in `format`.
+pub fn file_name(format: Format) -> &'static str {
+    match format {
+        Format::Csv => EVENTS_CSV,
+        Format::Npy => EVENTS_NPY,
+    }
+}
+
+/// The `.npy` layout of the records: one matrix group, `events`.
+fn npy_layout(spec: &RunSpec) -> marsden_io::Result<Layout> {
+    let columns = event_columns(&spec.system.coordinates);
+    Layout::new(vec![Group::vector("events", columns)])
+}
+
+/// Opens the events' file in `dir` for the events of `spec` (`None` without events), in the
+/// output's format; reopened at `resume_at` for a resumed run.
 ///
 /// # Errors
 /// An I/O error naming the file.
@@ -113,19 +133,35 @@ pub fn open(
     dir: &Path,
     spec: &RunSpec,
     resume_at: Option<&marsden_io::SinkMark>,
-) -> marsden_io::Result<Option<CsvWriter<std::fs::File>>> {
+) -> marsden_io::Result<Option<Box<dyn RowSink>>> {
     if spec.events.events.is_empty() {
         return Ok(None);
     }
     let columns = event_columns(&spec.system.coordinates);
-    let path = dir.join(EVENTS_CSV);
-    match resume_at {
-        None => CsvWriter::create(path, &columns).map(Some),
-        Some(mark) => CsvWriter::reopen(path, &columns, mark).map(Some),
-    }
+    let sink: Box<dyn RowSink> = match (spec.output.format, resume_at) {
+        (Format::Csv, None) => Box::new(CsvWriter::create(dir.join(EVENTS_CSV), &columns)?),
+        (Format::Csv, Some(mark)) => {
+            Box::new(CsvWriter::reopen(dir.join(EVENTS_CSV), &columns, mark)?)
+        }
+        (Format::Npy, None) => Box::new(NpyDirWriter::create(dir, &npy_layout(spec)?)?),
+        (Format::Npy, Some(mark)) => Box::new(NpyDirWriter::reopen(dir, &npy_layout(spec)?, mark)?),
+    };
+    Ok(Some(sink))
 }
 
-/// Draws `section.png` from the `events.csv` in `dir`, in the axes of `[output] section`.
+/// The event records in `dir` read back, as a table with the columns `event, t, q_…, p_…`.
+///
+/// # Errors
+/// The file cannot be read, as text.
+pub fn read(dir: &Path, spec: &RunSpec) -> Result<Table, String> {
+    let table = match spec.output.format {
+        Format::Csv => marsden_io::read_csv(dir.join(EVENTS_CSV)),
+        Format::Npy => npy_layout(spec).and_then(|layout| marsden_io::read_npy_dir(dir, &layout)),
+    };
+    table.map_err(|e| e.to_string())
+}
+
+/// Draws `section.png` from the event records in `dir`, in the axes of `[output] section`.
 ///
 /// # Errors
 /// The records cannot be read back or the plot cannot be written, as text.
@@ -133,7 +169,7 @@ pub fn draw_section(dir: &Path, spec: &RunSpec) -> Result<String, String> {
     let Some(section) = &spec.events.section else {
         return Err("the system has no coordinates".to_owned());
     };
-    let table = marsden_io::read_csv(dir.join(EVENTS_CSV)).map_err(|e| e.to_string())?;
+    let table = read(dir, spec)?;
     let c = &spec.system.coordinates;
     let x = series_of(
         &table,
@@ -155,7 +191,7 @@ pub fn draw_section(dir: &Path, spec: &RunSpec) -> Result<String, String> {
 fn series_of<'t>(table: &'t Table, name: &str, label: &'t str) -> Result<Series<'t>, String> {
     let column = (table.columns().iter())
         .find(|c| c.name == name)
-        .ok_or_else(|| format!("{EVENTS_CSV} has no column {name}"))?;
+        .ok_or_else(|| format!("the event records have no column {name}"))?;
     Ok(Series {
         name: label,
         values: &column.values,

@@ -141,10 +141,13 @@ pub fn execute_from(
     let events: Option<&mut dyn marsden_io::RowSink> =
         match (event_file.as_mut(), event_memory.as_mut()) {
             (Some(files), Some(memory)) => {
-                event_tee = EventTee { files, memory };
+                event_tee = EventTee {
+                    files: files.as_mut(),
+                    memory,
+                };
                 Some(&mut event_tee)
             }
-            (Some(files), None) => Some(files),
+            (Some(files), None) => Some(files.as_mut()),
             (None, Some(memory)) => Some(memory),
             (None, None) => None,
         };
@@ -185,6 +188,7 @@ pub fn execute_from(
         },
     };
     let mut record = engine.run(spec, destination, controls)?;
+    let events_file = event_outputs::file_name(spec.output.format);
     let mut warnings = start.warnings.clone();
     let mut written = Vec::new();
     if let Some(writer) = event_file.as_mut()
@@ -192,7 +196,7 @@ pub fn execute_from(
     {
         record
             .error
-            .get_or_insert(format!("writing {} failed: {e}", event_outputs::EVENTS_CSV));
+            .get_or_insert(format!("writing {} failed: {e}", events_file));
     }
     if let Some(sink) = files.as_mut() {
         if let Err(e) = sink.finish() {
@@ -204,7 +208,7 @@ pub fn execute_from(
         record.rows = sink.rows_written();
         written = output::trajectory_files(spec.output.format, &layout);
         if event_file.is_some() {
-            written.push(event_outputs::EVENTS_CSV.to_owned());
+            written.push(events_file.to_owned());
         }
         written.push(output::SUMMARY_JSON.to_owned());
         if plan.as_ref().is_some_and(|p| p.path.exists()) {

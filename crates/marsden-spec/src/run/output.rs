@@ -225,10 +225,11 @@ pub fn layout_from_columns(names: &[String]) -> marsden_io::Result<Layout> {
 }
 
 /// Files a previous run may have left in an output directory (and nothing else).
-const RUN_FILES: [&str; 28] = [
+const RUN_FILES: [&str; 29] = [
     TRAJECTORY_CSV,
     marsden_engine::checkpoint::CHECKPOINT_FILE,
     marsden_engine::events::EVENTS_CSV,
+    super::event_outputs::EVENTS_NPY,
     "observables.npy",
     super::event_outputs::SECTION_PNG,
     super::event_outputs::OBSERVABLES_PNG,

@@ -399,6 +399,10 @@ pub struct OutputSummary {
     /// Coordinates declared as angles (plots wrap them; `marsden plot` reads them here).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub angles: Vec<String>,
+    /// The columns of the event records (`event, t, q_…, p_…`: `events.csv`'s header, the
+    /// columns of `events.npy`); absent without `[[events]]`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub event_columns: Vec<String>,
 }
 
 /// `provenance { … }`.
@@ -526,6 +530,10 @@ impl Summary {
                 columns,
                 files,
                 angles: spec.output.angles.clone(),
+                event_columns: match spec.events.events.is_empty() {
+                    true => Vec::new(),
+                    false => crate::run::event_outputs::event_columns(&spec.system.coordinates),
+                },
             },
             provenance: Provenance {
                 marsden_version: env!("CARGO_PKG_VERSION"),
