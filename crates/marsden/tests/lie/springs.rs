@@ -6,7 +6,6 @@
 
 use marsden::lie::body::{Inertia, RigidBody};
 use marsden::lie::invariants;
-use marsden::lie::lgvi::LgviOptions;
 use marsden::lie::multibody::damper::{Damper, Dampers};
 use marsden::lie::multibody::joints::JointSet;
 use marsden::lie::multibody::spring::{Spring, Springs};
@@ -210,50 +209,69 @@ fn dumbbell(h: f64, c: f64) -> MultibodyLgvi<Springs, NoLoads> {
         .with_dampers(dampers)
 }
 
-/// The largest drift of the momenta relative to their size, and of the energy relative to
-/// itself, over `n` steps; with `monotone` the energy must fall at every step.
-fn dumbbell_drifts(c: f64, n: usize, monotone: bool) -> (f64, f64, f64) {
-    let mut lgvi = dumbbell(0.01, c);
+/// What a dumbbell run measured: the largest drifts of the momenta relative to their size, of
+/// the energy relative to itself, and of the energy balance `E_n − E₀ − W_n` relative to `E₀`,
+/// with `W` the dampers' work by the trapezoid rule, `W_{k+1} = W_k + (h/2)(P_k + P_{k+1})`.
+struct Drifts {
+    linear: f64,
+    angular: f64,
+    energy: f64,
+    balance: f64,
+}
+
+fn dumbbell_drifts(c: f64, n: usize) -> Drifts {
+    let h = 0.01;
+    let mut lgvi = dumbbell(h, c);
+    let power = |l: &MultibodyLgvi<Springs, NoLoads>| l.dampers().power(&l.system().bodies, l.state());
     let p0 = invariants::linear_momentum(lgvi.state());
     let l0 = invariants::spatial_angular_momentum(lgvi.state());
     let e0 = invariants::energy(lgvi.system(), lgvi.state());
-    let (mut dp, mut dl, mut de) = (0.0_f64, 0.0_f64, 0.0_f64);
-    let mut last = e0;
-    for step in 0..n {
+    let mut drifts = Drifts { linear: 0.0, angular: 0.0, energy: 0.0, balance: 0.0 };
+    let (mut work, mut last_power) = (0.0, power(&lgvi));
+    for _ in 0..n {
         lgvi.step().unwrap();
         let state = lgvi.state();
-        dp = dp.max((invariants::linear_momentum(state) - p0).amax() / p0.amax());
-        dl = dl.max((invariants::spatial_angular_momentum(state) - l0).amax() / l0.amax());
+        let dp = (invariants::linear_momentum(state) - p0).amax() / p0.amax();
+        let dl = (invariants::spatial_angular_momentum(state) - l0).amax() / l0.amax();
         let e = invariants::energy(lgvi.system(), state);
-        de = de.max((e - e0).abs() / e0);
-        if monotone {
-            assert!(e < last, "energy rose at step {step}: {last} → {e}");
-        }
-        last = e;
+        let p = power(&lgvi);
+        work += 0.5 * h * (last_power + p);
+        last_power = p;
+        drifts.linear = drifts.linear.max(dp);
+        drifts.angular = drifts.angular.max(dl);
+        drifts.energy = drifts.energy.max((e - e0).abs() / e0);
+        drifts.balance = drifts.balance.max((e - e0 - work).abs() / e0);
     }
-    (dp, dl, de)
+    drifts
 }
 
 /// [MW01] §3.2 (discrete Noether): momenta to round-off over 1000 steps; the energy error is
 /// bounded (no drift: ten times the steps, not ten times the error).
 #[test]
 fn spring_dumbbell_conserves_momenta_and_bounds_energy() {
-    let (dp, dl, de_short) = dumbbell_drifts(0.0, 1000, false);
-    assert!(dp < 1e-12, "linear momentum drifted by {dp:e}");
-    assert!(dl < 1e-12, "angular momentum drifted by {dl:e}");
-    let (_, _, de_long) = dumbbell_drifts(0.0, 10_000, false);
-    assert!(de_short < 1e-3, "energy error {de_short:e}");
-    assert!(de_long < 2.0 * de_short, "energy error {de_short:e} → {de_long:e}");
+    let short = dumbbell_drifts(0.0, 1000);
+    assert!(short.linear < 1e-12, "linear momentum drifted by {:e}", short.linear);
+    assert!(short.angular < 1e-12, "angular momentum drifted by {:e}", short.angular);
+    let long = dumbbell_drifts(0.0, 10_000);
+    let (e1, e2) = (short.energy, long.energy);
+    assert!(e1 < 1e-3, "energy error {e1:e}");
+    assert!(e2 < 2.0 * e1, "energy error {e1:e} → {e2:e}");
 }
 
 /// A damper between the bodies acts along the line of its points: the momenta stay conserved
-/// to round-off, and the energy falls at every step.
+/// to round-off; the energy lost is the dampers' work (the balance closes to the size of the
+/// undamped run's energy error: in 3-D the energy may rise for a step where the damper's line
+/// barely stretches, by the trapezoid rule's `O(h²)` energy oscillation, so it is not monotone
+/// step by step as the 1-D oscillator's is).
 #[test]
-fn damped_dumbbell_conserves_momenta_and_loses_energy_every_step() {
-    let (dp, dl, de) = dumbbell_drifts(2.0, 1000, true);
-    assert!(dp < 1e-12, "linear momentum drifted by {dp:e}");
-    assert!(dl < 1e-12, "angular momentum drifted by {dl:e}");
-    assert!(de > 1e-3, "the damper took only {de:e} of the energy");
+fn damped_dumbbell_conserves_momenta_and_balances_energy() {
+    let damped = dumbbell_drifts(2.0, 1000);
+    let undamped = dumbbell_drifts(0.0, 1000);
+    assert!(damped.linear < 1e-12, "linear momentum drifted by {:e}", damped.linear);
+    assert!(damped.angular < 1e-12, "angular momentum drifted by {:e}", damped.angular);
+    assert!(damped.energy > 0.05, "the damper took only {:e} of the energy", damped.energy);
+    let bound = 2.0 * undamped.energy;
+    assert!(damped.balance < bound, "balance {:e}, bound {bound:e}", damped.balance);
 }
 
 /// The springs' potential without its closed-form gradient: the body moment by AD.

@@ -156,29 +156,28 @@ impl Damping {
     }
 
     /// Re-evaluates the dampers at the state's (new) velocities and puts them into `loads`;
-    /// returns the largest change of a damping load and the largest damping load.
+    /// returns the largest change of a damping load.
     pub(super) fn update(
         &mut self,
         dampers: &Dampers,
         bodies: &[RigidBody],
         state: &RigidState,
         loads: &mut Loads,
-    ) -> (f64, f64) {
+    ) -> f64 {
         let m = bodies.len();
         self.trial_moments.resize(m, Vec3::zeros());
         self.trial_forces.resize(m, Vec3::zeros());
         dampers.loads(bodies, state, &mut self.trial_moments, &mut self.trial_forces);
-        let (mut change, mut scale) = (0.0_f64, 0.0_f64);
+        let mut change = 0.0_f64;
         let pairs = (self.moments.iter().zip(&self.trial_moments))
             .chain(self.forces.iter().zip(&self.trial_forces));
         for (old, new) in pairs {
             change = change.max((new - old).amax());
-            scale = scale.max(new.amax()).max(old.amax());
         }
         std::mem::swap(&mut self.moments, &mut self.trial_moments);
         std::mem::swap(&mut self.forces, &mut self.trial_forces);
         self.combine(loads);
-        (change, scale)
+        change
     }
 
     fn combine(&self, loads: &mut Loads) {

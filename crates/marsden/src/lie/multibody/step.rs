@@ -297,8 +297,9 @@ impl<U: RigidPotential, E: ExternalLoads> MultibodyLgvi<U, E> {
     }
 
     /// The end momenta and the dampers' loads at them, by fixed-point iteration: the dampers at
-    /// the projected momenta, the projection again with them, until the dampers' loads change
-    /// by round-off (or stop decreasing below the Newton tolerance).
+    /// the projected momenta, the projection again with them, until the change of the impulse
+    /// `(h/2)·δf` is round-off of the momenta (or stops decreasing below the Newton tolerance
+    /// relative to them).
     fn settle_dampers(&mut self, h: f64) -> Result<(), StepError> {
         if self.dampers.is_empty() {
             return Ok(());
@@ -307,19 +308,21 @@ impl<U: RigidPotential, E: ExternalLoads> MultibodyLgvi<U, E> {
         let mut last = f64::INFINITY;
         for _ in 0..self.options.newton.max_iterations.max(1) {
             let bodies = &self.system.bodies;
-            let (change, scale) =
+            let change =
                 (self.damping).update(&self.dampers, bodies, &self.state, &mut self.loads);
-            let settled = change <= 4.0 * f64::EPSILON * scale
-                || (change >= last && change <= tolerance * scale);
+            let impulse = 0.5 * h.abs() * change;
+            let momenta = max_norm(&self.state.momenta).max(max_norm(&self.state.linear_momenta));
+            let settled = impulse <= 4.0 * f64::EPSILON * momenta
+                || (impulse >= last && impulse <= tolerance * momenta);
             if settled {
                 return Ok(());
             }
-            if !change.is_finite() {
+            if !impulse.is_finite() {
                 return Err(StepError::NonFinite {
                     what: "the dampers' loads",
                 });
             }
-            last = change;
+            last = impulse;
             self.project(h)?;
         }
         Err(StepError::NewtonDidNotConverge {
