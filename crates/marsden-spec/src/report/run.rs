@@ -122,12 +122,15 @@ pub fn render(outcome: &Outcome) -> String {
         let joints: Vec<String> = (m.joints.iter())
             .map(|j| format!("{} ({}, {}–{})", j.name, j.kind, j.bodies[0], j.bodies[1]))
             .collect();
+        let joints = match joints.is_empty() {
+            true => "none".to_owned(),
+            false => joints.join(", "),
+        };
         line(
             &mut out,
             "joints",
             format!(
-                "{}; max |RᵀR − I| = {}{over}",
-                joints.join(", "),
+                "{joints}; max |RᵀR − I| = {}{over}",
                 sci(m.orthogonality_defect)
             ),
         );
