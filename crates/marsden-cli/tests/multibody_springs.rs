@@ -24,8 +24,13 @@ fn run_text(text: &str, extra: &[&str]) -> (Run, tempfile::TempDir) {
 fn angular_momentum_drift(s: &serde_json::Value) -> f64 {
     let l = &s["multibody"]["angular_momentum"];
     let component = |what: &str, a: usize| l[what][a].as_f64().unwrap();
-    let size = (0..3).map(|a| component("initial", a).abs()).fold(0.0, f64::max);
-    (0..3).map(|a| component("max_abs_drift", a)).fold(0.0, f64::max) / size
+    let size = (0..3)
+        .map(|a| component("initial", a).abs())
+        .fold(0.0, f64::max);
+    (0..3)
+        .map(|a| component("max_abs_drift", a))
+        .fold(0.0, f64::max)
+        / size
 }
 
 /// The dumbbell: the energy the run reports at the start is the kinetic energy of the file's
@@ -76,7 +81,11 @@ fn refused(text: &str, fragments: &[&str]) {
     let (run, _dir) = run_text(text, &[]);
     assert_eq!(run.code, 2, "exit code; stderr:\n{}", run.stderr);
     for f in fragments {
-        assert!(run.stderr.contains(f), "message lacks {f:?}:\n{}", run.stderr);
+        assert!(
+            run.stderr.contains(f),
+            "message lacks {f:?}:\n{}",
+            run.stderr
+        );
     }
 }
 
@@ -99,7 +108,10 @@ fn bad_springs_and_dampers_are_refused_with_their_messages() {
         ),
         (
             base.replace("stiffness = 50.0", "stiffness = -50.0"),
-            vec!["the stiffness of a spring must be zero or positive, not -50", "^"],
+            vec![
+                "the stiffness of a spring must be zero or positive, not -50",
+                "^",
+            ],
         ),
         (
             base.replace("rest_length = 1.0", "rest_length = -1.0"),
@@ -115,7 +127,10 @@ fn bad_springs_and_dampers_are_refused_with_their_messages() {
         ),
         (
             base.replace("[initial.a]", &damper.replace("1.0\n", "-1.0\n")),
-            vec!["the coefficient of a damper must be zero or positive, not -1", "^"],
+            vec![
+                "the coefficient of a damper must be zero or positive, not -1",
+                "^",
+            ],
         ),
         (
             base.replace("[initial.a]", &damper.replace("\"b\"", "\"ground\", \"x\"")),

@@ -7,9 +7,9 @@
 
 use marsden::error::Error;
 use marsden::lie::body::RigidBody;
+use marsden::lie::multibody::damper::{Damper, Dampers};
 use marsden::lie::multibody::gravity::GravityField;
 use marsden::lie::multibody::joint::{Joint, JointKind};
-use marsden::lie::multibody::damper::{Damper, Dampers};
 use marsden::lie::multibody::joints::JointSet;
 use marsden::lie::multibody::spring::{Spring, Springs};
 use marsden::lie::multibody::sum::PotentialSum;
@@ -48,7 +48,13 @@ pub fn core(
     let springs = Springs {
         springs: spec.springs.iter().map(|s| spring(s, &state)).collect(),
     };
-    let system = RigidSystem::new(unsprung.bodies, PotentialSum { first: gravity, second: springs });
+    let system = RigidSystem::new(
+        unsprung.bodies,
+        PotentialSum {
+            first: gravity,
+            second: springs,
+        },
+    );
     let joints = (spec.joints.iter())
         .map(|j| joint(j, &state))
         .collect::<Result<Vec<_>, _>>()?;

@@ -28,8 +28,8 @@ use marsden::lie::state::BodyInitial;
 use toml::Spanned;
 
 use super::check::Checker;
-use super::raw::{RawInertia, RawSystem};
 use super::multibody_springs::{DamperSpec, SpringSpec};
+use super::raw::{RawInertia, RawSystem};
 use super::raw_multibody::{RawBody, RawJoint};
 use crate::error::Diagnostic;
 
@@ -122,12 +122,35 @@ pub fn is_multibody(system: &RawSystem) -> bool {
 pub(super) fn system(ck: &Checker<'_>, system: &RawSystem) -> Result<MultibodySpec, Diagnostic> {
     refuse_other_keys(ck, system)?;
     let Some(raw_bodies) = system.body.as_ref().filter(|b| !b.is_empty()) else {
-        let first = |list: Option<Vec<std::ops::Range<usize>>>| list.and_then(|l| l.into_iter().next());
-        let span = first(system.joint.as_ref().map(|j| j.iter().map(Spanned::span).collect()))
-            .or_else(|| first(system.spring.as_ref().map(|j| j.iter().map(Spanned::span).collect())))
-            .or_else(|| first(system.damper.as_ref().map(|j| j.iter().map(Spanned::span).collect())));
+        let first =
+            |list: Option<Vec<std::ops::Range<usize>>>| list.and_then(|l| l.into_iter().next());
+        let span = first(
+            system
+                .joint
+                .as_ref()
+                .map(|j| j.iter().map(Spanned::span).collect()),
+        )
+        .or_else(|| {
+            first(
+                system
+                    .spring
+                    .as_ref()
+                    .map(|j| j.iter().map(Spanned::span).collect()),
+            )
+        })
+        .or_else(|| {
+            first(
+                system
+                    .damper
+                    .as_ref()
+                    .map(|j| j.iter().map(Spanned::span).collect()),
+            )
+        });
         return Err(ck
-            .error(span, "joints, springs and dampers need bodies: the file has no [[system.body]]")
+            .error(
+                span,
+                "joints, springs and dampers need bodies: the file has no [[system.body]]",
+            )
             .help("add `[[system.body]]` tables with `name`, `mass` and `inertia`"));
     };
     let mut bodies: Vec<BodySpec> = Vec::with_capacity(raw_bodies.len());

@@ -157,7 +157,10 @@ fn ends(ck: &Checker<'_>, w: &Written<'_>, bodies: &[BodySpec]) -> Result<Ends, 
     let number = w.index + 1;
     let Some(sides) = w.sides else {
         return Err(ck
-            .error(Some(w.whole.clone()), format!("{} #{number} has no `bodies`", w.what))
+            .error(
+                Some(w.whole.clone()),
+                format!("{} #{number} has no `bodies`", w.what),
+            )
             .help("e.g. `bodies = [\"ground\", \"a\"]` (two bodies, or the ground and a body)"));
     };
     let [a, b] = sides.get_ref().as_slice() else {
@@ -181,19 +184,28 @@ fn ends(ck: &Checker<'_>, w: &Written<'_>, bodies: &[BodySpec]) -> Result<Ends, 
                 Some(sides.span()),
                 format!("{} #{number} names an unknown body `{name}`", w.what),
             )
-            .help(format!("the bodies are {} (and \"ground\")", quoted(&names)))
+            .help(format!(
+                "the bodies are {} (and \"ground\")",
+                quoted(&names)
+            ))
         })
     };
     let pair = [side(a)?, side(b)?];
     if pair[0] == pair[1] {
         return Err(ck.error(
             Some(sides.span()),
-            format!("a {} joins two different bodies (or a body and the ground)", w.what),
+            format!(
+                "a {} joins two different bodies (or a body and the ground)",
+                w.what
+            ),
         ));
     }
     let Some(at) = w.at else {
         return Err(ck
-            .error(Some(w.whole.clone()), format!("{} #{number} has no `at`", w.what))
+            .error(
+                Some(w.whole.clone()),
+                format!("{} #{number} has no `at`", w.what),
+            )
             .help("the point in each frame: `at = [[x, y, z], [x, y, z]]`"));
     };
     let points = pair_of_vectors(ck, at, "at")?;
@@ -239,7 +251,10 @@ fn nonnegative(
         v if v >= 0.0 => Ok(v),
         v => Err(ck.error(
             Some(value.span()),
-            format!("the {key} of a {} must be zero or positive, not {v}", w.what),
+            format!(
+                "the {key} of a {} must be zero or positive, not {v}",
+                w.what
+            ),
         )),
     }
 }

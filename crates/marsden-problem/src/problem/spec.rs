@@ -163,7 +163,10 @@ impl LagrangianSpec {
                 if m.joints.len() == 1 { "" } else { "s" },
                 match m.springs.len() {
                     0 => String::new(),
-                    n => format!(" + {n} spring{} ½k(‖d‖ − ℓ₀)²", if n == 1 { "" } else { "s" }),
+                    n => format!(
+                        " + {n} spring{} ½k(‖d‖ − ℓ₀)²",
+                        if n == 1 { "" } else { "s" }
+                    ),
                 },
                 m.gravity,
                 match m.dampers.len() {

@@ -39,7 +39,12 @@ fn tether(stiffness: f64) -> Spring {
 }
 
 fn oscillator(h: f64, c: f64) -> MultibodyLgvi<Springs, NoLoads> {
-    let system = RigidSystem::new(vec![ball()], Springs { springs: vec![tether(K)] });
+    let system = RigidSystem::new(
+        vec![ball()],
+        Springs {
+            springs: vec![tether(K)],
+        },
+    );
     let start = BodyInitial {
         position: [X0, 0.0, 0.0],
         ..BodyInitial::rotating(&so3::Mat3::identity(), &Vec3::zeros())
@@ -113,7 +118,10 @@ fn r2_spring_oscillator_converges_at_order_two() {
         })
         .collect();
     let order = slope(&hs, &errors);
-    assert!((order - 2.0).abs() < 0.05, "order {order}, errors {errors:?}");
+    assert!(
+        (order - 2.0).abs() < 0.05,
+        "order {order}, errors {errors:?}"
+    );
 }
 
 /// The damped oscillator `m ẍ = −k x − c ẋ` (R12's system) with the damper between the same
@@ -139,7 +147,10 @@ fn r12_damped_spring_decays_as_the_closed_form_at_order_two() {
         })
         .collect();
     let order = slope(&hs, &errors);
-    assert!((order - 2.0).abs() < 0.05, "order {order}, errors {errors:?}");
+    assert!(
+        (order - 2.0).abs() < 0.05,
+        "order {order}, errors {errors:?}"
+    );
     assert!(errors[2] < 1e-3, "errors {errors:?}");
 }
 
@@ -156,14 +167,20 @@ fn r12_damped_spring_energy_decreases_every_step() {
     for step in 0..1000 {
         lgvi.step().unwrap();
         let next = invariants::energy(lgvi.system(), lgvi.state());
-        assert!(next < energy, "energy rose at step {step}: {energy} → {next}");
+        assert!(
+            next < energy,
+            "energy rose at step {step}: {energy} → {next}"
+        );
         energy = next;
     }
     let zeta = c / (2.0 * (K * M).sqrt());
     let omega = (K / M).sqrt();
     let ratio = energy / e0;
     let envelope = (-2.0 * zeta * omega * 10.0).exp();
-    assert!(ratio < 2.0 * envelope && ratio > 0.2 * envelope, "E/E₀ = {ratio:e}");
+    assert!(
+        ratio < 2.0 * envelope && ratio > 0.2 * envelope,
+        "E/E₀ = {ratio:e}"
+    );
 }
 
 /// Two free bodies of different inertias joined by a spring at off-centre points, spinning
@@ -179,7 +196,12 @@ fn dumbbell(h: f64, c: f64) -> MultibodyLgvi<Springs, NoLoads> {
         stiffness: 20.0,
         rest_length: 1.0,
     };
-    let system = RigidSystem::new(vec![a, b], Springs { springs: vec![spring] });
+    let system = RigidSystem::new(
+        vec![a, b],
+        Springs {
+            springs: vec![spring],
+        },
+    );
     let ra = so3::exp(&Vec3::new(0.1, 0.2, -0.3));
     let rb = so3::exp(&Vec3::new(-0.4, 0.1, 0.2));
     let bodies = [
@@ -222,11 +244,17 @@ struct Drifts {
 fn dumbbell_drifts(c: f64, n: usize) -> Drifts {
     let h = 0.01;
     let mut lgvi = dumbbell(h, c);
-    let power = |l: &MultibodyLgvi<Springs, NoLoads>| l.dampers().power(&l.system().bodies, l.state());
+    let power =
+        |l: &MultibodyLgvi<Springs, NoLoads>| l.dampers().power(&l.system().bodies, l.state());
     let p0 = invariants::linear_momentum(lgvi.state());
     let l0 = invariants::spatial_angular_momentum(lgvi.state());
     let e0 = invariants::energy(lgvi.system(), lgvi.state());
-    let mut drifts = Drifts { linear: 0.0, angular: 0.0, energy: 0.0, balance: 0.0 };
+    let mut drifts = Drifts {
+        linear: 0.0,
+        angular: 0.0,
+        energy: 0.0,
+        balance: 0.0,
+    };
     let (mut work, mut last_power) = (0.0, power(&lgvi));
     for _ in 0..n {
         lgvi.step().unwrap();
@@ -250,8 +278,16 @@ fn dumbbell_drifts(c: f64, n: usize) -> Drifts {
 #[test]
 fn spring_dumbbell_conserves_momenta_and_bounds_energy() {
     let short = dumbbell_drifts(0.0, 1000);
-    assert!(short.linear < 1e-12, "linear momentum drifted by {:e}", short.linear);
-    assert!(short.angular < 1e-12, "angular momentum drifted by {:e}", short.angular);
+    assert!(
+        short.linear < 1e-12,
+        "linear momentum drifted by {:e}",
+        short.linear
+    );
+    assert!(
+        short.angular < 1e-12,
+        "angular momentum drifted by {:e}",
+        short.angular
+    );
     let long = dumbbell_drifts(0.0, 10_000);
     let (e1, e2) = (short.energy, long.energy);
     assert!(e1 < 1e-3, "energy error {e1:e}");
@@ -267,11 +303,27 @@ fn spring_dumbbell_conserves_momenta_and_bounds_energy() {
 fn damped_dumbbell_conserves_momenta_and_balances_energy() {
     let damped = dumbbell_drifts(2.0, 1000);
     let undamped = dumbbell_drifts(0.0, 1000);
-    assert!(damped.linear < 1e-12, "linear momentum drifted by {:e}", damped.linear);
-    assert!(damped.angular < 1e-12, "angular momentum drifted by {:e}", damped.angular);
-    assert!(damped.energy > 0.05, "the damper took only {:e} of the energy", damped.energy);
+    assert!(
+        damped.linear < 1e-12,
+        "linear momentum drifted by {:e}",
+        damped.linear
+    );
+    assert!(
+        damped.angular < 1e-12,
+        "angular momentum drifted by {:e}",
+        damped.angular
+    );
+    assert!(
+        damped.energy > 0.05,
+        "the damper took only {:e} of the energy",
+        damped.energy
+    );
     let bound = 2.0 * undamped.energy;
-    assert!(damped.balance < bound, "balance {:e}, bound {bound:e}", damped.balance);
+    assert!(
+        damped.balance < bound,
+        "balance {:e}, bound {bound:e}",
+        damped.balance
+    );
 }
 
 /// The springs' potential without its closed-form gradient: the body moment by AD.
@@ -335,7 +387,9 @@ fn spring_at_coincident_points_is_finite() {
             stiffness: 4.0,
             rest_length: rest,
         };
-        let springs = Springs { springs: vec![spring] };
+        let springs = Springs {
+            springs: vec![spring],
+        };
         assert_eq!(springs.value(0.0, &rotations, &positions), energy);
         let (mut dr, mut dx) = ([0.0; 9], [0.0; 3]);
         assert!(springs.gradient(0.0, &rotations, &positions, &mut dr, &mut dx));

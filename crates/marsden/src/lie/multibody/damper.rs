@@ -167,7 +167,12 @@ impl Damping {
         let m = bodies.len();
         self.trial_moments.resize(m, Vec3::zeros());
         self.trial_forces.resize(m, Vec3::zeros());
-        dampers.loads(bodies, state, &mut self.trial_moments, &mut self.trial_forces);
+        dampers.loads(
+            bodies,
+            state,
+            &mut self.trial_moments,
+            &mut self.trial_forces,
+        );
         let mut change = 0.0_f64;
         let pairs = (self.moments.iter().zip(&self.trial_moments))
             .chain(self.forces.iter().zip(&self.trial_forces));

@@ -308,8 +308,7 @@ impl<U: RigidPotential, E: ExternalLoads> MultibodyLgvi<U, E> {
         let mut last = f64::INFINITY;
         for _ in 0..self.options.newton.max_iterations.max(1) {
             let bodies = &self.system.bodies;
-            let change =
-                (self.damping).update(&self.dampers, bodies, &self.state, &mut self.loads);
+            let change = (self.damping).update(&self.dampers, bodies, &self.state, &mut self.loads);
             let impulse = 0.5 * h.abs() * change;
             let momenta = max_norm(&self.state.momenta).max(max_norm(&self.state.linear_momenta));
             let settled = impulse <= 4.0 * f64::EPSILON * momenta

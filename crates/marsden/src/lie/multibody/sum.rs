@@ -40,7 +40,11 @@ impl<A: RigidPotential, B: RigidPotential> RigidPotential for PotentialSum<A, B>
         d_rotations: &mut [f64],
         d_positions: &mut [f64],
     ) -> bool {
-        if !A::ZERO && !self.first.gradient(t, rotations, positions, d_rotations, d_positions) {
+        if !A::ZERO
+            && !self
+                .first
+                .gradient(t, rotations, positions, d_rotations, d_positions)
+        {
             return false;
         }
         if B::ZERO {
