@@ -66,6 +66,11 @@ fn a_damper_makes_energy_not_conserved_and_the_energy_fall() {
     assert_eq!(run.code, 0, "{}", run.stderr);
     let s = run.summary();
     assert_eq!(s["energy_not_conserved"], "dampers act");
+    assert!(
+        run.stdout.contains("not conserved (dampers act)"),
+        "{}",
+        run.stdout
+    );
     assert!(s["energy"]["max_rel_error"].is_null());
     let why = s["energy_balance_not_available"].as_str().unwrap();
     assert!(why.contains("multibody"), "{why}");

@@ -258,9 +258,10 @@ fn energy_lines(out: &mut String, s: &crate::run::Summary) {
             out,
             "energy",
             format!(
-                "not conserved ({why}): E0 = {}; no energy error to report, and no balance \
-                 for a method with internal stages",
+                "not conserved ({why}): E0 = {}; no energy error to report, and no balance: {}",
                 num(e.initial),
+                s.energy_balance_not_available
+                    .unwrap_or("none was computed"),
             ),
         ),
     }
