@@ -15,9 +15,9 @@ fn unknown_key_names_the_key_and_its_table() {
             "  | ^^^^^^^^^^\n",
             "= help: did you mean `lagrangian`?",
             "= note: valid keys in [system]: body, builtin, constraints, control_table, controls, \
-             coordinates, \
+             coordinates, damper, \
              discrete_lagrangian, forces, gravity, hamiltonian, joint, lagrangian, name, \
-             parameters, potential, rigid_body, symmetry, torques",
+             parameters, potential, rigid_body, spring, symmetry, torques",
         ],
     );
     assert_rejected(

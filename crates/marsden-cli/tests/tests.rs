@@ -64,6 +64,7 @@ mod rigid;
 // `[[system.body]]`, `[[system.joint]]`: R21 orders from files against reduced coordinates, R22,
 // the satellite's momentum, the chain's columns, refusals.
 mod multibody;
+mod multibody_springs;
 // `marsden run`: reference values read back from the trajectory, summary.json's fields, the
 // expression path against the Rust path, the output formats.
 mod run;

@@ -10,12 +10,13 @@
 mod run;
 
 use marsden::lie::invariants;
+use marsden::lie::multibody::damper::Dampers;
 use marsden::lie::multibody::initial;
 use marsden::lie::multibody::joints::JointSet;
 use marsden::lie::state::RigidState;
 use marsden::sensitivity::Tangent;
 use marsden_problem::error::{Diagnostic, Error};
-use marsden_problem::model::multibody::{MultibodySystem, core};
+use marsden_problem::model::multibody::{MultibodySystem, core, dampers};
 use marsden_problem::order::Plan;
 use marsden_problem::problem::RunSpec;
 use marsden_problem::problem::multibody::MultibodySpec;
@@ -37,6 +38,7 @@ pub struct MultibodyEngine<'a>(pub &'a MultibodySpec);
 pub(crate) struct Begin {
     pub system: MultibodySystem,
     pub joints: JointSet,
+    pub dampers: Dampers,
     pub state: RigidState,
 }
 
@@ -59,6 +61,7 @@ impl MultibodyEngine<'_> {
         Ok(Begin {
             system,
             joints,
+            dampers: dampers(self.0),
             state,
         })
     }

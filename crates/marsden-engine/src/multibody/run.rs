@@ -5,7 +5,6 @@ use marsden::Statistics;
 use marsden::discrete::rules::Method as CoreMethod;
 use marsden::lie::invariants;
 use marsden::lie::lgvi::LgviOptions;
-use marsden::lie::multibody::gravity::GravityField;
 use marsden::lie::multibody::step::MultibodyLgvi;
 use marsden::lie::potential::NoLoads;
 use marsden::lie::so3::Vec3;
@@ -20,8 +19,9 @@ use crate::diagnostics::{Diagnostics, MapStats};
 use crate::group_loop::{GroupStepper, LoopOutcome, drive};
 use crate::solve::{Destination, FinalState, RunRecord};
 
-/// The stepper of a file's system (the bodies in a uniform field, no other loads).
-type Stepper = MultibodyLgvi<GravityField, NoLoads>;
+/// The stepper of a file's system (the bodies in a uniform field with springs between them, the
+/// dampers held by the stepper, no other loads).
+type Stepper = MultibodyLgvi<marsden_problem::model::multibody::Potential, NoLoads>;
 
 /// What a multibody run monitored, and where it ended.
 #[derive(Debug, Clone, Default)]
@@ -65,7 +65,8 @@ pub(super) fn run(
     };
     let grid = spec.integrator.grid;
     let lgvi = MultibodyLgvi::new(begin.system, begin.joints, begin.state, grid.h, options)
-        .map_err(|e| Diagnostic::new(format!("the multibody integrator: {e}")))?;
+        .map_err(|e| Diagnostic::new(format!("the multibody integrator: {e}")))?
+        .with_dampers(begin.dampers);
     let mut writer = Rows::new(bodies, destination);
     let mut stepper = Named { lgvi, bodies };
     let outcome = drive(&mut stepper, grid.steps, spec.output.every, controls, |s| {

@@ -1,22 +1,30 @@
 //! A multibody file's system in the core's terms (`marsden::lie::multibody`): the bodies in a
-//! uniform field, the joints, the initial state.
+//! uniform field with the springs between them, the dampers, the joints, the initial state.
 //!
 //! A prismatic or fixed joint locks the relative attitude `R₀ᵀR₁` its bodies start with, and a
 //! distance joint without a written `length` keeps the distance they start at: both are read
-//! from the initial state here.
+//! from the initial state here, as is a spring's rest length when not written.
 
 use marsden::error::Error;
 use marsden::lie::body::RigidBody;
+use marsden::lie::multibody::damper::{Damper, Dampers};
 use marsden::lie::multibody::gravity::GravityField;
 use marsden::lie::multibody::joint::{Joint, JointKind};
 use marsden::lie::multibody::joints::JointSet;
+use marsden::lie::multibody::spring::{Spring, Springs};
+use marsden::lie::multibody::sum::PotentialSum;
 use marsden::lie::so3::{Mat3, Vec3};
 use marsden::lie::state::{RigidState, RigidSystem};
 
 use crate::problem::multibody::{JointKindSpec, JointSpec, MultibodySpec};
+use crate::problem::multibody_springs::{DamperSpec, SpringSpec};
 
-/// The core's system of a multibody file: free bodies in the field `g`, no other loads.
-pub type MultibodySystem = RigidSystem<GravityField>;
+/// The core's system of a multibody file: free bodies in the field `g` and the springs'
+/// potential (the dampers, which depend on velocities, go to the stepper: [`dampers`]).
+pub type MultibodySystem = RigidSystem<Potential>;
+
+/// The potential of a multibody file: the field and the springs.
+pub type Potential = PotentialSum<GravityField, Springs>;
 
 /// The system, the joints and the state at `t0` of `spec`.
 ///
@@ -35,13 +43,50 @@ pub fn core(
         masses: spec.bodies.iter().map(|b| b.mass).collect(),
         first_moments: vec![[0.0; 3]; spec.bodies.len()],
     };
-    let system = RigidSystem::new(bodies, gravity);
-    let state = RigidState::new(&system, t0, &spec.initial)?;
+    let unsprung = RigidSystem::new(bodies, gravity.clone());
+    let state = RigidState::new(&unsprung, t0, &spec.initial)?;
+    let springs = Springs {
+        springs: spec.springs.iter().map(|s| spring(s, &state)).collect(),
+    };
+    let system = RigidSystem::new(
+        unsprung.bodies,
+        PotentialSum {
+            first: gravity,
+            second: springs,
+        },
+    );
     let joints = (spec.joints.iter())
         .map(|j| joint(j, &state))
         .collect::<Result<Vec<_>, _>>()?;
     let joints = JointSet::new(joints, spec.bodies.len())?;
     Ok((system, joints, state))
+}
+
+/// One spring, its rest length (if not written) the distance of its points in `state`.
+fn spring(s: &SpringSpec, state: &RigidState) -> Spring {
+    let mut spring = Spring {
+        bodies: s.bodies,
+        points: s.points,
+        stiffness: s.stiffness,
+        rest_length: 0.0,
+    };
+    spring.rest_length = s.rest_length.unwrap_or_else(|| {
+        let d = spring.separation(&state.rotations, &state.positions);
+        (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+    });
+    spring
+}
+
+/// The dampers of a multibody file.
+pub fn dampers(spec: &MultibodySpec) -> Dampers {
+    let damper = |d: &DamperSpec| Damper {
+        bodies: d.bodies,
+        points: d.points,
+        coefficient: d.coefficient,
+    };
+    Dampers {
+        dampers: spec.dampers.iter().map(damper).collect(),
+    }
 }
 
 /// One joint, its references read from `state`.

@@ -28,6 +28,7 @@ use marsden::lie::state::BodyInitial;
 use toml::Spanned;
 
 use super::check::Checker;
+use super::multibody_springs::{DamperSpec, SpringSpec};
 use super::raw::{RawInertia, RawSystem};
 use super::raw_multibody::{RawBody, RawJoint};
 use crate::error::Diagnostic;
@@ -97,13 +98,20 @@ pub struct MultibodySpec {
     /// The joints, in the file's order (list them along a chain: the joint solve is then
     /// banded).
     pub joints: Vec<JointSpec>,
+    /// The springs between body points ([`super::multibody_springs`]).
+    pub springs: Vec<SpringSpec>,
+    /// The dampers between body points.
+    pub dampers: Vec<DamperSpec>,
     /// Each body's initial attitude, body momentum, centre and momentum.
     pub initial: Vec<BodyInitial>,
 }
 
 /// Whether the file describes a multibody system.
 pub fn is_multibody(system: &RawSystem) -> bool {
-    system.body.is_some() || system.joint.is_some()
+    system.body.is_some()
+        || system.joint.is_some()
+        || system.spring.is_some()
+        || system.damper.is_some()
 }
 
 /// The bodies, the field and the joints of `system` (the initial data are read next).
@@ -114,13 +122,35 @@ pub fn is_multibody(system: &RawSystem) -> bool {
 pub(super) fn system(ck: &Checker<'_>, system: &RawSystem) -> Result<MultibodySpec, Diagnostic> {
     refuse_other_keys(ck, system)?;
     let Some(raw_bodies) = system.body.as_ref().filter(|b| !b.is_empty()) else {
-        let span = system
-            .joint
-            .as_ref()
-            .and_then(|j| j.first())
-            .map(Spanned::span);
+        let first =
+            |list: Option<Vec<std::ops::Range<usize>>>| list.and_then(|l| l.into_iter().next());
+        let span = first(
+            system
+                .joint
+                .as_ref()
+                .map(|j| j.iter().map(Spanned::span).collect()),
+        )
+        .or_else(|| {
+            first(
+                system
+                    .spring
+                    .as_ref()
+                    .map(|j| j.iter().map(Spanned::span).collect()),
+            )
+        })
+        .or_else(|| {
+            first(
+                system
+                    .damper
+                    .as_ref()
+                    .map(|j| j.iter().map(Spanned::span).collect()),
+            )
+        });
         return Err(ck
-            .error(span, "joints need bodies: the file has no [[system.body]]")
+            .error(
+                span,
+                "joints, springs and dampers need bodies: the file has no [[system.body]]",
+            )
             .help("add `[[system.body]]` tables with `name`, `mass` and `inertia`"));
     };
     let mut bodies: Vec<BodySpec> = Vec::with_capacity(raw_bodies.len());
@@ -157,10 +187,14 @@ pub(super) fn system(ck: &Checker<'_>, system: &RawSystem) -> Result<MultibodySp
         }
         joints.push(joint);
     }
+    let springs = super::multibody_springs::springs(ck, system, &bodies)?;
+    let dampers = super::multibody_springs::dampers(ck, system, &bodies)?;
     Ok(MultibodySpec {
         bodies,
         gravity,
         joints,
+        springs,
+        dampers,
         initial: Vec::new(),
     })
 }
@@ -217,7 +251,7 @@ fn mass_span(b: &RawBody) -> Range<usize> {
     b.mass.as_ref().map_or(0..0, Spanned::span)
 }
 
-fn valid_name(name: &str) -> bool {
+pub(super) fn valid_name(name: &str) -> bool {
     let mut chars = name.chars();
     chars.next().is_some_and(|c| c.is_ascii_alphabetic())
         && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
@@ -400,7 +434,7 @@ fn need_axis<'a>(
 }
 
 /// Two 3-vectors, finite, not both zero for an axis.
-fn pair_of_vectors(
+pub(super) fn pair_of_vectors(
     ck: &Checker<'_>,
     written: &Spanned<Vec<Vec<f64>>>,
     key: &str,
@@ -427,7 +461,7 @@ fn pair_of_vectors(
     Ok([[v[0][0], v[0][1], v[0][2]], [v[1][0], v[1][1], v[1][2]]])
 }
 
-fn quoted(names: &[&str]) -> String {
+pub(super) fn quoted(names: &[&str]) -> String {
     names
         .iter()
         .map(|n| format!("\"{n}\""))
@@ -479,8 +513,9 @@ fn refuse_other_keys(ck: &Checker<'_>, system: &RawSystem) -> Result<(), Diagnos
                 format!("`{key}` cannot be used with `[[system.body]]`"),
             )
             .note(
-                "a multibody system is given by its bodies, its joints and a uniform `gravity`; \
-                   potentials, loads and declared symmetries between bodies are not available yet",
+                "a multibody system is given by its bodies, its joints, a uniform `gravity` and \
+                   `[[system.spring]]`/`[[system.damper]]` between body points; potential and \
+                   load expressions and declared symmetries are not available for it yet",
             )),
         None => Ok(()),
     }

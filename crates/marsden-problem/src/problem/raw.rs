@@ -49,7 +49,9 @@ use serde::Deserialize;
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use toml::Spanned;
 
-use super::raw_multibody::{BodyOrUnknown, NamedBodyInitial, RawBody, RawJoint};
+use super::raw_multibody::{
+    BodyOrUnknown, NamedBodyInitial, RawBody, RawDamper, RawJoint, RawSpring,
+};
 
 /// A list of spanned values, itself spanned.
 pub type SpannedList<T> = Spanned<Vec<Spanned<T>>>;
@@ -157,6 +159,10 @@ pub struct RawSystem {
     pub body: Option<Vec<Spanned<RawBody>>>,
     /// A multibody system's joints.
     pub joint: Option<Vec<Spanned<RawJoint>>>,
+    /// A multibody system's springs between body points.
+    pub spring: Option<Vec<Spanned<RawSpring>>>,
+    /// A multibody system's dampers between body points.
+    pub damper: Option<Vec<Spanned<RawDamper>>>,
 }
 
 /// `rigid_body = { inertia = [..], mass = m }`.

@@ -14,6 +14,11 @@
 //! bodies = ["ground", "a"]
 //! at = [[0.0, 0.0, 0.0], [0.0, 0.0, 0.5]]
 //! axis = [[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]]
+//! [[system.spring]]                 # or [[system.damper]] with `coefficient = c`
+//! bodies = ["ground", "a"]
+//! at = [[1.0, 0.0, 0.0], [0.0, 0.0, 0.5]]
+//! stiffness = 10.0
+//! rest_length = 0.5                 # default: the distance at the start
 //! [initial.a]
 //! x = [0.0, 0.0, -0.5]
 //! R = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]   # or quaternion / rotation_vector
@@ -60,6 +65,36 @@ pub struct RawJoint {
     pub axis: Option<Spanned<Vec<Vec<f64>>>>,
     /// Distance: the rod's length (default: the distance in the initial state).
     pub length: Option<Spanned<f64>>,
+}
+
+/// `[[system.spring]]`: `U = ½ k (‖p_b − p_a‖ − ℓ₀)²` between two points.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSpring {
+    /// A name for messages (default `spring<index>`).
+    pub name: Option<Spanned<String>>,
+    /// The two sides: body names or `"ground"`.
+    pub bodies: Option<Spanned<Vec<String>>>,
+    /// The point in each side's frame (the space frame for the ground).
+    pub at: Option<Spanned<Vec<Vec<f64>>>>,
+    /// The stiffness `k ≥ 0`.
+    pub stiffness: Option<Spanned<f64>>,
+    /// The rest length `ℓ₀ ≥ 0` (default: the distance of the points in the initial state).
+    pub rest_length: Option<Spanned<f64>>,
+}
+
+/// `[[system.damper]]`: the force `−c (ḋ·e) e` along the line of two points.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDamper {
+    /// A name for messages (default `damper<index>`).
+    pub name: Option<Spanned<String>>,
+    /// The two sides: body names or `"ground"`.
+    pub bodies: Option<Spanned<Vec<String>>>,
+    /// The point in each side's frame (the space frame for the ground).
+    pub at: Option<Spanned<Vec<Vec<f64>>>>,
+    /// The coefficient `c ≥ 0`.
+    pub coefficient: Option<Spanned<f64>>,
 }
 
 /// `[initial.<body>]`.

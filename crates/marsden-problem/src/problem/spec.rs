@@ -156,12 +156,23 @@ impl LagrangianSpec {
                 r.potential.text().unwrap_or("0")
             ),
             LagrangianSpec::Multibody(m) => format!(
-                "{} rigid bod{} joined by {} joint{}: L = Σ ½ΩᵀJΩ + ½m|ẋ|² − U, U = −Σ m g·x, g = {:?}",
+                "{} rigid bod{} joined by {} joint{}: L = Σ ½ΩᵀJΩ + ½m|ẋ|² − U, U = −Σ m g·x{}, g = {:?}{}",
                 m.bodies.len(),
                 if m.bodies.len() == 1 { "y" } else { "ies" },
                 m.joints.len(),
                 if m.joints.len() == 1 { "" } else { "s" },
-                m.gravity
+                match m.springs.len() {
+                    0 => String::new(),
+                    n => format!(
+                        " + {n} spring{} ½k(‖d‖ − ℓ₀)²",
+                        if n == 1 { "" } else { "s" }
+                    ),
+                },
+                m.gravity,
+                match m.dampers.len() {
+                    0 => String::new(),
+                    n => format!(", {n} damper{} −c(ḋ·e)e", if n == 1 { "" } else { "s" }),
+                }
             ),
         }
     }
@@ -232,6 +243,9 @@ impl SystemSpec {
     pub fn energy_not_conserved(&self) -> Option<&'static str> {
         if self.force.is_active() {
             return Some("forces act");
+        }
+        if self.multibody().is_some_and(|m| !m.dampers.is_empty()) {
+            return Some("dampers act");
         }
         if let Some(r) = self.rigid() {
             use marsden::lie::potential::ExternalLoads as _;

@@ -123,12 +123,15 @@ pub fn render(outcome: &Outcome) -> String {
         let joints: Vec<String> = (m.joints.iter())
             .map(|j| format!("{} ({}, {}–{})", j.name, j.kind, j.bodies[0], j.bodies[1]))
             .collect();
+        let joints = match joints.is_empty() {
+            true => "none".to_owned(),
+            false => joints.join(", "),
+        };
         line(
             &mut out,
             "joints",
             format!(
-                "{}; max |RᵀR − I| = {}{over}",
-                joints.join(", "),
+                "{joints}; max |RᵀR − I| = {}{over}",
                 sci(m.orthogonality_defect)
             ),
         );
@@ -256,9 +259,10 @@ fn energy_lines(out: &mut String, s: &crate::run::Summary) {
             out,
             "energy",
             format!(
-                "not conserved ({why}): E0 = {}; no energy error to report, and no balance \
-                 for a method with internal stages",
+                "not conserved ({why}): E0 = {}; no energy error to report, and no balance: {}",
                 num(e.initial),
+                s.energy_balance_not_available
+                    .unwrap_or("none was computed"),
             ),
         ),
     }

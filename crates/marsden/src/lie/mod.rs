@@ -15,7 +15,8 @@
 //! * [`lgvi`]: the step and its compositions of order 4, 6, 8;
 //! * [`invariants`]: energy, spatial and body momenta, Casimir, orthogonality defect;
 //! * [`trajectory`]: a sampled run;
-//! * [`multibody`]: bodies joined by joints (spherical, revolute, prismatic, fixed, distance).
+//! * [`multibody`]: bodies joined by joints (spherical, revolute, prismatic, fixed, distance),
+//!   springs and dampers.
 //!
 //! ```
 //! use marsden::lie::{body::{Inertia, RigidBody}, potential::NoPotential, so3,

@@ -8,6 +8,7 @@ mod failures;
 mod free_bodies;
 mod group;
 mod multibody;
+mod springs;
 
 use marsden::NewtonOptions;
 use marsden::discrete::rules::composition::CompositionScheme;

@@ -13,6 +13,9 @@
 //! * [`joint`]: one joint's rows and their gradients;
 //! * [`joints`]: the set of joints, the banded matrices of the step;
 //! * [`gravity`]: a uniform field `g` acting on every mass;
+//! * [`spring`]: springs between body points, a potential; [`sum`]: the sum of two potentials
+//!   (the field and the springs);
+//! * [`damper`]: dampers between body points, loads that depend on the velocities;
 //! * [`initial`]: checking an initial state against the joints, or moving it onto them;
 //! * [`step`]: the stepper [`step::MultibodyLgvi`].
 //!
@@ -38,9 +41,12 @@
 //! [LMO08]: crate#references
 
 pub mod chain;
+pub mod damper;
 pub mod frames;
 pub mod gravity;
 pub mod initial;
 pub mod joint;
 pub mod joints;
+pub mod spring;
 pub mod step;
+pub mod sum;
