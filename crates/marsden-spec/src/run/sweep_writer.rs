@@ -65,25 +65,19 @@ impl SweepWriter {
         columns: SweepColumns,
         format: Format,
     ) -> Result<Self, String> {
-        let suffix = shard.suffix();
-        let (table_name, table) = match format {
+        let table_name = table_name(shard, format);
+        let path = dir.join(&table_name);
+        let table = match format {
             Format::Csv => {
-                let name = format!("sweep{suffix}.csv");
-                let path = dir.join(&name);
                 let file = File::create(&path).map_err(|e| cannot("create", &path, &e))?;
                 let mut w = BufWriter::new(file);
                 w.write_all(sweep_table::csv_header(&columns).as_bytes())
                     .map_err(|e| cannot("write", &path, &e))?;
-                (name, Table::Csv(w))
+                Table::Csv(w)
             }
-            Format::Npy => {
-                let name = format!("sweep{suffix}.npy");
-                let width = columns.numeric_names().len() + 1;
-                let shape = NpyShape::Matrix { columns: width };
-                let writer =
-                    NpyWriter::create(dir.join(&name), shape).map_err(|e| e.to_string())?;
-                (name, Table::Npy(writer))
-            }
+            Format::Npy => Table::Npy(
+                NpyWriter::create(&path, npy_shape(&columns)).map_err(|e| e.to_string())?,
+            ),
         };
         Ok(Self {
             dir: dir.to_path_buf(),
@@ -106,22 +100,17 @@ impl SweepWriter {
         mark: &Mark,
         counts: SweepCounts,
     ) -> Result<Self, String> {
-        let suffix = shard.suffix();
-        let (table_name, table) = match format {
+        let table_name = table_name(shard, format);
+        let path = dir.join(&table_name);
+        let table = match format {
             Format::Csv => {
-                let name = format!("sweep{suffix}.csv");
                 let bytes = mark.bytes.first().copied().unwrap_or(0);
-                let file = cut_to(&dir.join(&name), bytes)?;
-                (name, Table::Csv(BufWriter::new(file)))
+                Table::Csv(BufWriter::new(cut_to(&path, bytes)?))
             }
-            Format::Npy => {
-                let name = format!("sweep{suffix}.npy");
-                let width = columns.numeric_names().len() + 1;
-                let shape = NpyShape::Matrix { columns: width };
-                let writer = NpyWriter::reopen(dir.join(&name), shape, mark.rows)
-                    .map_err(|e| e.to_string())?;
-                (name, Table::Npy(writer))
-            }
+            Format::Npy => Table::Npy(
+                NpyWriter::reopen(&path, npy_shape(&columns), mark.rows)
+                    .map_err(|e| e.to_string())?,
+            ),
         };
         Ok(Self {
             dir: dir.to_path_buf(),
@@ -277,6 +266,18 @@ impl SweepWriter {
             s.extend(p.clone());
         }
         summary
+    }
+}
+
+/// `sweep.csv` or `sweep.npy`, with the shard's suffix.
+fn table_name(shard: Shard, format: Format) -> String {
+    format!("sweep{}.{}", shard.suffix(), format.name())
+}
+
+/// The `.npy` table's shape: the numeric columns and the status code.
+fn npy_shape(columns: &SweepColumns) -> NpyShape {
+    NpyShape::Matrix {
+        columns: columns.numeric_names().len() + 1,
     }
 }
 
