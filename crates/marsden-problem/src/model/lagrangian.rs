@@ -85,7 +85,8 @@ impl PartialEq for ExprLagrangian {
 #[derive(Debug, Default)]
 struct NativeTapes {
     /// Whether the Hessian tape's outputs are the whole upper triangle of `∇²V`, row by row
-    /// ([`Lagrangian::potential_hessian_packed`]'s layout).
+    /// ([`Lagrangian::potential_hessian_packed`]'s layout). Read by the native path only.
+    #[cfg_attr(not(feature = "jit"), allow(dead_code))]
     hessian_packed: bool,
     #[cfg(feature = "jit")]
     gradient: OnceLock<Option<marsden_jit::CompiledTape>>,
@@ -220,6 +221,8 @@ impl ExprLagrangian {
     /// reads its structure.
     pub fn new(program: Program, dof: usize) -> Self {
         let separable = program.separable(dof).map(Arc::new);
+        // Without the `jit` feature the struct has no other field to fill.
+        #[cfg_attr(not(feature = "jit"), allow(clippy::needless_update))]
         let native = separable.as_deref().filter(|_| jit_wanted()).map(|form| {
             Arc::new(NativeTapes {
                 hessian_packed: is_packed_triangle(form.hessian_entries(), dof),
