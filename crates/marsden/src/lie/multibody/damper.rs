@@ -23,6 +23,7 @@ use crate::lie::body::RigidBody;
 use crate::lie::potential::Loads;
 use crate::lie::so3::Vec3;
 use crate::lie::state::RigidState;
+use crate::numerics::dense::max_or_nan;
 
 /// One damper between two points.
 #[derive(Debug, Clone, PartialEq)]
@@ -176,8 +177,10 @@ impl Damping {
         let mut change = 0.0_f64;
         let pairs = (self.moments.iter().zip(&self.trial_moments))
             .chain(self.forces.iter().zip(&self.trial_forces));
+        // NaN-propagating: a load that turned NaN must not look settled.
         for (old, new) in pairs {
-            change = change.max((new - old).amax());
+            let difference = new - old;
+            change = (difference.iter()).fold(change, |m, x| max_or_nan(m, x.abs()));
         }
         std::mem::swap(&mut self.moments, &mut self.trial_moments);
         std::mem::swap(&mut self.forces, &mut self.trial_forces);

@@ -37,7 +37,7 @@ use crate::lie::potential::{Configuration, ExternalLoads, Loads, RigidPotential}
 use crate::lie::so3::{Mat3, Vec3, cay_offset, hat, vee};
 use crate::lie::state::{RigidState, RigidSystem};
 use crate::numerics::banded::{BandLu, Banded};
-use crate::numerics::dense::max_norm;
+use crate::numerics::dense::{max_norm, max_or_nan};
 use crate::numerics::newton::{Convergence, NewtonFailure, NewtonReport};
 
 /// The joints' residual at the end of a step, relative to their length scale: round-off for
@@ -310,7 +310,10 @@ impl<U: RigidPotential, E: ExternalLoads> MultibodyLgvi<U, E> {
             let bodies = &self.system.bodies;
             let change = (self.damping).update(&self.dampers, bodies, &self.state, &mut self.loads);
             let impulse = 0.5 * h.abs() * change;
-            let momenta = max_norm(&self.state.momenta).max(max_norm(&self.state.linear_momenta));
+            let momenta = max_or_nan(
+                max_norm(&self.state.momenta),
+                max_norm(&self.state.linear_momenta),
+            );
             let settled = impulse <= 4.0 * f64::EPSILON * momenta
                 || (impulse >= last && impulse <= tolerance * momenta);
             if settled {
