@@ -26,7 +26,10 @@ pub mod table;
 pub mod thin;
 
 pub use atomic::write_atomically;
-pub use csv::{CsvWriter, read_csv, read_csv_from, read_csv_numeric, read_csv_thinned, write_csv};
+pub use csv::{
+    CsvWriter, cut_at, open_at_least, read_csv, read_csv_from, read_csv_numeric, read_csv_thinned,
+    write_csv,
+};
 pub use error::{Error, Result};
 pub use layout::{Group, GroupKind, Layout};
 pub use npy::{

@@ -22,4 +22,4 @@ mod writer;
 pub use loose::read_csv_numeric;
 pub use number::{format_f64, parse_f64};
 pub use reader::{MAX_LINE, read_csv, read_csv_from, read_csv_thinned};
-pub use writer::{CsvWriter, write_csv};
+pub use writer::{CsvWriter, cut_at, open_at_least, write_csv};

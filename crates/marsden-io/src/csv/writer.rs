@@ -84,7 +84,7 @@ impl CsvWriter<File> {
         header: &[S],
         mark: &SinkMark,
     ) -> Result<Self> {
-        use std::io::{Read as _, Seek as _};
+        use std::io::Read as _;
         let path = path.as_ref();
         check_names(header.iter().map(AsRef::as_ref))?;
         let line = header
@@ -105,21 +105,7 @@ impl CsvWriter<File> {
                 ));
             }
         };
-        let mut file = std::fs::OpenOptions::new()
-            .read(true)
-            .write(true)
-            .open(path)
-            .map_err(|e| Error::io("open", path, e))?;
-        let length = file
-            .metadata()
-            .map_err(|e| Error::io("read the length of", path, e))?
-            .len();
-        if length < bytes {
-            return Err(Error::resume(
-                path,
-                format!("{length} bytes, but the checkpoint was taken after {bytes}"),
-            ));
-        }
+        let mut file = open_at_least(path, bytes)?;
         let mut start = vec![0; line.len().min(usize::try_from(bytes).unwrap_or(usize::MAX))];
         file.read_exact(&mut start)
             .map_err(|e| Error::io("read", path, e))?;
@@ -129,9 +115,7 @@ impl CsvWriter<File> {
                 "its header line is not the one of this run".to_owned(),
             ));
         }
-        file.set_len(bytes).map_err(|e| Error::io("cut", path, e))?;
-        file.seek(std::io::SeekFrom::Start(bytes))
-            .map_err(|e| Error::io("seek in", path, e))?;
+        cut_at(&mut file, path, bytes)?;
         Ok(Self {
             inner: Some(file),
             path: path.to_path_buf(),
@@ -349,6 +333,42 @@ impl<W: Write> RowSink for CsvWriter<W> {
             bytes: vec![self.written],
         })
     }
+}
+
+/// Opens `path` for reading and writing, checking that it holds at least `bytes` (what a
+/// checkpoint recorded of it).
+///
+/// # Errors
+/// [`Error::Resume`] if it is shorter; an I/O error naming `path`.
+pub fn open_at_least(path: &Path, bytes: u64) -> Result<std::fs::File> {
+    let file = std::fs::OpenOptions::new()
+        .read(true)
+        .write(true)
+        .open(path)
+        .map_err(|e| Error::io("open", path, e))?;
+    let length = file
+        .metadata()
+        .map_err(|e| Error::io("read the length of", path, e))?
+        .len();
+    if length < bytes {
+        return Err(Error::resume(
+            path,
+            format!("{length} bytes, but the checkpoint was taken after {bytes}"),
+        ));
+    }
+    Ok(file)
+}
+
+/// Cuts `file` (at `path`) to `bytes` and puts its cursor there, to append after a checkpoint.
+///
+/// # Errors
+/// An I/O error naming `path`.
+pub fn cut_at(file: &mut std::fs::File, path: &Path, bytes: u64) -> Result<()> {
+    use std::io::Seek as _;
+    file.set_len(bytes).map_err(|e| Error::io("cut", path, e))?;
+    file.seek(std::io::SeekFrom::Start(bytes))
+        .map_err(|e| Error::io("seek in", path, e))?;
+    Ok(())
 }
 
 /// Writes a whole table to `path` as CSV (header = the table's column names).

@@ -5,7 +5,7 @@
 //! the worst energy error or balance defect and the first failures' messages.
 
 use std::fs::File;
-use std::io::{BufWriter, Seek, SeekFrom, Write};
+use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use marsden_engine::checkpoint::Mark;
@@ -104,8 +104,17 @@ impl SweepWriter {
         let path = dir.join(&table_name);
         let table = match format {
             Format::Csv => {
-                let bytes = mark.bytes.first().copied().unwrap_or(0);
-                Table::Csv(BufWriter::new(cut_to(&path, bytes)?))
+                let [bytes] = mark.bytes.as_slice() else {
+                    return Err(format!(
+                        "the checkpoint records {} lengths for the one table {}",
+                        mark.bytes.len(),
+                        path.display()
+                    ));
+                };
+                let mut file =
+                    marsden_io::open_at_least(&path, *bytes).map_err(|e| e.to_string())?;
+                marsden_io::cut_at(&mut file, &path, *bytes).map_err(|e| e.to_string())?;
+                Table::Csv(BufWriter::new(file))
             }
             Format::Npy => Table::Npy(
                 NpyWriter::reopen(&path, npy_shape(&columns), mark.rows)
@@ -279,27 +288,6 @@ fn npy_shape(columns: &SweepColumns) -> NpyShape {
     NpyShape::Matrix {
         columns: columns.numeric_names().len() + 1,
     }
-}
-
-/// `path` opened for writing at `bytes`, what came after cut off.
-fn cut_to(path: &Path, bytes: u64) -> Result<File, String> {
-    let mut file = std::fs::OpenOptions::new()
-        .write(true)
-        .open(path)
-        .map_err(|e| cannot("open", path, &e))?;
-    let found = (file.metadata())
-        .map_err(|e| cannot("read the length of", path, &e))?
-        .len();
-    if found < bytes {
-        return Err(format!(
-            "{} has {found} bytes, fewer than the {bytes} of the checkpoint",
-            path.display()
-        ));
-    }
-    file.set_len(bytes).map_err(|e| cannot("cut", path, &e))?;
-    file.seek(SeekFrom::End(0))
-        .map_err(|e| cannot("seek in", path, &e))?;
-    Ok(file)
 }
 
 fn cannot(what: &str, path: &Path, e: &std::io::Error) -> String {
