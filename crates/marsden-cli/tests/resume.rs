@@ -1,7 +1,9 @@
 //! Checkpoints and `marsden resume`: a run killed with SIGKILL at pseudo-random moments and
 //! resumed leaves the files of the uninterrupted run byte for byte (`summary.json`'s wall-clock
 //! times aside) — for the explicit Störmer–Verlet path, a Newton step (midpoint), a Galerkin
-//! rule (gauss-2), a constrained run (RATTLE) and runs with events, in CSV and `.npy`; bad
+//! rule (gauss-2), a constrained run (RATTLE), runs with events, runs with `[sensitivity]`
+//! (killed in the run or in its tangent run) and forced and time-dependent runs (their energy
+//! and Noether balances carried), in CSV and `.npy`; bad
 //! checkpoints and changed files are refused with nothing changed.
 
 use std::path::{Path, PathBuf};
@@ -15,6 +17,9 @@ struct Case {
     name: &'static str,
     text: String,
     every: &'static str,
+    /// The checkpoint file whose first appearance starts the clock of the kill
+    /// (`sensitivity-checkpoint.bin`: the kill lands in the tangent run of `[sensitivity]`).
+    wait_for: &'static str,
 }
 
 fn pendulum(method: &str, steps: u64) -> String {
@@ -42,37 +47,54 @@ fn cases() -> Vec<Case> {
             "[output]",
             "[[events]]\nname = \"down\"\nwhen = \"theta\"\ndirection = \"down\"\n[output]",
         );
+    // The tangent run of the parametric model (a parameter of L differentiated), killed while
+    // it goes; and a builtin's tangent run in `.npy`, killed in the run or in the tangent run.
+    let parametric = "[system]\ncoordinates = [\"theta\"]\n\
+        lagrangian = \"0.5*theta_dot^2 + g*cos(theta)\"\nparameters = { g = 9.81 }\n\
+        [initial]\nq = [1.0]\nv = [0.0]\n\
+        [integrator]\nmethod = \"midpoint\"\nh = 0.01\nsteps = 400000\n\
+        [sensitivity]\ninitial = true\nparameters = [\"g\"]\n\
+        [output]\nevery = 100\nplots = false\n";
+    let tangent_npy = pendulum("gauss-2", 200_000)
+        .replace("plots = false", "plots = false\nformat = \"npy\"")
+        .replace("[output]", "[sensitivity]\ninitial = true\n[output]");
+    // Forced: an orbit with drag (the energy balance and the forced Noether balance of the
+    // rotation, both in the summary); a driven oscillator whose L reads t (∂L_d/∂t₀ in the
+    // energy balance).
+    let drag = "[system]\ncoordinates = [\"x\", \"y\"]\n\
+        lagrangian = \"0.5*(x_dot^2 + y_dot^2) + 1/sqrt(x^2 + y^2)\"\n\
+        forces = [\"-0.00001*x_dot\", \"-0.00001*y_dot\"]\n\
+        [[system.symmetry]]\nrotation = \"z\"\n\
+        [initial]\nq = [1.0, 0.0]\nv = [0.0, 1.2]\n\
+        [integrator]\nmethod = \"midpoint\"\nh = 0.01\nsteps = 600000\n\
+        [output]\nevery = 100\nplots = false\n";
+    let driven = "[system]\ncoordinates = [\"x\"]\n\
+        lagrangian = \"0.5*x_dot^2 - 0.5*x^2 + 0.1*x*cos(1.3*t)\"\n\
+        [initial]\nq = [1.0]\nv = [0.0]\n\
+        [integrator]\nmethod = \"trapezoid\"\nh = 0.01\nsteps = 800000\n\
+        [output]\nevery = 100\nplots = false\n";
+    let case = |name, text: String, every| Case {
+        name,
+        text,
+        every,
+        wait_for: "checkpoint.bin",
+    };
     vec![
+        case("explicit", pendulum("trapezoid", 3_000_000), "100000"),
+        case("midpoint", pendulum("midpoint", 1_000_000), "50000"),
+        case("gauss-2", pendulum("gauss-2", 400_000), "20000"),
+        case("constrained", constrained.to_owned(), "20000"),
+        case("events", events.to_owned(), "30000"),
+        case("npy", npy, "50000"),
         Case {
-            name: "explicit",
-            text: pendulum("trapezoid", 3_000_000),
-            every: "100000",
-        },
-        Case {
-            name: "midpoint",
-            text: pendulum("midpoint", 1_000_000),
-            every: "50000",
-        },
-        Case {
-            name: "gauss-2",
-            text: pendulum("gauss-2", 400_000),
+            name: "sensitivity",
+            text: parametric.to_owned(),
             every: "20000",
+            wait_for: "sensitivity-checkpoint.bin",
         },
-        Case {
-            name: "constrained",
-            text: constrained.to_owned(),
-            every: "20000",
-        },
-        Case {
-            name: "events",
-            text: events.to_owned(),
-            every: "30000",
-        },
-        Case {
-            name: "npy",
-            text: npy,
-            every: "50000",
-        },
+        case("sensitivity-npy", tangent_npy, "20000"),
+        case("forced", drag.to_owned(), "30000"),
+        case("time-dependent", driven.to_owned(), "40000"),
     ]
 }
 
@@ -131,10 +153,10 @@ pub(crate) fn delay(seed: u64, limit: u64) -> Duration {
 
 /// Kills a run with SIGKILL after its first checkpoint plus `wait`, then resumes it; whether
 /// the kill found the run still going.
-fn killed_and_resumed(file: &Path, out: &Path, every: &str, wait: Duration) -> bool {
-    let mut child = spawn_run(file, out, every);
+fn killed_and_resumed(case: &Case, file: &Path, out: &Path, wait: Duration) -> bool {
+    let mut child = spawn_run(file, out, case.every);
     let clock = Instant::now();
-    let checkpoint = out.join("checkpoint.bin");
+    let checkpoint = out.join(case.wait_for);
     while !checkpoint.exists() && clock.elapsed() < Duration::from_secs(60) {
         std::thread::sleep(Duration::from_millis(5));
     }
@@ -154,7 +176,7 @@ fn killed_and_resumed(file: &Path, out: &Path, every: &str, wait: Duration) -> b
 
 #[test]
 fn sigkill_at_random_moments_then_resume_equals_the_uninterrupted_run() {
-    for (c, case) in cases().into_iter().enumerate() {
+    for (c, case) in cases().iter().enumerate() {
         let tmp = tempfile::tempdir().unwrap();
         let file = tmp.path().join(format!("{}.toml", case.name));
         std::fs::write(&file, &case.text).unwrap();
@@ -171,12 +193,7 @@ fn sigkill_at_random_moments_then_resume_equals_the_uninterrupted_run() {
         for attempt in 0..3 {
             let out = tmp.path().join(format!("killed-{attempt}"));
             let seed = (c * 10 + attempt) as u64;
-            killed_running += usize::from(killed_and_resumed(
-                &file,
-                &out,
-                case.every,
-                delay(seed, 400),
-            ));
+            killed_running += usize::from(killed_and_resumed(&case, &file, &out, delay(seed, 400)));
             let found = contents(&out);
             let names =
                 |v: &[(String, Vec<u8>)]| v.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>();
@@ -275,6 +292,53 @@ fn missing_damaged_and_future_checkpoints_are_refused() {
     assert!(stderr.contains("there is no checkpoint"), "{stderr}");
 }
 
+/// The tangent run of `[sensitivity]` continues from `sensitivity-checkpoint.bin`, not from its
+/// start: the sensitivity file's rows before the checkpoint are kept as they are on disk (a
+/// byte changed in the first row survives the resume, where a tangent run redone from step 0
+/// would rewrite it), and the Jacobians handed on before it are counted in the summary. A
+/// damaged tangent checkpoint is refused with nothing changed.
+#[test]
+fn the_tangent_run_resumes_from_its_own_checkpoint() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("p.toml");
+    let text =
+        pendulum("midpoint", 4_000).replace("[output]", "[sensitivity]\ninitial = true\n[output]");
+    std::fs::write(&file, text).unwrap();
+    let out = tmp.path().join("out");
+    assert!(spawn_run(&file, &out, "1000").wait().unwrap().success());
+    let csv = out.join("sensitivity.csv");
+    let mut bytes = std::fs::read(&csv).unwrap();
+    let first_row = bytes.iter().position(|&b| b == b'\n').unwrap() + 1;
+    // The leading digit of t = 0 in the first data row, turned into a 7.
+    assert_eq!(bytes[first_row], b'0');
+    bytes[first_row] = b'7';
+    std::fs::write(&csv, &bytes).unwrap();
+    let resumed = marsden_in(tmp.path(), &["resume", "out", "-q", "--no-progress"]);
+    assert!(
+        resumed.status.success(),
+        "{}",
+        String::from_utf8_lossy(&resumed.stderr)
+    );
+    assert_eq!(
+        std::fs::read(&csv).unwrap(),
+        bytes,
+        "the rows before the checkpoint kept"
+    );
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    assert!(summary.contains("\"samples\": 41"), "{summary}");
+
+    let path = out.join("sensitivity-checkpoint.bin");
+    let good = std::fs::read(&path).unwrap();
+    std::fs::write(&path, &good[..good.len() / 2]).unwrap();
+    let (code, stderr, untouched) = refused_resume(&out);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains("sensitivity-checkpoint.bin is damaged"),
+        "{stderr}"
+    );
+    assert!(untouched);
+}
+
 #[test]
 fn a_checkpoint_interval_of_zero_is_refused_with_a_caret() {
     let tmp = tempfile::tempdir().unwrap();
@@ -298,10 +362,7 @@ fn a_checkpoint_interval_of_zero_is_refused_with_a_caret() {
 #[test]
 fn runs_that_cannot_be_checkpointed_yet_say_why() {
     let tmp = tempfile::tempdir().unwrap();
-    let forced =
-        pendulum("midpoint", 100).replace("[initial]", "forces = [\"-0.1*theta_dot\"]\n[initial]");
     let cases = [
-        (forced, "a forced or time-dependent run"),
         (
             std::fs::read_to_string(crate::util::repo_root().join("examples/heavy_top.toml"))
                 .unwrap(),

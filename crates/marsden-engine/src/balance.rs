@@ -29,7 +29,7 @@ use std::ops::ControlFlow;
 use marsden::discrete::DiscreteForce;
 use marsden::numerics::ad::{MultiFunction, nested_gradient};
 use marsden::{Force, Lagrangian, Observer, Scalar, StepView, TimeGrid, mechanics};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// File name of the energy-balance plot, drawn instead of the energy-error plot.
 pub const ENERGY_BALANCE_PNG: &str = "energy_balance.png";
@@ -76,7 +76,7 @@ impl BalanceSummary {
 /// The balance at the stored steps, for the plot: `t`, `E − E₀` and the accumulated work,
 /// in bounded memory (past [`BalanceSeries::CAP`] points every other one is dropped and the
 /// stride doubles).
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct BalanceSeries {
     /// Times.
     pub t: Vec<f64>,
@@ -149,6 +149,55 @@ impl<L: Lagrangian> Force for TimeDerivative<'_, L> {
     }
 }
 
+/// What a [`Balanced`] carries from one step to the next: the previous `(t_k, q_k, E_k)`, the
+/// inverse Legendre transform's warm start, the balance so far and its stored series.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EnergyBalanceCarry {
+    previous: (f64, Vec<f64>, f64),
+    velocity: Vec<f64>,
+    summary: SummaryCarry,
+    series: BalanceSeries,
+}
+
+/// [`BalanceSummary`] with every field written (its `total_time_work` is left out of
+/// `summary.json` when absent, which a format that is not self-describing, as the checkpoint's,
+/// cannot read back).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+struct SummaryCarry {
+    total_work: f64,
+    max_defect: f64,
+    total_defect: f64,
+    energy_change: f64,
+    steps: usize,
+    total_time_work: Option<f64>,
+}
+
+impl From<BalanceSummary> for SummaryCarry {
+    fn from(s: BalanceSummary) -> Self {
+        Self {
+            total_work: s.total_work,
+            max_defect: s.max_defect,
+            total_defect: s.total_defect,
+            energy_change: s.energy_change,
+            steps: s.steps,
+            total_time_work: s.total_time_work,
+        }
+    }
+}
+
+impl From<SummaryCarry> for BalanceSummary {
+    fn from(s: SummaryCarry) -> Self {
+        Self {
+            total_work: s.total_work,
+            max_defect: s.max_defect,
+            total_defect: s.total_defect,
+            energy_change: s.energy_change,
+            steps: s.steps,
+            total_time_work: s.total_time_work,
+        }
+    }
+}
+
 /// An observer that accumulates the energy balance of every step and hands every step on to
 /// the run's own observer (which keeps its own sampling).
 pub struct Balanced<'o, L, F, T, O: ?Sized> {
@@ -170,6 +219,13 @@ pub struct Balanced<'o, L, F, T, O: ?Sized> {
     pub summary: BalanceSummary,
     /// The balance at the stored steps.
     pub series: BalanceSeries,
+}
+
+impl<L, F, T, O: ?Sized> Balanced<'_, L, F, T, O> {
+    /// The observer it hands every step on to.
+    pub fn inner_mut(&mut self) -> &mut O {
+        self.inner
+    }
 }
 
 impl<'o, L, F, T, O> Balanced<'o, L, F, T, O>
@@ -238,6 +294,36 @@ where
         let (t0, q0, _) = &self.previous;
         time.discrete_force(*t0, self.h, q0, &self.delta, &mut self.f);
         Some(-self.f.iter().sum::<f64>())
+    }
+
+    /// What the balance carries to the next step, for a checkpoint of the run.
+    pub fn carried(&self) -> EnergyBalanceCarry {
+        EnergyBalanceCarry {
+            previous: self.previous.clone(),
+            velocity: self.velocity.clone(),
+            summary: SummaryCarry::from(self.summary),
+            series: self.series.clone(),
+        }
+    }
+
+    /// Restores what [`Balanced::carried`] gave (the resumed run's [`Observer::start`] is not
+    /// called again).
+    ///
+    /// # Errors
+    /// A checkpoint of another number of coordinates.
+    pub fn restore(&mut self, carried: &EnergyBalanceCarry) -> Result<(), String> {
+        let n = self.velocity.len();
+        if carried.previous.1.len() != n || carried.velocity.len() != n {
+            return Err(format!(
+                "the checkpoint's energy balance has {} coordinates, the run {n}",
+                carried.velocity.len()
+            ));
+        }
+        self.previous.clone_from(&carried.previous);
+        self.velocity.clone_from(&carried.velocity);
+        self.summary = carried.summary.into();
+        self.series.clone_from(&carried.series);
+        Ok(())
     }
 
     fn remember(&mut self, t: f64, q: &[f64], e: f64) {

@@ -23,7 +23,8 @@
 //! | on request | [`certify`] | symplecticity defect of the step map (on `T*N` when constrained), equivariance defect of `L_d` |
 //! | events | [`events`] | `[[events]]` located along the run, their records streamed (`events.csv`) |
 //! | per sample | [`observer`] | one row `t, q, p, energy, J…, residual`, [`diagnostics`] |
-//! | derivatives | [`sensitivity`] | `[sensitivity]`: the tangent run's Jacobians, `sensitivity.npy` |
+//! | derivatives | [`sensitivity`] | `[sensitivity]`: the tangent run's Jacobians |
+//! | derivatives | [`sensitivity_writer`] | `sensitivity.npy` / `.csv`, continued after a checkpoint |
 //! | order studies | [`order_runner`] | the reference solution and the runs of each method |
 //!
 //! The file's method is itself the rule ([`marsden::discrete::rules::chosen`]), and the
@@ -47,6 +48,7 @@ pub mod observer;
 pub mod order_runner;
 pub mod rigid;
 pub mod sensitivity;
+pub mod sensitivity_writer;
 pub mod serialize;
 pub mod solve;
 pub mod start;

@@ -20,7 +20,7 @@
 
 use std::ops::ControlFlow;
 
-use marsden::analysis::diagnostics::{BalanceMonitor, BalanceReport};
+use marsden::analysis::diagnostics::{BalanceMonitor, BalanceReport, MonitorCarry};
 use marsden::discrete::DiscreteForce;
 use marsden::symmetry::GroupAction;
 use marsden::{Observer, StepView, TimeGrid};
@@ -81,6 +81,34 @@ impl<'o, G: GroupAction, F: DiscreteForce, O: Observer + ?Sized> NoetherBalanced
             .map(|(name, g)| (name, BalanceMonitor::on_grid(g, force, grid)))
             .collect();
         Self { monitors, inner }
+    }
+
+    /// What each action's monitor carries to the next step, for a checkpoint of the run.
+    pub fn carried(&self) -> Vec<MonitorCarry> {
+        self.monitors.iter().map(|(_, m)| m.carried()).collect()
+    }
+
+    /// Restores what [`NoetherBalanced::carried`] gave.
+    ///
+    /// # Errors
+    /// A checkpoint of another number of symmetries.
+    pub fn restore(&mut self, carried: &[MonitorCarry]) -> Result<(), String> {
+        if carried.len() != self.monitors.len() {
+            return Err(format!(
+                "the checkpoint has the Noether balances of {} symmetries, the run {}",
+                carried.len(),
+                self.monitors.len()
+            ));
+        }
+        for ((_, m), c) in self.monitors.iter_mut().zip(carried) {
+            m.restore(c);
+        }
+        Ok(())
+    }
+
+    /// The observer it hands every step on to.
+    pub fn inner_mut(&mut self) -> &mut O {
+        self.inner
     }
 
     /// One balance per action, by name; an action the core refused (it does not fit the

@@ -22,23 +22,20 @@
 //!
 //! [MW01]: marsden#references
 
-use std::path::Path;
-
 use marsden::sensitivity::{Tangent, TangentSample};
 use marsden::{Constraint as _, State, Termination};
-use marsden_io::{CsvWriter, NpyShape, NpyWriter};
 use serde::Serialize;
 
+use crate::checkpoint::Mark;
+use crate::checkpoint::tangent::TangentPlan;
 use crate::controls::Controls;
 use crate::engine::Engine;
+pub use crate::sensitivity_writer::{
+    JacobianFile, SENSITIVITY_CSV, SENSITIVITY_NPY, SensitivityWriter, write,
+};
 use crate::start::Start;
-use crate::tangent::{TangentJob, Watched, WithParameters};
-use marsden_problem::problem::{Format, RunSpec, SensitivitySpec};
-
-/// `sensitivity.npy`.
-pub const SENSITIVITY_NPY: &str = "sensitivity.npy";
-/// `sensitivity.csv`.
-pub const SENSITIVITY_CSV: &str = "sensitivity.csv";
+use crate::tangent::{SampleOut, TangentJob, Watched, WithParameters};
+use marsden_problem::problem::{RunSpec, SensitivitySpec};
 
 /// The derivatives of a run, as `summary.json` gives them.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -122,48 +119,149 @@ pub fn compute_streamed(
     controls: &Controls<'_>,
     sink: &mut dyn FnMut(f64, &[f64]),
 ) -> Result<Sensitivities, String> {
-    let state = State {
-        t: start.t,
-        q: start.q.clone(),
-        p: start.p.clone(),
+    let job = TangentRun {
+        engine,
+        spec,
+        asked,
+        start,
+        controls,
     };
-    let Some(rule) = spec.integrator.method.rule() else {
-        return Err("method = \"exact\" has no step Jacobian to propagate; choose a rule".into());
-    };
-    let picker = Picker::of(spec, asked);
-    let handed = std::cell::Cell::new(0_usize);
-    let mut forward = |sample: &TangentSample| {
-        handed.set(handed.get() + 1);
-        sink(sample.state.t, &picker.pick(&sample.jacobian));
-    };
-    let watched = Watched::new(spec, controls, &mut forward);
-    let run = match &asked.model {
-        Some(model) => WithParameters {
+    job.into(&mut Closure(sink), None)
+}
+
+/// A tangent run of a file's `[sensitivity]`: the engine, the file, what it asks, where it
+/// starts and the caller's controls.
+pub struct TangentRun<'r, 'c> {
+    /// The system's engine.
+    pub engine: &'r dyn Engine,
+    /// The file.
+    pub spec: &'r RunSpec,
+    /// Its `[sensitivity]`.
+    pub asked: &'r SensitivitySpec,
+    /// The run's initial state.
+    pub start: &'r Start,
+    /// Progress and the stop flag.
+    pub controls: &'r Controls<'c>,
+}
+
+impl TangentRun<'_, '_> {
+    /// Runs it, handing each stored Jacobian to `out` as [`compute_streamed`] does, and
+    /// checkpointing it as `checkpoints` plans — from the plan's checkpoint, when it has one,
+    /// instead of the start (the Jacobians handed on before it are counted, not handed again).
+    /// A checkpoint that cannot be written stops the run, with the reason in the summary's
+    /// `error`.
+    ///
+    /// # Errors
+    /// As [`compute_streamed`]; also a checkpoint that does not fit this run's integrator.
+    pub fn into(
+        self,
+        out: &mut dyn JacobianSink,
+        checkpoints: Option<&TangentPlan>,
+    ) -> Result<Sensitivities, String> {
+        let Self {
+            engine,
             spec,
-            model,
-            state,
-            v: &start.v,
-            watched: &watched,
+            asked,
+            start,
+            controls,
+        } = self;
+        let state = State {
+            t: start.t,
+            q: start.q.clone(),
+            p: start.p.clone(),
+        };
+        let Some(rule) = spec.integrator.method.rule() else {
+            return Err(
+                "method = \"exact\" has no step Jacobian to propagate; choose a rule".into(),
+            );
+        };
+        let picker = Picker::of(spec, asked);
+        let resumed = checkpoints.and_then(|p| p.resume.as_deref());
+        let mut forward = Forward {
+            picker: &picker,
+            handed: resumed.map_or(0, |c| c.samples),
+            out,
+        };
+        let watched = Watched::new(spec, controls, &mut forward, checkpoints);
+        let run = match &asked.model {
+            Some(model) => WithParameters {
+                spec,
+                model,
+                state,
+                v: &start.v,
+                watched: &watched,
+            }
+            .call(rule)
+            .map_err(|e| e.to_string()),
+            None => engine.initial_tangent(TangentJob {
+                spec,
+                rule,
+                state,
+                watched: &watched,
+            }),
+        }?;
+        watched.report(run_steps(&run, spec.integrator.grid.steps), true);
+        let checkpoint_error = watched.checkpoint_error();
+        let mut found = select(spec, asked, &picker, &run, watched.handed());
+        if let Some(e) = checkpoint_error {
+            found.summary.error = Some(format!("the tangent run stopped: {e}"));
+        } else if let Termination::Stopped { steps } = run.termination {
+            found.summary.error = Some(format!(
+                "the tangent run was stopped after {steps} of {} steps; the Jacobians are those \
+                 of the steps taken",
+                spec.integrator.grid.steps
+            ));
         }
-        .call(rule)
-        .map_err(|e| e.to_string()),
-        None => engine.initial_tangent(TangentJob {
-            spec,
-            rule,
-            state,
-            watched: &watched,
-        }),
-    }?;
-    watched.report(run_steps(&run, spec.integrator.grid.steps), true);
-    let mut found = select(spec, asked, &picker, &run, handed.get());
-    if let Termination::Stopped { steps } = run.termination {
-        found.summary.error = Some(format!(
-            "the tangent run was stopped after {steps} of {} steps; the Jacobians are those of \
-             the steps taken",
-            spec.integrator.grid.steps
-        ));
+        Ok(found)
     }
-    Ok(found)
+}
+
+/// Where the stored Jacobians of a tangent run go: the asked columns, row-major
+/// `2n × columns`.
+pub trait JacobianSink {
+    /// Takes the Jacobian of the stored step at `t`.
+    fn take(&mut self, t: f64, jacobian: &[f64]);
+
+    /// Flushes what was taken into its file, and says where the file stands — what a
+    /// checkpoint records (`None`, the default: no file).
+    ///
+    /// # Errors
+    /// A write error, as text.
+    fn mark(&mut self) -> Result<Option<Mark>, String> {
+        Ok(None)
+    }
+}
+
+/// A closure as a [`JacobianSink`] without a file.
+struct Closure<'f>(&'f mut dyn FnMut(f64, &[f64]));
+
+impl JacobianSink for Closure<'_> {
+    fn take(&mut self, t: f64, jacobian: &[f64]) {
+        (self.0)(t, jacobian);
+    }
+}
+
+/// The kept samples of the tangent run, their asked columns picked and handed on.
+struct Forward<'s> {
+    picker: &'s Picker,
+    handed: usize,
+    out: &'s mut dyn JacobianSink,
+}
+
+impl SampleOut for Forward<'_> {
+    fn sample(&mut self, sample: &TangentSample) {
+        self.handed += 1;
+        self.out
+            .take(sample.state.t, &self.picker.pick(&sample.jacobian));
+    }
+
+    fn handed(&self) -> usize {
+        self.handed
+    }
+
+    fn mark(&mut self) -> Result<Option<Mark>, String> {
+        self.out.mark()
+    }
 }
 
 /// The asked columns of the tangent run's Jacobians (`(q₀, p₀)` with `initial = true`, then the
@@ -247,93 +345,6 @@ pub fn names(spec: &RunSpec, asked: &SensitivitySpec) -> SensitivitySummary {
         error: None,
         note: (spec.system.constraint.count() > 0).then(|| ON_TANGENT_VECTORS.to_owned()),
     }
-}
-
-/// Writes the stored Jacobians into `dir` in `format`; returns the file's name.
-///
-/// # Errors
-/// An I/O error, as text.
-pub fn write(dir: &Path, format: Format, found: &Sensitivities) -> Result<String, String> {
-    let mut writer = SensitivityWriter::create(dir, format, &found.summary)?;
-    for (t, jac) in &found.samples {
-        writer.write(*t, jac)?;
-    }
-    writer.finish()
-}
-
-/// The sensitivity file of a run, written a stored step at a time: `sensitivity.npy` of shape
-/// `[samples, 2n, columns]`, or `sensitivity.csv` (`t`, then the entries row by row).
-pub enum SensitivityWriter {
-    /// `sensitivity.npy`.
-    Npy(NpyWriter<std::fs::File>),
-    /// `sensitivity.csv`, and a row buffer.
-    Csv(CsvWriter<std::fs::File>, Vec<f64>),
-}
-
-impl SensitivityWriter {
-    /// Creates the file for Jacobians of the summary's rows and columns.
-    ///
-    /// # Errors
-    /// An I/O error, as text.
-    pub fn create(
-        dir: &Path,
-        format: Format,
-        summary: &SensitivitySummary,
-    ) -> Result<Self, String> {
-        let (rows, columns) = (summary.rows.len(), summary.columns.len());
-        match format {
-            Format::Npy => {
-                let shape = NpyShape::Stack { rows, columns };
-                let w = NpyWriter::create(dir.join(SENSITIVITY_NPY), shape).map_err(text)?;
-                Ok(Self::Npy(w))
-            }
-            Format::Csv => {
-                let mut header = vec!["t".to_owned()];
-                for r in &summary.rows {
-                    header.extend(summary.columns.iter().map(|c| format!("{r}/{c}")));
-                }
-                let w = CsvWriter::create(dir.join(SENSITIVITY_CSV), &header).map_err(text)?;
-                Ok(Self::Csv(w, Vec::with_capacity(rows * columns + 1)))
-            }
-        }
-    }
-
-    /// Appends the Jacobian of the stored step at `t`.
-    ///
-    /// # Errors
-    /// An I/O error, as text.
-    pub fn write(&mut self, t: f64, jacobian: &[f64]) -> Result<(), String> {
-        match self {
-            Self::Npy(w) => w.write_row(jacobian).map_err(text),
-            Self::Csv(w, row) => {
-                row.clear();
-                row.push(t);
-                row.extend_from_slice(jacobian);
-                w.write_row(row).map_err(text)
-            }
-        }
-    }
-
-    /// Closes the file; returns its name.
-    ///
-    /// # Errors
-    /// An I/O error, as text.
-    pub fn finish(self) -> Result<String, String> {
-        match self {
-            Self::Npy(mut w) => {
-                w.finish().map_err(text)?;
-                Ok(SENSITIVITY_NPY.to_owned())
-            }
-            Self::Csv(mut w, _) => {
-                w.finish().map_err(text)?;
-                Ok(SENSITIVITY_CSV.to_owned())
-            }
-        }
-    }
-}
-
-fn text(e: marsden_io::Error) -> String {
-    e.to_string()
 }
 
 /// The console line: what was computed, and the largest entry of the final Jacobian.

@@ -15,8 +15,8 @@ use serde::Serialize;
 
 use crate::balance::{BalanceSeries, BalanceSummary, Balanced, TimeDerivative};
 use crate::certify::{Certificate, Ends, certify, without_step_jacobian};
-use crate::checkpoint::CheckpointPlan;
-use crate::checkpoint::observer::Checkpointing;
+use crate::checkpoint::observer::{Carries, Checkpointing};
+use crate::checkpoint::{BalancesCheckpoint, CheckpointPlan};
 use crate::controls::Controls;
 use crate::diagnostics::Diagnostics;
 use crate::events::{EventTally, Watched};
@@ -124,18 +124,23 @@ fn explain_exact_failure<L: Lagrangian>(
     failure
 }
 
-/// [`solve`], and for an active force or a Lagrangian depending on `t` (`time_dependent`) and
-/// a two-point rule the discrete energy balance of every step ([`Balanced`], with the
-/// `∂L_d/∂t₀` term when `time_dependent`) and the forced Noether balance of every symmetry in
-/// `maps` ([`NoetherBalanced`]) on the way (the energy series keeps every `every`-th step).
-pub fn solve_balanced<L: Lagrangian, F: Force, C: Constraint, M, O: Observer + ?Sized>(
+/// Runs `problem` by `rule`, shown to `observer`; for a forced or time-dependent run with a
+/// two-point rule, around the energy balance of every step ([`Balanced`], with `output.every`'s
+/// series) and the forced Noether balance of every symmetry in `maps` ([`NoetherBalanced`]).
+/// With `checkpoints`, the run (balances included) is checkpointed as planned, and continued
+/// from the plan's checkpoint when it has one.
+///
+/// Returns the result, the balances (`None` when the run keeps none), and why a checkpoint
+/// could not be written or restored (the run then stopped there, or did not start).
+pub fn solve_balanced<L: Lagrangian, F: Force, C: Constraint, M, O>(
     (problem, maps): (&Problem<L, F, C>, &[M]),
     (rule, output): (&Rule, Output),
-    options: &SolveOptions,
+    (options, checkpoints): (&SolveOptions, Option<&CheckpointPlan>),
     observer: &mut O,
-) -> (Result<Trajectory, Box<RunFailure>>, Option<Balances>)
+) -> Solved
 where
     M: MomentumMap + GroupAction,
+    O: Observer + Carries,
 {
     use marsden::discrete::DiscreteAction as _;
     let Output {
@@ -145,7 +150,8 @@ where
     let l = problem.lagrangian();
     let two_point = rule.discretize(l).internal_stages() == 0;
     if !(problem.force().is_active() || time_dependent) || !two_point {
-        return (problem.solve_with(rule, options, observer), None);
+        let (result, error) = solve_checkpointed(problem, (rule, options), checkpoints, observer);
+        return (result, None, error);
     }
     let force = rule.discretize_force(problem.force(), l.dof());
     let noether_force = rule.discretize_force(problem.force(), l.dof());
@@ -157,13 +163,85 @@ where
     let mut noether = NoetherBalanced::new((names, maps), (&noether_force, grid), observer);
     let time = time_dependent.then(|| rule.discretize_force(TimeDerivative(l), l.dof()));
     let mut balanced = Balanced::new(l, (force, time, grid), every, &mut noether);
-    let result = problem.solve_with(rule, options, &mut balanced);
+    let resumed = checkpoints.and_then(|p| p.resume.as_deref());
+    if let Some(c) = resumed
+        && let Err(e) = restore_balances(&mut balanced, c.balances.as_ref())
+    {
+        let failure = RunFailure {
+            error: marsden::Error::Input(marsden::error::InputError::Restored {
+                reason: e.clone(),
+            }),
+            trajectory: marsden::Trajectory::new(l.dof(), problem.constraint().count(), grid.h),
+        };
+        return (Err(Box::new(failure)), None, Some(e));
+    }
+    let (result, error) = solve_checkpointed(problem, (rule, options), checkpoints, &mut balanced);
     let balances = Balances {
         energy: balanced.summary,
         series: balanced.series,
         noether: noether.balances(),
     };
-    (result, Some(balances))
+    (result, Some(balances), error)
+}
+
+/// What [`solve_balanced`] gives: the run's result, its balances, and a checkpoint's error.
+pub type Solved = (
+    Result<Trajectory, Box<RunFailure>>,
+    Option<Balances>,
+    Option<String>,
+);
+
+/// Restores the balances of a resumed forced run from its checkpoint's.
+fn restore_balances<L, F, T, G, F2, O>(
+    balanced: &mut Balanced<'_, L, F, T, NoetherBalanced<'_, G, F2, O>>,
+    carried: Option<&BalancesCheckpoint>,
+) -> Result<(), String>
+where
+    L: Lagrangian,
+    F: marsden::discrete::DiscreteForce,
+    T: marsden::discrete::DiscreteForce,
+    G: GroupAction,
+    F2: marsden::discrete::DiscreteForce,
+    O: Observer + ?Sized,
+{
+    let Some(carried) = carried else {
+        return Err("the checkpoint holds no energy balance for this forced run".to_owned());
+    };
+    balanced.restore(&carried.energy)?;
+    balanced.inner_mut().restore(&carried.noether)
+}
+
+/// Runs `problem` shown to `observer`, checkpointed as `checkpoints` plans (from its start, or
+/// from the plan's checkpoint); and why a checkpoint could not be written, if one could not.
+fn solve_checkpointed<L: Lagrangian, F: Force, C: Constraint, O>(
+    problem: &Problem<L, F, C>,
+    (rule, options): (&Rule, &SolveOptions),
+    checkpoints: Option<&CheckpointPlan>,
+    observer: &mut O,
+) -> (Result<Trajectory, Box<RunFailure>>, Option<String>)
+where
+    O: Observer + Carries,
+{
+    let Some(plan) = checkpoints else {
+        return (problem.solve_with(rule, options, observer), None);
+    };
+    let mut watch = Checkpointing::new(observer, plan);
+    let result = match plan.resume.as_deref() {
+        None => problem.solve_with(rule, options, &mut watch),
+        Some(c) => {
+            let state = marsden::State {
+                t: c.t,
+                q: c.q.clone(),
+                p: c.p.clone(),
+            };
+            let from = Resumed {
+                step: c.step,
+                state,
+            };
+            problem.solve_resumed(rule, options, &mut watch, (from, &c.integrator))
+        }
+    };
+    (result, watch.error)
 }
 
 /// The balances of a forced run with a two-point rule: the discrete energy balance (its
@@ -227,23 +305,12 @@ pub fn run_by_rule<L: Lagrangian>(
         every: spec.output.every,
         time_dependent: s.depends_on_time(),
     };
-    let (result, balance, checkpoint_error) = match plan {
-        None => {
-            let (result, balance) = solve_balanced(
-                (&session.problem, maps),
-                (rule, output),
-                &session.options,
-                &mut session.observer,
-            );
-            (result, balance, None)
-        }
-        // Forced and time-dependent runs (their balances) were refused with checkpoints when
-        // the file was read.
-        Some(plan) => {
-            let (result, error) = session.checkpointed(rule, plan);
-            (result, None, error)
-        }
-    };
+    let (result, balance, checkpoint_error) = solve_balanced(
+        (&session.problem, maps),
+        (rule, output),
+        (&session.options, plan),
+        &mut session.observer,
+    );
     let (mut record, problem) = session.finish(result, balance);
     if let Some(e) = checkpoint_error {
         record.error.get_or_insert(e);
@@ -343,33 +410,6 @@ impl<'a, 's, L: Lagrangian, F: Force> Session<'a, 's, L, F> {
             clock: Instant::now(),
             jit_before: marsden_problem::model::jit_compile_seconds(),
         })
-    }
-
-    /// The run with checkpoints as `plan` says, from its start or from the checkpoint it
-    /// resumes from; and why a checkpoint could not be written, if one could not.
-    fn checkpointed(
-        &mut self,
-        rule: &Rule,
-        plan: &CheckpointPlan,
-    ) -> (Result<Trajectory, Box<RunFailure>>, Option<String>) {
-        let mut watch = Checkpointing::new(&mut self.observer, plan);
-        let (problem, options) = (&self.problem, &self.options);
-        let result = match plan.resume.as_deref() {
-            None => problem.solve_with(rule, options, &mut watch),
-            Some(c) => {
-                let state = marsden::State {
-                    t: c.t,
-                    q: c.q.clone(),
-                    p: c.p.clone(),
-                };
-                let from = Resumed {
-                    step: c.step,
-                    state,
-                };
-                problem.solve_resumed(rule, options, &mut watch, (from, &c.integrator))
-            }
-        };
-        (result, watch.error)
     }
 
     /// The record of the run that ended with `result`, with its balances; and the problem,

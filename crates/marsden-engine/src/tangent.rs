@@ -1,42 +1,62 @@
 //! The tangent run of `[sensitivity]`: the file's own Lagrangian and forces ([`TangentJob`],
 //! compiled with the run's own `Problem` type) or the parametric model at the file's
 //! parameter values ([`WithParameters`]), watched by the caller's controls as the file's run is
-//! ([`Watched`]). The Jacobians it hands on are picked and written by [`crate::sensitivity`].
+//! ([`Watched`]) and checkpointed as planned ([`crate::checkpoint::tangent`]). The Jacobians it
+//! hands on are picked and written by [`crate::sensitivity`].
 
 use std::cell::RefCell;
 use std::ops::ControlFlow;
 use std::time::Instant;
 
 use marsden::sensitivity::{
-    ConstrainedParametricIntegrator, ParametricIntegrator, SensitiveStep, Tangent, TangentOptions,
-    TangentSample, tangent_streamed,
+    ConstrainedParametricIntegrator, ParametricIntegrator, SensitiveStep, Tangent,
+    TangentCheckpoint, TangentOptions, TangentSample, tangent_continued,
 };
 use marsden::{Lagrangian, State, TimeGrid};
 use marsden_problem::model::ExprParametric;
 use marsden_problem::problem::RunSpec;
 
+use crate::checkpoint::tangent::{SensitivityCheckpoint, TangentPlan};
+use crate::checkpoint::{Mark, file};
 use crate::controls::{CHECK_EVERY, Controls, Progress};
 use crate::start;
 
-/// The caller's controls as a tangent run sees them, and where its stored samples go.
+/// Where a tangent run's kept samples go, and what a checkpoint records of them.
+pub(crate) trait SampleOut {
+    /// Takes a kept sample.
+    fn sample(&mut self, sample: &TangentSample);
+    /// Samples taken.
+    fn handed(&self) -> usize;
+    /// Flushes what was taken into its file and says where the file stands (`None`: no file).
+    fn mark(&mut self) -> Result<Option<Mark>, String>;
+}
+
+/// The caller's controls as a tangent run sees them, where its kept samples go, and its
+/// checkpoints (`[output] checkpoint_every`, [`crate::checkpoint::tangent`]).
 pub struct Watched<'c, 'a> {
     controls: &'c Controls<'a>,
     total: usize,
     clock: Instant,
-    sink: RefCell<&'c mut dyn FnMut(&TangentSample)>,
+    out: RefCell<&'c mut dyn SampleOut>,
+    checkpoints: Option<&'c TangentPlan>,
+    /// Why a checkpoint could not be written (the tangent run stopped there).
+    error: RefCell<Option<String>>,
 }
 
 impl<'c, 'a> Watched<'c, 'a> {
     pub(crate) fn new(
         spec: &RunSpec,
         controls: &'c Controls<'a>,
-        sink: &'c mut dyn FnMut(&TangentSample),
+        out: &'c mut dyn SampleOut,
+        checkpoints: Option<&'c TangentPlan>,
     ) -> Self {
         Self {
             controls,
             total: spec.integrator.grid.steps,
             clock: Instant::now(),
-            sink: RefCell::new(sink),
+            out: RefCell::new(out),
+            checkpoints,
+            error: RefCell::new(None),
         }
     }
 
@@ -52,15 +72,41 @@ impl<'c, 'a> Watched<'c, 'a> {
         }
     }
 
-    /// The tangent run of `stepper`, watched every [`CHECK_EVERY`] steps.
+    /// Samples handed on (those before a checkpoint resumed from included).
+    pub(crate) fn handed(&self) -> usize {
+        self.out.borrow().handed()
+    }
+
+    /// Why a checkpoint could not be written, if one could not.
+    pub(crate) fn checkpoint_error(&self) -> Option<String> {
+        self.error.borrow().clone()
+    }
+
+    /// The tangent run of `stepper` from `state` — or from the plan's checkpoint, `stepper`
+    /// restored from it — watched every [`CHECK_EVERY`] steps and checkpointed as planned.
     pub(crate) fn tangent<D: SensitiveStep + ?Sized>(
         &self,
         stepper: &mut D,
         state: State,
         spec: &RunSpec,
     ) -> Result<Tangent, marsden::Error> {
+        let from = match self.checkpoints.and_then(|p| p.resume.as_deref()) {
+            Some(resumed) => {
+                stepper.restore_carried(&resumed.tangent.integrator)?;
+                resumed.tangent.sample()
+            }
+            None => TangentSample::start(state, 2 * stepper.dof() + stepper.parameters()),
+        };
         let active = self.controls.is_active();
-        let watch = |k: usize| {
+        let watch = |stepper: &D, sample: &TangentSample| {
+            let k = sample.step;
+            if let Some(plan) = self.checkpoints
+                && k.is_multiple_of(plan.every)
+                && let Err(e) = self.save(plan, stepper, sample)
+            {
+                *self.error.borrow_mut() = Some(e);
+                return ControlFlow::Break(());
+            }
             if !active || !k.is_multiple_of(CHECK_EVERY) {
                 return ControlFlow::Continue(());
             }
@@ -71,8 +117,27 @@ impl<'c, 'a> Watched<'c, 'a> {
             }
         };
         let grid: &TimeGrid = &spec.integrator.grid;
-        let mut sink = self.sink.borrow_mut();
-        tangent_streamed(stepper, state, grid, &options(spec), watch, &mut **sink)
+        let mut sink = |sample: &TangentSample| self.out.borrow_mut().sample(sample);
+        tangent_continued(stepper, from, grid, &options(spec), watch, &mut sink)
+    }
+
+    /// Writes the checkpoint of `stepper` at `sample` into the plan's file.
+    fn save<D: SensitiveStep + ?Sized>(
+        &self,
+        plan: &TangentPlan,
+        stepper: &D,
+        sample: &TangentSample,
+    ) -> Result<(), String> {
+        let tangent = TangentCheckpoint::of(stepper, sample)
+            .ok_or("this run's tangent integrator cannot be checkpointed")?;
+        let mut out = self.out.borrow_mut();
+        let checkpoint = SensitivityCheckpoint {
+            identity: plan.identity.clone(),
+            tangent,
+            file: out.mark()?,
+            samples: out.handed(),
+        };
+        file::save(&plan.path, &checkpoint)
     }
 }
 

@@ -4,6 +4,7 @@ leaves are those of the uninterrupted run byte for byte."""
 
 from __future__ import annotations
 
+import json
 import os
 import pathlib
 import signal
@@ -101,3 +102,34 @@ def test_a_killed_sweep_of_the_command_resumes_from_python(tmp_path: pathlib.Pat
     assert summary["members_run"] == 12
     assert (killed / "sweep.csv").read_bytes() == (whole / "sweep.csv").read_bytes()
     assert running, "the kill came after the sweep had ended: lengthen the members"
+
+
+SENSITIVITY = TEXT.replace("steps = 1500000", "steps = 300000").replace(
+    "[output]", "[sensitivity]\ninitial = true\n[output]")
+
+
+def test_a_solve_killed_in_its_tangent_run_resumes_to_the_same_jacobians(
+        tmp_path: pathlib.Path) -> None:
+    """``[sensitivity]``: a process killed while its tangent run goes (after the tangent run's
+    first checkpoint) is continued by ``marsden.resume``; ``sensitivity.csv`` is the
+    uninterrupted run's byte for byte, and its final Jacobian is the one the whole run gave."""
+    whole = tmp_path / "whole"
+    s = marsden.Problem.from_toml(SENSITIVITY).solve(dir=str(whole), checkpoint_every=20_000)
+    assert s.ok and (whole / "sensitivity-checkpoint.bin").exists()
+    killed = tmp_path / "killed"
+    script = (f"import marsden; marsden.Problem.from_toml({SENSITIVITY!r}).solve("
+              f"dir={str(killed)!r}, checkpoint_every=20_000)")
+    child = subprocess.Popen([sys.executable, "-c", script])
+    deadline = time.time() + 60
+    while not (killed / "sensitivity-checkpoint.bin").exists() and time.time() < deadline:
+        time.sleep(0.005)
+    running = child.poll() is None
+    os.kill(child.pid, signal.SIGKILL)
+    child.wait()
+    summary = marsden.resume(killed)
+    assert summary["status"] == "completed"
+    assert summary["sensitivity"]["error"] is None
+    assert (killed / "sensitivity.csv").read_bytes() == (whole / "sensitivity.csv").read_bytes()
+    whole_summary = json.loads((whole / "summary.json").read_text())
+    assert summary["sensitivity"]["final"] == whole_summary["sensitivity"]["final"]
+    assert running, "the kill came after the run had ended: lengthen the run"

@@ -34,7 +34,7 @@ fn checkpoint_of(example: &str, steps: u64, every: u64) -> RunCheckpoint {
     let mut spec = spec;
     spec.output.plots = false;
     marsden_spec::execute(&spec, Store::Files, &Controls::none()).unwrap_or_else(|e| panic!("{e}"));
-    file::load(&dir.path().join(CHECKPOINT_FILE)).unwrap_or_else(|e| panic!("{e}"))
+    RunCheckpoint::load(&dir.path().join(CHECKPOINT_FILE)).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn bench_save(b: Bencher, checkpoint: &RunCheckpoint) {

@@ -185,6 +185,13 @@ pub enum InputError {
         /// Where it was evaluated.
         q: Vec<f64>,
     },
+    /// An input refused before a checkpoint, restored with its message (a resumed run keeps
+    /// refusing what the checkpointed one refused, for the reason it gave).
+    #[error("{reason}")]
+    Restored {
+        /// The message of the refusal.
+        reason: String,
+    },
 }
 
 /// Well-formed data that the mechanics refuses.

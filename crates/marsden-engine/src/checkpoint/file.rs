@@ -7,8 +7,11 @@
 //! | 12–15 | the CRC-32 (IEEE) of the body, `u32` little-endian |
 //! | 16– | the body: a [`RunCheckpoint`] (or, for a sweep, the sweep's checkpoint) in postcard's encoding |
 //!
-//! Version 1 is the first. A later version that changes the body keeps reading version 1
-//! (a test reads a version-1 fixture); a file of a version this build does not know, a body
+//! Version 1 is the first. Version 2 adds to a run's checkpoint the balances of a forced or
+//! time-dependent run ([`super::RunCheckpoint::balances`]); a version-1 file is read as a run
+//! without them ([`super::RunCheckpoint::load`]; a test reads a version-1 fixture), and the
+//! other bodies (a sweep's, a tangent run's) are the same in both. A later version that changes
+//! a body keeps reading the earlier ones; a file of a version this build does not know, a body
 //! whose CRC does not match (a torn or damaged file) or that does not decode is refused with
 //! the reason. Files are written through a temporary file and a rename, so a checkpoint is
 //! whole or the previous one stays.
@@ -21,7 +24,7 @@ use serde::de::DeserializeOwned;
 /// The first bytes of a checkpoint file.
 pub const MAGIC: &[u8; 8] = b"MARSDENC";
 /// The format version this build writes.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 const HEADER: usize = 16;
 
 /// Why a checkpoint cannot be read.
@@ -77,25 +80,34 @@ pub fn encode<T: Serialize>(checkpoint: &T) -> Result<Vec<u8>, String> {
     Ok(bytes)
 }
 
-/// The checkpoint in `bytes` (read from `path`, which names it in errors).
+/// The checkpoint in `bytes` (read from `path`, which names it in errors), for a body that is
+/// the same in every version.
 ///
 /// # Errors
 /// [`CheckpointError::Corrupt`] or [`CheckpointError::Version`].
 pub fn decode<T: DeserializeOwned>(bytes: &[u8], path: &Path) -> Result<T, CheckpointError> {
-    let corrupt = |reason: String| CheckpointError::Corrupt {
-        path: path.display().to_string(),
-        reason,
-    };
+    let (_, body) = open(bytes, path)?;
+    decode_body(body, path)
+}
+
+/// The format version and the body of the checkpoint in `bytes`, its header and CRC-32 checked.
+///
+/// # Errors
+/// [`CheckpointError::Corrupt`] or [`CheckpointError::Version`].
+pub fn open<'b>(bytes: &'b [u8], path: &Path) -> Result<(u32, &'b [u8]), CheckpointError> {
     let (Some(magic), Some(version), Some(crc)) =
         (bytes.get(..8), bytes.get(8..12), bytes.get(12..HEADER))
     else {
-        return Err(corrupt(format!(
-            "{} bytes, shorter than its header",
-            bytes.len()
-        )));
+        return Err(corrupt(
+            path,
+            format!("{} bytes, shorter than its header", bytes.len()),
+        ));
     };
     if magic != MAGIC {
-        return Err(corrupt("it does not start with `MARSDENC`".to_owned()));
+        return Err(corrupt(
+            path,
+            "it does not start with `MARSDENC`".to_owned(),
+        ));
     }
     let word = |b: &[u8]| u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
     let found = word(version);
@@ -108,11 +120,27 @@ pub fn decode<T: DeserializeOwned>(bytes: &[u8], path: &Path) -> Result<T, Check
     let body = &bytes[HEADER..];
     let (expected, actual) = (word(crc), crc32fast::hash(body));
     if expected != actual {
-        return Err(corrupt(format!(
-            "its CRC-32 is {actual:08x}, the header says {expected:08x}"
-        )));
+        return Err(corrupt(
+            path,
+            format!("its CRC-32 is {actual:08x}, the header says {expected:08x}"),
+        ));
     }
-    postcard::from_bytes(body).map_err(|e| corrupt(format!("its body does not decode: {e}")))
+    Ok((found, body))
+}
+
+/// A checkpoint's body, decoded as `T`.
+///
+/// # Errors
+/// [`CheckpointError::Corrupt`] if it does not decode.
+pub fn decode_body<T: DeserializeOwned>(body: &[u8], path: &Path) -> Result<T, CheckpointError> {
+    postcard::from_bytes(body).map_err(|e| corrupt(path, format!("its body does not decode: {e}")))
+}
+
+fn corrupt(path: &Path, reason: String) -> CheckpointError {
+    CheckpointError::Corrupt {
+        path: path.display().to_string(),
+        reason,
+    }
 }
 
 /// Writes `checkpoint` to `path` atomically.
@@ -125,12 +153,20 @@ pub fn save<T: Serialize>(path: &Path, checkpoint: &T) -> Result<(), String> {
         .map_err(|e| format!("cannot write the checkpoint {}: {e}", path.display()))
 }
 
-/// Reads the checkpoint at `path`.
+/// Reads the checkpoint at `path`, for a body that is the same in every version.
 ///
 /// # Errors
 /// A [`CheckpointError`] saying why it cannot be used.
 pub fn load<T: DeserializeOwned>(path: &Path) -> Result<T, CheckpointError> {
-    let bytes = std::fs::read(path).map_err(|e| match e.kind() {
+    decode(&read(path)?, path)
+}
+
+/// The bytes of the checkpoint file at `path`.
+///
+/// # Errors
+/// [`CheckpointError::Missing`] or [`CheckpointError::Unreadable`].
+pub fn read(path: &Path) -> Result<Vec<u8>, CheckpointError> {
+    std::fs::read(path).map_err(|e| match e.kind() {
         std::io::ErrorKind::NotFound => CheckpointError::Missing {
             path: path.display().to_string(),
         },
@@ -138,6 +174,5 @@ pub fn load<T: DeserializeOwned>(path: &Path) -> Result<T, CheckpointError> {
             path: path.display().to_string(),
             reason: e.to_string(),
         },
-    })?;
-    decode(&bytes, path)
+    })
 }

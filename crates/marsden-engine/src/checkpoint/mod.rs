@@ -14,17 +14,23 @@
 //! * the monitors' accumulators (energy, momentum maps, constraint residuals) and the
 //!   Legendre transform's warm start of the streaming observer ([`StreamCheckpoint`]);
 //! * the event detector's state and the events written ([`EventsCheckpoint`]);
+//! * for a forced or time-dependent run, its energy and Noether balances so far
+//!   ([`BalancesCheckpoint`]);
 //! * where each output file stood, flushed ([`Mark`]): the rows written after the checkpoint
 //!   by a run that was then killed are cut off before the resumed run goes on.
 //!
-//! The file format ([`file`]) is versioned and checked by a CRC-32.
+//! The file format ([`file`]) is versioned and checked by a CRC-32. The tangent run of
+//! `[sensitivity]`, a second loop after the run, has its own checkpoints ([`tangent`]).
 
 pub mod file;
 pub mod observer;
+pub mod tangent;
 
 use serde::{Deserialize, Serialize};
 
+use crate::balance::EnergyBalanceCarry;
 use crate::diagnostics::Diagnostics;
+use marsden::analysis::diagnostics::MonitorCarry;
 use marsden::integrator::IntegratorCheckpoint;
 use marsden::run::events::DetectorCheckpoint;
 
@@ -125,6 +131,84 @@ pub struct RunCheckpoint {
     pub stream: StreamCheckpoint,
     /// The event watch's (`None`: the file has no events).
     pub events: Option<EventsCheckpoint>,
+    /// The balances of a forced or time-dependent run with a two-point rule (`None`: the run
+    /// keeps none; always `None` in a version-1 file, which could not hold them).
+    pub balances: Option<BalancesCheckpoint>,
+}
+
+impl RunCheckpoint {
+    /// Reads the run checkpoint at `path`, of any version this build reads (a version-1 file
+    /// is a run without balances).
+    ///
+    /// # Errors
+    /// A [`file::CheckpointError`] saying why it cannot be used.
+    pub fn load(path: &std::path::Path) -> Result<Self, file::CheckpointError> {
+        let bytes = file::read(path)?;
+        match file::open(&bytes, path)? {
+            (1, body) => file::decode_body::<RunCheckpointV1>(body, path).map(Into::into),
+            (_, body) => file::decode_body(body, path),
+        }
+    }
+}
+
+/// The body of a version-1 run checkpoint: [`RunCheckpoint`] without `balances`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct RunCheckpointV1 {
+    /// As [`RunCheckpoint::identity`].
+    pub identity: RunIdentity,
+    /// As [`RunCheckpoint::step`].
+    pub step: usize,
+    /// As [`RunCheckpoint::t`].
+    pub t: f64,
+    /// As [`RunCheckpoint::q`].
+    pub q: Vec<f64>,
+    /// As [`RunCheckpoint::p`].
+    pub p: Vec<f64>,
+    /// As [`RunCheckpoint::integrator`].
+    pub integrator: IntegratorCheckpoint,
+    /// As [`RunCheckpoint::stream`].
+    pub stream: StreamCheckpoint,
+    /// As [`RunCheckpoint::events`].
+    pub events: Option<EventsCheckpoint>,
+}
+
+impl From<RunCheckpointV1> for RunCheckpoint {
+    fn from(v1: RunCheckpointV1) -> Self {
+        Self {
+            identity: v1.identity,
+            step: v1.step,
+            t: v1.t,
+            q: v1.q,
+            p: v1.p,
+            integrator: v1.integrator,
+            stream: v1.stream,
+            events: v1.events,
+            balances: None,
+        }
+    }
+}
+
+/// What the balances of a forced run carry to the next step: the discrete energy balance's and
+/// each symmetry's forced Noether balance's.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct BalancesCheckpoint {
+    /// The energy balance ([`crate::balance::Balanced`]).
+    pub energy: EnergyBalanceCarry,
+    /// The Noether balances, in the order of the file's symmetries
+    /// ([`crate::noether_balance::NoetherBalanced`]).
+    pub noether: Vec<MonitorCarry>,
+}
+
+/// What the observers of a run carry to the next step (everything of a [`RunCheckpoint`] but
+/// the state and the integrator's).
+#[derive(Debug, Clone)]
+pub struct Carried {
+    /// The streaming observer's.
+    pub stream: StreamCheckpoint,
+    /// The event watch's.
+    pub events: Option<EventsCheckpoint>,
+    /// The balances'.
+    pub balances: Option<BalancesCheckpoint>,
 }
 
 /// Checkpoints asked of a run: how often, into which file, for which run, and the checkpoint

@@ -7,9 +7,13 @@ use std::ops::ControlFlow;
 use marsden::integrator::IntegratorCheckpoint;
 use marsden::{Constraint, Lagrangian, Observer, StepView, Termination};
 
-use super::{CheckpointPlan, EventsCheckpoint, RunCheckpoint, StreamCheckpoint, file};
+use super::{BalancesCheckpoint, Carried, CheckpointPlan, RunCheckpoint, file};
+use crate::balance::Balanced;
 use crate::events::Watched;
+use crate::noether_balance::NoetherBalanced;
 use crate::observer::{StreamObserver, gcd};
+use marsden::discrete::DiscreteForce;
+use marsden::symmetry::GroupAction;
 use marsden_problem::model::MomentumMap;
 
 /// Observers whose accumulated state can be saved into a checkpoint.
@@ -18,7 +22,7 @@ pub trait Carries {
     ///
     /// # Errors
     /// A write error of a flush, as text.
-    fn carried(&mut self) -> Result<(StreamCheckpoint, Option<EventsCheckpoint>), String>;
+    fn carried(&mut self) -> Result<Carried, String>;
 }
 
 impl<L, C, M> Carries for Watched<'_, '_, L, StreamObserver<'_, '_, L, C, M>>
@@ -27,9 +31,31 @@ where
     C: Constraint,
     M: MomentumMap,
 {
-    fn carried(&mut self) -> Result<(StreamCheckpoint, Option<EventsCheckpoint>), String> {
-        let stream = self.inner.checkpoint()?;
-        Ok((stream, self.checkpoint()?))
+    fn carried(&mut self) -> Result<Carried, String> {
+        Ok(Carried {
+            stream: self.inner.checkpoint()?,
+            events: self.checkpoint()?,
+            balances: None,
+        })
+    }
+}
+
+/// The balances of a forced run around the run's own observers: theirs, with the balances'.
+impl<L, F, T, G, F2, O> Carries for Balanced<'_, L, F, T, NoetherBalanced<'_, G, F2, O>>
+where
+    L: Lagrangian,
+    F: DiscreteForce,
+    T: DiscreteForce,
+    G: GroupAction,
+    F2: DiscreteForce,
+    O: Observer + Carries + ?Sized,
+{
+    fn carried(&mut self) -> Result<Carried, String> {
+        let energy = Balanced::carried(self);
+        let noether = self.inner_mut().carried();
+        let mut carried = self.inner_mut().inner_mut().carried()?;
+        carried.balances = Some(BalancesCheckpoint { energy, noether });
+        Ok(carried)
     }
 }
 
@@ -52,7 +78,11 @@ impl<'o, O: Observer + Carries> Checkpointing<'o, O> {
     }
 
     fn save(&mut self, view: &StepView<'_>, carried: &IntegratorCheckpoint) -> Result<(), String> {
-        let (stream, events) = self.inner.carried()?;
+        let Carried {
+            stream,
+            events,
+            balances,
+        } = self.inner.carried()?;
         let checkpoint = RunCheckpoint {
             identity: self.plan.identity.clone(),
             step: view.step,
@@ -62,6 +92,7 @@ impl<'o, O: Observer + Carries> Checkpointing<'o, O> {
             integrator: carried.clone(),
             stream,
             events,
+            balances,
         };
         file::save(&self.plan.path, &checkpoint)
     }

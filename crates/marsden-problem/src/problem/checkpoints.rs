@@ -4,7 +4,8 @@
 //! carried data, the monitors' accumulators, the event detector, the writers' positions), so a
 //! resumed run is bit for bit the uninterrupted one. That is built for the runs of a rule on a
 //! Lagrangian (a catalog system, an expression `L` or `H`), with or without constraints and
-//! events; the other kinds of run are refused here, before anything is written, with the
+//! events, forces and `[sensitivity]` (whose tangent run is checkpointed too); the other kinds
+//! of run are refused here, before anything is written, with the
 //! reason. A sweep checkpoints its finished members instead (each member reruns whole), so a
 //! sweep of any kind of member takes `checkpoint_every` and is not checked here.
 
@@ -21,8 +22,6 @@ pub struct RunKind<'s> {
     pub system: &'s SystemSpec,
     /// The integrator's method.
     pub method: &'s Method,
-    /// The file has `[sensitivity]`.
-    pub sensitivity: bool,
 }
 
 /// Refuses `checkpoint_every` (written or `--checkpoint-every`) for a run that cannot be
@@ -49,7 +48,7 @@ pub fn refuse_unsupported(
         .error(span, format!("checkpoints are not available for {reason}"))
         .note(
             "checkpoints are written for runs of a rule on a Lagrangian or a Hamiltonian, with \
-             or without constraints and events",
+             or without forces, constraints, events and [sensitivity]",
         )
         .help("remove `checkpoint_every` (or `--checkpoint-every`) to run it in one go"))
 }
@@ -61,10 +60,6 @@ fn unsupported(run: RunKind<'_>) -> Option<&'static str> {
         LagrangianSpec::Rigid(_) => "a rigid body",
         LagrangianSpec::Multibody(_) => "a multibody system",
         _ if *run.method == Method::Exact => "the method `exact` (a shooting per step)",
-        _ if run.sensitivity => "a run with [sensitivity] (its tangent matrices are not saved)",
-        _ if run.system.force.is_active() || run.system.depends_on_time() => {
-            "a forced or time-dependent run (its energy balance is not saved)"
-        }
         _ => return None,
     };
     Some(reason)

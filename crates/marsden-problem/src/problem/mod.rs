@@ -307,7 +307,6 @@ fn validate_raw(
     let kind = checkpoints::RunKind {
         system: &system,
         method: &integrator.method,
-        sensitivity: sensitivity.is_some(),
     };
     // A sweep (and each of its members) checkpoints whole members, whatever they are.
     if raw.sweep.is_none() {

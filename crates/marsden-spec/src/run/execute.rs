@@ -14,7 +14,10 @@ use super::{balance, output, plots, sensitivity, start};
 use crate::error::{Diagnostic, Error};
 use crate::problem::RunSpec;
 use marsden_engine::Engine;
-use marsden_engine::checkpoint::{CHECKPOINT_FILE, CheckpointPlan, RunCheckpoint};
+use marsden_engine::checkpoint::tangent::{
+    SENSITIVITY_CHECKPOINT_FILE, SensitivityCheckpoint, TangentPlan,
+};
+use marsden_engine::checkpoint::{self, CHECKPOINT_FILE, CheckpointPlan, RunCheckpoint};
 
 /// Where the samples of a run go.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -88,6 +91,7 @@ pub fn execute_from(
     let dir = spec.output.dir.clone();
     let plan = checkpoint_plan(spec, store, resume)?;
     let resumed = plan.as_ref().and_then(|p| p.resume.as_deref());
+    let tangent_plan = tangent_plan(spec, plan.as_ref())?;
     let io = |what: &str, e: &dyn std::fmt::Display| {
         Error::bad_input(Diagnostic::new(format!(
             "cannot {what} {}: {e}",
@@ -214,6 +218,7 @@ pub fn execute_from(
         if plan.as_ref().is_some_and(|p| p.path.exists()) {
             written.push(CHECKPOINT_FILE.to_owned());
         }
+
         if spec.output.plots && record.rows > 0 {
             match plots::draw(spec, &layout) {
                 Ok(pngs) => written.extend(pngs),
@@ -242,13 +247,16 @@ pub fn execute_from(
         spec,
         (&record, &start),
         (store.files().then_some(&dir), store.memory()),
-        controls,
+        (controls, tangent_plan.as_ref()),
     );
     if let Some(Derivatives {
         file: Some(file), ..
     }) = &sensitivity
     {
         written.push(file.clone());
+    }
+    if tangent_plan.as_ref().is_some_and(|p| p.path.exists()) {
+        written.push(SENSITIVITY_CHECKPOINT_FILE.to_owned());
     }
     let mut summary = Summary::new(spec, &record, columns, written);
     summary.set_symmetry_checks(&start.symmetries);
@@ -305,6 +313,42 @@ fn checkpoint_plan(
     }))
 }
 
+/// The checkpoints of the tangent run of `[sensitivity]` (beside the run's own `plan`),
+/// continuing from `sensitivity-checkpoint.bin` when the run resumes and the tangent run had
+/// been checkpointed; `None` without `[sensitivity]` or checkpoints.
+///
+/// # Errors
+/// A damaged tangent checkpoint, or one of another run than `plan`'s (nothing changed yet).
+fn tangent_plan(
+    spec: &RunSpec,
+    plan: Option<&CheckpointPlan>,
+) -> Result<Option<TangentPlan>, Error> {
+    let Some(plan) = plan.filter(|_| spec.sensitivity.is_some()) else {
+        return Ok(None);
+    };
+    let path = spec.output.dir.join(SENSITIVITY_CHECKPOINT_FILE);
+    let resume = match &plan.resume {
+        Some(run) if path.exists() => {
+            let tangent: SensitivityCheckpoint = checkpoint::file::load(&path)
+                .map_err(|e| Error::bad_input(Diagnostic::new(e.to_string())))?;
+            if tangent.identity != run.identity {
+                return Err(Error::bad_input(Diagnostic::new(format!(
+                    "{} belongs to another run than {CHECKPOINT_FILE} beside it",
+                    path.display()
+                ))));
+            }
+            Some(Box::new(tangent))
+        }
+        _ => None,
+    };
+    Ok(Some(TangentPlan {
+        every: plan.every,
+        path,
+        identity: plan.identity.clone(),
+        resume,
+    }))
+}
+
 /// What `[sensitivity]` gave: the summary's block, the file written, the stored Jacobians.
 struct Derivatives {
     summary: SensitivitySummary,
@@ -314,14 +358,15 @@ struct Derivatives {
 
 /// `[sensitivity]`: the tangent run beside a completed run (watched by the run's `controls`:
 /// Ctrl-C and the progress bar), its Jacobians streamed into the file in `dir` as the run
-/// reaches them (and kept in memory only with `keep`); `None` without `[sensitivity]`. A failure
-/// is reported in the summary's block.
+/// reaches them (and kept in memory only with `keep`), checkpointed as `checkpoints` plans and
+/// continued from its checkpoint when the plan has one; `None` without `[sensitivity]`. A
+/// failure is reported in the summary's block.
 fn derivatives(
     engine: &dyn Engine,
     spec: &RunSpec,
     (record, start): (&RunRecord, &start::Start),
     (dir, keep): (Option<&PathBuf>, bool),
-    controls: &Controls<'_>,
+    (controls, checkpoints): (&Controls<'_>, Option<&TangentPlan>),
 ) -> Option<Derivatives> {
     let asked = spec.sensitivity.as_ref()?;
     let failed = |error: String| Derivatives {
@@ -340,33 +385,45 @@ fn derivatives(
         return Some(failed("the run did not complete".to_owned()));
     }
     let names = sensitivity::names(spec, asked);
-    let mut writer = match dir {
-        Some(dir) => {
+    let resumed = checkpoints.and_then(|p| p.resume.as_deref());
+    let writer = match (dir, resumed.map(|c| c.file.as_ref())) {
+        (None, _) => None,
+        (Some(dir), None) => {
             match sensitivity::SensitivityWriter::create(dir, spec.output.format, &names) {
                 Ok(w) => Some(w),
                 Err(e) => return Some(failed(format!("writing the sensitivities failed: {e}"))),
             }
         }
-        None => None,
-    };
-    let (mut kept, mut write_error) = (Vec::new(), None);
-    let mut sink = |t: f64, jacobian: &[f64]| {
-        if keep {
-            kept.push((t, jacobian.to_vec()));
+        (Some(dir), Some(Some(mark))) => {
+            match sensitivity::SensitivityWriter::reopen(dir, spec.output.format, &names, mark) {
+                Ok(w) => Some(w),
+                Err(e) => return Some(failed(format!("continuing the sensitivities failed: {e}"))),
+            }
         }
-        if let (Some(w), None) = (writer.as_mut(), &write_error)
-            && let Err(e) = w.write(t, jacobian)
-        {
-            write_error = Some(e);
+        (Some(_), Some(None)) => {
+            return Some(failed(
+                "the tangent run's checkpoint records no sensitivity file to continue".to_owned(),
+            ));
         }
     };
-    let found = match sensitivity::compute_streamed(engine, spec, asked, start, controls, &mut sink)
-    {
+    let mut out = sensitivity::JacobianFile {
+        writer,
+        kept: keep.then(Vec::new),
+        error: None,
+    };
+    let job = sensitivity::TangentRun {
+        engine,
+        spec,
+        asked,
+        start,
+        controls,
+    };
+    let found = match job.into(&mut out, checkpoints) {
         Ok(found) => found,
         Err(e) => return Some(failed(e)),
     };
     let mut summary = found.summary;
-    let file = match (writer, write_error) {
+    let file = match (out.writer, out.error) {
         (Some(w), None) => match w.finish() {
             Ok(file) => Some(file),
             Err(e) => {
@@ -383,6 +440,6 @@ fn derivatives(
     Some(Derivatives {
         summary,
         file,
-        samples: keep.then_some(kept),
+        samples: out.kept,
     })
 }

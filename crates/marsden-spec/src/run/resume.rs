@@ -19,7 +19,7 @@ use super::sweep_checkpoint::{self, SweepCheckpoint};
 use crate::error::{Diagnostic, Error};
 use crate::problem::RunSpec;
 use crate::source::SourceFile;
-use marsden_engine::checkpoint::{CHECKPOINT_FILE, RunCheckpoint, RunIdentity, file};
+use marsden_engine::checkpoint::{CHECKPOINT_FILE, RunCheckpoint, RunIdentity};
 use marsden_problem::Overrides;
 
 /// What identifies `spec`'s run in its checkpoints: its file (made absolute when it is one),
@@ -70,7 +70,7 @@ pub fn resume_from(
 /// # Errors
 /// As [`resume`].
 pub fn peek(dir: &Path) -> Result<RunCheckpoint, Error> {
-    file::load(&dir.join(CHECKPOINT_FILE))
+    RunCheckpoint::load(&dir.join(CHECKPOINT_FILE))
         .map_err(|e| Error::bad_input(Diagnostic::new(e.to_string())))
 }
 

@@ -422,6 +422,17 @@ where
     L: Lagrangian,
     C2: Constraint,
 {
+    fn carried(&self) -> Option<crate::integrator::IntegratorCheckpoint> {
+        Some(self.checkpoint())
+    }
+
+    fn restore_carried(
+        &mut self,
+        carried: &crate::integrator::IntegratorCheckpoint,
+    ) -> Result<(), Error> {
+        self.restore(carried)
+    }
+
     /// One SHAKE + RATTLE step and its Jacobian (see the module documentation: meaningful on
     /// tangent vectors of `T*N`).
     fn step_with_sensitivity(

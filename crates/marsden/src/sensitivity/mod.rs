@@ -45,4 +45,7 @@ pub use options::{AdjointOptions, TangentOptions};
 pub use parametric::{ParametricIntegrator, ParametricModel};
 pub use parametric_constrained::ConstrainedParametricIntegrator;
 pub use step::SensitiveStep;
-pub use tangent::{Tangent, TangentSample, tangent, tangent_streamed, tangent_watched};
+pub use tangent::{
+    Tangent, TangentCheckpoint, TangentSample, tangent, tangent_continued, tangent_streamed,
+    tangent_watched,
+};

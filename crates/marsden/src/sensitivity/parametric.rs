@@ -258,6 +258,8 @@ impl<R: Rule, M: ParametricModel + Clone> SensitiveStep for ParametricIntegrator
         self.theta.len()
     }
 
+    super::step::carried_by!(run);
+
     fn step_with_sensitivity(
         &mut self,
         state: &mut State,

@@ -141,6 +141,8 @@ impl<R: Rule, M: ParametricModel + Clone> SensitiveStep for ConstrainedParametri
         self.theta.len()
     }
 
+    super::step::carried_by!(run);
+
     /// One SHAKE + RATTLE step and `∂(q_{k+1}, p_{k+1})/∂(q_k, p_k, θ)`; without active
     /// constraints, the unconstrained parametric step's.
     fn step_with_sensitivity(

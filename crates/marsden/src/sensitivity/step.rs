@@ -12,9 +12,9 @@
 
 use crate::analysis::certificate::DifferentiableStep;
 use crate::discrete::{DiscreteAction, DiscreteForce};
-use crate::error::Error;
+use crate::error::{Error, InputError};
 use crate::hamiltonian::{Hamiltonian, HamiltonianIntegrator, HamiltonianMethod};
-use crate::integrator::{Integrator, StepReport};
+use crate::integrator::{Integrator, IntegratorCheckpoint, StepReport};
 use crate::mechanics::{State, Unconstrained};
 
 /// A one-step map `(q_k, p_k; θ) ↦ (q_{k+1}, p_{k+1})` that reports its exact Jacobian with
@@ -36,12 +36,61 @@ pub trait SensitiveStep: DifferentiableStep {
     ) -> Result<StepReport, Error> {
         self.step_with_jacobian(state, h, jac)
     }
+
+    /// Everything the stepper carries from one step to the next (its predictor's history,
+    /// warm starts, counters: [`IntegratorCheckpoint`]), so that a tangent run can be
+    /// checkpointed and continued bit for bit ([`super::tangent::tangent_continued`]);
+    /// `None` (the default) for a stepper that cannot be checkpointed.
+    fn carried(&self) -> Option<IntegratorCheckpoint> {
+        None
+    }
+
+    /// Restores what [`SensitiveStep::carried`] gave, into a stepper of the same problem
+    /// freshly built.
+    ///
+    /// # Errors
+    /// The integrator's refusal of a checkpoint of another shape or path; by default (a
+    /// stepper that cannot be checkpointed) [`InputError::InvalidOption`].
+    fn restore_carried(&mut self, carried: &IntegratorCheckpoint) -> Result<(), Error> {
+        let _ = carried;
+        Err(Error::Input(InputError::InvalidOption {
+            name: "checkpoint",
+            value: f64::NAN,
+            reason: "this stepper carries no checkpoint to restore",
+        }))
+    }
 }
+
+/// [`SensitiveStep::carried`] and [`SensitiveStep::restore_carried`] of a stepper that is an
+/// [`Integrator`] in the field `$run`.
+macro_rules! carried_by {
+    ($run:ident) => {
+        fn carried(&self) -> Option<$crate::integrator::IntegratorCheckpoint> {
+            Some(self.$run.checkpoint())
+        }
+
+        fn restore_carried(
+            &mut self,
+            carried: &$crate::integrator::IntegratorCheckpoint,
+        ) -> Result<(), $crate::error::Error> {
+            self.$run.restore(carried)
+        }
+    };
+}
+pub(super) use carried_by;
 
 /// The integrator without constraints or projection (the type of `Integrator::new`); the one
 /// [`crate::run::Problem::integrator`] builds (SHAKE + RATTLE, constraints or none) is
 /// differentiated in [`super::constrained`].
-impl<A: DiscreteAction, F: DiscreteForce> SensitiveStep for Integrator<A, F, Unconstrained> {}
+impl<A: DiscreteAction, F: DiscreteForce> SensitiveStep for Integrator<A, F, Unconstrained> {
+    fn carried(&self) -> Option<IntegratorCheckpoint> {
+        Some(self.checkpoint())
+    }
+
+    fn restore_carried(&mut self, carried: &IntegratorCheckpoint) -> Result<(), Error> {
+        self.restore(carried)
+    }
+}
 
 impl<H: Hamiltonian, M: HamiltonianMethod<H>> SensitiveStep for HamiltonianIntegrator<H, M> {}
 

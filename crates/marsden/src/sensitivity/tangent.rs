@@ -20,7 +20,8 @@ use std::ops::ControlFlow;
 
 use super::options::TangentOptions;
 use super::step::SensitiveStep;
-use crate::error::Error;
+use crate::error::{Error, InputError};
+use crate::integrator::IntegratorCheckpoint;
 use crate::mechanics::State;
 use crate::run::{Termination, TimeGrid};
 
@@ -132,32 +133,63 @@ where
     D: SensitiveStep + ?Sized,
     W: FnMut(usize) -> ControlFlow<()>,
 {
+    let columns = 2 * stepper.dof() + stepper.parameters();
+    let from = TangentSample::start(start, columns);
+    tangent_continued(stepper, from, grid, options, |_, s| watch(s.step), sink)
+}
+
+/// [`tangent_streamed`] from `from`, a sample of the run after `from.step` steps (the start,
+/// or a [`TangentCheckpoint`]'s, with the stepper restored from it): the steps after it, with
+/// `watch` shown the stepper and the sample after every step (where a caller checkpoints the
+/// run: [`TangentCheckpoint::of`]). The sample `from` itself is not handed to `sink` again
+/// unless it is the start.
+///
+/// # Errors
+/// A failed step (naming it); [`InputError::DimensionMismatch`](crate::error::InputError) for a
+/// `from` of other sizes than the stepper's, [`InputError::InvalidOption`] for one past the
+/// grid's end.
+pub fn tangent_continued<D, W>(
+    stepper: &mut D,
+    from: TangentSample,
+    grid: &TimeGrid,
+    options: &TangentOptions,
+    mut watch: W,
+    sink: &mut dyn FnMut(&TangentSample),
+) -> Result<Tangent, Error>
+where
+    D: SensitiveStep + ?Sized,
+    W: FnMut(&D, &TangentSample) -> ControlFlow<()>,
+{
     let n = stepper.dof();
     let (m, columns) = (2 * n, 2 * n + stepper.parameters());
-    Error::check_len("q0", &start.q, n)?;
-    Error::check_len("p0", &start.p, n)?;
-    let s: Vec<f64> = (0..m * columns)
-        .map(|k| f64::from(u8::from(k / columns == k % columns)))
-        .collect();
+    Error::check_len("q0", &from.state.q, n)?;
+    Error::check_len("p0", &from.state.p, n)?;
+    Error::check_len("jacobian", &from.jacobian, m * columns)?;
+    if from.step > grid.steps {
+        return Err(Error::Input(InputError::InvalidOption {
+            name: "tangent run's first step",
+            value: from.step as f64,
+            reason: "past the grid's last step",
+        }));
+    }
     let (mut step, mut next) = (vec![0.0; m * columns], vec![0.0; m * columns]);
     let keep = |k: usize| options.every > 0 && (k.is_multiple_of(options.every) || k == grid.steps);
-    let mut current = TangentSample {
-        step: 0,
-        state: start,
-        jacobian: s,
-    };
-    if keep(0) {
+    let mut current = from;
+    if current.step == 0 && keep(0) {
         sink(&current);
     }
     let mut termination = Termination::Completed;
-    for k in 0..grid.steps {
+    for k in current.step..grid.steps {
         stepper.step_with_sensitivity(&mut current.state, grid.step_size(k), &mut step)?;
         current.state.t = grid.time(k + 1);
         current.step = k + 1;
         propagate(&step, &current.jacobian, m, columns, &mut next);
         std::mem::swap(&mut current.jacobian, &mut next);
-        let stop = watch(k + 1).is_break();
-        if keep(k + 1) || (stop && options.every > 0) {
+        if keep(k + 1) {
+            sink(&current);
+        }
+        let stop = watch(stepper, &current).is_break();
+        if stop && options.every > 0 && !keep(k + 1) {
             sink(&current);
         }
         if stop {
@@ -173,4 +205,67 @@ where
         samples: Vec::new(),
         termination,
     })
+}
+
+impl TangentSample {
+    /// The start of a tangent run with `columns` columns: step 0 at `state`, `S₀ = [I | 0]`.
+    pub fn start(state: State, columns: usize) -> Self {
+        let m = 2 * state.q.len();
+        let jacobian = (0..m * columns)
+            .map(|k| f64::from(u8::from(k / columns == k % columns)))
+            .collect();
+        Self {
+            step: 0,
+            state,
+            jacobian,
+        }
+    }
+}
+
+/// Everything a tangent run carries from one step to the next: the step reached, the state,
+/// the sensitivity `S_k` and what the stepper carries ([`SensitiveStep::carried`]). Restored
+/// into a freshly built stepper of the same problem, [`tangent_continued`] from
+/// [`TangentCheckpoint::sample`] goes on bit for bit as the uninterrupted run.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct TangentCheckpoint {
+    /// Steps taken.
+    pub step: usize,
+    /// The time reached.
+    pub t: f64,
+    /// Positions.
+    pub q: Vec<f64>,
+    /// Momenta.
+    pub p: Vec<f64>,
+    /// `S_k`, row-major `2n × columns`.
+    pub jacobian: Vec<f64>,
+    /// What the stepper carries.
+    pub integrator: IntegratorCheckpoint,
+}
+
+impl TangentCheckpoint {
+    /// The checkpoint of `stepper` at `sample` (`None`: the stepper cannot be checkpointed).
+    pub fn of<D: SensitiveStep + ?Sized>(stepper: &D, sample: &TangentSample) -> Option<Self> {
+        Some(Self {
+            step: sample.step,
+            t: sample.state.t,
+            q: sample.state.q.clone(),
+            p: sample.state.p.clone(),
+            jacobian: sample.jacobian.clone(),
+            integrator: stepper.carried()?,
+        })
+    }
+
+    /// The sample to continue from.
+    pub fn sample(&self) -> TangentSample {
+        TangentSample {
+            step: self.step,
+            state: State {
+                t: self.t,
+                q: self.q.clone(),
+                p: self.p.clone(),
+            },
+            jacobian: self.jacobian.clone(),
+        }
+    }
 }

@@ -6,7 +6,9 @@ use super::common::{integrator, state};
 use crate::common::{assert_close, tight};
 use marsden::analysis::certificate::symplectic_defect;
 use marsden::discrete::rules::Galerkin;
-use marsden::sensitivity::{TangentOptions, tangent, tangent_watched};
+use marsden::sensitivity::{
+    TangentCheckpoint, TangentOptions, TangentSample, tangent, tangent_continued, tangent_watched,
+};
 use marsden::systems::{DampedOscillator, DoublePendulum, HarmonicOscillator, Kepler};
 use marsden::{Integrator, Midpoint, Rule, Termination, TimeGrid, Trapezoid};
 use std::ops::ControlFlow;
@@ -161,4 +163,65 @@ fn stop_flag_set_from_the_watcher_ends_the_tangent_run_with_the_steps_done() {
     };
     assert_eq!(steps(&stopped), [0, 10, 20, 30, 37]);
     assert_eq!(steps(&stopped), steps(&done));
+}
+
+/// A tangent run checkpointed at step 70 ([`TangentCheckpoint::of`]), stopped at 83, and
+/// continued from the checkpoint in a freshly built integrator ([`tangent_continued`]) gives
+/// the uninterrupted run's samples after step 70 and its final state and Jacobian bit for bit
+/// (Kepler, e = 0.6, midpoint: Newton's warm start is part of what is carried).
+#[test]
+fn a_tangent_run_continued_from_its_checkpoint_is_the_uninterrupted_run_bit_for_bit() {
+    let (q, p) = Kepler::pericentre(0.6);
+    let options = TangentOptions { every: 10 };
+    let grid = TimeGrid::new(0.0, 0.01, 200).unwrap();
+    let build = || integrator(Midpoint.discretize(Kepler::default()));
+    let whole = tangent(&mut build(), state(&q, &p), &grid, &options).unwrap();
+
+    let mut saved = None;
+    let watch = |vi: &_, s: &TangentSample| {
+        if s.step == 70 {
+            saved = TangentCheckpoint::of(vi, s);
+        }
+        match s.step {
+            83 => ControlFlow::Break(()),
+            _ => ControlFlow::Continue(()),
+        }
+    };
+    let mut first = Vec::new();
+    // 2n = 4 columns: no parameters.
+    let from = TangentSample::start(state(&q, &p), 4);
+    let mut vi = build();
+    let stopped = tangent_continued(&mut vi, from, &grid, &options, watch, &mut |s| {
+        first.push(s.clone());
+    })
+    .unwrap();
+    assert_eq!(stopped.termination, Termination::Stopped { steps: 83 });
+    let checkpoint = saved.expect("the integrator carries a checkpoint");
+    assert_eq!(checkpoint.step, 70);
+
+    let mut fresh = build();
+    marsden::sensitivity::SensitiveStep::restore_carried(&mut fresh, &checkpoint.integrator)
+        .unwrap();
+    let mut rest = Vec::new();
+    let never = |_: &_, _: &TangentSample| ControlFlow::Continue(());
+    let resumed = tangent_continued(
+        &mut fresh,
+        checkpoint.sample(),
+        &grid,
+        &options,
+        never,
+        &mut |s| rest.push(s.clone()),
+    )
+    .unwrap();
+    assert_eq!(resumed.termination, Termination::Completed);
+    assert_eq!(resumed.state, whole.state);
+    assert_eq!(resumed.jacobian, whole.jacobian);
+    let after: Vec<_> = whole
+        .samples
+        .iter()
+        .filter(|s| s.step > 70)
+        .cloned()
+        .collect();
+    assert_eq!(rest, after, "the samples after the checkpoint");
+    assert_eq!(first[..8], whole.samples[..8], "the samples before it");
 }

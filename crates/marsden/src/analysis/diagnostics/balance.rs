@@ -35,6 +35,7 @@ use crate::symmetry::{GroupAction, momentum_map, validate};
 
 /// The per-step momentum balance of one group action over a run.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BalanceReport {
     /// Name of the group action.
     pub symmetry: String,
@@ -50,6 +51,16 @@ pub struct BalanceReport {
     pub total_change: Vec<f64>,
     /// Accumulated impulse `Σ_k I_k`.
     pub total_impulse: Vec<f64>,
+}
+
+/// What a [`BalanceMonitor`] carries from one step to the next: the last state, the report so
+/// far, and why it refused its action (if it did).
+#[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct MonitorCarry {
+    previous: Option<(f64, Vec<f64>, Vec<f64>)>,
+    report: BalanceReport,
+    refused: Option<String>,
 }
 
 /// Evaluates the balance of consecutive states.
@@ -177,6 +188,30 @@ impl<'a, G: GroupAction, F: DiscreteForce> BalanceMonitor<'a, G, F> {
             grid: Some(*grid),
             ..Self::new(action, force, grid.h)
         }
+    }
+
+    /// What the monitor carries to the next step, for a checkpoint of the run
+    /// ([`BalanceMonitor::restore`]).
+    pub fn carried(&self) -> MonitorCarry {
+        MonitorCarry {
+            previous: self.previous.clone(),
+            report: self.balance.report.clone(),
+            refused: self.error.as_ref().map(ToString::to_string),
+        }
+    }
+
+    /// Restores what [`BalanceMonitor::carried`] gave, into a monitor of the same action and
+    /// force freshly built: the resumed run's balance goes on as the checkpointed one's (its
+    /// [`Observer::start`] is not called again). A monitor that had refused its action stays
+    /// refused, with the reason it gave.
+    pub fn restore(&mut self, carried: &MonitorCarry) {
+        self.previous.clone_from(&carried.previous);
+        self.balance.report.clone_from(&carried.report);
+        self.error = carried.refused.as_ref().map(|reason| {
+            Error::Input(crate::error::InputError::Restored {
+                reason: reason.clone(),
+            })
+        });
     }
 
     /// The report so far, or the error that stopped the monitor.

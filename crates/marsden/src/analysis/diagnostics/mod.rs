@@ -23,7 +23,7 @@ pub mod energy_balance;
 pub mod noether;
 mod slope;
 
-pub use balance::{BalanceMonitor, BalanceReport, force_balance};
+pub use balance::{BalanceMonitor, BalanceReport, MonitorCarry, force_balance};
 pub use constraint::{
     ConstraintMonitor, ConstraintReport, multiplier_series, projection_multiplier_series,
     residuals_at,
