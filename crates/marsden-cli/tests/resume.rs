@@ -413,3 +413,51 @@ fn a_version_one_checkpoint_fixture_still_resumes() {
         "the fixture's resumed trajectory differs"
     );
 }
+
+/// A forced run's checkpoint of format version 2 (its energy balance inside), kept as a fixture:
+/// its resume — the trajectory cut back from step 20000 to the checkpoint's 15000, the last
+/// 5000 steps run again — leaves the trajectory and the `summary.json` (balances included) of
+/// a fresh run of the same text.
+#[test]
+fn a_version_two_checkpoint_fixture_of_a_forced_run_still_resumes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("fixture");
+    std::fs::create_dir(&out).unwrap();
+    for name in ["checkpoint.bin", "trajectory.csv"] {
+        std::fs::copy(fixture("resume-v2").join(name), out.join(name)).unwrap();
+    }
+    let r = marsden_in(tmp.path(), &["resume", "fixture", "-q", "--no-progress"]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let file = tmp.path().join("p.toml");
+    let damped = pendulum("midpoint", 20_000)
+        .replace("[initial]", "forces = [\"-0.1*theta_dot\"]\n[initial]");
+    std::fs::write(&file, damped).unwrap();
+    let whole = tmp.path().join("whole");
+    assert!(spawn_run(&file, &whole, "15000").wait().unwrap().success());
+    let read = |d: &Path, name: &str| {
+        contents(d)
+            .into_iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, bytes)| bytes)
+    };
+    for name in ["trajectory.csv", "summary.json"] {
+        let resumed = read(&out, name).unwrap();
+        let resumed = String::from_utf8_lossy(&resumed);
+        let fresh = read(&whole, name).unwrap();
+        let fresh = String::from_utf8_lossy(&fresh);
+        // The fixture's problem file was elsewhere: the summaries name different paths.
+        let strip = |s: &str| -> String {
+            s.lines()
+                .filter(|l| !l.contains("\"problem_file\"") && !l.contains("\"dir\""))
+                .collect::<Vec<_>>()
+                .join("\n")
+        };
+        assert!(
+            strip(&resumed) == strip(&fresh),
+            "the fixture's resumed {name} differs"
+        );
+    }
+    assert!(
+        String::from_utf8_lossy(&read(&out, "summary.json").unwrap()).contains("energy_balance")
+    );
+}

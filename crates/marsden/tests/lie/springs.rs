@@ -128,7 +128,7 @@ fn r2_spring_oscillator_converges_at_order_two() {
 /// points as the spring: `x = e^{−ζωt}(x₀ cos ω_d t + (ζω x₀/ω_d) sin ω_d t)`, `ζ = c/(2√(km))`,
 /// `ω_d = ω√(1 − ζ²)`. The trapezoidal Lagrange–d'Alembert forces keep order 2.
 #[test]
-fn r12_damped_spring_decays_as_the_closed_form_at_order_two() {
+fn damped_spring_of_r12s_system_decays_as_the_closed_form_at_order_two() {
     let c = 0.8;
     let omega = (K / M).sqrt();
     let zeta = c / (2.0 * (K * M).sqrt());
@@ -159,7 +159,7 @@ fn r12_damped_spring_decays_as_the_closed_form_at_order_two() {
 /// damping), and the run loses what the closed form loses over `t = 10` (R12's `E` decays as
 /// `e^{−2ζωt}` on average).
 #[test]
-fn r12_damped_spring_energy_decreases_every_step() {
+fn damped_spring_of_r12s_system_loses_energy_every_step() {
     let c = 0.8;
     let mut lgvi = oscillator(0.01, c);
     let mut energy = invariants::energy(lgvi.system(), lgvi.state());
