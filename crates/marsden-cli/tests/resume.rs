@@ -193,7 +193,7 @@ fn sigkill_at_random_moments_then_resume_equals_the_uninterrupted_run() {
         for attempt in 0..3 {
             let out = tmp.path().join(format!("killed-{attempt}"));
             let seed = (c * 10 + attempt) as u64;
-            killed_running += usize::from(killed_and_resumed(&case, &file, &out, delay(seed, 400)));
+            killed_running += usize::from(killed_and_resumed(case, &file, &out, delay(seed, 400)));
             let found = contents(&out);
             let names =
                 |v: &[(String, Vec<u8>)]| v.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>();
