@@ -313,7 +313,12 @@ fn the_tangent_run_resumes_from_its_own_checkpoint() {
     assert_eq!(bytes[first_row], b'0');
     bytes[first_row] = b'7';
     std::fs::write(&csv, &bytes).unwrap();
-    let resumed = marsden_in(tmp.path(), &["resume", "out", "-q", "--no-progress"]);
+    let resumed = marsden_in(tmp.path(), &["resume", "out", "--no-progress"]);
+    let said = String::from_utf8_lossy(&resumed.stdout);
+    assert!(
+        said.contains("then its tangent run ([sensitivity]) from step 4000"),
+        "{said}"
+    );
     assert!(
         resumed.status.success(),
         "{}",

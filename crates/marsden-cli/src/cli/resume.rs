@@ -12,6 +12,15 @@ use super::ResumeArgs;
 use super::run::{conclude, conclude_sweep, stop_on_ctrl_c, with_controls};
 use crate::error::{CliError, Status};
 
+/// The step of the tangent run's checkpoint in `dir`, if there is a readable one (an unreadable
+/// one is refused by the resume itself, with the reason).
+fn tangent_step(dir: &std::path::Path) -> Option<usize> {
+    use marsden_spec::run::checkpoint::{file, tangent};
+    let path = dir.join(tangent::SENSITIVITY_CHECKPOINT_FILE);
+    let found: tangent::SensitivityCheckpoint = file::load(&path).ok()?;
+    Some(found.tangent.step)
+}
+
 /// Continues the run (or the sweep) in `args.dir`.
 pub fn resume(args: &ResumeArgs) -> Result<Status, CliError> {
     let checkpoint = match resume::find(&args.dir, args.shard)? {
@@ -26,6 +35,9 @@ pub fn resume(args: &ResumeArgs) -> Result<Status, CliError> {
             checkpoint.t,
             args.dir.display()
         );
+        if let Some(step) = tangent_step(&args.dir) {
+            println!("  then its tangent run ([sensitivity]) from step {step}, its own checkpoint");
+        }
     }
     let (spec, outcome) = with_controls(args.no_progress, |controls| {
         resume::resume_from(&args.dir, checkpoint, controls)

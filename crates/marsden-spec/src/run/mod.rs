@@ -35,8 +35,9 @@ pub mod sweep_writer;
 
 pub use execute::{Outcome, Store, execute, execute_from};
 pub use marsden_engine::{
-    CHECK_EVERY, Controls, Progress, RunRecord, balance, certify, controls, diagnostics, discrete,
-    engine, noether_balance, observer, sensitivity, solve, start, step_system,
+    CHECK_EVERY, Controls, Progress, RunRecord, balance, certify, checkpoint, controls,
+    diagnostics, discrete, engine, noether_balance, observer, sensitivity, solve, start,
+    step_system,
 };
 pub use samples::Samples;
 pub use summary::{RunStatus, Summary};
