@@ -52,13 +52,30 @@ fn empty_observer(bencher: Bencher) {
     });
 }
 
-/// The same run with the event detector.
+/// The same run with the event detector on θ, declared not to read `v`
+/// ([`Event::without_velocity`]): one evaluation of g per step.
 #[divan::bench]
 fn with_event(bencher: Bencher) {
     let Some(problem) = problem() else { return };
     let options = options();
     let theta = |_t: f64, q: &[f64], _v: &[f64], _p: &[f64]| q[0];
-    let events = vec![Event::record(theta, Direction::Down)];
+    let events = vec![Event::record(theta, Direction::Down).without_velocity()];
+    let Ok(mut detector) = EventDetector::new(problem.lagrangian(), events) else {
+        return;
+    };
+    bencher.bench_local(|| {
+        divan::black_box(problem.solve_with(&Midpoint, &options, &mut detector)).is_ok()
+    });
+}
+
+/// The same run with an event on θ̇ (the turning points, falling through zero: 6 of them):
+/// one evaluation of g and one inverse Legendre transform per step.
+#[divan::bench]
+fn with_velocity_event(bencher: Bencher) {
+    let Some(problem) = problem() else { return };
+    let options = options();
+    let theta_dot = |_t: f64, _q: &[f64], v: &[f64], _p: &[f64]| v[0];
+    let events = vec![Event::record(theta_dot, Direction::Down)];
     let Ok(mut detector) = EventDetector::new(problem.lagrangian(), events) else {
         return;
     };
