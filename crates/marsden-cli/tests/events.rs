@@ -111,7 +111,7 @@ when = \"w\"",
     let table = events(&run);
     let (event, t) = (column(&table, "event"), column(&table, "t"));
     for which in [0.0, 1.0] {
-        let times: Vec<f64> = (t.iter().zip(&event))
+        let times: Vec<f64> = (t.iter().zip(event))
             .filter(|(_, e)| **e == which)
             .map(|(t, _)| *t)
             .collect();
