@@ -118,7 +118,10 @@ when = \"w\"",
         assert_eq!(times.len(), 6, "{times:?}");
         for (j, t) in times.iter().enumerate() {
             let exact = (j + 1) as f64 * period / 2.0;
-            assert!((t - exact).abs() < 1e-3, "event {which}: t = {t}, jT/2 = {exact}");
+            assert!(
+                (t - exact).abs() < 1e-3,
+                "event {which}: t = {t}, jT/2 = {exact}"
+            );
         }
     }
 }

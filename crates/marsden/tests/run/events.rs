@@ -260,7 +260,11 @@ fn r07_pendulum_turning_points_read_v_and_converge_at_order_two() {
         let events = vec![Event::record(theta_dot as G, Direction::Both)];
         let (run, records) = detect(&pendulum(h, steps), &Midpoint, events);
         assert_eq!(run.termination, Termination::Completed);
-        assert_eq!(records.len(), 4, "h = {h}: four turning points in 2.2 periods");
+        assert_eq!(
+            records.len(),
+            4,
+            "h = {h}: four turning points in 2.2 periods"
+        );
         let mut worst: f64 = 0.0;
         for (j, record) in records.iter().enumerate() {
             let expected = if j % 2 == 0 {
@@ -271,7 +275,11 @@ fn r07_pendulum_turning_points_read_v_and_converge_at_order_two() {
             assert_eq!(record.direction, expected);
             assert!(record.v[0].abs() < 1e-12, "θ̇ at the event: {}", record.v[0]);
             // At a turning point |θ| = θ₀ up to the run's O(h²) energy error.
-            assert!((record.q[0].abs() - 1.5).abs() < h * h, "θ = {}", record.q[0]);
+            assert!(
+                (record.q[0].abs() - 1.5).abs() < h * h,
+                "θ = {}",
+                record.q[0]
+            );
             let error = (record.t - (j + 1) as f64 * period / 2.0).abs();
             assert!(error < 0.05 * h, "h = {h}: event error {error:.3e}");
             worst = worst.max(error);

@@ -251,8 +251,8 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
     fn end_velocities(&mut self) -> Result<(), Error> {
         let (before, after) = (&mut self.before, &mut self.after);
         let h = after.t - before.t;
-        for ((v0, v1), (q0, q1)) in (before.v.iter_mut().zip(after.v.iter_mut()))
-            .zip(before.q.iter().zip(&after.q))
+        for ((v0, v1), (q0, q1)) in
+            (before.v.iter_mut().zip(after.v.iter_mut())).zip(before.q.iter().zip(&after.q))
         {
             *v0 = (q1 - q0) / h;
             *v1 = *v0;
