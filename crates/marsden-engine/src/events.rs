@@ -5,8 +5,9 @@
 //!
 //! A file without events is watched by nothing: [`Watched`] then forwards every call to the
 //! streaming observer unchanged (same steps seen, same rows written). With events the run is
-//! observed at every step: the detector evaluates each `g` once per step and locates a sign
-//! change on the step's Hermite interpolant (Brent's method).
+//! observed at every step: the detector evaluates each `g` once per step (with the velocities,
+//! an inverse Legendre transform, only if some `when` reads them) and locates a sign change on
+//! the step's Hermite interpolant (Brent's method).
 
 use std::ops::ControlFlow;
 
@@ -82,9 +83,11 @@ impl<'a, 's, L: Lagrangian, O: Observer> Watched<'a, 's, L, O> {
         if spec.events.is_empty() {
             return Ok(Self::without_events(inner));
         }
+        let n = lagrangian.dof();
         let events = (spec.events.iter())
             .zip(spec.functions())
             .map(|(e, function)| Event {
+                reads_velocity: reads_velocity(&function, n),
                 function,
                 direction: e.direction,
                 action: e.action,
@@ -174,6 +177,19 @@ impl<'a, 's, L: Lagrangian, O: Observer> Watched<'a, 's, L, O> {
         }
         ControlFlow::Continue(())
     }
+}
+
+/// Whether the event's `when` reads a velocity (input slots `n … 2n − 1` of the inputs
+/// `[q…, q̇…, p…, t, observables…]`), itself or through an observable it names (slots past
+/// `3n`, `t`): if no event does, the detector computes the velocities only at a step where a
+/// sign change was found.
+fn reads_velocity(event: &ExprEvent<'_>, n: usize) -> bool {
+    let velocity = |slots: &[usize]| slots.iter().any(|slot| (n..2 * n).contains(slot));
+    let used = event.when.inputs_used();
+    let observables = used.iter().any(|&slot| slot > 3 * n);
+    velocity(used)
+        || observables
+            && (event.observables.programs.iter()).any(|program| velocity(program.inputs_used()))
 }
 
 /// `row ← [event, t, q…, p…]`.

@@ -1,10 +1,24 @@
 //! The cost of watching a run for events (`marsden::run::events`): the pendulum's midpoint run
-//! of 1000 steps (h = 0.05, θ₀ = 1.5) alone and with an event detector on θ (falling through
-//! zero, recorded: it fires 6 times in the run, otherwise one evaluation of g and one inverse
-//! Legendre transform per step). The budget: the detector adds at most 5 % to the run.
+//! of 1000 steps (h = 0.05, θ₀ = 1.5) alone, with an observer that does nothing, with an event
+//! detector on θ (falling through zero, recorded, declared not to read `v`: one evaluation of g
+//! per step, the velocities only at the 6 steps where it fires) and with one on θ̇ (which reads
+//! `v`: one inverse Legendre transform per step as well). The budget: the detector adds at most
+//! 5 % to the run.
 //!
-//! Measured once (shared 2-core machine, medians): plain 85.6 µs, empty observer 89.1 µs
-//! (+4 %), detector 109.5 µs (+28 %): over the 5 % budget, to be brought down.
+//! Measured 2026-11-29 (shared 2-core machine under load, the two builds run in turn, medians
+//! of 3 runs; instructions per step from callgrind, the machine has no hardware counters):
+//!
+//! | run | before (c1ec769) | after (022d3b6) | instructions/step (after) |
+//! |---|---|---|---|
+//! | plain | 85.7 µs | 87.4 µs | 1 066.6 |
+//! | empty observer | 90.4 µs (+6 %) | 93.7 µs (+7 %) | 1 214.7 (+14 %) |
+//! | detector on θ | 115.7 µs (+35 %; 1 514.5 instr., +42 %) | 108.6 µs (**+24 %**) | 1 418.6 (+33 %) |
+//! | detector on θ̇ | – | 113.2 µs (+30 %) | 1 496.4 (+40 %) |
+//!
+//! Over the 5 % budget still: half of what is left is the run loop's cost of showing every
+//! step to an observer (the empty observer's +14 % in instructions), the rest the detector's
+//! own ≈ 200 instructions per step (the evaluation of g, two copies of the state, the sign
+//! test), down from 300.
 //!
 //! `flock /work/release.lock cargo bench -p marsden --bench events`
 
@@ -52,13 +66,30 @@ fn empty_observer(bencher: Bencher) {
     });
 }
 
-/// The same run with the event detector.
+/// The same run with the event detector on θ, declared not to read `v`
+/// ([`Event::without_velocity`]): one evaluation of g per step.
 #[divan::bench]
 fn with_event(bencher: Bencher) {
     let Some(problem) = problem() else { return };
     let options = options();
     let theta = |_t: f64, q: &[f64], _v: &[f64], _p: &[f64]| q[0];
-    let events = vec![Event::record(theta, Direction::Down)];
+    let events = vec![Event::record(theta, Direction::Down).without_velocity()];
+    let Ok(mut detector) = EventDetector::new(problem.lagrangian(), events) else {
+        return;
+    };
+    bencher.bench_local(|| {
+        divan::black_box(problem.solve_with(&Midpoint, &options, &mut detector)).is_ok()
+    });
+}
+
+/// The same run with an event on θ̇ (the turning points, falling through zero: 6 of them):
+/// one evaluation of g and one inverse Legendre transform per step.
+#[divan::bench]
+fn with_velocity_event(bencher: Bencher) {
+    let Some(problem) = problem() else { return };
+    let options = options();
+    let theta_dot = |_t: f64, _q: &[f64], v: &[f64], _p: &[f64]| v[0];
+    let events = vec![Event::record(theta_dot, Direction::Down)];
     let Ok(mut detector) = EventDetector::new(problem.lagrangian(), events) else {
         return;
     };

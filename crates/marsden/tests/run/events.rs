@@ -9,6 +9,8 @@ use marsden::{
     Initial, Midpoint, Problem, Rule, RunOptions, SolveOptions, Termination, TimeGrid, Trapezoid,
 };
 
+use std::ops::Range;
+
 use crate::common::{loglog_slope, tight};
 
 /// An event function as a plain function pointer, so that several share one type.
@@ -238,4 +240,177 @@ fn non_finite_event_fails_the_run_and_keeps_the_trajectory() {
         StepError::EventNotFinite { event: 0, .. }
     ));
     assert_eq!(failure.trajectory.steps, 6);
+}
+
+/// `θ̇`: zero at the pendulum's turning points.
+fn theta_dot(_t: f64, _q: &[f64], v: &[f64], _p: &[f64]) -> f64 {
+    v[0]
+}
+
+/// An event that reads `v`: released at rest from θ₀ = 1.5, the pendulum turns (θ̇ = 0) at
+/// t = jT/2, T = 4K(k²), k = sin(θ₀/2) (R7, the period of R8's system), θ̇ rising through zero
+/// at odd j and falling at even j. The detector computes `v = FL⁻¹(q, p)` at every step for
+/// it; the located times converge at the midpoint rule's order 2 (fitted over h = 0.1 …
+/// 0.0125), within h/20 of the exact ones, with θ̇ = 0 on the interpolant at the event.
+#[test]
+fn r07_pendulum_turning_points_read_v_and_converge_at_order_two() {
+    let period = Pendulum::default().period(1.5).unwrap();
+    let steps_sizes = [0.1, 0.05, 0.025, 0.0125];
+    let mut errors = Vec::new();
+    for &h in &steps_sizes {
+        let steps = (2.2 * period / h).ceil() as usize;
+        let events = vec![Event::record(theta_dot as G, Direction::Both)];
+        let (run, records) = detect(&pendulum(h, steps), &Midpoint, events);
+        assert_eq!(run.termination, Termination::Completed);
+        assert_eq!(
+            records.len(),
+            4,
+            "h = {h}: four turning points in 2.2 periods"
+        );
+        let mut worst: f64 = 0.0;
+        for (j, record) in records.iter().enumerate() {
+            let expected = if j % 2 == 0 {
+                Direction::Up
+            } else {
+                Direction::Down
+            };
+            assert_eq!(record.direction, expected);
+            assert!(record.v[0].abs() < 1e-12, "θ̇ at the event: {}", record.v[0]);
+            // At a turning point |θ| = θ₀ up to the run's O(h²) energy error.
+            assert!(
+                (record.q[0].abs() - 1.5).abs() < h * h,
+                "θ = {}",
+                record.q[0]
+            );
+            let error = (record.t - (j + 1) as f64 * period / 2.0).abs();
+            assert!(error < 0.05 * h, "h = {h}: event error {error:.3e}");
+            worst = worst.max(error);
+        }
+        errors.push(worst);
+    }
+    let slope = loglog_slope(&steps_sizes, &errors);
+    assert!(
+        (slope - 2.0).abs() < 0.2,
+        "order {slope} (errors {errors:?})"
+    );
+}
+
+/// An event declared not to read `v` ([`Event::without_velocity`]) has its velocities computed
+/// only at the ends of a step with a sign change. For the pendulum (mass 1) `v = p` whichever
+/// way it is computed, so the located crossings of θ — times, states, velocities — are those
+/// of the same event computing `v` at every step, bit for bit, over three periods.
+#[test]
+fn velocities_at_the_crossing_alone_locate_the_same_events() {
+    let period = Pendulum::default().period(1.5).unwrap();
+    let h = 0.05;
+    let problem = pendulum(h, (3.0 * period / h) as usize);
+    let every_step = vec![Event::record(theta as G, Direction::Both)];
+    let at_crossings = vec![Event::record(theta as G, Direction::Both).without_velocity()];
+    let (run, records) = detect(&problem, &Midpoint, every_step);
+    let (lazy_run, lazy_records) = detect(&problem, &Midpoint, at_crossings);
+    assert_eq!(records.len(), 6);
+    assert_eq!(records, lazy_records);
+    assert_eq!(run, lazy_run);
+    // The records carry the interpolant's velocities, not the NaN g was shown.
+    assert!(lazy_records.iter().all(|r| r.v[0].is_finite()));
+}
+
+/// A `g` declared not to read `v` that reads it all the same sees NaN velocities: the run fails
+/// at its first step with a typed error naming the event, instead of reading stale numbers.
+#[test]
+fn an_event_reading_v_declared_without_it_fails_the_run() {
+    let problem = pendulum(0.1, 20);
+    let events = vec![Event::record(theta_dot as G, Direction::Both).without_velocity()];
+    let mut detector = EventDetector::new(problem.lagrangian(), events).unwrap();
+    let failure = problem
+        .solve_with(&Midpoint, &options(), &mut detector)
+        .unwrap_err();
+    let Error::Step(step) = &failure.error else {
+        panic!("{:?}", failure.error)
+    };
+    assert!(matches!(
+        step.cause,
+        StepError::EventNotFinite { event: 0, .. }
+    ));
+}
+
+/// The pendulum without its declared mass matrix: the detector's inverse Legendre transform
+/// is then the general one, Newton's method on `∂L/∂v = p`.
+struct Undeclared(Pendulum);
+
+impl marsden::Lagrangian for Undeclared {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn lagrangian<S: marsden::Scalar>(&self, t: S, q: &[S], v: &[S]) -> S {
+        self.0.lagrangian(t, q, v)
+    }
+}
+
+/// The views of a stored run (every step), as the run loop shows them to an observer.
+fn feed<O: marsden::Observer>(observer: &mut O, run: &marsden::Trajectory, steps: Range<usize>) {
+    let report = marsden::StepReport::default();
+    for k in steps {
+        let view = marsden::StepView {
+            step: k,
+            t: run.times[k],
+            q: &run.positions[k..k + 1],
+            p: &run.momenta[k..k + 1],
+            multipliers: &[],
+            end_multipliers: &[],
+            report: &report,
+        };
+        if k == 0 {
+            observer.start(&view);
+        } else {
+            assert!(observer.observe(&view).is_continue());
+        }
+    }
+}
+
+/// With the general inverse Legendre transform, velocities computed only at the crossings (from
+/// the secant guess) and at every step (from the previous velocities) locate R7's zeros of θ
+/// (t = T/4 + jT/2) alike, to Newton's tolerance, both within h/20 of the closed form; and a
+/// detector checkpointed half-way (through postcard's bytes) and restored into a fresh one
+/// locates the rest to the bit, as the uninterrupted one.
+#[test]
+fn r07_general_inverse_at_the_crossings_alone_resumes_bit_for_bit() {
+    let period = Pendulum::default().period(1.5).unwrap();
+    let h = 0.05;
+    let steps = (3.0 * period / h) as usize;
+    let grid = TimeGrid::new(0.0, h, steps).unwrap();
+    let lagrangian = Undeclared(Pendulum::default());
+    let problem = Problem::new(lagrangian, Initial::velocity(&[1.5], &[0.0]), grid).unwrap();
+    let run = problem.solve(&Midpoint, &options()).unwrap();
+    assert_eq!(run.times.len(), steps + 1, "every step stored");
+    let lazy = || Event::record(theta as G, Direction::Both).without_velocity();
+    let detector = |event: Event<G>| EventDetector::new(problem.lagrangian(), vec![event]).unwrap();
+
+    let mut every_step = detector(Event::record(theta as G, Direction::Both));
+    feed(&mut every_step, &run, 0..steps + 1);
+    let mut whole = detector(lazy());
+    feed(&mut whole, &run, 0..steps + 1);
+    assert_eq!(whole.records().len(), 6);
+    for (j, (a, b)) in whole.records().iter().zip(every_step.records()).enumerate() {
+        assert!((a.t - b.t).abs() < 1e-12, "{} against {}", a.t, b.t);
+        let exact = (2 * j + 1) as f64 * period / 4.0;
+        assert!((a.t - exact).abs() < 0.05 * h, "t = {}, exact {exact}", a.t);
+    }
+
+    let half = steps / 2;
+    let mut first = detector(lazy());
+    feed(&mut first, &run, 0..half + 1);
+    let bytes = postcard::to_allocvec(&first.checkpoint()).unwrap();
+    let checkpoint: marsden::run::events::DetectorCheckpoint =
+        postcard::from_bytes(&bytes).unwrap();
+    let mut resumed = detector(lazy());
+    resumed.restore(&checkpoint).unwrap();
+    feed(&mut resumed, &run, half + 1..steps + 1);
+    let bits = |records: &[EventRecord]| -> Vec<(u64, u64, u64)> {
+        (records.iter())
+            .map(|r| (r.t.to_bits(), r.q[0].to_bits(), r.v[0].to_bits()))
+            .collect()
+    };
+    assert!(first.records().len() < 6 && !first.records().is_empty());
+    assert_eq!(bits(resumed.records()), bits(whole.records()));
 }

@@ -3,6 +3,8 @@
 
 use std::ops::ControlFlow;
 
+mod checkpoint;
+
 use super::interpolant::HermiteStep;
 use super::legendre::LegendreMaps;
 use super::{Action, Direction, Event, EventFunction, EventRecord};
@@ -11,6 +13,8 @@ use crate::mechanics::Lagrangian;
 use crate::numerics::brent::{self, BrentOptions, RootError};
 use crate::run::observer::{Observer, StepView};
 use crate::run::trajectory::Termination;
+
+pub use checkpoint::DetectorCheckpoint;
 
 /// Evaluations of `g` allowed to locate one crossing (Brent's method needs about ten on smooth
 /// functions; bisection of a step to round-off needs 53).
@@ -39,16 +43,6 @@ impl Point {
     }
 }
 
-/// What an [`EventDetector`] carries from one step to the next ([`EventDetector::checkpoint`]).
-#[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct DetectorCheckpoint {
-    before: Point,
-    g_before: Vec<f64>,
-    crossings: Vec<usize>,
-    records: Vec<EventRecord>,
-}
-
 /// A sign change found at the end of a step, located.
 #[derive(Debug, Clone, Copy)]
 struct Crossing {
@@ -64,7 +58,14 @@ struct Crossing {
 pub struct EventDetector<'l, L, G> {
     legendre: LegendreMaps<'l, L>,
     events: Vec<Event<G>>,
-    /// The state before the step being looked at, and the new one.
+    /// Whether some event reads `v`: then `v` is computed at every step; otherwise only at the
+    /// two ends of a step where a sign change was found.
+    velocities_every_step: bool,
+    /// NaN: the velocities an event that does not read them is shown.
+    no_velocity: Vec<f64>,
+    /// The state before the step being looked at, and the new one: the new state is read from
+    /// the run's view, and copied here only at a step with a sign change (its velocities at
+    /// every step if an event reads them).
     before: Point,
     after: Point,
     /// `g` of every event at `before` and at `after`.
@@ -99,6 +100,8 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
         let m = events.len();
         Ok(Self {
             legendre: LegendreMaps::new(lagrangian)?,
+            velocities_every_step: events.iter().any(|e| e.reads_velocity),
+            no_velocity: vec![f64::NAN; n],
             events,
             before: Point::empty(n),
             after: Point::empty(n),
@@ -126,79 +129,79 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
         &self.events
     }
 
-    /// What the detector carries to the next step, for a checkpoint of the run: the state the
-    /// next step starts from with its velocities and `g` there, the crossings counted and the
-    /// records located so far.
-    pub fn checkpoint(&self) -> DetectorCheckpoint {
-        DetectorCheckpoint {
-            before: self.before.clone(),
-            g_before: self.g_before.clone(),
-            crossings: self.crossings.clone(),
-            records: self.records.clone(),
-        }
-    }
-
-    /// Restores a [`EventDetector::checkpoint`] of a detector of the same events: the next
-    /// step is looked at as the checkpointed detector would have.
-    ///
-    /// # Errors
-    /// [`InputError::DimensionMismatch`] if the checkpoint has another number of events or
-    /// coordinates; the detector is then unchanged.
-    pub fn restore(&mut self, checkpoint: &DetectorCheckpoint) -> Result<(), Error> {
-        let sizes = [
-            (
-                "checkpoint events",
-                self.g_before.len(),
-                checkpoint.g_before.len(),
-            ),
-            (
-                "checkpoint coordinates",
-                self.before.q.len(),
-                checkpoint.before.q.len(),
-            ),
-        ];
-        for (what, expected, found) in sizes {
-            if expected != found {
-                return Err(Error::Input(InputError::DimensionMismatch {
-                    what,
-                    expected,
-                    found,
-                }));
-            }
-        }
-        self.before.clone_from(&checkpoint.before);
-        self.g_before.clone_from(&checkpoint.g_before);
-        self.crossings.clone_from(&checkpoint.crossings);
-        self.records.clone_from(&checkpoint.records);
-        self.ending = None;
-        Ok(())
-    }
-
-    /// `after` ← the view's state with its velocities, and `g_after` ← `g` there.
-    fn take(&mut self, view: &StepView<'_>) -> Result<(), Error> {
-        let after = &mut self.after;
-        after.step = view.step;
-        after.t = view.t;
-        after.q.copy_from_slice(view.q);
-        after.p.copy_from_slice(view.p);
-        // The previous velocities are the general inverse's first guess.
-        after.v.copy_from_slice(&self.before.v);
-        let step = view.step.saturating_sub(1);
-        self.legendre
-            .velocity(after.t, &after.q, &after.p, &mut after.v)?;
+    /// `g_after` ← `g` at the view's state (and `after.v` ← its velocities first, if an event
+    /// reads them). Nothing is copied: the state is read from the view.
+    fn evaluate(&mut self, view: &StepView<'_>) -> Result<(), Error> {
+        let v = if self.velocities_every_step {
+            // The previous velocities are the general inverse's first guess.
+            let v = &mut self.after.v;
+            v.copy_from_slice(&self.before.v);
+            self.legendre.velocity(view.t, view.q, view.p, v)?;
+            &self.after.v
+        } else {
+            &self.no_velocity
+        };
         for (i, event) in self.events.iter().enumerate() {
-            let g = event.function.value(after.t, &after.q, &after.v, &after.p);
+            let g = event.function.value(view.t, view.q, v, view.p);
             if !g.is_finite() {
                 let cause = StepError::EventNotFinite {
                     event: i,
-                    at: after.t,
+                    at: view.t,
                     value: g,
                 };
+                let step = view.step.saturating_sub(1);
                 return Err(Error::step(step, self.before.t, cause));
             }
             self.g_after[i] = g;
         }
         Ok(())
+    }
+
+    /// `after` ← the view's state, to locate a crossing in the step (its velocities are
+    /// already there if computed at every step).
+    fn keep_after(&mut self, view: &StepView<'_>) {
+        let after = &mut self.after;
+        after.step = view.step;
+        after.t = view.t;
+        after.q.copy_from_slice(view.q);
+        after.p.copy_from_slice(view.p);
+    }
+
+    /// `before` ← the view's state with its velocities and `g`: the next step starts there.
+    fn advance(&mut self, view: &StepView<'_>) {
+        let before = &mut self.before;
+        before.step = view.step;
+        before.t = view.t;
+        before.q.copy_from_slice(view.q);
+        before.p.copy_from_slice(view.p);
+        std::mem::swap(&mut before.v, &mut self.after.v);
+        std::mem::swap(&mut self.g_before, &mut self.g_after);
+    }
+
+    /// Whether some event's `g` changed sign in its direction over the step.
+    fn any_sign_change(&self) -> bool {
+        (self.events.iter())
+            .zip(self.g_before.iter().zip(&self.g_after))
+            .any(|(event, (&g0, &g1))| event.direction.crosses(g0, g1))
+    }
+
+    /// The velocities at both ends of the step, when they are not computed at every step: the
+    /// general inverse starts both from the secant `(q_{k+1} − q_k)/h`, a guess that depends on
+    /// the two states alone, so a run resumed from a checkpoint locates the same events to the
+    /// bit.
+    fn end_velocities(&mut self) -> Result<(), Error> {
+        let (before, after) = (&mut self.before, &mut self.after);
+        let h = after.t - before.t;
+        for ((v0, v1), (q0, q1)) in
+            (before.v.iter_mut().zip(after.v.iter_mut())).zip(before.q.iter().zip(&after.q))
+        {
+            *v0 = (q1 - q0) / h;
+            *v1 = *v0;
+        }
+        self.legendre
+            .velocity(before.t, &before.q, &before.p, &mut before.v)?;
+        self.legendre
+            .velocity(after.t, &after.q, &after.p, &mut after.v)
     }
 
     /// The crossings of the step from `before` to `after`, located, earliest first.
@@ -334,31 +337,43 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
     }
 }
 
+impl<L: Lagrangian, G: EventFunction> EventDetector<'_, L, G> {
+    /// Takes the step `view` ends, and locates and acts on its crossings, if any.
+    fn look_at(&mut self, view: &StepView<'_>) -> Result<(), Error> {
+        self.evaluate(view)?;
+        if !self.any_sign_change() {
+            return Ok(());
+        }
+        self.keep_after(view);
+        if !self.velocities_every_step {
+            self.end_velocities()?;
+        }
+        let crossings = self.crossings_in_step()?;
+        self.act(crossings);
+        Ok(())
+    }
+}
+
 impl<L: Lagrangian, G: EventFunction> Observer for EventDetector<'_, L, G> {
     fn start(&mut self, initial: &StepView<'_>) {
         self.records.clear();
         self.crossings.iter_mut().for_each(|c| *c = 0);
         self.ending = None;
         self.before.v.iter_mut().for_each(|v| *v = 0.0);
-        if let Err(error) = self.take(initial) {
+        if let Err(error) = self.evaluate(initial) {
             self.ending = Some(Termination::Failed(error));
         }
-        std::mem::swap(&mut self.before, &mut self.after);
-        std::mem::swap(&mut self.g_before, &mut self.g_after);
+        self.advance(initial);
     }
 
     fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()> {
         if self.ending.is_some() {
             return ControlFlow::Break(());
         }
-        let located = self.take(view).and_then(|()| self.crossings_in_step());
-        match located {
-            Ok(crossings) if !crossings.is_empty() => self.act(crossings),
-            Ok(_) => {}
-            Err(error) => self.ending = Some(Termination::Failed(error)),
+        if let Err(error) = self.look_at(view) {
+            self.ending = Some(Termination::Failed(error));
         }
-        std::mem::swap(&mut self.before, &mut self.after);
-        std::mem::swap(&mut self.g_before, &mut self.g_after);
+        self.advance(view);
         match self.ending {
             Some(_) => ControlFlow::Break(()),
             None => ControlFlow::Continue(()),

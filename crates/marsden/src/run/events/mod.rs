@@ -5,10 +5,16 @@
 //! watches (`g` rising through zero, falling, or both), an [`Action`] (record each crossing, or
 //! stop the run) and an optional count (stop at the n-th crossing; record at most n). The
 //! [`EventDetector`] is an [`Observer`](super::Observer): after each step it evaluates every
-//! event once at the new state `(t_{k+1}, q_{k+1}, v_{k+1}, p_{k+1})`, `v = FL⁻¹(q, p)` — one
-//! evaluation and one inverse Legendre transform per step while nothing fires — and on a sign
-//! change locates the root inside the step on the step's cubic Hermite interpolant
-//! ([`interpolant`]) with Brent's method ([`crate::numerics::brent`]). A crossing becomes an
+//! event once at the new state `(t_{k+1}, q_{k+1}, v_{k+1}, p_{k+1})` — one evaluation of each
+//! `g` per step while nothing fires — and on a sign change locates the root inside the step on
+//! the step's cubic Hermite interpolant ([`interpolant`]) with Brent's method
+//! ([`crate::numerics::brent`]). The velocities `v = FL⁻¹(q, p)` cost an inverse Legendre
+//! transform (a Newton solve for a Lagrangian without a declared mass matrix): they are computed
+//! at every step only when some event's `g` reads them ([`Event::reads_velocity`]); otherwise
+//! only at the two ends of a step where a sign change was found, for the interpolant, and `g`
+//! is shown NaN velocities (so that a `g` wrongly declared not to read `v` fails the run with
+//! [`StepError::EventNotFinite`](crate::error::StepError::EventNotFinite) instead of reading
+//! stale numbers). A crossing becomes an
 //! [`EventRecord`] `(event, t, q, v, p)`; a stopping event ends the run after its step with
 //! [`Termination::Event`](super::Termination::Event).
 //!
@@ -27,7 +33,9 @@
 //! let problem = Problem::new(pendulum, Initial::velocity(&[1.5], &[0.0]), grid)?;
 //! // θ falls through zero a quarter period after release, T/4 = K(sin²0.75) = 1.8252…
 //! let theta = |_t: f64, q: &[f64], _v: &[f64], _p: &[f64]| q[0];
-//! let mut detector = EventDetector::new(problem.lagrangian(), vec![Event::stop(theta, Direction::Down)])?;
+//! // g reads θ only: the velocities are computed at the crossing's step alone.
+//! let events = vec![Event::stop(theta, Direction::Down).without_velocity()];
+//! let mut detector = EventDetector::new(problem.lagrangian(), events)?;
 //! let run = problem.solve_with(&Midpoint, &SolveOptions::default(), &mut detector)?;
 //! let quarter = pendulum.period(1.5)? / 4.0;
 //! assert!(matches!(run.termination, Termination::Event { event: 0, steps: 183, .. }));
@@ -101,6 +109,10 @@ pub struct Event<G> {
     /// `Stop`: stop at this crossing (1 = the first; the earlier ones are recorded).
     /// `Record`: record at most this many. `None`: 1 for `Stop`, no limit for `Record`.
     pub count: Option<usize>,
+    /// Whether `g` reads the velocities `v` (its third argument). True unless declared
+    /// otherwise ([`Event::without_velocity`]): if no event reads them, the detector computes
+    /// them only at the ends of a step with a sign change, and `g` sees NaN in their place.
+    pub reads_velocity: bool,
 }
 
 impl<G: EventFunction> Event<G> {
@@ -111,6 +123,7 @@ impl<G: EventFunction> Event<G> {
             direction,
             action: Action::Record,
             count: None,
+            reads_velocity: true,
         }
     }
 
@@ -121,6 +134,7 @@ impl<G: EventFunction> Event<G> {
             direction,
             action: Action::Stop,
             count: None,
+            reads_velocity: true,
         }
     }
 
@@ -129,6 +143,17 @@ impl<G: EventFunction> Event<G> {
     pub fn count(self, n: usize) -> Self {
         Self {
             count: Some(n),
+            ..self
+        }
+    }
+
+    /// Declares that `g` reads only `t`, `q` and `p`, not `v`: the detector then skips the
+    /// inverse Legendre transform at the steps where nothing fires (`g` is shown NaN
+    /// velocities, so a `g` that reads them after all fails the run rather than reading stale
+    /// numbers).
+    pub fn without_velocity(self) -> Self {
+        Self {
+            reads_velocity: false,
             ..self
         }
     }
