@@ -125,3 +125,67 @@ fn an_autonomous_hamiltonian_reports_its_energy_error() {
     assert!(s["energy_balance"].is_null(), "{s:#}");
     assert!(number(&s, "energy.max_rel_error").is_finite());
 }
+
+/// `H` and the `L` derived from it by hand, run by gauss-2 from the same `p₀`: the final
+/// states, and what `marsden check` says about the path the run takes.
+fn same_map(hamiltonian: &str, lagrangian: &str, parameters: &str, tol: f64) -> String {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = |key: &str, text: &str| {
+        let path = tmp.path().join(format!("{key}.toml"));
+        let body = format!(
+            "[system]\ncoordinates = [\"x\", \"y\"]\nparameters = {{ {parameters} }}\n\
+             {key} = \"{text}\"\n[initial]\nq = [1.0, 0.0]\np = [0.0, 1.1]\n\
+             [integrator]\nmethod = \"gauss-2\"\nh = 0.01\nsteps = 2000\n\
+             [output]\nevery = 100\nplots = false\n"
+        );
+        std::fs::write(&path, body).unwrap();
+        path
+    };
+    let h_file = file("hamiltonian", hamiltonian);
+    let h = crate::util::marsden("run", &h_file, &[]);
+    let l = crate::util::marsden("run", &file("lagrangian", lagrangian), &[]);
+    assert_eq!(h.code, 0, "{}", h.stderr);
+    assert_eq!(l.code, 0, "{}", l.stderr);
+    for (a, b) in final_state(&h.summary())
+        .iter()
+        .zip(final_state(&l.summary()))
+    {
+        assert!((a - b).abs() <= tol, "final state {a} against {b}");
+    }
+    crate::util::marsden("check", &h_file, &[]).stdout
+}
+
+/// A separable `H = ½ pᵀ K p + V` with coupled momenta (`K = [[1/m, 0.3], [0.3, 1/m]]`, m = 2)
+/// runs as its closed-form Lagrangian `L = ½ vᵀ K⁻¹ v − V` (`K⁻¹ = [[3.125, −1.875], [−1.875,
+/// 3.125]]`, derived by hand): the same map ([MW01] Thm 2.6.2) to 1e-12 after 2000 gauss-2
+/// steps, and `check` says it takes the separable path.
+#[test]
+fn a_separable_hamiltonian_with_coupled_momenta_runs_as_its_closed_form_lagrangian() {
+    let said = same_map(
+        "0.5*(p_x^2 + p_y^2)/m + 0.3*p_x*p_y + 0.5*(x^2 + y^2) + 0.1*x^4",
+        "0.5*(3.125*x_dot^2 - 3.75*x_dot*y_dot + 3.125*y_dot^2) - 0.5*(x^2 + y^2) - 0.1*x^4",
+        "m = 2.0",
+        1e-12,
+    );
+    assert!(
+        said.contains("separable: run as L = ½vᵀK⁻¹v − V(q)"),
+        "{said}"
+    );
+}
+
+/// A Hamiltonian whose kinetic part depends on `q` (`H = p_x²/(2(1 + x²)) + …`) is not
+/// separable: it runs through `L = ⟨p, v⟩ − H` at `∂H/∂p = v`, and still gives the map of its
+/// Lagrangian `L = ½(1 + x²)ẋ² + …` to 1e-11.
+#[test]
+fn a_hamiltonian_whose_mass_depends_on_q_takes_the_general_path() {
+    let said = same_map(
+        "p_x^2/(2*(1 + x^2)) + 0.5*p_y^2 + 0.5*(x^2 + y^2)",
+        "0.5*(1 + x^2)*x_dot^2 + 0.5*y_dot^2 - 0.5*(x^2 + y^2)",
+        "m = 1.0",
+        1e-11,
+    );
+    assert!(
+        said.contains("run as L = ⟨p, v⟩ − H at ∂H/∂p = v"),
+        "{said}"
+    );
+}

@@ -27,7 +27,10 @@ pub fn engine_for(spec: &RunSpec) -> Box<dyn Engine + '_> {
             false => catalog_engine(system),
         },
         LagrangianSpec::Expression(l) => expression_engine(l, exact),
-        LagrangianSpec::Hamiltonian(l) => expression_engine(l, exact),
+        LagrangianSpec::Hamiltonian(h) => match &h.separable {
+            Some(l) => expression_engine(l, exact),
+            None => expression_engine(&h.general, exact),
+        },
         LagrangianSpec::Discrete(ld) => Box::new(DiscreteEngine(ld)),
         LagrangianSpec::Rigid(body) => Box::new(RigidEngine(body)),
         LagrangianSpec::Multibody(bodies) => Box::new(MultibodyEngine(bodies)),

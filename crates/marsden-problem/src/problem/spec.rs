@@ -116,14 +116,26 @@ pub enum LagrangianSpec {
     },
     /// `lagrangian = "…"`.
     Expression(ExprLagrangian),
-    /// `hamiltonian = "…"`, run through its Lagrangian `L = ⟨p, v⟩ − H` at `∂H/∂p = v`.
-    Hamiltonian(HamiltonianExprLagrangian),
+    /// `hamiltonian = "…"`, run through its Lagrangian `L = ⟨p, v⟩ − H` at `∂H/∂p = v`, or
+    /// `L = ½ vᵀ K⁻¹ v − V` when `H` is separable.
+    Hamiltonian(Box<HamiltonianSpec>),
     /// `discrete_lagrangian = "…"`: the file's own `L_d`, with no continuous `L` behind it.
     Discrete(ExprDiscreteLagrangian),
     /// `rigid_body = { … }`: a rigid body on SO(3) (× ℝ³), `L = ½ΩᵀJΩ (+ ½m|ẋ|²) − U`.
     Rigid(Box<RigidSpec>),
     /// `[[system.body]]`, `[[system.joint]]`: rigid bodies on (SO(3) × ℝ³)ᵐ joined by joints.
     Multibody(Box<MultibodySpec>),
+}
+
+/// A `hamiltonian = "…"` system: the Lagrangian of a general `H`, and for a separable
+/// `H = ½ pᵀ K p + V(t, q)` the same Lagrangian in closed form, `L = ½ vᵀ K⁻¹ v − V(t, q)`, as an
+/// expression Lagrangian the run takes instead (its separable fast paths).
+#[derive(Debug, Clone)]
+pub struct HamiltonianSpec {
+    /// `L = ⟨p, v⟩ − H` at `∂H/∂p = v` (`general.hamiltonian` is `H`).
+    pub general: HamiltonianExprLagrangian,
+    /// `L = ½ vᵀ K⁻¹ v − V(t, q)` when `H` is separable.
+    pub separable: Option<ExprLagrangian>,
 }
 
 /// The key of a file's own discrete Lagrangian, `[system] discrete_lagrangian`, which is also
@@ -142,8 +154,8 @@ impl LagrangianSpec {
                 format!("builtin {}: L = {}", builtin.name(), builtin.formula())
             }
             LagrangianSpec::Expression(l) => format!("L = {}", l.program().text()),
-            LagrangianSpec::Hamiltonian(l) => {
-                format!("H = {}", l.hamiltonian.program().text())
+            LagrangianSpec::Hamiltonian(h) => {
+                format!("H = {}", h.general.hamiltonian.program().text())
             }
             LagrangianSpec::Discrete(ld) => format!("L_d = {}", ld.program().text()),
             LagrangianSpec::Rigid(r) => format!(
@@ -269,7 +281,9 @@ impl SystemSpec {
         let t = 2 * self.dof();
         match &self.lagrangian {
             LagrangianSpec::Expression(l) => l.program().inputs_used().contains(&t),
-            LagrangianSpec::Hamiltonian(l) => l.hamiltonian.program().inputs_used().contains(&t),
+            LagrangianSpec::Hamiltonian(h) => {
+                (h.general.hamiltonian.program().inputs_used()).contains(&t)
+            }
             _ => false,
         }
     }

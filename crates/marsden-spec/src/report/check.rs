@@ -97,13 +97,17 @@ fn system(out: &mut Lines, spec: &RunSpec) {
                 format!("{} ({} instructions)", program.text(), program.op_count()),
             );
         }
-        LagrangianSpec::Hamiltonian(l) => {
-            let program = l.hamiltonian.program();
+        LagrangianSpec::Hamiltonian(h) => {
+            let program = h.general.hamiltonian.program();
             out.line("system", format!("{}: expression Hamiltonian", spec.name));
+            let run_as = match h.separable {
+                Some(_) => "separable: run as L = ½vᵀK⁻¹v − V(q) (the separable fast path)",
+                None => "run as L = ⟨p, v⟩ − H at ∂H/∂p = v",
+            };
             out.line(
                 "hamiltonian",
                 format!(
-                    "{} ({} instructions), run as L = ⟨p, v⟩ − H at ∂H/∂p = v",
+                    "{} ({} instructions), {run_as}",
                     program.text(),
                     program.op_count()
                 ),
