@@ -7,3 +7,4 @@ mod events;
 mod last_step;
 mod maps_and_runs;
 mod nbody_file;
+mod sampled_times;

@@ -46,8 +46,10 @@
 mod detector;
 pub mod interpolant;
 mod legendre;
+mod sampler;
 
 pub use detector::{DetectorCheckpoint, EventDetector};
+pub use sampler::{Sample, SamplerCheckpoint, TimeSampler};
 
 /// A scalar function `g(t, q, v, p)` on the states of a run, whose zeros are events.
 pub trait EventFunction {
