@@ -73,6 +73,17 @@ fn cases() -> Vec<Case> {
         [initial]\nq = [1.0]\nv = [0.0]\n\
         [integrator]\nmethod = \"trapezoid\"\nh = 0.01\nsteps = 800000\n\
         [output]\nevery = 100\nplots = false\n";
+    // Samples at 400 chosen times between grid points, with an observable at each.
+    let times: Vec<String> = (0..400)
+        .map(|j| format!("{}", 0.37 + 24.9 * f64::from(j)))
+        .collect();
+    let sampled = pendulum("midpoint", 1_000_000).replace(
+        "plots = false",
+        &format!(
+            "plots = false\ntimes = [{}]\nobservables = {{ c = \"cos(theta)\" }}",
+            times.join(", ")
+        ),
+    );
     let case = |name, text: String, every| Case {
         name,
         text,
@@ -95,6 +106,7 @@ fn cases() -> Vec<Case> {
         case("sensitivity-npy", tangent_npy, "20000"),
         case("forced", drag.to_owned(), "30000"),
         case("time-dependent", driven.to_owned(), "40000"),
+        case("times", sampled, "50000"),
     ]
 }
 

@@ -33,6 +33,8 @@ mod guide;
 mod last_step;
 // Numbers written as constant expressions (`h = "2*pi/100"`).
 mod numbers;
+// `[output] times`: states at chosen times on the step's interpolant (R7), `.npy`, refusals.
+mod sampled_times;
 // Checkpoints and `marsden resume`: killed runs resumed byte for byte, refusals.
 mod resume;
 // A sweep's checkpoints: killed sweeps resumed byte for byte, shards.

@@ -15,7 +15,8 @@ use marsden::run::events::{Event, EventDetector, EventRecord};
 use marsden::{Lagrangian, Observer, StepView, Termination};
 use marsden_io::RowSink;
 
-use crate::checkpoint::EventsCheckpoint;
+use crate::checkpoint::{EventsCheckpoint, SamplesCheckpoint};
+use crate::samples::{SampleTally, TimeSamples};
 use marsden_problem::error::Diagnostic;
 use marsden_problem::model::ExprEvent;
 use marsden_problem::problem::events::EventsSpec;
@@ -55,6 +56,8 @@ pub struct Watched<'a, 's, L, O> {
     written: usize,
     row: Vec<f64>,
     tally: EventTally,
+    /// The samples at `[output] times` (`None`: none requested).
+    samples: Option<TimeSamples<'a, 's, L>>,
 }
 
 impl<'a, 's, L: Lagrangian, O: Observer> Watched<'a, 's, L, O> {
@@ -67,6 +70,38 @@ impl<'a, 's, L: Lagrangian, O: Observer> Watched<'a, 's, L, O> {
             written: 0,
             row: Vec::new(),
             tally: EventTally::default(),
+            samples: None,
+        }
+    }
+
+    /// The same watch, also sampling the run at requested times (`None`: none).
+    pub fn with_samples(self, samples: Option<TimeSamples<'a, 's, L>>) -> Self {
+        Self { samples, ..self }
+    }
+
+    /// What the samples' watch carries to the next step (`None` without sampled times).
+    ///
+    /// # Errors
+    /// The write error of the flush of the samples' file.
+    pub fn samples_checkpoint(&mut self) -> Result<Option<SamplesCheckpoint>, String> {
+        self.samples
+            .as_mut()
+            .map(TimeSamples::checkpoint)
+            .transpose()
+    }
+
+    /// Restores a [`Watched::samples_checkpoint`] (`None`: the file samples no times).
+    ///
+    /// # Errors
+    /// A checkpoint of other times.
+    pub fn restore_samples(
+        &mut self,
+        checkpoint: Option<&SamplesCheckpoint>,
+    ) -> Result<(), String> {
+        match (&mut self.samples, checkpoint) {
+            (None, None) => Ok(()),
+            (Some(samples), Some(c)) => samples.restore(c),
+            _ => Err("the checkpoint's sampled times do not match the problem file's".to_owned()),
         }
     }
 
@@ -106,6 +141,7 @@ impl<'a, 's, L: Lagrangian, O: Observer> Watched<'a, 's, L, O> {
                 counts: vec![0; spec.events.len()],
                 ..EventTally::default()
             },
+            samples: None,
         })
     }
 
@@ -152,9 +188,11 @@ impl<'a, 's, L: Lagrangian, O: Observer> Watched<'a, 's, L, O> {
         }
     }
 
-    /// The streaming observer and what the events came to.
-    pub fn into_parts(self) -> (O, EventTally) {
-        (self.inner, self.tally)
+    /// The streaming observer, what the events came to and what the samples did (`None`: no
+    /// times requested).
+    pub fn into_parts(self) -> (O, EventTally, Option<SampleTally>) {
+        let samples = self.samples.as_ref().map(TimeSamples::tally);
+        (self.inner, self.tally, samples)
     }
 
     /// Writes the records located since the last call; `Break` on a write error.
@@ -208,10 +246,17 @@ impl<L: Lagrangian, O: Observer> Observer for Watched<'_, '_, L, O> {
         if let Some(detector) = &mut self.detector {
             detector.start(initial);
         }
+        if let Some(samples) = &mut self.samples {
+            samples.start(initial);
+        }
     }
 
     fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()> {
         let flow = self.inner.observe(view);
+        let flow = match &mut self.samples {
+            Some(samples) if flow.is_continue() => samples.observe(view),
+            _ => flow,
+        };
         let Some(detector) = &mut self.detector else {
             return flow;
         };
@@ -230,7 +275,7 @@ impl<L: Lagrangian, O: Observer> Observer for Watched<'_, '_, L, O> {
     }
 
     fn every_step(&self) -> bool {
-        self.detector.is_some() || self.inner.every_step()
+        self.detector.is_some() || self.samples.is_some() || self.inner.every_step()
     }
 
     fn cadence(&self) -> usize {
@@ -240,6 +285,7 @@ impl<L: Lagrangian, O: Observer> Observer for Watched<'_, '_, L, O> {
     fn termination(&self) -> Option<Termination> {
         (self.detector.as_ref())
             .and_then(|d| d.termination())
+            .or_else(|| self.samples.as_ref().and_then(|s| s.termination()))
             .or_else(|| self.inner.termination())
     }
 }

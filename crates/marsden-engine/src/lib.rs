@@ -47,6 +47,7 @@ pub mod noether_balance;
 pub mod observer;
 pub mod order_runner;
 pub mod rigid;
+pub mod samples;
 pub mod sensitivity;
 pub mod sensitivity_writer;
 pub mod serialize;

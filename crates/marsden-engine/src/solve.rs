@@ -22,6 +22,7 @@ use crate::diagnostics::Diagnostics;
 use crate::events::{EventTally, Watched};
 use crate::noether_balance::{NoetherBalance, NoetherBalanced};
 use crate::observer::StreamObserver;
+use crate::samples::{SampleTally, TimeSamples};
 use crate::start;
 use marsden::run::Resumed;
 use marsden::symmetry::GroupAction;
@@ -65,6 +66,8 @@ pub struct RunRecord {
     pub multibody: Option<crate::multibody::MultibodyRecord>,
     /// What the file's `[[events]]` came to (empty without events).
     pub events: EventTally,
+    /// What the samples at `[output] times` came to (`None`: none requested).
+    pub samples: Option<SampleTally>,
 }
 
 /// `method = "exact"`: the integrator steps `L_d^E` of the problem's Lagrangian by shooting
@@ -276,6 +279,9 @@ pub struct Destination<'s> {
     pub with_velocity: bool,
     /// Where the event records go, as rows `event, t, q…, p…` (`None`: counted only).
     pub events: Option<&'s mut (dyn RowSink + 's)>,
+    /// Where the samples at `[output] times` go, as rows `t, q…, p…, observables…` (`None`:
+    /// counted only).
+    pub samples: Option<&'s mut (dyn RowSink + 's)>,
     /// Checkpoints of the run, and the one it resumes from (`None`: none; the sinks of a
     /// resumed run were reopened at the checkpoint's marks).
     pub checkpoints: Option<&'s CheckpointPlan>,
@@ -397,10 +403,13 @@ impl<'a, 's, L: Lagrangian, F: Force> Session<'a, 's, L, F> {
             .monitoring_every_step(spec.analysis.every_step)
             .with_observables(&spec.events.observables);
         let events = (lagrangian, &spec.events);
-        let mut observer = Watched::new(stream, events, destination.events)?;
+        let times = (lagrangian, spec.output.times.as_slice());
+        let samples = TimeSamples::new(times, &spec.events.observables, destination.samples)?;
+        let mut observer = Watched::new(stream, events, destination.events)?.with_samples(samples);
         if let Some(c) = destination.checkpoints.and_then(|p| p.resume.as_deref()) {
             let restored = (observer.inner.restore(&c.stream))
-                .and_then(|()| observer.restore(c.events.as_ref()));
+                .and_then(|()| observer.restore(c.events.as_ref()))
+                .and_then(|()| observer.restore_samples(c.samples.as_ref()));
             restored.map_err(|e| Diagnostic::new(format!("cannot resume the run: {e}")))?;
         }
         Ok(Session {
@@ -420,14 +429,19 @@ impl<'a, 's, L: Lagrangian, F: Force> Session<'a, 's, L, F> {
         balance: Option<Balances>,
     ) -> (RunRecord, Problem<&'a L, &'a F, &'a ExprConstraint>) {
         let wall_seconds = self.clock.elapsed().as_secs_f64();
-        let (stream, events) = self.observer.into_parts();
+        let (stream, events, samples) = self.observer.into_parts();
         let mut record = finish(stream, result, wall_seconds);
         record.jit_compile_seconds =
             marsden_problem::model::jit_compile_seconds() - self.jit_before;
-        if let Some(e) = &events.io_error {
+        let io_errors = [
+            &events.io_error,
+            &samples.as_ref().and_then(|s| s.io_error.clone()),
+        ];
+        if let Some(e) = io_errors.into_iter().flatten().next() {
             record.error.get_or_insert_with(|| e.clone());
         }
         record.events = events;
+        record.samples = samples;
         if let Some(b) = balance {
             (record.balance, record.balance_series) = (Some(b.energy), Some(b.series));
             record.noether_balance = b.noether;
@@ -471,6 +485,7 @@ pub(super) fn finish<L: Lagrangian, C: Constraint, M: MomentumMap>(
         rigid: None,
         multibody: None,
         events: EventTally::default(),
+        samples: None,
     }
 }
 

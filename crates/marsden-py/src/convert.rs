@@ -8,6 +8,7 @@
 //! by name, and the events' located crossings by event name.
 
 use marsden_spec::run::event_outputs::EventSamples;
+use marsden_spec::run::sampled_times::SampledStates;
 use marsden_spec::{Outcome, Samples};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3};
@@ -64,6 +65,7 @@ pub fn outcome<'py>(py: Python<'py>, outcome: &Outcome) -> PyResult<Bound<'py, P
     }
     d.set_item("observables", named)?;
     d.set_item("events", events(py, outcome.events.as_ref())?)?;
+    d.set_item("at_times", at_times(py, outcome.sampled.as_ref())?)?;
     d.set_item("t", PyArray1::from_vec(py, t))?;
     d.set_item("energy", PyArray1::from_vec(py, energy))?;
     let maps = PyDict::new(py);
@@ -119,6 +121,28 @@ fn events<'py>(py: Python<'py>, records: Option<&EventSamples>) -> PyResult<Boun
         d.set_item(name, one)?;
     }
     Ok(d)
+}
+
+/// The states at `[output] times`: `{"t": (k,), "q": (k × n), "p": (k × n), "observables":
+/// {name: (k,)}}`, or `None` when no times were requested.
+fn at_times<'py>(
+    py: Python<'py>,
+    sampled: Option<&SampledStates>,
+) -> PyResult<Option<Bound<'py, PyDict>>> {
+    let Some(sampled) = sampled else {
+        return Ok(None);
+    };
+    let k = sampled.t.len();
+    let d = PyDict::new(py);
+    d.set_item("t", PyArray1::from_vec(py, sampled.t.clone()))?;
+    d.set_item("q", rows(py, &sampled.q, k))?;
+    d.set_item("p", rows(py, &sampled.p, k))?;
+    let named = PyDict::new(py);
+    for (name, values) in sampled.observable_names.iter().zip(&sampled.observables) {
+        named.set_item(name, PyArray1::from_vec(py, values.clone()))?;
+    }
+    d.set_item("observables", named)?;
+    Ok(Some(d))
 }
 
 /// The stored Jacobians: `t` (one per sample) and `jacobians` (`samples × 2n × columns`).

@@ -10,7 +10,9 @@
 //! Version 1 is the first. Version 2 adds to a run's checkpoint the balances of a forced or
 //! time-dependent run ([`super::RunCheckpoint::balances`]); a version-1 file is read as a run
 //! without them ([`super::RunCheckpoint::load`]; a test reads a version-1 fixture), and the
-//! other bodies (a sweep's, a tangent run's) are the same in both. A later version that changes
+//! other bodies (a sweep's, a tangent run's) are the same in both. Version 3 adds the sampler
+//! of `[output] times` ([`super::RunCheckpoint::samples`]); a version-2 file is read as a run
+//! without sampled times (a test reads a version-2 fixture). A later version that changes
 //! a body keeps reading the earlier ones; a file of a version this build does not know, a body
 //! whose CRC does not match (a torn or damaged file) or that does not decode is refused with
 //! the reason. Files are written through a temporary file and a rename, so a checkpoint is
@@ -24,7 +26,7 @@ use serde::de::DeserializeOwned;
 /// The first bytes of a checkpoint file.
 pub const MAGIC: &[u8; 8] = b"MARSDENC";
 /// The format version this build writes.
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 const HEADER: usize = 16;
 
 /// Why a checkpoint cannot be read.

@@ -14,6 +14,7 @@
 //! * the monitors' accumulators (energy, momentum maps, constraint residuals) and the
 //!   Legendre transform's warm start of the streaming observer ([`StreamCheckpoint`]);
 //! * the event detector's state and the events written ([`EventsCheckpoint`]);
+//! * the sampler of `[output] times` and the samples written ([`SamplesCheckpoint`]);
 //! * for a forced or time-dependent run, its energy and Noether balances so far
 //!   ([`BalancesCheckpoint`]);
 //! * where each output file stood, flushed ([`Mark`]): the rows written after the checkpoint
@@ -32,7 +33,7 @@ use crate::balance::EnergyBalanceCarry;
 use crate::diagnostics::Diagnostics;
 use marsden::analysis::diagnostics::MonitorCarry;
 use marsden::integrator::IntegratorCheckpoint;
-use marsden::run::events::DetectorCheckpoint;
+use marsden::run::events::{DetectorCheckpoint, SamplerCheckpoint};
 
 /// The checkpoint file of an output directory.
 pub const CHECKPOINT_FILE: &str = "checkpoint.bin";
@@ -112,6 +113,17 @@ pub struct EventsCheckpoint {
     pub file: Option<Mark>,
 }
 
+/// What the samples of `[output] times` carry to the next step.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct SamplesCheckpoint {
+    /// The sampler.
+    pub sampler: SamplerCheckpoint,
+    /// Samples already written.
+    pub written: usize,
+    /// Where `samples.csv` stood (`None`: the samples were only counted).
+    pub file: Option<Mark>,
+}
+
 /// A whole run's checkpoint (see the [module](self) docs).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct RunCheckpoint {
@@ -134,11 +146,14 @@ pub struct RunCheckpoint {
     /// The balances of a forced or time-dependent run with a two-point rule (`None`: the run
     /// keeps none; always `None` in a version-1 file, which could not hold them).
     pub balances: Option<BalancesCheckpoint>,
+    /// The samples at `[output] times` (`None`: none requested; always `None` in a file of
+    /// version 1 or 2, which could not hold them).
+    pub samples: Option<SamplesCheckpoint>,
 }
 
 impl RunCheckpoint {
     /// Reads the run checkpoint at `path`, of any version this build reads (a version-1 file
-    /// is a run without balances).
+    /// is a run without balances, a version-2 file one without sampled times).
     ///
     /// # Errors
     /// A [`file::CheckpointError`] saying why it cannot be used.
@@ -146,6 +161,7 @@ impl RunCheckpoint {
         let bytes = file::read(path)?;
         match file::open(&bytes, path)? {
             (1, body) => file::decode_body::<RunCheckpointV1>(body, path).map(Into::into),
+            (2, body) => file::decode_body::<RunCheckpointV2>(body, path).map(Into::into),
             (_, body) => file::decode_body(body, path),
         }
     }
@@ -184,6 +200,27 @@ impl From<RunCheckpointV1> for RunCheckpoint {
             stream: v1.stream,
             events: v1.events,
             balances: None,
+            samples: None,
+        }
+    }
+}
+
+/// The body of a version-2 run checkpoint: [`RunCheckpoint`] without `samples`. Postcard
+/// writes a struct as its fields one after the other, with no framing, so the version-1 body
+/// nested first reads the same bytes as its fields written out here would.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct RunCheckpointV2 {
+    /// The version-1 fields, in their order.
+    pub v1: RunCheckpointV1,
+    /// As [`RunCheckpoint::balances`].
+    pub balances: Option<BalancesCheckpoint>,
+}
+
+impl From<RunCheckpointV2> for RunCheckpoint {
+    fn from(v2: RunCheckpointV2) -> Self {
+        Self {
+            balances: v2.balances,
+            ..v2.v1.into()
         }
     }
 }
@@ -209,6 +246,8 @@ pub struct Carried {
     pub events: Option<EventsCheckpoint>,
     /// The balances'.
     pub balances: Option<BalancesCheckpoint>,
+    /// The samples'.
+    pub samples: Option<SamplesCheckpoint>,
 }
 
 /// Checkpoints asked of a run: how often, into which file, for which run, and the checkpoint

@@ -36,6 +36,7 @@ where
             stream: self.inner.checkpoint()?,
             events: self.checkpoint()?,
             balances: None,
+            samples: self.samples_checkpoint()?,
         })
     }
 }
@@ -82,6 +83,7 @@ impl<'o, O: Observer + Carries> Checkpointing<'o, O> {
             stream,
             events,
             balances,
+            samples,
         } = self.inner.carried()?;
         let checkpoint = RunCheckpoint {
             identity: self.plan.identity.clone(),
@@ -93,6 +95,7 @@ impl<'o, O: Observer + Carries> Checkpointing<'o, O> {
             stream,
             events,
             balances,
+            samples,
         };
         file::save(&self.plan.path, &checkpoint)
     }

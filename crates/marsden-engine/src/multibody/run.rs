@@ -112,6 +112,7 @@ pub(super) fn run(
         noether_balance: Vec::new(),
         certificate: None,
         events: crate::events::EventTally::default(),
+        samples: None,
         rigid: None,
         multibody: Some(record),
     })

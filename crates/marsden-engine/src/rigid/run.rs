@@ -106,6 +106,7 @@ pub(super) fn run(
         noether_balance: Vec::new(),
         certificate: None,
         events: crate::events::EventTally::default(),
+        samples: None,
         rigid: Some(RigidRecord {
             monitor: writer.monitor,
             final_attitude: state.rotations.clone(),

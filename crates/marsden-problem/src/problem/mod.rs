@@ -35,6 +35,7 @@ mod resolved;
 pub mod rigid;
 pub mod rigid_catalog;
 pub mod rigid_settings;
+pub mod sampled_times;
 pub mod sensitivity;
 pub mod settings;
 pub mod spec;
@@ -133,6 +134,9 @@ fn refuse_in_sweep(ck: &Checker<'_>, raw: &raw::RawProblem) -> Result<(), Diagno
         (raw.output.as_ref())
             .and_then(|o| o.get_ref().observables.as_ref())
             .map(|o| ("`observables`", o.span())),
+        (raw.output.as_ref())
+            .and_then(|o| o.get_ref().times.as_ref())
+            .map(|o| ("`times`", o.span())),
     ];
     match found.into_iter().flatten().next() {
         Some((what, span)) => Err(ck
@@ -286,13 +290,14 @@ fn validate_raw(
             .help("remove `forces`, or choose a rule, e.g. `method = \"gauss-3\"`"));
     }
     let name = run_name(raw, &system, source.path());
-    let output = settings::output(
+    let mut output = settings::output(
         &ck,
         raw.output.as_ref(),
         &name,
         overrides,
         &system.coordinates,
     )?;
+    output.times = sampled_times::times(&ck, raw, &system, &integrator.grid)?;
     let sweep = match with_sweep {
         true => {
             let parts = (&system, &initial, bodies.is_some());

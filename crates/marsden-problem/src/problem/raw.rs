@@ -338,6 +338,10 @@ pub struct RawOutput {
     pub every: Option<Spanned<i64>>,
     /// Save a checkpoint of the run every this many steps (none by default).
     pub checkpoint_every: Option<Spanned<i64>>,
+    /// Times at which to sample the state, between grid points too (numbers or constant
+    /// expressions, [`super::sampled_times`]).
+    #[serde(default, deserialize_with = "super::number::spanned_list")]
+    pub times: Option<SpannedList<f64>>,
     /// Draw PNG plots (default true).
     pub plots: Option<Spanned<bool>>,
     /// Coordinates that are angles: plots show them wrapped to (−π, π].

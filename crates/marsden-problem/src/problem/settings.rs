@@ -376,6 +376,7 @@ pub fn output(
         plots,
         angles,
         checkpoint_every,
+        times: Vec::new(),
     })
 }
 

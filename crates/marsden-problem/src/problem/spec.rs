@@ -377,4 +377,7 @@ pub struct OutputSpec {
     /// Save a checkpoint of the run every this many steps (`None`: never), from which
     /// `marsden resume` continues it bit for bit.
     pub checkpoint_every: Option<usize>,
+    /// Times at which the state is sampled (`[output] times`, checked: increasing, inside the
+    /// run; empty: none).
+    pub times: Vec<f64>,
 }

@@ -62,6 +62,7 @@ class Solution:
     sensitivity: Optional[Sensitivity]
     observables: Dict[str, FloatArray]
     events: Dict[str, Dict[str, FloatArray]]
+    at_times: Optional[Dict[str, Any]]
     def __init__(self, fields: Dict[str, Any]) -> None: ...
     def __len__(self) -> int: ...
     @property
@@ -121,6 +122,7 @@ class Problem:
         output_dir: Optional[PathLike] = ...,
         output_format: Optional[str] = ...,
         plots: Optional[bool] = ...,
+        times: Optional[Sequence[float]] = ...,
         every_step: Optional[bool] = ...,
         certify: Optional[bool] = ...,
         sensitivity: Optional[SensitivityRequest] = ...,

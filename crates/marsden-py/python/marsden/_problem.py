@@ -68,8 +68,9 @@ class Problem:
       grid of ``h`` ends with one shorter step), ``tolerance``, ``max_iterations``,
       ``fast_paths``, ``compensated``.
     - the output: ``every`` (store every k-th step), ``angles`` (coordinates that are
-      angles: plots wrap them), and for a file run by ``marsden run``: ``output_dir``,
-      ``output_format`` (``csv``, ``npy``) and ``plots``.
+      angles: plots wrap them), ``times`` (the state at these times, between grid points
+      too, read off the step's interpolant: ``solution.at_times``), and for a file run by
+      ``marsden run``: ``output_dir``, ``output_format`` (``csv``, ``npy``) and ``plots``.
     - the analysis: ``every_step`` (monitor energy and momenta at every step, not only the
       stored ones) and ``certify`` (the symplecticity and equivariance defects, in
       ``solution.summary["certificates"]``).
@@ -112,6 +113,7 @@ class Problem:
         output_dir: Optional[Union[str, "os.PathLike[str]"]] = None,
         output_format: Optional[str] = None,
         plots: Optional[bool] = None,
+        times: Optional[Sequence[float]] = None,
         every_step: Optional[bool] = None,
         certify: Optional[bool] = None,
         sensitivity: Optional[_sensitivity.Request] = None,
@@ -134,7 +136,7 @@ class Problem:
             rotation=rotation, translation=translation, t0=t0, bodies_file=bodies_file,
             project=project, tolerance=tolerance, max_iterations=max_iterations,
             fast_paths=fast_paths, compensated=compensated, every=every, angles=angles,
-            output_dir=output_dir, output_format=output_format, plots=plots,
+            output_dir=output_dir, output_format=output_format, plots=plots, times=times,
             every_step=every_step, certify=certify, sensitivity=sensitivity, sweep=sweep,
             rigid_body=rigid_body, potential=potential, torques=torques,
             body_rotation=body_rotation, R0=R0, quaternion0=quaternion0,

@@ -19,8 +19,8 @@ Omega0, Pi0                            Omega, Pi
 method, h, steps, t_end, tolerance,    ``[integrator]`` (same keys)
 max_iterations, fast_paths,
 compensated
-every, angles, output_dir,             ``[output]`` every, angles, dir, format, plots
-output_format, plots
+every, angles, output_dir,             ``[output]`` every, angles, dir, format, plots,
+output_format, plots, times            times
 every_step, certify                    ``[analysis]`` (same keys)
 sensitivity                            ``[sensitivity]``
 sweep                                  ``[sweep]`` (and ``[sweep.and]``)
@@ -73,6 +73,7 @@ class Keywords:
     output_dir: Any = None
     output_format: Optional[str] = None
     plots: Optional[bool] = None
+    times: Optional[Sequence[Any]] = None
     every_step: Optional[bool] = None
     certify: Optional[bool] = None
     sensitivity: Any = None
@@ -177,6 +178,7 @@ def _tables(out: Generated, k: Keywords) -> None:
         ("plots", "plots", kw.maybe(kw.boolean, k.plots)),
         ("angles", "angles",
          kw.maybe(lambda a: Value.strings_of("angles", kw.names(a, "angles")), k.angles)),
+        ("times", "times", kw.maybe(lambda t: kw.floats(t, "times"), k.times)),
     ]
     if any(value is not None for _, _, value in output):
         out.table("[output]", output)

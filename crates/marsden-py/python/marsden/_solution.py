@@ -38,7 +38,11 @@ class Solution:
       (``solution.observables["x2"]``, one value per row);
     - ``events``: the crossings located by the ``[[events]]``, by event name, each a dictionary
       ``{"t": (m,), "q": (m × n), "p": (m × n)}`` (``solution.events["x_up"]["q"][:, 1]``);
-      a run stopped by an event has ``status`` ``"stopped by event <name>"``.
+      a run stopped by an event has ``status`` ``"stopped by event <name>"``;
+    - ``at_times``: the states at the requested ``times`` (``[output] times``), read off the
+      interpolant of the step each lies in, as ``{"t": (k,), "q": (k × n), "p": (k × n),
+      "observables": {name: (k,)}}`` (``solution.at_times["q"][:, 0]``); fewer than
+      requested if the run ended first; ``None`` when no times were requested.
 
     >>> s = pendulum.solve(every=10)
     >>> s.t[-1], s.q[-1, 0], s.summary["energy"]["max_rel_error"]
@@ -64,6 +68,8 @@ class Solution:
         self.observables: Dict[str, np.ndarray] = dict(fields.get("observables") or {})
         self.events: Dict[str, Dict[str, np.ndarray]] = {
             name: dict(records) for name, records in (fields.get("events") or {}).items()}
+        at_times = fields.get("at_times")
+        self.at_times: Optional[Dict[str, Any]] = None if at_times is None else dict(at_times)
         self.summary: Dict[str, Any] = (
             json.loads(fields["summary"]) if isinstance(fields["summary"], str)
             else fields["summary"])

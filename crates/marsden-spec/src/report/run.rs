@@ -195,6 +195,16 @@ pub fn render(outcome: &Outcome) -> String {
             .collect();
         line(&mut out, "events", counts.join(", "));
     }
+    if let Some(samples) = &s.samples {
+        let reached = match samples.taken == samples.requested {
+            true => format!("{} requested time(s) sampled", samples.taken),
+            false => format!(
+                "{} of {} requested times sampled (the run ended before the others)",
+                samples.taken, samples.requested
+            ),
+        };
+        line(&mut out, "samples", reached);
+    }
     let files: Vec<String> = s
         .output
         .files

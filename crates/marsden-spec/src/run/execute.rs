@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use super::controls::Controls;
 use super::event_outputs::{self, EventSamples, EventTee};
+use super::sampled_times::{self, SampleOutputs, SampledStates};
 use super::samples::{NullSink, Samples, Tee};
 use super::sensitivity::SensitivitySummary;
 use super::solve::{Destination, RunRecord};
@@ -58,6 +59,9 @@ pub struct Outcome {
     /// `[[events]]`: the located crossings (when the samples are kept in memory and the file
     /// has events).
     pub events: Option<EventSamples>,
+    /// `[output] times`: the states at the requested times (when the samples are kept in
+    /// memory and the file requests times).
+    pub sampled: Option<SampledStates>,
 }
 
 /// Runs `spec`: checks the initial state, creates the output directory (unless only in
@@ -155,18 +159,33 @@ pub fn execute_from(
             (None, Some(memory)) => Some(memory),
             (None, None) => None,
         };
+    let samples_mark = resumed
+        .and_then(|c| c.samples.as_ref())
+        .and_then(|s| s.file.as_ref());
+    let mut sample_outputs = SampleOutputs::open(
+        spec,
+        store.files().then_some(dir.as_path()),
+        store.memory(),
+        samples_mark.map(Into::into).as_ref(),
+    )
+    .map_err(|e| io("write the samples into", &e))?;
+    let sampled: Option<&mut dyn marsden_io::RowSink> = sample_outputs
+        .as_mut()
+        .map(|s| s as &mut dyn marsden_io::RowSink);
     let (mut tee, mut null);
     let destination = match (files.as_mut(), samples.as_mut()) {
         (Some(files), None) => Destination {
             sink: files.as_mut(),
             with_velocity: false,
             events,
+            samples: sampled,
             checkpoints: plan.as_ref(),
         },
         (None, Some(memory)) => Destination {
             sink: memory,
             with_velocity: true,
             events,
+            samples: sampled,
             checkpoints: plan.as_ref(),
         },
         (Some(files), Some(memory)) => Destination {
@@ -179,6 +198,7 @@ pub fn execute_from(
             },
             with_velocity: true,
             events,
+            samples: sampled,
             checkpoints: plan.as_ref(),
         },
         (None, None) => Destination {
@@ -188,13 +208,22 @@ pub fn execute_from(
             },
             with_velocity: false,
             events,
+            samples: sampled,
             checkpoints: plan.as_ref(),
         },
     };
     let mut record = engine.run(spec, destination, controls)?;
     let events_file = event_outputs::file_name(spec.output.format);
+    let samples_file = sampled_times::file_name(spec.output.format);
     let mut warnings = start.warnings.clone();
     let mut written = Vec::new();
+    if let Some(out) = sample_outputs.as_mut()
+        && let Err(e) = marsden_io::RowSink::finish(out)
+    {
+        record
+            .error
+            .get_or_insert(format!("writing {samples_file} failed: {e}"));
+    }
     if let Some(writer) = event_file.as_mut()
         && let Err(e) = writer.finish()
     {
@@ -213,6 +242,9 @@ pub fn execute_from(
         written = output::trajectory_files(spec.output.format, &layout);
         if event_file.is_some() {
             written.push(events_file.to_owned());
+        }
+        if sample_outputs.as_ref().is_some_and(|o| o.file.is_some()) {
+            written.push(samples_file.to_owned());
         }
         written.push(output::SUMMARY_JSON.to_owned());
         if plan.as_ref().is_some_and(|p| p.path.exists()) {
@@ -281,6 +313,7 @@ pub fn execute_from(
         warnings,
         sensitivity: jacobians.filter(|_| store.memory()),
         events: event_memory,
+        sampled: sample_outputs.and_then(|o| o.memory),
     })
 }
 

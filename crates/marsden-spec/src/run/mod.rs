@@ -14,6 +14,7 @@
 //! | per sample | [`observer`] | one row `t, q, p, energy, J…, residual`, [`diagnostics`] |
 //! | where rows go | [`output`], [`samples`] | columns and writers of the files; in-memory [`Samples`] |
 //! | events | [`event_outputs`] | `events.csv`, in-memory [`EventSamples`](event_outputs::EventSamples), `section.png`, `observables.png` |
+//! | chosen times | [`sampled_times`] | `[output] times`: `samples.csv`, in-memory [`SampledStates`](sampled_times::SampledStates) |
 //! | afterwards | [`summary`], [`plots`], [`rigid_plots`], [`multibody_plots`] | `summary.json`; the PNG plots (also `marsden plot`) |
 //! | derivatives | [`sensitivity`] | `[sensitivity]`: the tangent run's Jacobians, `sensitivity.npy` |
 //! | sweeps | [`sweep`], [`shard`], [`sweep_table`], [`sweep_writer`] | members in parallel ([`marsden::studies::ensemble`]), one row each, streamed to the table |
@@ -25,6 +26,7 @@ pub mod output;
 pub mod plots;
 pub mod resume;
 pub mod rigid_plots;
+pub mod sampled_times;
 pub mod samples;
 pub mod shard;
 pub mod summary;

@@ -225,8 +225,10 @@ pub fn layout_from_columns(names: &[String]) -> marsden_io::Result<Layout> {
 }
 
 /// Files a previous run may have left in an output directory (and nothing else).
-const RUN_FILES: [&str; 30] = [
+const RUN_FILES: [&str; 32] = [
     TRAJECTORY_CSV,
+    super::sampled_times::SAMPLES_CSV,
+    super::sampled_times::SAMPLES_NPY,
     marsden_engine::checkpoint::CHECKPOINT_FILE,
     marsden_engine::checkpoint::tangent::SENSITIVITY_CHECKPOINT_FILE,
     marsden_engine::events::EVENTS_CSV,

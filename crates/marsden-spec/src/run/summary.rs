@@ -184,6 +184,19 @@ pub struct Summary {
     /// without events).
     #[serde(skip_serializing_if = "Vec::is_empty", serialize_with = "as_object")]
     pub events: Vec<(String, usize)>,
+    /// `[output] times`: how many were requested and how many the run reached (absent without
+    /// `times`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub samples: Option<SamplesSummary>,
+}
+
+/// `samples { … }`: the states at `[output] times`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct SamplesSummary {
+    /// Times requested.
+    pub requested: usize,
+    /// Samples taken (fewer than requested when the run ended before the last time).
+    pub taken: usize,
 }
 
 /// `rigid_body { … }`: what a rigid body's run kept besides the energy and the momenta.
@@ -408,6 +421,10 @@ pub struct OutputSummary {
     /// columns of `events.npy`); absent without `[[events]]`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub event_columns: Vec<String>,
+    /// The columns of the samples at `[output] times` (`t, q_…, p_…, observables…`:
+    /// `samples.csv`'s header, the columns of `samples.npy`); absent without `times`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub sample_columns: Vec<String>,
 }
 
 /// `provenance { … }`.
@@ -539,6 +556,10 @@ impl Summary {
                     true => Vec::new(),
                     false => crate::run::event_outputs::event_columns(&spec.system.coordinates),
                 },
+                sample_columns: match spec.output.times.is_empty() {
+                    true => Vec::new(),
+                    false => crate::run::sampled_times::columns(spec),
+                },
             },
             provenance: Provenance {
                 marsden_version: env!("CARGO_PKG_VERSION"),
@@ -565,6 +586,10 @@ impl Summary {
                 .zip(&record.events.counts)
                 .map(|(name, count)| ((*name).to_owned(), *count))
                 .collect(),
+            samples: record.samples.as_ref().map(|s| SamplesSummary {
+                requested: s.requested,
+                taken: s.taken,
+            }),
         }
     }
 

@@ -363,6 +363,8 @@ fn run_member(
         sink: &mut sink,
         with_velocity: false,
         events: None,
+        // `times` is refused with `[sweep]` when the file was read.
+        samples: None,
         // Refused with `[sweep]` when the file was read.
         checkpoints: None,
     };

@@ -28,7 +28,9 @@ fn pendulum(h: f64, steps: usize) -> Problem<Pendulum> {
 
 /// Times that are no multiple of any step used below (irrational fractions of the run).
 fn requested() -> Vec<f64> {
-    (1..=7).map(|j| j as f64 * std::f64::consts::E / 2.0).collect()
+    (1..=7)
+        .map(|j| j as f64 * std::f64::consts::E / 2.0)
+        .collect()
 }
 
 /// Samples of the midpoint run of `problem` at `times`.
@@ -92,14 +94,28 @@ fn grid_times_and_the_start_are_the_states_themselves() {
         let k = (s.t / h) as usize;
         assert_eq!(s.step, k);
         assert_eq!(stored.times[k], s.t);
-        assert_eq!(s.q[0].to_bits(), stored.positions[k].to_bits(), "q at {}", s.t);
-        assert_eq!(s.p[0].to_bits(), stored.momenta[k].to_bits(), "p at {}", s.t);
+        assert_eq!(
+            s.q[0].to_bits(),
+            stored.positions[k].to_bits(),
+            "q at {}",
+            s.t
+        );
+        assert_eq!(
+            s.p[0].to_bits(),
+            stored.momenta[k].to_bits(),
+            "p at {}",
+            s.t
+        );
     }
     assert_eq!(run.termination, Termination::Completed);
     // Between two grid points, θ lies between the neighbouring states' on a monotone stretch.
     let (_, between) = sample(&problem, &[0.3]);
     let (a, b) = (stored.positions[2], stored.positions[3]);
-    assert!(between[0].q[0] < a && between[0].q[0] > b, "{a} > {} > {b}", between[0].q[0]);
+    assert!(
+        between[0].q[0] < a && between[0].q[0] > b,
+        "{a} > {} > {b}",
+        between[0].q[0]
+    );
 }
 
 /// Times before the start and after the end are never reached; an empty list samples nothing.

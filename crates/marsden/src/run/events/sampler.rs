@@ -122,7 +122,10 @@ impl<'l, L: Lagrangian> TimeSampler<'l, L> {
             return Err(invalid(*bad, "a sampled time must be a finite number"));
         }
         if let Some(pair) = times.windows(2).find(|w| w[1] <= w[0]) {
-            return Err(invalid(pair[1], "the sampled times must be strictly increasing"));
+            return Err(invalid(
+                pair[1],
+                "the sampled times must be strictly increasing",
+            ));
         }
         let n = lagrangian.dof();
         Ok(Self {
@@ -157,7 +160,9 @@ impl<'l, L: Lagrangian> TimeSampler<'l, L> {
     /// by a step of `h`: the steps of a grid never grow, so a time more than `h` ahead is not
     /// reached by the next step (twice `h` leaves room for round-off in `h`).
     fn due_soon(&self, t: f64, h: f64) -> bool {
-        self.times.get(self.next).is_some_and(|&tau| tau <= t + 2.0 * h)
+        self.times
+            .get(self.next)
+            .is_some_and(|&tau| tau <= t + 2.0 * h)
     }
 
     /// Samples the requested times in the step from `before` to the view's state.
@@ -166,8 +171,8 @@ impl<'l, L: Lagrangian> TimeSampler<'l, L> {
         let h = view.t - before.t;
         // The secant is the general inverse's first guess at both ends: it depends on the two
         // states alone, so a run resumed from a checkpoint samples the same bits.
-        for ((v0, v1), (q0, q1)) in (self.v0.iter_mut().zip(self.v1.iter_mut()))
-            .zip(before.q.iter().zip(view.q))
+        for ((v0, v1), (q0, q1)) in
+            (self.v0.iter_mut().zip(self.v1.iter_mut())).zip(before.q.iter().zip(view.q))
         {
             *v0 = (q1 - q0) / h;
             *v1 = *v0;
@@ -213,7 +218,11 @@ impl<'l, L: Lagrangian> TimeSampler<'l, L> {
 
     /// The initial state, if a requested time is the start (earlier ones are passed over).
     fn sample_start(&mut self, initial: &StepView<'_>) -> Result<(), Error> {
-        while self.times.get(self.next).is_some_and(|&tau| tau < initial.t) {
+        while self
+            .times
+            .get(self.next)
+            .is_some_and(|&tau| tau < initial.t)
+        {
             self.next += 1;
         }
         if self.times.get(self.next) != Some(&initial.t) {
