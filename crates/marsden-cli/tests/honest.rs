@@ -255,16 +255,6 @@ fn order_study_reference_is_validated() {
     }
 }
 
-/// A parameter sensitivity with a force written in the momenta is refused with the reason and
-/// the velocity form to write instead (it once failed with "unknown name `p_x`").
-#[test]
-fn a_momentum_force_with_parameter_sensitivities_says_what_to_write() {
-    crate::util::assert_rejected(
-        "sensitivity_momentum_force.toml",
-        &["forces written in the momenta", "x_dot", "^"],
-    );
-}
-
 /// `check` on a sweep file says it is a sweep (members, what varies), and a sweep's
 /// summary.json names the method, `h` and the swept values every member shares.
 #[test]

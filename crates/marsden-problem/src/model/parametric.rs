@@ -13,9 +13,14 @@
 //! [MW01]: marsden#references
 
 use marsden::Scalar;
+use marsden::numerics::ad::{self, MultiFunction};
 use marsden::numerics::scratch::with_slice;
 use marsden::sensitivity::ParametricModel;
 use marsden_expr::{Expr, Program, Symbols};
+
+use crate::model::ForceInputs;
+use crate::model::hamiltonian::cotangent_inputs;
+use crate::model::slots::tangent_inputs;
 
 /// A Lagrangian and forces compiled over `[q, q̇, t, θ]`.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,6 +29,9 @@ pub struct ExprParametric {
     names: Vec<String>,
     lagrangian: Program,
     forces: Vec<Program>,
+    /// What the forces read: `[q, q̇, t, θ]`, or `[q, p, t, θ]` for forces written in the
+    /// momenta (`f_L = f_H ∘ FL`, with `FL` the parametric Lagrangian's).
+    force_inputs: ForceInputs,
     /// The constraints `φ(q; θ)`, compiled over `[q, θ]`.
     constraints: Vec<Program>,
 }
@@ -35,6 +43,8 @@ pub struct ParametricTexts<'a> {
     pub lagrangian: (&'a str, &'a [String]),
     /// One force text per coordinate (empty: no force) and the coordinate names they use.
     pub forces: (&'a [&'a str], &'a [String]),
+    /// Whether the force texts read the velocities or the momenta.
+    pub force_inputs: ForceInputs,
     /// One text per holonomic constraint `φ(q) = 0` (empty: none), over the coordinates of
     /// the forces.
     pub constraints: &'a [&'a str],
@@ -51,10 +61,15 @@ impl ExprParametric {
     /// so this does not happen for a validated file).
     pub fn compile(texts: ParametricTexts<'_>, names: &[String]) -> Result<Self, String> {
         let (l_text, l_coordinates) = texts.lagrangian;
-        let l_symbols = symbols(l_coordinates, texts.constants, names)?;
+        let l_inputs = tangent_inputs(l_coordinates);
+        let l_symbols = symbols(l_inputs, texts.constants, names)?;
         let lagrangian = compile(l_text, &l_symbols)?;
         let (f_texts, f_coordinates) = texts.forces;
-        let f_symbols = symbols(f_coordinates, texts.constants, names)?;
+        let f_inputs = match texts.force_inputs {
+            ForceInputs::Velocities => tangent_inputs(f_coordinates),
+            ForceInputs::Momenta => cotangent_inputs(f_coordinates),
+        };
+        let f_symbols = symbols(f_inputs, texts.constants, names)?;
         let forces = f_texts
             .iter()
             .map(|text| compile(text, &f_symbols))
@@ -68,6 +83,7 @@ impl ExprParametric {
             names: names.to_vec(),
             lagrangian,
             forces,
+            force_inputs: texts.force_inputs,
             constraints,
         })
     }
@@ -80,13 +96,13 @@ impl ExprParametric {
     }
 }
 
-/// `[q, q̇, t]` as inputs, `names` as inputs after them, the other parameters as constants.
+/// `inputs` (`[q, q̇, t]` or `[q, p, t]`), `names` as inputs after them, the other parameters
+/// as constants.
 fn symbols(
-    coordinates: &[String],
+    inputs: Vec<String>,
     constants: &[(String, f64)],
     names: &[String],
 ) -> Result<Symbols, String> {
-    let inputs = crate::model::slots::tangent_inputs(coordinates);
     let first = inputs.len();
     let mut symbols = Symbols::with_inputs(&inputs).map_err(|e| e.to_string())?;
     for (j, name) in names.iter().enumerate() {
@@ -142,6 +158,42 @@ fn with_parametric_inputs<S: Scalar, R>(
     })
 }
 
+/// The parametric Lagrangian as a function of all its inputs `z = [q, q̇, t, θ]`, for the
+/// nested-dual gradient `p = ∂L/∂q̇(t, q, q̇; θ)` at any scalar type (θ's duals included).
+struct OnInputs<'a>(&'a ExprParametric);
+
+impl MultiFunction for OnInputs<'_> {
+    fn inputs(&self) -> usize {
+        2 * self.0.dof + 1 + self.0.names.len()
+    }
+    fn outputs(&self) -> usize {
+        1
+    }
+    fn eval<S: Scalar>(&self, z: &[S], out: &mut [S]) {
+        out[0] = self.0.lagrangian.eval(z);
+    }
+}
+
+impl ExprParametric {
+    /// `f_L(t, q, q̇; θ) = f_H(t, q, FL(t, q, q̇; θ); θ)` of forces written in the momenta: the
+    /// momenta are the parametric Lagrangian's (`f_L = f_H ∘ FL`, [MW01] §3.1), so a
+    /// parameter of `L` reaches the force through `p` as well.
+    ///
+    /// [MW01]: marsden#references
+    fn momentum_force<S: Scalar>(&self, theta: &[S], t: S, q: &[S], v: &[S], out: &mut [S]) {
+        let n = q.len();
+        let mut p = vec![S::from(0.0); n];
+        with_parametric_inputs((q, v, t, theta), |z| {
+            ad::nested_gradient(&OnInputs(self), z, n..2 * n, &mut p);
+        });
+        with_parametric_inputs((q, &p, t, theta), |x| {
+            for (f, program) in out.iter_mut().zip(&self.forces) {
+                *f = program.eval(x);
+            }
+        });
+    }
+}
+
 impl ParametricModel for ExprParametric {
     fn dof(&self) -> usize {
         self.dof
@@ -159,6 +211,9 @@ impl ParametricModel for ExprParametric {
         if self.forces.is_empty() {
             out.iter_mut().for_each(|f| *f = S::from(0.0));
             return;
+        }
+        if self.force_inputs == ForceInputs::Momenta {
+            return self.momentum_force(theta, t, q, v, out);
         }
         with_parametric_inputs((q, v, t, theta), |x| {
             for (f, program) in out.iter_mut().zip(&self.forces) {
@@ -199,6 +254,7 @@ mod tests {
         let texts = ParametricTexts {
             lagrangian: ("0.5*x_dot^2 - 0.5*k*x^2", &coordinates),
             forces: (&["-c*x_dot"], &coordinates),
+            force_inputs: ForceInputs::Velocities,
             constraints: &["x^2 - k"],
             constants: &constants,
         };

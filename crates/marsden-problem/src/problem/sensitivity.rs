@@ -11,7 +11,7 @@ use super::check::Checker;
 use super::raw::RawSensitivity;
 use super::spec::{LagrangianSpec, SystemSpec};
 use crate::error::Diagnostic;
-use crate::model::{ExprParametric, ForceInputs, ParametricTexts};
+use crate::model::{ExprParametric, ParametricTexts};
 use marsden_expr::closest;
 
 /// `[sensitivity]`, validated.
@@ -117,18 +117,6 @@ fn parametric(
         LagrangianSpec::Rigid(_) => return Err(refuse("a rigid body")),
         LagrangianSpec::Multibody(_) => return Err(refuse("a multibody system")),
     };
-    if system.force.is_active() && system.force.inputs() == ForceInputs::Momenta {
-        return Err(ck
-            .error(
-                Some(span.clone()),
-                "parameter sensitivities are not supported for forces written in the momenta \
-                 (`p_x`): the parametric model differentiates f(q, q̇, t; θ)",
-            )
-            .help(
-                "write the forces in the velocities (for L = ½m q̇² − V, p = m q̇: `-c*p_x` is \
-                 `-c*m*x_dot`), or use `initial = true` alone",
-            ));
-    }
     let forces: Vec<&str> = (system.force.components().programs().iter())
         .map(|p| p.text())
         .collect();
@@ -138,6 +126,7 @@ fn parametric(
     let texts = ParametricTexts {
         lagrangian: (text, coordinates),
         forces: (&forces, &system.coordinates),
+        force_inputs: system.force.inputs(),
         constraints: &constraints,
         constants: &system.parameters,
     };
