@@ -10,10 +10,12 @@
 //! | [`watch`] | runs off the interpreter's lock; Ctrl-C sets the run's stop flag; progress to a Python function |
 //! | [`convert`] | an [`marsden_spec::Outcome`] as a dictionary of NumPy arrays |
 //! | [`optimize`] | `[optimal_control]` problems: checked, solved, returned as arrays |
+//! | [`simulation`] | `Simulation`: the initial state, stretches of a run continued from a state |
 //! | this file | the functions Python calls and the `ProblemError` exception |
 
 mod convert;
 mod optimize;
+mod simulation;
 mod watch;
 
 use std::sync::Arc;
@@ -290,5 +292,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(member, m)?)?;
     m.add_function(wrap_pyfunction!(systems, m)?)?;
     m.add_function(wrap_pyfunction!(optimize::optimize, m)?)?;
+    m.add_function(wrap_pyfunction!(simulation::initial_state, m)?)?;
+    m.add_function(wrap_pyfunction!(simulation::stretch, m)?)?;
     Ok(())
 }

@@ -28,6 +28,7 @@ from ._optimize import OptimalControlSolution
 from ._problem import Problem
 from ._resume import resume
 from ._sensitivity import Sensitivity
+from ._simulation import Simulation
 from ._solution import Body, Solution
 from ._sweep import sweep
 from ._sympy import to_grammar
@@ -39,6 +40,7 @@ __all__ = [
     "Problem",
     "ProblemError",
     "Sensitivity",
+    "Simulation",
     "SimulationError",
     "Solution",
     "resume",

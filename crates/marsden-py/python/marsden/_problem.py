@@ -8,7 +8,7 @@ A problem is problem-file text (TOML). The keyword form writes that text from Py
 from __future__ import annotations
 
 import os
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Union
+from typing import TYPE_CHECKING, Any, Dict, List, Mapping, Optional, Sequence, Union
 
 from . import _native, _sensitivity
 from . import _keywords as kw
@@ -16,6 +16,9 @@ from . import _messages, _problem_text, _progress
 from ._errors import ProblemError
 from ._optimize import OptimalControlSolution
 from ._solution import Solution, from_native
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ._simulation import Simulation
 
 Expression = Any  # a string in the grammar, a SymPy expression or a number
 Symmetries = kw.Symmetries
@@ -281,6 +284,17 @@ class Problem:
         except ProblemError as e:
             raise self._error(e) from None
         return from_native(fields)
+
+    def simulation(self) -> "Simulation":
+        """The problem as a :class:`marsden.Simulation`, stepped as you go from its initial
+        state (``sim.step()``, ``sim.integrate(t)``, ``sim.state``)::
+
+            >>> sim = pendulum.simulation()
+            >>> sim.integrate(10.0); sim.state["q"]
+        """
+        from ._simulation import Simulation
+
+        return Simulation(self)
 
     @property
     def is_optimal_control(self) -> bool:

@@ -14,6 +14,7 @@
 //! | per sample | [`observer`] | one row `t, q, p, energy, J…, residual`, [`diagnostics`] |
 //! | where rows go | [`output`], [`samples`] | columns and writers of the files; in-memory [`Samples`] |
 //! | events | [`event_outputs`] | `events.csv`, in-memory [`EventSamples`](event_outputs::EventSamples), `section.png`, `observables.png` |
+//! | stepping | [`segment`] | a run continued from a state `(t, q, p)` for some steps or to a time (Python's `Simulation`) |
 //! | chosen times | [`sampled_times`] | `[output] times`: `samples.csv`, in-memory [`SampledStates`](sampled_times::SampledStates) |
 //! | afterwards | [`summary`], [`plots`], [`rigid_plots`], [`multibody_plots`] | `summary.json`; the PNG plots (also `marsden plot`) |
 //! | derivatives | [`sensitivity`] | `[sensitivity]`: the tangent run's Jacobians, `sensitivity.npy` |
@@ -28,6 +29,7 @@ pub mod resume;
 pub mod rigid_plots;
 pub mod sampled_times;
 pub mod samples;
+pub mod segment;
 pub mod shard;
 pub mod summary;
 pub mod sweep;
