@@ -54,3 +54,52 @@ def test_a_joint_naming_an_unknown_body_is_a_problem_error():
         'bodies = ["ground", "body"]', 'bodies = ["ground", "rod"]')
     with pytest.raises(marsden.ProblemError, match="unknown body `rod`"):
         marsden.Problem.from_toml(text).solve()
+
+
+def test_keywords_give_the_example_files_bits():
+    """The keywords ``gravity``, ``bodies``, ``joints``, ``springs`` and ``bodies0`` write the
+    example files' tables: the compound double pendulum (two revolute joints under gravity) and
+    the spring dumbbell run to the same bits as the files themselves."""
+    pendulum = marsden.Problem(
+        name="compound_double_pendulum", gravity=[0.0, 0.0, -9.81],
+        bodies=[{"name": "a", "mass": 1.0, "inertia": [1 / 12, 1 / 12, 0.001]},
+                {"name": "b", "mass": 1.0, "inertia": np.array([1 / 12, 1 / 12, 0.001])}],
+        joints=[{"name": "shoulder", "kind": "revolute", "bodies": ["ground", "a"],
+                 "at": [[0.0, 0.0, 0.0], [0.0, 0.0, 0.5]],
+                 "axis": [[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]]},
+                {"name": "elbow", "kind": "revolute", "bodies": ["a", "b"],
+                 "at": [[0.0, 0.0, -0.5], [0.0, 0.0, 0.5]],
+                 "axis": [[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]]}],
+        bodies0={"a": {"rotation_vector": [0.0, 0.9, 0.0],
+                       "x": [-0.3916634548137417, 0.0, -0.3108049841353322]},
+                 "b": {"rotation_vector": [0.0, -0.4, 0.0],
+                       "x": [-0.5886177384731581, 0.0, -1.082140465272107]}},
+        method="trapezoid", h=0.001, steps=300)
+    dumbbell = marsden.Problem(
+        name="spring_dumbbell",
+        bodies=[{"name": "a", "mass": 1.0, "inertia": [0.02, 0.03, 0.04]},
+                {"name": "b", "mass": 0.5, "inertia": [0.01, 0.012, 0.015]}],
+        springs=[{"name": "link", "bodies": ["a", "b"],
+                  "at": [[0.1, 0.0, 0.0], [-0.1, 0.0, 0.0]], "stiffness": 50.0,
+                  "rest_length": 1.0}],
+        bodies0={"a": {"x": [-0.7, 0.0, 0.0], "v": [0.0, -0.1, 0.05], "Omega": [0.0, 0.5, 2.0]},
+                 "b": {"x": [0.7, 0.0, 0.0], "v": [0.0, 0.2, 0.0], "Omega": [1.0, 0.0, -1.5]}},
+        method="trapezoid", h=0.005, steps=300)
+    for problem, example, t_end in [(pendulum, "compound_double_pendulum.toml", "t_end = 10.0"),
+                                    (dumbbell, "spring_dumbbell.toml", "t_end = 20.0")]:
+        text = (EXAMPLES / example).read_text().replace(t_end, "steps = 300")
+        from_file = marsden.Problem.from_toml(text).solve(every=1)
+        from_keywords = problem.solve(every=1)
+        for name in ("a", "b"):
+            a, b = from_keywords.bodies[name], from_file.bodies[name]
+            assert np.array_equal(a.R, b.R) and np.array_equal(a.x, b.x)
+            assert np.array_equal(a.Pi, b.Pi) and np.array_equal(a.p, b.p)
+
+
+def test_body_keywords_with_unknown_keys_say_which():
+    with pytest.raises(marsden.ProblemError, match=r"joints\[0\]: unknown key\(s\) \['axes'\]"):
+        marsden.Problem(bodies=[{"name": "a", "mass": 1.0, "inertia": [1, 1, 1]}],
+                        joints=[{"kind": "revolute", "bodies": ["ground", "a"], "axes": []}],
+                        h=0.01, steps=10)
+    with pytest.raises(marsden.ProblemError, match="bodies: expected a list of dictionaries"):
+        marsden.Problem(bodies={"name": "a"}, h=0.01, steps=10)

@@ -136,6 +136,12 @@ class Problem:
         rotation_vector0: Optional[Sequence[float]] = ...,
         Omega0: Optional[Sequence[float]] = ...,
         Pi0: Optional[Sequence[float]] = ...,
+        gravity: Optional[Sequence[float]] = ...,
+        bodies: Optional[Sequence[Mapping[str, Any]]] = ...,
+        joints: Optional[Sequence[Mapping[str, Any]]] = ...,
+        springs: Optional[Sequence[Mapping[str, Any]]] = ...,
+        dampers: Optional[Sequence[Mapping[str, Any]]] = ...,
+        bodies0: Optional[Mapping[str, Mapping[str, Any]]] = ...,
     ) -> None: ...
     @classmethod
     def from_toml(cls, text: str, origin: str = ...) -> Problem: ...

@@ -63,6 +63,14 @@ class Problem:
       ``torques`` (body frame), ``rotation`` (in space) / ``body_rotation`` (about body axes);
       initially ``R0`` / ``quaternion0`` / ``rotation_vector0`` and ``Omega0`` / ``Pi0``
       (``solution.R``, ``solution.Pi``, ``solution.quaternion``).
+    - jointed bodies instead: ``gravity`` (``[gx, gy, gz]``), ``bodies`` (a list of
+      ``{"name", "mass", "inertia"}``), ``joints`` (``{"kind": "revolute", "bodies": ["ground",
+      "a"], "at": [...], "axis": [...]}``, ``spherical``, ``prismatic``, ``fixed``, ``distance``
+      with ``length``), ``springs`` (``{"bodies", "at", "stiffness", "rest_length"}``),
+      ``dampers`` (``{"bodies", "at", "coefficient"}``), and initially ``bodies0`` (``{"a":
+      {"x": ..., "R": ..., "v": ..., "Omega": ...}}``, or ``p``, ``Pi``, ``quaternion``,
+      ``rotation_vector``): the file's ``[[system.body]]``, ``[[system.joint]]``, … tables
+      with the same keys (``solution.bodies["a"].R``).
     - the initial state: ``q0`` and one of ``v0`` / ``p0`` (or ``bodies_file``, an N-body
       file of ``builtin="nbody"``, relative to the working directory), ``t0``, ``project``
       (project onto the constraints first).
@@ -130,6 +138,12 @@ class Problem:
         rotation_vector0: Optional[Sequence[float]] = None,
         Omega0: Optional[Sequence[float]] = None,
         Pi0: Optional[Sequence[float]] = None,
+        gravity: Optional[Sequence[float]] = None,
+        bodies: Optional[Sequence[Mapping[str, Any]]] = None,
+        joints: Optional[Sequence[Mapping[str, Any]]] = None,
+        springs: Optional[Sequence[Mapping[str, Any]]] = None,
+        dampers: Optional[Sequence[Mapping[str, Any]]] = None,
+        bodies0: Optional[Mapping[str, Mapping[str, Any]]] = None,
     ) -> None:
         generated = _problem_text.write(_problem_text.Keywords(
             lagrangian=lagrangian, coordinates=coordinates, parameters=parameters, q0=q0,
@@ -143,7 +157,8 @@ class Problem:
             every_step=every_step, certify=certify, sensitivity=sensitivity, sweep=sweep,
             rigid_body=rigid_body, potential=potential, torques=torques,
             body_rotation=body_rotation, R0=R0, quaternion0=quaternion0,
-            rotation_vector0=rotation_vector0, Omega0=Omega0, Pi0=Pi0))
+            rotation_vector0=rotation_vector0, Omega0=Omega0, Pi0=Pi0, gravity=gravity,
+            bodies=bodies, joints=joints, springs=springs, dampers=dampers, bodies0=bodies0))
         try:
             self._init(generated.text, _ORIGIN)
         except ProblemError as e:

@@ -11,11 +11,15 @@ parameters, lagrangian, hamiltonian,
 discrete_lagrangian, forces,
 constraints
 rigid_body, potential, torques         ``[system]`` (same keys: a rigid body on SO(3))
+gravity, bodies, joints, springs,      ``[system]`` gravity, ``[[system.body]]``,
+dampers                                ``[[system.joint]]``, ``[[system.spring]]``,
+                                       ``[[system.damper]]`` (jointed bodies)
 symmetries, rotation, translation,     ``[[system.symmetry]]``
 body_rotation
 q0, v0, p0, t0, bodies_file, project   ``[initial]`` q, v, p, t0, file, project
 R0, quaternion0, rotation_vector0,     ``[initial]`` R, quaternion, rotation_vector,
 Omega0, Pi0                            Omega, Pi
+bodies0                                ``[initial.<body>]`` x, v, p, R, quaternion, …
 method, h, steps, t_end, tolerance,    ``[integrator]`` (same keys)
 max_iterations, fast_paths,
 compensated
@@ -33,6 +37,7 @@ import os
 from dataclasses import dataclass
 from typing import Any, Mapping, Optional, Sequence, Union
 
+from . import _bodies
 from . import _keywords as kw
 from . import _toml
 from ._keywords import Generated, Value
@@ -82,6 +87,12 @@ class Keywords:
     potential: Any = None
     torques: Optional[Sequence[Any]] = None
     body_rotation: Union[None, str, Sequence[str]] = None
+    gravity: Optional[Sequence[Any]] = None
+    bodies: Optional[Sequence[Mapping[str, Any]]] = None
+    joints: Optional[Sequence[Mapping[str, Any]]] = None
+    springs: Optional[Sequence[Mapping[str, Any]]] = None
+    dampers: Optional[Sequence[Mapping[str, Any]]] = None
+    bodies0: Optional[Mapping[str, Mapping[str, Any]]] = None
     R0: Any = None
     quaternion0: Any = None
     rotation_vector0: Any = None
@@ -130,7 +141,9 @@ def _system(out: Generated, k: Keywords) -> None:
         ("rigid_body", "rigid_body", kw.maybe(kw.rigid_body, k.rigid_body)),
         ("potential", "potential", _expression("potential", k.potential)),
         ("torques", "torques", _expressions("torques", k.torques)),
+        ("gravity", "gravity", kw.maybe(lambda g: kw.floats(g, "gravity"), k.gravity)),
     ])
+    _bodies.system_tables(out, k.bodies, k.joints, k.springs, k.dampers)
     for name, generator in kw.symmetry_items(k.symmetries):
         kw.symmetry(out, name, generator)
     kw.named_symmetries(out, "rotation", k.rotation)
@@ -154,6 +167,7 @@ def _initial(out: Generated, k: Keywords) -> None:
         ("Omega", "Omega0", kw.maybe(lambda w: kw.floats(w, "Omega0"), k.Omega0)),
         ("Pi", "Pi0", kw.maybe(lambda p: kw.floats(p, "Pi0"), k.Pi0)),
     ])
+    _bodies.initial_tables(out, k.bodies0)
 
 
 def _integrator(out: Generated, k: Keywords) -> None:

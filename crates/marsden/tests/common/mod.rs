@@ -98,3 +98,29 @@ impl Observer for SamplesOnly {
         false
     }
 }
+
+/// The views of a stored run (every step, one coordinate), as the run loop shows them to an
+/// observer: `start` at step 0, `observe` after (each expected to let the run go on).
+pub fn feed<O: marsden::Observer>(
+    observer: &mut O,
+    run: &marsden::Trajectory,
+    steps: std::ops::Range<usize>,
+) {
+    let report = marsden::StepReport::default();
+    for k in steps {
+        let view = marsden::StepView {
+            step: k,
+            t: run.times[k],
+            q: &run.positions[k..k + 1],
+            p: &run.momenta[k..k + 1],
+            multipliers: &[],
+            end_multipliers: &[],
+            report: &report,
+        };
+        if k == 0 {
+            observer.start(&view);
+        } else {
+            assert!(observer.observe(&view).is_continue());
+        }
+    }
+}

@@ -9,9 +9,7 @@ use marsden::{
     Initial, Midpoint, Problem, Rule, RunOptions, SolveOptions, Termination, TimeGrid, Trapezoid,
 };
 
-use std::ops::Range;
-
-use crate::common::{loglog_slope, tight};
+use crate::common::{feed, loglog_slope, tight};
 
 /// An event function as a plain function pointer, so that several share one type.
 type G = fn(f64, &[f64], &[f64], &[f64]) -> f64;
@@ -344,27 +342,6 @@ impl marsden::Lagrangian for Undeclared {
     }
     fn lagrangian<S: marsden::Scalar>(&self, t: S, q: &[S], v: &[S]) -> S {
         self.0.lagrangian(t, q, v)
-    }
-}
-
-/// The views of a stored run (every step), as the run loop shows them to an observer.
-fn feed<O: marsden::Observer>(observer: &mut O, run: &marsden::Trajectory, steps: Range<usize>) {
-    let report = marsden::StepReport::default();
-    for k in steps {
-        let view = marsden::StepView {
-            step: k,
-            t: run.times[k],
-            q: &run.positions[k..k + 1],
-            p: &run.momenta[k..k + 1],
-            multipliers: &[],
-            end_multipliers: &[],
-            report: &report,
-        };
-        if k == 0 {
-            observer.start(&view);
-        } else {
-            assert!(observer.observe(&view).is_continue());
-        }
     }
 }
 

@@ -3,15 +3,13 @@
 //! grid times and the start sampled exactly, bad lists refused, and a sampler checkpointed
 //! half-way resuming bit for bit.
 
-use std::ops::Range;
-
 use marsden::error::{Error, InputError};
 use marsden::run::events::{Sample, SamplerCheckpoint, TimeSampler};
 use marsden::special::pendulum::Pendulum as ExactPendulum;
 use marsden::systems::Pendulum;
 use marsden::{Initial, Midpoint, Problem, SolveOptions, Termination, TimeGrid};
 
-use crate::common::{loglog_slope, tight};
+use crate::common::{feed, loglog_slope, tight};
 
 fn options() -> SolveOptions {
     SolveOptions {
@@ -146,27 +144,6 @@ fn unordered_or_non_finite_times_are_refused() {
             panic!("{error:?}")
         };
         assert_eq!((name, value), ("times", bad));
-    }
-}
-
-/// The views of a stored run (every step), as the run loop shows them to an observer.
-fn feed<O: marsden::Observer>(observer: &mut O, run: &marsden::Trajectory, steps: Range<usize>) {
-    let report = marsden::StepReport::default();
-    for k in steps {
-        let view = marsden::StepView {
-            step: k,
-            t: run.times[k],
-            q: &run.positions[k..k + 1],
-            p: &run.momenta[k..k + 1],
-            multipliers: &[],
-            end_multipliers: &[],
-            report: &report,
-        };
-        if k == 0 {
-            observer.start(&view);
-        } else {
-            assert!(observer.observe(&view).is_continue());
-        }
     }
 }
 
