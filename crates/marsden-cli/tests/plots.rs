@@ -88,3 +88,73 @@ fn plot_on_a_sweep_folder_draws_the_sweep() {
     assert_eq!(out.status.code(), Some(0), "{stderr}");
     assert!(run.out.join("sweep.png").is_file());
 }
+
+/// `marsden plot DIR` draws again every picture `marsden run` drew: for a run with events and
+/// observables (the Poincaré section and the observables, also from `.npy`), a rigid body (its
+/// attitude and body momentum) and a multibody system (`bodies.png`) — each deleted, then
+/// redrawn byte for byte (the same data through the same plotting code) and listed.
+#[test]
+fn plot_redraws_every_picture_the_run_drew() {
+    let root = crate::util::repo_root().join("examples");
+    let cases = [
+        ("henon_heiles_section.toml", "csv", 20_000),
+        ("henon_heiles_section.toml", "npy", 20_000),
+        ("free_rigid_body.toml", "csv", 500),
+        ("spring_dumbbell.toml", "csv", 500),
+    ];
+    for (example, format, steps) in cases {
+        let tmp = tempfile::tempdir().unwrap();
+        let text = std::fs::read_to_string(root.join(example)).unwrap();
+        let text = match format {
+            "npy" => text.replace("[output]", "[output]\nformat = \"npy\""),
+            _ => text,
+        };
+        let file = tmp.path().join(example);
+        std::fs::write(&file, text).unwrap();
+        let steps = steps.to_string();
+        let out = tmp.path().join("out");
+        let run = marsden_in(
+            tmp.path(),
+            &[
+                "run",
+                file.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+                "--steps",
+                &steps,
+            ],
+        );
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let drawn = pngs(&out);
+        let before: Vec<Vec<u8>> = drawn
+            .iter()
+            .map(|n| std::fs::read(out.join(n)).unwrap())
+            .collect();
+        for name in &drawn {
+            std::fs::remove_file(out.join(name)).unwrap();
+        }
+        let plot = marsden_in(tmp.path(), &["plot", out.to_str().unwrap()]);
+        let stdout = String::from_utf8_lossy(&plot.stdout);
+        assert!(
+            plot.status.success(),
+            "{}",
+            String::from_utf8_lossy(&plot.stderr)
+        );
+        assert_eq!(pngs(&out), drawn, "{example} ({format}): {stdout}");
+        for (name, bytes) in drawn.iter().zip(&before) {
+            assert!(
+                stdout.contains(name.as_str()),
+                "{name} not listed: {stdout}"
+            );
+            assert_eq!(
+                &std::fs::read(out.join(name)).unwrap(),
+                bytes,
+                "{example}: {name}"
+            );
+        }
+    }
+}

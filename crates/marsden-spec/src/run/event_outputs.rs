@@ -154,11 +154,41 @@ pub fn open(
 /// # Errors
 /// The file cannot be read, as text.
 pub fn read(dir: &Path, spec: &RunSpec) -> Result<Table, String> {
-    let table = match spec.output.format {
+    let columns = event_columns(&spec.system.coordinates);
+    read_records(dir, spec.output.format, columns)
+}
+
+/// The event records in `dir` in `format` with `columns` (`summary.json`'s
+/// `output.event_columns`), as a table.
+///
+/// # Errors
+/// The file cannot be read, as text.
+pub fn read_records(dir: &Path, format: Format, columns: Vec<String>) -> Result<Table, String> {
+    let table = match format {
         Format::Csv => marsden_io::read_csv(dir.join(EVENTS_CSV)),
-        Format::Npy => npy_layout(spec).and_then(|layout| marsden_io::read_npy_dir(dir, &layout)),
+        Format::Npy => Layout::new(vec![Group::vector("events", columns)])
+            .and_then(|layout| marsden_io::read_npy_dir(dir, &layout)),
     };
     table.map_err(|e| e.to_string())
+}
+
+/// The section plot's two axes as columns of the event records and their labels:
+/// `[[column, label], [column, label]]` (`summary.json`'s `output.section`; empty without
+/// events).
+pub fn section_axes(spec: &RunSpec) -> Vec<[String; 2]> {
+    let Some(section) = spec
+        .events
+        .section
+        .as_ref()
+        .filter(|_| !spec.events.events.is_empty())
+    else {
+        return Vec::new();
+    };
+    let c = &spec.system.coordinates;
+    [&section.x, &section.y]
+        .iter()
+        .map(|(axis, label)| [axis.column(c).unwrap_or_default(), label.clone()])
+        .collect()
 }
 
 /// Draws `section.png` from the event records in `dir`, in the axes of `[output] section`.
@@ -166,21 +196,25 @@ pub fn read(dir: &Path, spec: &RunSpec) -> Result<Table, String> {
 /// # Errors
 /// The records cannot be read back or the plot cannot be written, as text.
 pub fn draw_section(dir: &Path, spec: &RunSpec) -> Result<String, String> {
-    let Some(section) = &spec.events.section else {
+    let axes = section_axes(spec);
+    let [x, y] = axes.as_slice() else {
         return Err("the system has no coordinates".to_owned());
     };
     let table = read(dir, spec)?;
-    let c = &spec.system.coordinates;
-    let x = series_of(
-        &table,
-        &section.x.0.column(c).unwrap_or_default(),
-        &section.x.1,
-    )?;
-    let y = series_of(
-        &table,
-        &section.y.0.column(c).unwrap_or_default(),
-        &section.y.1,
-    )?;
+    draw_section_of(dir, &table, (x, y))
+}
+
+/// Draws `section.png` in `dir` from the records `table`, with the `[column, label]` axes.
+///
+/// # Errors
+/// A column the records lack, or a plot that cannot be written, as text.
+pub fn draw_section_of(
+    dir: &Path,
+    table: &Table,
+    (x, y): (&[String; 2], &[String; 2]),
+) -> Result<String, String> {
+    let x = series_of(table, &x[0], &x[1])?;
+    let y = series_of(table, &y[0], &y[1])?;
     let path = dir.join(SECTION_PNG);
     marsden_io::plot::plot_section(&path, (x, y), &PlotOptions::default())
         .map_err(|e| e.to_string())?;
@@ -198,17 +232,16 @@ fn series_of<'t>(table: &'t Table, name: &str, label: &'t str) -> Result<Series<
     })
 }
 
-/// Draws `observables.png` from the trajectory's sketch `table` (the columns named after the
-/// observables of `spec`).
+/// Draws `observables.png` from the trajectory's sketch `table` (the columns `names`: the
+/// observables of the file, `summary.json`'s `output.observables`); nothing without them.
 ///
 /// # Errors
 /// The plot cannot be written.
 pub fn draw_observables(
     dir: &Path,
-    spec: &RunSpec,
+    names: &[String],
     (table, opts): (&Table, &PlotOptions),
 ) -> marsden_io::Result<Option<String>> {
-    let names = &spec.events.observables.names;
     let find = |name: &str| table.columns().iter().find(|c| c.name == name);
     let (Some(t), false) = (find("t"), names.is_empty()) else {
         return Ok(None);

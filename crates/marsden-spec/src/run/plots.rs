@@ -46,7 +46,7 @@ pub fn draw(spec: &RunSpec, layout: &Layout) -> marsden_io::Result<Vec<String>> 
     let observables = (&sketch.table, &opts);
     files.extend(super::event_outputs::draw_observables(
         dir,
-        spec,
+        &spec.events.observables.names,
         observables,
     )?);
     Ok(files)
@@ -63,9 +63,23 @@ pub fn redraw(dir: &Path) -> Result<Vec<PlotReport>, Error> {
         return draw_sweep(dir).map(|r| vec![r]);
     }
     let (sketch, angles, conserved) = read_run(dir)?;
-    let mut reports = plot_run(&sketch.table, dir, &options(&sketch, angles, conserved))
-        .map_err(|e| Error::failed(Diagnostic::new(format!("cannot draw the plots: {e}"))))?;
-    if had_energy_balance(dir)
+    let opts = options(&sketch, angles, conserved);
+    let failed = |e: &dyn std::fmt::Display| {
+        Error::failed(Diagnostic::new(format!("cannot draw the plots: {e}")))
+    };
+    let mut reports = plot_run(&sketch.table, dir, &opts).map_err(|e| failed(&e))?;
+    let summary = read_summary(dir);
+    let mut more = super::rigid_plots::draw(&sketch.table, dir, &opts).map_err(|e| failed(&e))?;
+    more.extend(super::multibody_plots::draw(&sketch.table, dir, &opts).map_err(|e| failed(&e))?);
+    let observables = strings(&summary["output"]["observables"]);
+    let drawn = super::event_outputs::draw_observables(dir, &observables, (&sketch.table, &opts));
+    more.extend(drawn.map_err(|e| failed(&e))?);
+    more.extend(redraw_section(dir, &summary)?);
+    reports.extend(more.into_iter().map(|name| PlotReport {
+        path: dir.join(name),
+        notes: Vec::new(),
+    }));
+    if summary["energy_balance"].is_object()
         && let Some(last) = reports.last_mut()
     {
         last.notes.push(format!(
@@ -77,12 +91,52 @@ pub fn redraw(dir: &Path) -> Result<Vec<PlotReport>, Error> {
     Ok(reports)
 }
 
-/// Whether the run in `dir` had an energy balance (a forced run): its `summary.json` says so.
-fn had_energy_balance(dir: &Path) -> bool {
-    std::fs::read_to_string(dir.join(super::output::SUMMARY_JSON))
+/// `summary.json` of the run in `dir` (`Null` if it cannot be read: the plots that need it
+/// are then not redrawn).
+fn read_summary(dir: &Path) -> serde_json::Value {
+    std::fs::read_to_string(dir.join(SUMMARY_JSON))
         .ok()
-        .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok())
-        .is_some_and(|summary| summary["energy_balance"].is_object())
+        .and_then(|text| serde_json::from_str(&text).ok())
+        .unwrap_or(serde_json::Value::Null)
+}
+
+/// The strings of a JSON array (none for anything else).
+fn strings(value: &serde_json::Value) -> Vec<String> {
+    (value.as_array().into_iter().flatten())
+        .filter_map(|c| c.as_str().map(str::to_owned))
+        .collect()
+}
+
+/// `section.png` again from the event records, when `summary` names the section's axes.
+///
+/// # Errors
+/// Records that cannot be read, or a plot that cannot be written.
+fn redraw_section(dir: &Path, summary: &serde_json::Value) -> Result<Option<String>, Error> {
+    let output = &summary["output"];
+    let axes: Vec<Vec<String>> = (output["section"].as_array().into_iter().flatten())
+        .map(strings)
+        .collect();
+    let [x, y] = axes.as_slice() else {
+        return Ok(None);
+    };
+    let (Ok(x), Ok(y)) = (
+        <[String; 2]>::try_from(x.clone()),
+        <[String; 2]>::try_from(y.clone()),
+    ) else {
+        return Ok(None);
+    };
+    let format = match output["format"].as_str() {
+        Some("npy") => Format::Npy,
+        _ => Format::Csv,
+    };
+    let records =
+        super::event_outputs::read_records(dir, format, strings(&output["event_columns"]))
+            .map_err(|e| {
+                Error::bad_input(Diagnostic::new(format!("cannot read the events: {e}")))
+            })?;
+    super::event_outputs::draw_section_of(dir, &records, (&x, &y))
+        .map(Some)
+        .map_err(|e| Error::failed(Diagnostic::new(format!("cannot draw the section: {e}"))))
 }
 
 /// File name of a sweep's table.
@@ -239,15 +293,6 @@ fn read_run(dir: &Path) -> Result<(Thinned, Vec<String>, bool), Error> {
     let json: Option<serde_json::Value> = std::fs::read_to_string(&summary)
         .ok()
         .and_then(|text| serde_json::from_str(&text).ok());
-    let strings = |v: &serde_json::Value| -> Vec<String> {
-        v.as_array()
-            .map(|a| {
-                a.iter()
-                    .filter_map(|c| c.as_str().map(str::to_owned))
-                    .collect()
-            })
-            .unwrap_or_default()
-    };
     let angles = json
         .as_ref()
         .map(|j| strings(&j["output"]["angles"]))

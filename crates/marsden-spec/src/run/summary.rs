@@ -425,6 +425,14 @@ pub struct OutputSummary {
     /// `samples.csv`'s header, the columns of `samples.npy`); absent without `times`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub sample_columns: Vec<String>,
+    /// The names of `[output] observables` (columns of the trajectory; `marsden plot` redraws
+    /// `observables.png` from them); absent without observables.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub observables: Vec<String>,
+    /// The Poincaré section's axes as `[column of the event records, label]` pairs
+    /// (`marsden plot` redraws `section.png` from them); absent without events.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub section: Vec<[String; 2]>,
 }
 
 /// `provenance { … }`.
@@ -560,6 +568,8 @@ impl Summary {
                     true => Vec::new(),
                     false => crate::run::sampled_times::columns(spec),
                 },
+                observables: spec.events.observables.names.clone(),
+                section: crate::run::event_outputs::section_axes(spec),
             },
             provenance: Provenance {
                 marsden_version: env!("CARGO_PKG_VERSION"),
