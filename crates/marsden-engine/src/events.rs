@@ -264,7 +264,11 @@ impl<L: Lagrangian, O: Observer> Observer for Watched<'_, '_, L, O> {
             return flow;
         }
         let located = detector.observe(view);
-        if let Some(Termination::Event { event, .. }) = detector.termination() {
+        // The detector ends the run only by returning `Break`: its termination is asked then
+        // alone (a clone per step otherwise).
+        if located.is_break()
+            && let Some(Termination::Event { event, .. }) = detector.termination()
+        {
             self.tally.stopped_by = Some(event);
         }
         let written = self.stream();

@@ -102,6 +102,7 @@ impl Program {
     }
 
     /// The minimum length of the inputs slice: largest slot read + 1 (0 if none).
+    #[inline]
     pub fn input_len(&self) -> usize {
         self.inputs_used.last().map_or(0, |slot| slot + 1)
     }

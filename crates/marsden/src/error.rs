@@ -553,6 +553,7 @@ impl Error {
     }
 
     /// Checks that `x` has length `expected`.
+    #[inline]
     pub fn check_len(what: &'static str, x: &[f64], expected: usize) -> Result<(), Error> {
         if x.len() == expected {
             Ok(())

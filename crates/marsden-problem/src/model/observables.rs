@@ -81,15 +81,21 @@ pub struct ExprEvent<'a> {
 }
 
 impl ExprEvent<'_> {
-    /// Whether `when` reads an observable (inputs past `t`).
+    /// Whether `when` reads an observable (a slot past `t`, the slot `3n`).
     fn reads_observables(&self, n: usize) -> bool {
-        self.when.inputs_used().iter().any(|&slot| slot > 3 * n)
+        self.when.input_len() > 3 * n + 1
     }
 }
 
 impl EventFunction for ExprEvent<'_> {
+    /// `when` at the state. A `when` that reads positions only (its slots all below `n`, the
+    /// common section `θ = 0`) is evaluated on `q` itself, the slots it reads the same values
+    /// at the same places: no input slice is filled.
     fn value(&self, t: f64, q: &[f64], v: &[f64], p: &[f64]) -> f64 {
         let n = q.len();
+        if self.when.input_len() <= n {
+            return self.when.eval(q);
+        }
         let m = if self.reads_observables(n) {
             self.observables.len()
         } else {
@@ -136,6 +142,32 @@ mod tests {
         let mut out = [0.0; 3];
         obs.eval_into((7.0, &[1.0, 2.0], &[3.0, 4.0], &[5.0, 6.0]), &mut out);
         assert_eq!(out, [21.0, 18.0, 7.0]);
+    }
+
+    /// A `when` of the positions alone is evaluated on `q` itself: the same value as through
+    /// the full input slice (a `when` reading `p` and `t` goes the long way).
+    #[test]
+    fn an_event_of_the_positions_reads_q_directly() {
+        let symbols = Symbols::with_inputs(state_inputs(&coordinates())).unwrap();
+        let compile = |text: &str| {
+            marsden_expr::Expr::parse(text)
+                .unwrap()
+                .compile(&symbols)
+                .unwrap()
+        };
+        let (section, mixed) = (compile("y - 0.25*x"), compile("y - p_x*t"));
+        let obs = Observables::none();
+        let event = |when| ExprEvent {
+            when,
+            observables: &obs,
+        };
+        let (q, v, p) = ([2.0, 3.0], [f64::NAN, f64::NAN], [5.0, 6.0]);
+        assert_eq!(event(&section).value(0.5, &q, &v, &p), 2.5);
+        assert_eq!(event(&mixed).value(0.5, &q, &v, &p), 0.5);
+        let mut full = [0.0; 7];
+        fill_state(&mut full, &q, &v, &p);
+        full[6] = 0.5;
+        assert_eq!(event(&section).value(0.5, &q, &v, &p), section.eval(&full));
     }
 
     #[test]

@@ -90,6 +90,7 @@ impl TimeGrid {
     }
 
     /// The size of the last step when it is shorter than `h`.
+    #[inline]
     pub fn last_step(&self) -> Option<f64> {
         let end = self.end?;
         let before = self.steps.checked_sub(1)?;
@@ -97,6 +98,7 @@ impl TimeGrid {
     }
 
     /// The size of step `k` (from `t_k` to `t_{k+1}`): `h`, or the shorter last step.
+    #[inline]
     pub fn step_size(&self, k: usize) -> f64 {
         match self.last_step() {
             Some(last) if k + 1 == self.steps => last,
@@ -106,6 +108,7 @@ impl TimeGrid {
 
     /// How many of the `steps` steps from grid point `k` have the uniform size `h` (all but a
     /// shorter last step among them).
+    #[inline]
     pub fn uniform_steps(&self, k: usize, steps: usize) -> usize {
         match self.end.is_some() && k + steps == self.steps && steps > 0 {
             true => steps - 1,
@@ -137,6 +140,7 @@ impl TimeGrid {
 
     /// Time of grid point `k`: `t₀ + k h`, and the final time itself at the end of a shorter
     /// last step.
+    #[inline]
     pub fn time(&self, k: usize) -> f64 {
         match self.end {
             Some(end) if k == self.steps => end,

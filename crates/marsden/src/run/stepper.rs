@@ -99,7 +99,8 @@ where
     }
     /// The explicit path runs the chunk in its own loop ([`Integrator::advance`]: times
     /// `state.t + j h` inside the chunk, as the explicit kernels count them), a shorter last
-    /// step on its own; the others step one by one at the grid's times.
+    /// step on its own; the others step one by one at the grid's times, each by
+    /// [`Integrator::step`] (which checks its input itself: no second check per step).
     fn advance_on(
         &mut self,
         state: &mut State,
@@ -114,7 +115,14 @@ where
                 Integrator::advance(self, state, grid.h, uniform)?;
                 step_by_step(self, state, grid, k + uniform, steps - uniform)
             }
-            false => step_by_step(self, state, grid, k, steps),
+            false => {
+                let mut report = StepReport::default();
+                for j in 1..=steps {
+                    report = self.step(state, grid.step_size(k + j - 1))?;
+                    state.t = grid.time(k + j);
+                }
+                Ok(report)
+            }
         }
     }
     fn multipliers(&self) -> &[f64] {

@@ -130,8 +130,10 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
     }
 
     /// `g_after` ← `g` at the view's state (and `after.v` ← its velocities first, if an event
-    /// reads them). Nothing is copied: the state is read from the view.
-    fn evaluate(&mut self, view: &StepView<'_>) -> Result<(), Error> {
+    /// reads them), and whether some event's `g` changed sign in its direction from
+    /// `g_before`: one pass over the events. Nothing is copied: the state is read from the
+    /// view.
+    fn evaluate(&mut self, view: &StepView<'_>) -> Result<bool, Error> {
         let v = if self.velocities_every_step {
             // The previous velocities are the general inverse's first guess.
             let v = &mut self.after.v;
@@ -141,7 +143,9 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
         } else {
             &self.no_velocity
         };
-        for (i, event) in self.events.iter().enumerate() {
+        let mut crossed = false;
+        let values = self.g_after.iter_mut().zip(&self.g_before);
+        for (i, (event, (g_after, &g_before))) in self.events.iter().zip(values).enumerate() {
             let g = event.function.value(view.t, view.q, v, view.p);
             if !g.is_finite() {
                 let cause = StepError::EventNotFinite {
@@ -152,9 +156,10 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
                 let step = view.step.saturating_sub(1);
                 return Err(Error::step(step, self.before.t, cause));
             }
-            self.g_after[i] = g;
+            *g_after = g;
+            crossed |= event.direction.crosses(g_before, g);
         }
-        Ok(())
+        Ok(crossed)
     }
 
     /// `after` ← the view's state, to locate a crossing in the step (its velocities are
@@ -176,13 +181,6 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
         before.p.copy_from_slice(view.p);
         std::mem::swap(&mut before.v, &mut self.after.v);
         std::mem::swap(&mut self.g_before, &mut self.g_after);
-    }
-
-    /// Whether some event's `g` changed sign in its direction over the step.
-    fn any_sign_change(&self) -> bool {
-        (self.events.iter())
-            .zip(self.g_before.iter().zip(&self.g_after))
-            .any(|(event, (&g0, &g1))| event.direction.crosses(g0, g1))
     }
 
     /// The velocities at both ends of the step, when they are not computed at every step: the
@@ -340,8 +338,7 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
 impl<L: Lagrangian, G: EventFunction> EventDetector<'_, L, G> {
     /// Takes the step `view` ends, and locates and acts on its crossings, if any.
     fn look_at(&mut self, view: &StepView<'_>) -> Result<(), Error> {
-        self.evaluate(view)?;
-        if !self.any_sign_change() {
+        if !self.evaluate(view)? {
             return Ok(());
         }
         self.keep_after(view);

@@ -78,6 +78,7 @@ pub enum Direction {
 
 impl Direction {
     /// Whether going from `before` to `after` is a crossing in this direction.
+    #[inline]
     pub fn crosses(self, before: f64, after: f64) -> bool {
         let up = before < 0.0 && after >= 0.0;
         let down = before > 0.0 && after <= 0.0;
