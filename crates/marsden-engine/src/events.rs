@@ -282,8 +282,8 @@ impl<L: Lagrangian, O: Observer> Observer for Watched<'_, '_, L, O> {
         self.detector.is_some() || self.samples.is_some() || self.inner.every_step()
     }
 
-    fn cadence(&self) -> usize {
-        self.inner.cadence()
+    fn next_stop(&self, step: usize) -> usize {
+        self.inner.next_stop(step)
     }
 
     fn termination(&self) -> Option<Termination> {

@@ -9,7 +9,7 @@
 //!
 //! The observer needs to see only the sampled steps, plus every [`CHECK_EVERY`]-th step when
 //! the caller gave [`Controls`] (a progress callback, a stop flag): it says so
-//! ([`Observer::every_step`], [`Observer::cadence`]), so an explicit run takes the steps in
+//! ([`Observer::every_step`], [`Observer::next_stop`]), so an explicit run takes the steps in
 //! between in one loop ([`marsden::Integrator::advance`]) with no per-step work of its own.
 
 use std::ops::ControlFlow;
@@ -17,6 +17,7 @@ use std::time::Instant;
 
 use marsden::analysis::diagnostics::residuals_at;
 use marsden::holonomic::multipliers_at;
+use marsden::run::next_multiple;
 use marsden::{Constraint, Lagrangian, Observer, StepView, Trajectory, mechanics};
 use marsden_io::RowSink;
 
@@ -366,16 +367,13 @@ impl<L: Lagrangian, C: Constraint, M: MomentumMap> Observer for StreamObserver<'
         self.monitor_every_step
     }
 
-    /// The sampling stride, and every [`CHECK_EVERY`]-th step when controls are watched.
-    fn cadence(&self) -> usize {
+    /// The next sampled step, or the next [`CHECK_EVERY`]-th step when controls are watched,
+    /// whichever comes first.
+    fn next_stop(&self, step: usize) -> usize {
+        let sample = next_multiple(step, self.every);
         match self.watch {
-            true => gcd(self.every, CHECK_EVERY),
-            false => self.every,
+            true => sample.min(next_multiple(step, CHECK_EVERY)),
+            false => sample,
         }
     }
-}
-
-/// Greatest common divisor (Euclid): the steps at which two cadences both stop the run loop.
-pub(crate) fn gcd(a: usize, b: usize) -> usize {
-    if b == 0 { a } else { gcd(b, a % b) }
 }

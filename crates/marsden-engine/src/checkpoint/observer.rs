@@ -5,13 +5,14 @@
 use std::ops::ControlFlow;
 
 use marsden::integrator::IntegratorCheckpoint;
+use marsden::run::next_multiple;
 use marsden::{Constraint, Lagrangian, Observer, StepView, Termination};
 
 use super::{BalancesCheckpoint, Carried, CheckpointPlan, RunCheckpoint, file};
 use crate::balance::Balanced;
 use crate::events::Watched;
 use crate::noether_balance::NoetherBalanced;
-use crate::observer::{StreamObserver, gcd};
+use crate::observer::StreamObserver;
 use marsden::discrete::DiscreteForce;
 use marsden::symmetry::GroupAction;
 use marsden_problem::model::MomentumMap;
@@ -114,12 +115,9 @@ impl<O: Observer + Carries> Observer for Checkpointing<'_, O> {
         self.inner.every_step()
     }
 
-    /// The inner observers' cadence, and the checkpoints' steps.
-    fn cadence(&self) -> usize {
-        match self.inner.cadence() {
-            usize::MAX => self.plan.every,
-            c => gcd(c, self.plan.every),
-        }
+    /// The inner observers' next stop, or the next checkpoint's step if it comes first.
+    fn next_stop(&self, step: usize) -> usize {
+        (self.inner.next_stop(step)).min(next_multiple(step, self.plan.every))
     }
 
     fn termination(&self) -> Option<Termination> {

@@ -44,6 +44,14 @@ pub trait Observer {
     fn cadence(&self) -> usize {
         usize::MAX
     }
+    /// When [`Observer::every_step`] is false: the first step after `step` that
+    /// [`Observer::observe`] must see besides the stored samples and the last step. Default:
+    /// the next multiple of [`Observer::cadence`]; an observer with two periods (a sampling
+    /// stride and a check of a stop flag) says the nearer of their next multiples, so that the
+    /// run loop does not stop at every multiple of their greatest common divisor.
+    fn next_stop(&self, step: usize) -> usize {
+        next_multiple(step, self.cadence())
+    }
     /// Why the run ends, asked once when [`Observer::observe`] returned
     /// `ControlFlow::Break(())`. Default: `None`, which the run loop records as
     /// [`Termination::Stopped`]; an event detector names its event
@@ -68,6 +76,12 @@ pub trait Observer {
     ) -> ControlFlow<()> {
         ControlFlow::Continue(())
     }
+}
+
+/// The first multiple of `period` after `step` (`usize::MAX` when there is none).
+pub fn next_multiple(step: usize, period: usize) -> usize {
+    let period = period.max(1);
+    step.saturating_add(period - step % period)
 }
 
 /// Observes nothing.

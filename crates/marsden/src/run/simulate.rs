@@ -105,10 +105,9 @@ where
     let mut last_report = initial;
     // Steps between stored samples run in one call when nobody watches each step.
     let chunked = !observer.every_step();
-    let cadence = observer.cadence().max(1);
     while k < grid.steps {
         let chunk = if chunked {
-            let to_sample = (stride - k % stride).min(cadence - k % cadence);
+            let to_sample = (stride - k % stride).min(observer.next_stop(k) - k);
             to_sample.min(grid.steps - k)
         } else {
             1

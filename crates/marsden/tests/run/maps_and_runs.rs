@@ -79,6 +79,49 @@ fn observers_see_every_step_and_can_stop_the_run() {
     assert_eq!(*traj.step_indices.last().unwrap(), 40);
 }
 
+/// An observer with two periods (samples every 10 steps, a stop flag every 256) that need not
+/// see every step: the run loop stops exactly at the multiples of either (and the last step),
+/// not at every multiple of their greatest common divisor (2), and the states are those of a
+/// run watched at every step, bit for bit.
+#[test]
+fn an_observer_with_two_periods_sees_only_their_multiples() {
+    struct TwoPeriods(Vec<(usize, u64)>);
+    impl marsden::Observer for TwoPeriods {
+        fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()> {
+            self.0.push((view.step, view.q[0].to_bits()));
+            ControlFlow::Continue(())
+        }
+        fn every_step(&self) -> bool {
+            false
+        }
+        fn next_stop(&self, step: usize) -> usize {
+            marsden::run::next_multiple(step, 10).min(marsden::run::next_multiple(step, 256))
+        }
+    }
+    let options = SolveOptions {
+        run: RunOptions { stride: usize::MAX },
+        ..SolveOptions::default()
+    };
+    let mut two = TwoPeriods(Vec::new());
+    problem(1000)
+        .solve_with(&Midpoint, &options, &mut two)
+        .unwrap();
+    let expected: Vec<usize> = (1..=1000).filter(|k| k % 10 == 0 || k % 256 == 0).collect();
+    let steps: Vec<usize> = two.0.iter().map(|(k, _)| *k).collect();
+    assert_eq!(steps, expected);
+    let mut all = Vec::new();
+    let mut every = |view: &StepView<'_>| {
+        all.push(view.q[0].to_bits());
+        ControlFlow::Continue(())
+    };
+    problem(1000)
+        .solve_with(&Midpoint, &options, &mut every)
+        .unwrap();
+    for (k, bits) in &two.0 {
+        assert_eq!(*bits, all[k - 1], "q at step {k}");
+    }
+}
+
 #[test]
 fn streaming_energy_monitor_equals_the_batch_report() {
     let p = problem(2000);
