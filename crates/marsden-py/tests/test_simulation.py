@@ -38,6 +38,17 @@ def test_stretches_on_the_grid_are_the_whole_run():
         assert np.max(np.abs(first.q[:, 0] - whole.q[:101, 0])) <= tolerance
 
 
+def test_integrate_ends_at_the_time_asked_to_the_bit():
+    """integrate(1.7) from t = 1 with h = 0.01 is 70 steps, and 1 + 70·0.01 rounds to
+    1.7000000000000002: the last step is 1.7 − t₆₉ (h to round-off), so the simulation stands
+    at 1.7 itself."""
+    sim = oscillator().simulation()
+    sim.integrate(1.0)
+    assert 1.0 + 70 * 0.01 != 1.7
+    stretch = sim.integrate(1.7)
+    assert sim.t == 1.7 and stretch.t[-1] == 1.7 and len(stretch.t) == 71
+
+
 def test_integrate_reaches_a_time_off_the_grid_exactly():
     """integrate(π) ends at π exactly with a shorter last step; the state is the closed-form
     oscillator's to the midpoint rule's O(h²) (h = 0.01: 1e-4 over a half period), and the

@@ -77,7 +77,9 @@ pub fn continued(
             "the time {t} is not after the current time {}",
             start.t
         )),
-        StretchEnd::Time(t) => TimeGrid::ending_at(start.t, t, h).map_err(|e| e.to_string()),
+        StretchEnd::Time(t) => {
+            TimeGrid::ending_exactly_at(start.t, t, h).map_err(|e| e.to_string())
+        }
     }
     .map_err(Diagnostic::new)?;
     let mut continued = spec.clone();

@@ -58,14 +58,32 @@ impl TimeGrid {
         }
     }
 
+    /// [`TimeGrid::ending_at`] with `time(steps) = t_end` to the bit also when `t_end` is a
+    /// whole number of steps away: where `t₀ + N h` rounds to another number than `t_end`, the
+    /// last step is `t_end − t_{N−1}`, which is `h` to round-off (a stepping interface asked
+    /// to integrate to a time ends there, as a user reads the time back).
+    ///
+    /// # Errors
+    /// As [`TimeGrid::ending_at`].
+    pub fn ending_exactly_at(t0: f64, t_end: f64, h: f64) -> Result<Self, Error> {
+        let grid = Self::ending_at(t0, t_end, h)?;
+        match grid.t_end() == t_end {
+            true => Ok(grid),
+            false => Ok(Self {
+                end: Some(t_end),
+                ..grid
+            }),
+        }
+    }
+
     /// Checks a grid built field by field: `h` positive and finite, `t0` finite, and a shorter
-    /// last step, if any, in `(0, h]`.
+    /// last step, if any, in `(0, h]` (to a relative 1e-9 above `h`: round-off).
     ///
     /// # Errors
     /// The field at fault.
     pub fn validate(&self) -> Result<(), Error> {
         Self::new(self.t0, self.h, self.steps)?;
-        let fits = |last: f64| last > 0.0 && last <= self.h;
+        let fits = |last: f64| last > 0.0 && last <= self.h * (1.0 + 1e-9);
         match (self.end, self.last_step()) {
             (Some(_), last) if !last.is_some_and(fits) => {
                 Err(Error::Input(InputError::InvalidTimeSpan {

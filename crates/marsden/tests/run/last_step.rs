@@ -115,3 +115,26 @@ fn a_grid_whose_end_lies_outside_its_last_step_is_refused() {
     let initial = Initial::momentum(&[1.0], &[0.0]);
     assert!(Problem::new(HarmonicOscillator::default(), initial, grid).is_err());
 }
+
+/// `TimeGrid::ending_exactly_at`: from 1 to 1.7 with h = 0.01 is a whole number of steps (70),
+/// but `1 + 70·0.01` rounds to 1.7000000000000002; the grid ends at 1.7 itself with a last step
+/// `1.7 − t₆₉` equal to h to round-off, and the run's last state is the uniform run's to
+/// round-off (R1's Cayley rotation is continuous in h). A grid that is uniform to the bit
+/// stays as `ending_at` builds it.
+#[test]
+fn a_grid_ending_exactly_at_a_whole_number_of_steps_lands_on_the_bit() {
+    let exact = TimeGrid::ending_exactly_at(1.0, 1.7, 0.01).unwrap();
+    let uniform = TimeGrid::ending_at(1.0, 1.7, 0.01).unwrap();
+    assert_eq!((exact.steps, uniform.steps), (70, 70));
+    assert_eq!(uniform.t_end(), 1.7000000000000002);
+    assert_eq!(exact.t_end(), 1.7);
+    let last = exact.last_step().unwrap();
+    assert!((last - 0.01).abs() < 1e-15, "last step {last}");
+    exact.validate().unwrap();
+    let (t, q, p) = end(&Midpoint, exact);
+    let (_, q_uniform, p_uniform) = end(&Midpoint, uniform);
+    assert_eq!(t, 1.7);
+    assert!((q - q_uniform).abs() < 1e-15 && (p - p_uniform).abs() < 1e-15);
+    let whole = TimeGrid::ending_exactly_at(0.0, 1.0, 0.125).unwrap();
+    assert_eq!(whole, TimeGrid::ending_at(0.0, 1.0, 0.125).unwrap());
+}
