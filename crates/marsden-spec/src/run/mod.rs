@@ -16,7 +16,7 @@
 //! | events | [`event_outputs`] | `events.csv`, in-memory [`EventSamples`](event_outputs::EventSamples), `section.png`, `observables.png` |
 //! | stepping | [`segment`] | a run continued from a state `(t, q, p)` for some steps or to a time (Python's `Simulation`) |
 //! | chosen times | [`sampled_times`] | `[output] times`: `samples.csv`, in-memory [`SampledStates`](sampled_times::SampledStates) |
-//! | afterwards | [`summary`], [`plots`], [`rigid_plots`], [`multibody_plots`] | `summary.json`; the PNG plots (also `marsden plot`) |
+//! | afterwards | [`summary`] ([`summary_bodies`]), [`plots`], [`rigid_plots`], [`multibody_plots`] | `summary.json`; the PNG plots (also `marsden plot`) |
 //! | derivatives | [`sensitivity`] | `[sensitivity]`: the tangent run's Jacobians, `sensitivity.npy` |
 //! | sweeps | [`sweep`], [`shard`], [`sweep_table`], [`sweep_writer`] | members in parallel ([`marsden::studies::ensemble`]), one row each, streamed to the table |
 
@@ -32,6 +32,7 @@ pub mod samples;
 pub mod segment;
 pub mod shard;
 pub mod summary;
+pub mod summary_bodies;
 pub mod sweep;
 pub mod sweep_checkpoint;
 pub mod sweep_table;
