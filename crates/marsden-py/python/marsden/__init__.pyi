@@ -170,7 +170,12 @@ class Problem:
     def solve(self, every: Optional[int] = ..., progress: ProgressRequest = ...,
               sensitivity: Optional[SensitivityRequest] = ...,
               dir: Optional[str] = ..., checkpoint_every: Optional[int] = ...) -> Solution: ...
-    class Simulation:
+    def sweep(self, parameter: Optional[str] = ..., values: Optional[Sequence[float]] = ...,
+              executor: Optional[concurrent.futures.Executor] = ..., *,
+              initial: Optional[str] = ..., every: Optional[int] = ...,
+              threads: Optional[int] = ...) -> List[Union[Solution, Exception]]: ...
+
+class Simulation:
     t: float
     q: FloatArray
     p: FloatArray
@@ -184,11 +189,6 @@ class Problem:
     def save(self, path: Union[str, os.PathLike[str]]) -> None: ...
     @classmethod
     def load(cls, path: Union[str, os.PathLike[str]]) -> Simulation: ...
-
-def sweep(self, parameter: Optional[str] = ..., values: Optional[Sequence[float]] = ...,
-              executor: Optional[concurrent.futures.Executor] = ..., *,
-              initial: Optional[str] = ..., every: Optional[int] = ...,
-              threads: Optional[int] = ...) -> List[Union[Solution, Exception]]: ...
 
 def sweep(
     problem: Problem,
