@@ -23,7 +23,7 @@ fn radial(_t: f64, q: &[f64], v: &[f64], _p: &[f64]) -> f64 {
     q[0] * v[0] + q[1] * v[1]
 }
 
-fn options() -> SolveOptions {
+pub(super) fn options() -> SolveOptions {
     SolveOptions {
         newton: tight(),
         ..SolveOptions::default()
@@ -31,7 +31,7 @@ fn options() -> SolveOptions {
 }
 
 /// The pendulum `L = ½θ̇² + cos θ` released from θ₀ = 1.5 at rest, on `steps` steps of `h`.
-fn pendulum(h: f64, steps: usize) -> Problem<Pendulum> {
+pub(super) fn pendulum(h: f64, steps: usize) -> Problem<Pendulum> {
     let grid = TimeGrid::new(0.0, h, steps).unwrap();
     Problem::new(Pendulum::default(), Initial::velocity(&[1.5], &[0.0]), grid).unwrap()
 }

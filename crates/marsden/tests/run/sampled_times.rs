@@ -7,22 +7,10 @@ use marsden::error::{Error, InputError};
 use marsden::run::events::{Sample, SamplerCheckpoint, TimeSampler};
 use marsden::special::pendulum::Pendulum as ExactPendulum;
 use marsden::systems::Pendulum;
-use marsden::{Initial, Midpoint, Problem, SolveOptions, Termination, TimeGrid};
+use marsden::{Midpoint, Problem, Termination};
 
-use crate::common::{feed, loglog_slope, tight};
-
-fn options() -> SolveOptions {
-    SolveOptions {
-        newton: tight(),
-        ..SolveOptions::default()
-    }
-}
-
-/// The pendulum `L = ½θ̇² + cos θ` released from θ₀ = 1.5 at rest, on `steps` steps of `h`.
-fn pendulum(h: f64, steps: usize) -> Problem<Pendulum> {
-    let grid = TimeGrid::new(0.0, h, steps).unwrap();
-    Problem::new(Pendulum::default(), Initial::velocity(&[1.5], &[0.0]), grid).unwrap()
-}
+use super::events::{options, pendulum};
+use crate::common::{feed, loglog_slope};
 
 /// Times that are no multiple of any step used below (irrational fractions of the run).
 fn requested() -> Vec<f64> {
