@@ -6,8 +6,10 @@ use marsden::{Lagrangian, Rule};
 
 use crate::error::ControlError;
 use crate::model::{ControlForce, FinalCost, RunningCost};
-use crate::problem::{OptimalControl, Rate, check_len};
+use crate::problem::{OptimalControl, check_len};
+use crate::stages::StagedControls;
 use crate::transcription::Evaluation;
+use marsden::numerics::dense::max_or_nan;
 
 /// The largest differences between the AD derivatives of the program and central differences.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -29,20 +31,15 @@ where
     C: RunningCost,
     P: FinalCost,
 {
-    /// The number of unknowns and of constraints of the program.
-    pub fn sizes(&self) -> (usize, usize) {
-        let (n, m, steps) = (self.dof(), self.controls(), self.grid.steps);
-        let fixed = |values: &[Option<f64>]| values.iter().filter(|v| v.is_some()).count();
-        let ends: usize = [&self.start, &self.end]
-            .iter()
-            .map(|b| {
-                let rate = match &b.rate {
-                    Rate::Velocity(v) | Rate::Momentum(v) => fixed(v),
-                };
-                fixed(&b.q) + rate
-            })
-            .sum();
-        (steps * (n + m) + n, (steps - 1) * n + ends)
+    /// The number of unknowns and of constraints of the program transcribed with `rule`.
+    ///
+    /// # Errors
+    /// [`ControlError::UnsupportedRule`] as [`OptimalControl::solve`].
+    pub fn sizes<R: Rule + StagedControls>(
+        &self,
+        rule: &R,
+    ) -> Result<(usize, usize), ControlError> {
+        self.with_program(rule, |program| (program.layout.unknowns(), program.rows))
     }
 
     /// Compares the gradient, constraint Jacobian and Hessian of the Lagrangian (multipliers
@@ -51,15 +48,15 @@ where
     ///
     /// # Errors
     /// [`ControlError::Length`] when `z` or `lambda` do not fit [`OptimalControl::sizes`];
-    /// [`ControlError::UnsupportedRule`].
-    pub fn check_derivatives<R: Rule>(
+    /// [`ControlError::UnsupportedRule`] as [`OptimalControl::solve`].
+    pub fn check_derivatives<R: Rule + StagedControls>(
         &self,
         rule: &R,
         z: &[f64],
         lambda: &[f64],
         eps: f64,
     ) -> Result<DerivativeCheck, ControlError> {
-        let (unknowns, rows) = self.sizes();
+        let (unknowns, rows) = self.sizes(rule)?;
         check_len("z", z.len(), unknowns)?;
         check_len("lambda", lambda.len(), rows)?;
         self.with_program(rule, |program| {
@@ -93,20 +90,20 @@ where
                 let minus = program.evaluate(&zp);
                 zp[j] = z[j];
                 let fd = (plus.cost - minus.cost) / (2.0 * eps);
-                check.gradient = check.gradient.max((fd - e.gradient[j]).abs());
-                check.scale = check.scale.max(e.gradient[j].abs());
+                check.gradient = max_or_nan(check.gradient, (fd - e.gradient[j]).abs());
+                check.scale = max_or_nan(check.scale, e.gradient[j].abs());
                 for i in 0..rows {
                     let fd = (plus.constraints[i] - minus.constraints[i]) / (2.0 * eps);
                     let exact = jac[i * unknowns + j];
-                    check.jacobian = check.jacobian.max((fd - exact).abs());
-                    check.scale = check.scale.max(exact.abs());
+                    check.jacobian = max_or_nan(check.jacobian, (fd - exact).abs());
+                    check.scale = max_or_nan(check.scale, exact.abs());
                 }
                 let (gp, gm) = (lagrangian_gradient(&plus), lagrangian_gradient(&minus));
                 for i in 0..unknowns {
                     let fd = (gp[i] - gm[i]) / (2.0 * eps);
                     let exact = hess[i * unknowns + j];
-                    check.hessian = check.hessian.max((fd - exact).abs());
-                    check.scale = check.scale.max(exact.abs());
+                    check.hessian = max_or_nan(check.hessian, (fd - exact).abs());
+                    check.scale = max_or_nan(check.scale, exact.abs());
                 }
             }
             check

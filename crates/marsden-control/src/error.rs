@@ -57,14 +57,13 @@ pub enum ControlError {
         /// `N`.
         steps: usize,
     },
-    /// The rule has internal stages (Galerkin, compositions), which this transcription does not
-    /// treat yet.
-    #[error("rule {rule}: {stages} internal stages per step; only two-point rules are supported")]
+    /// The transcription cannot take this rule.
+    #[error("rule {rule} cannot be used for optimal control: {reason}")]
     UnsupportedRule {
         /// The rule's name.
         rule: String,
-        /// Its internal control points per step.
-        stages: usize,
+        /// Why.
+        reason: String,
     },
     /// An initial guess with the wrong number of nodes.
     #[error("initial guess: {what} has {got} nodes, expected {expected}")]

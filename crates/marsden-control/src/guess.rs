@@ -9,6 +9,7 @@ use marsden::{Force, Initial, Lagrangian, Problem, Rule, Scalar, SolveOptions, T
 
 use crate::model::{ControlForce, FinalCost, RunningCost};
 use crate::problem::{OptimalControl, Rate};
+use crate::stages::ControlStages;
 use crate::transcription::Layout;
 
 /// The controlled force at constant controls `u`, as a core [`Force`].
@@ -52,10 +53,43 @@ impl<F: ControlForce> Force for SampledControl<F> {
     }
 }
 
-/// The flat initial guess `z` of `problem` in `layout`.
+/// The controls of one step of a solution as a core [`Force`]: the polynomial through the
+/// step's stage values (constant for one value per step), so that the rule's quadrature nodes
+/// see the values the transcription gave them ([`crate::stages`]).
+#[derive(Debug, Clone)]
+pub struct StepControl<'a, F> {
+    /// The controlled force.
+    pub force: F,
+    /// The step's start `t_k` and length `h`.
+    pub step: (f64, f64),
+    /// The stage times.
+    pub stages: &'a ControlStages,
+    /// The step's control values, stage by stage.
+    pub u: &'a [Vec<f64>],
+}
+
+impl<F: ControlForce> Force for StepControl<'_, F> {
+    fn force<S: Scalar>(&self, t: S, q: &[S], v: &[S], out: &mut [S]) {
+        let (t0, h) = self.step;
+        let mut weights = vec![0.0; self.stages.count()];
+        self.stages.weights_at((t.re() - t0) / h, &mut weights);
+        let m = self.u.first().map_or(0, Vec::len);
+        let u: Vec<S> = (0..m)
+            .map(|j| {
+                let value = (weights.iter().zip(self.u)).fold(0.0, |s, (w, u)| s + w * u[j]);
+                S::from(value)
+            })
+            .collect();
+        self.force.force(t, q, v, &u, out);
+    }
+}
+
+/// The flat initial guess `z` of `problem` in `layout`: the nodes, each step's control (at
+/// every stage) and its inner control points on the straight line between its nodes.
 pub(crate) fn initial<L, F, C, P, R>(
     problem: &OptimalControl<L, F, C, P>,
     rule: &R,
+    stages: &ControlStages,
     layout: &Layout,
 ) -> Vec<f64>
 where
@@ -70,12 +104,25 @@ where
         None => default_nodes(problem, rule),
     };
     let mut z = vec![0.0; layout.unknowns()];
+    let n = layout.n;
     for (k, q) in nodes.iter().enumerate() {
-        z[layout.q(k)..layout.q(k) + layout.n].copy_from_slice(q);
+        z[layout.q(k)..layout.q(k) + n].copy_from_slice(q);
+    }
+    for (k, ends) in nodes.windows(2).enumerate() {
+        let inner = &stages.points[1..stages.points.len() - 1];
+        for (j, d) in inner.iter().enumerate() {
+            let at = layout.inner_points(k) + j * n;
+            for i in 0..n {
+                z[at + i] = ends[0][i] + d * (ends[1][i] - ends[0][i]);
+            }
+        }
     }
     if let Some(guess) = &problem.guess {
         for (k, u) in guess.u.iter().enumerate() {
-            z[layout.u(k)..layout.u(k) + layout.m].copy_from_slice(u);
+            for stage in 0..layout.stages {
+                let at = layout.u(k) + stage * layout.m;
+                z[at..at + layout.m].copy_from_slice(u);
+            }
         }
     }
     z

@@ -47,6 +47,7 @@
 //! | [`model`] | `f(t, q, v, u)`, `C(t, q, v, u)`, `Φ(q_N, p_N)`; ready-made input map and effort |
 //! | [`problem`] | [`OptimalControl`]: system, horizon, boundary conditions, bounds, guess |
 //! | [`transcription`] | unknowns, constraints, cost and their derivatives by AD |
+//! | [`stages`] | one control value per step, or one per stage of the rule |
 //! | [`qp`], [`sqp`] | the subproblem (Clarabel) and the SQP iteration |
 //! | [`solve`], [`solution`] | the solve and its [`Solution`] |
 //! | [`guess`] | initial guesses; controls as core forces |
@@ -73,12 +74,14 @@ pub mod qp;
 pub mod solution;
 pub mod solve;
 pub mod sqp;
+pub mod stages;
 pub mod transcription;
 
 pub use check::DerivativeCheck;
 pub use error::ControlError;
-pub use guess::{FrozenControl, SampledControl};
+pub use guess::{FrozenControl, SampledControl, StepControl};
 pub use model::{ControlForce, Effort, FinalCost, InputMap, NoFinalCost, RunningCost};
 pub use problem::{Boundary, Bounds, Guess, OptimalControl, Rate};
 pub use solution::{Failure, Infeasibility, Iteration, Solution, Status};
 pub use sqp::SqpOptions;
+pub use stages::{ControlStages, StagedControls};

@@ -2,8 +2,14 @@
 //! programs):
 //!
 //! ```text
-//!     minimise ½ dᵀ(H + δI)d + gᵀd   subject to   J d = r,   lo − z ≤ d ≤ hi − z,
+//!     minimise ½ dᵀ(H + δI + ρJᵀJ)d + gᵀd   subject to   J d = r,   lo − z ≤ d ≤ hi − z,
 //! ```
+//!
+//! The term `ρJᵀJ` (an augmented Lagrangian's, [NW06] §17.3) is `ρ|r|²` on the feasible set, a
+//! constant: it leaves the step unchanged and only shifts the multipliers (`λ = λ_ρ + ρJd`),
+//! but it makes `P` positive semidefinite when `H` is positive definite on the null space of
+//! `J` only, which an interior-point method for convex programs needs. That is the common case
+//! with inner control points: the Lagrangian has no curvature of its own along them.
 //!
 //! in Clarabel's form `min ½dᵀPd + gᵀd, A d + s = b, s ∈ {0}^rows × ℝ₊^bounds`, with `P` the
 //! upper triangle in compressed sparse columns. Clarabel's duals `y` satisfy
@@ -76,12 +82,55 @@ pub struct Certificate {
 /// The smallest `|bᵀy| / ‖Aᵀy‖∞` accepted: no step shorter than this (in ℓ1) is feasible.
 const CERTIFIED_RADIUS: f64 = 1e6;
 
+/// How the Hessian of a subproblem is made convex: `H + δI + ρJᵀJ`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Convexify {
+    /// `δ`: changes the step (a regularisation).
+    pub delta: f64,
+    /// `ρ`: leaves the step unchanged.
+    pub rho: f64,
+}
+
 impl Subproblem<'_> {
     /// Solves the subproblem with `H + δI`.
     pub fn solve(&self, delta: f64) -> QpOutcome {
+        self.solve_with(Convexify { delta, rho: 0.0 })
+    }
+
+    /// The upper triangle of `ρJᵀJ` as triplets (repeated entries of `J` added).
+    fn gram(&self, rho: f64) -> Vec<(usize, usize, f64)> {
+        let mut by_row = vec![Vec::new(); self.rows];
+        for &(r, c, v) in self.jacobian {
+            by_row[r].push((c, v));
+        }
+        let mut out = Vec::new();
+        for row in &by_row {
+            for (i, &(a, va)) in row.iter().enumerate() {
+                out.push((a, a, rho * va * va));
+                for &(b, vb) in &row[i + 1..] {
+                    let v = rho * va * vb;
+                    out.push(match a.cmp(&b) {
+                        std::cmp::Ordering::Equal => (a, a, 2.0 * v),
+                        std::cmp::Ordering::Less => (a, b, v),
+                        std::cmp::Ordering::Greater => (b, a, v),
+                    });
+                }
+            }
+        }
+        out
+    }
+
+    /// Solves the subproblem with `H + δI + ρJᵀJ`; the multipliers returned are those of `H + δI`.
+    pub fn solve_with(&self, convexify: Convexify) -> QpOutcome {
+        let Convexify { delta, rho } = convexify;
         let nx = self.gradient.len();
         let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
-        for &(r, c, v) in self.hessian {
+        let gram = if rho > 0.0 {
+            self.gram(rho)
+        } else {
+            Vec::new()
+        };
+        for &(r, c, v) in self.hessian.iter().chain(&gram) {
             rows.push(r);
             cols.push(c);
             vals.push(v);
@@ -138,7 +187,7 @@ impl Subproblem<'_> {
                 let (upper, lower) = bounds.split_at(self.upper.len());
                 QpOutcome::Solved(QpSolution {
                     step: s.x.clone(),
-                    lambda: lambda.to_vec(),
+                    lambda: self.unshifted(lambda, &s.x, rho),
                     upper: upper.to_vec(),
                     lower: lower.to_vec(),
                 })
@@ -157,6 +206,17 @@ impl Subproblem<'_> {
 }
 
 impl Subproblem<'_> {
+    /// The multipliers of `H + δI` from those of `H + δI + ρJᵀJ`: `λ = λ_ρ + ρJd`.
+    fn unshifted(&self, lambda: &[f64], d: &[f64], rho: f64) -> Vec<f64> {
+        let mut out = lambda.to_vec();
+        if rho > 0.0 {
+            for &(r, c, v) in self.jacobian {
+                out[r] += rho * v * d[c];
+            }
+        }
+        out
+    }
+
     /// Checks Clarabel's certificate `y` against `A` and `b` (see the module's doc).
     fn certificate(&self, a: &CscMatrix<f64>, b: &[f64], y: &[f64]) -> Option<Certificate> {
         // NaN-propagating maxima: a NaN anywhere must not pass as a certificate.

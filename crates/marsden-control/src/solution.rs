@@ -1,6 +1,8 @@
 //! What a solve returns: the status, the optimal (or last) trajectory, controls, momenta,
 //! costates and the convergence history.
 
+use crate::stages::ControlStages;
+
 /// How a solve ended. Anything but [`Status::Converged`] comes with the last iterate.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Status {
@@ -82,8 +84,17 @@ pub struct Solution {
     /// `p_0 … p_N` by the forced discrete Legendre transforms: `p_0 = −D₁L_d(q_0, q_1) − f_d⁻_0`,
     /// `p_k = D₂L_d(q_{k−1}, q_k) + f_d⁺_{k−1}` for `k ≥ 1`.
     pub p: Vec<Vec<f64>>,
-    /// `u_0 … u_{N−1}` (`u_k` on `[t_k, t_{k+1}]`).
+    /// The control values, step by step and stage by stage: `u_0 … u_{N−1}` (`u_k` on
+    /// `[t_k, t_{k+1}]`) for a rule with one value per step, `u_{k,1} … u_{k,σ}` (at
+    /// `t_k + c_i h`) for a rule with control stages ([`crate::stages`]).
     pub u: Vec<Vec<f64>>,
+    /// The time of each row of [`Solution::u`]: `t_k`, or `t_k + c_i h` for control stages.
+    pub control_times: Vec<f64>,
+    /// How the rule's steps see the controls (the stage times `c_i`, the control points).
+    pub stages: ControlStages,
+    /// Each step's inner control points `Q_1 … Q_{s−1}` back to back (empty for a two-point
+    /// rule).
+    pub inner: Vec<Vec<f64>>,
     /// The multipliers of the DEL constraints at the nodes `k = 1 … N−1` (the discrete
     /// costates), with the sign of the Lagrangian `J_d + Σ λᵀ c`.
     pub costates: Vec<Vec<f64>>,

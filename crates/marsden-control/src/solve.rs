@@ -1,6 +1,7 @@
 //! Solving a problem with a rule: transcription, SQP, and the result read off the last
 //! iterate.
 
+use marsden::numerics::dense::max_or_nan;
 use marsden::{DiscreteAction, DiscreteForce, Lagrangian, Rule};
 
 use crate::error::ControlError;
@@ -9,8 +10,9 @@ use crate::model::{ControlForce, FinalCost, RunningCost};
 use crate::problem::OptimalControl;
 use crate::solution::{Infeasibility, Solution, Status};
 use crate::sqp::{self, Program, SqpOptions, SqpOutcome, VariableBounds};
+use crate::stages::StagedControls;
 use crate::transcription::step::{Augmented, CostLagrangian, StepParts};
-use crate::transcription::{Evaluation, Layout, Transcription};
+use crate::transcription::{Evaluation, Layout, Transcription, Unknown};
 
 impl<L, A, FD, CD, P> Program for Transcription<'_, L, A, FD, CD, P>
 where
@@ -38,19 +40,26 @@ where
     C: RunningCost,
     P: FinalCost,
 {
-    /// Solves the problem transcribed with `rule` (a two-point rule: midpoint, trapezoid, the
-    /// α and symmetrised α rules).
+    /// Solves the problem transcribed with `rule`: a two-point rule (midpoint, trapezoid, the
+    /// α and symmetrised α rules) with one control value per step, a Galerkin rule (`gauss-s`,
+    /// `lobatto-s`) with one per quadrature node, or a composition of either with one per step
+    /// ([`crate::stages`]).
     ///
     /// A solve that does not converge is not an error: the [`Solution`] carries its status and
     /// the last iterate.
     ///
     /// # Errors
-    /// [`ControlError::UnsupportedRule`] for rules with internal stages,
-    /// [`ControlError::Option`] for tolerances that are not positive.
-    pub fn solve<R: Rule>(&self, rule: &R, options: &SqpOptions) -> Result<Solution, ControlError> {
+    /// [`ControlError::Option`] for tolerances that are not positive,
+    /// [`ControlError::UnsupportedRule`] if the rule's steps do not have the control points its
+    /// [`StagedControls`] describe.
+    pub fn solve<R: Rule + StagedControls>(
+        &self,
+        rule: &R,
+        options: &SqpOptions,
+    ) -> Result<Solution, ControlError> {
         check_options(options)?;
         self.with_program(rule, |program| {
-            let z0 = guess::initial(self, rule, &program.layout);
+            let z0 = guess::initial(self, rule, program.stages(), &program.layout);
             let bounds = self.variable_bounds(&program.layout);
             let outcome = sqp::solve(program, z0, &bounds, options);
             self.solution(program, outcome)
@@ -60,9 +69,10 @@ where
     /// Builds the transcription of the problem with `rule` and hands it to `f`.
     ///
     /// # Errors
-    /// [`ControlError::UnsupportedRule`] for rules with internal stages.
+    /// [`ControlError::UnsupportedRule`] if the rule's steps do not have the control points its
+    /// [`StagedControls`] describe.
     #[allow(clippy::type_complexity)]
-    pub(crate) fn with_program<'s, R: Rule, T>(
+    pub(crate) fn with_program<'s, R: Rule + StagedControls, T>(
         &'s self,
         rule: &R,
         f: impl FnOnce(
@@ -78,11 +88,15 @@ where
     ) -> Result<T, ControlError> {
         let (n, m) = (self.dof(), self.controls());
         let ld = rule.discretize(&self.lagrangian);
-        let stages = ld.internal_stages();
-        if stages != 0 {
+        let stages = rule.control_stages();
+        if stages.inner() != ld.internal_stages() {
             return Err(ControlError::UnsupportedRule {
                 rule: rule.name(),
-                stages,
+                reason: format!(
+                    "its steps have {} inner control points, its control stages describe {}",
+                    ld.internal_stages(),
+                    stages.inner()
+                ),
             });
         }
         let fd = rule.discretize_force(
@@ -102,6 +116,7 @@ where
             fd: &fd,
             cd: &cd,
             final_cost: None,
+            stages: &stages,
             n,
             m,
         };
@@ -127,9 +142,11 @@ where
             bounds.lower[q..q + layout.n].copy_from_slice(&self.state_bounds.lower);
             bounds.upper[q..q + layout.n].copy_from_slice(&self.state_bounds.upper);
             if k < layout.steps {
-                let u = layout.u(k);
-                bounds.lower[u..u + layout.m].copy_from_slice(&self.control_bounds.lower);
-                bounds.upper[u..u + layout.m].copy_from_slice(&self.control_bounds.upper);
+                for stage in 0..layout.stages {
+                    let u = layout.u(k) + stage * layout.m;
+                    bounds.lower[u..u + layout.m].copy_from_slice(&self.control_bounds.lower);
+                    bounds.upper[u..u + layout.m].copy_from_slice(&self.control_bounds.upper);
+                }
             }
         }
         bounds
@@ -152,8 +169,17 @@ where
         let q = (0..=steps)
             .map(|k| z[layout.q(k)..layout.q(k) + n].to_vec())
             .collect();
-        let u = (0..steps)
-            .map(|k| z[layout.u(k)..layout.u(k) + layout.m].to_vec())
+        let (sigma, m, h) = (layout.stages, layout.m, self.grid.h);
+        let u = (0..steps * sigma)
+            .map(|r| layout.u(r / sigma) + (r % sigma) * m)
+            .map(|i| z[i..i + m].to_vec())
+            .collect();
+        let stages = program.stages();
+        let control_times = (0..steps * sigma)
+            .map(|r| self.grid.time(r / sigma) + stages.times[r % sigma] * h)
+            .collect();
+        let inner = (0..steps)
+            .map(|k| z[layout.inner_points(k)..layout.q(k + 1)].to_vec())
             .collect();
         // p_0 = −m_0, p_{k+1} = P_k.
         let mut p = vec![e.momenta[..n].iter().map(|x| -x).collect::<Vec<f64>>()];
@@ -171,11 +197,17 @@ where
             cost: e.cost,
             iterations: outcome.history.len(),
             kkt_residual: outcome.kkt,
-            constraint_violation: e.constraints.iter().fold(0.0, |m, c| m.max(c.abs())),
+            constraint_violation: e
+                .constraints
+                .iter()
+                .fold(0.0, |m, c| max_or_nan(m, c.abs())),
             t: (0..=steps).map(|k| self.grid.time(k)).collect(),
             q,
             p,
             u,
+            control_times,
+            stages: stages.clone(),
+            inner,
             costates: program.costates(&outcome.lambda),
             start_multipliers,
             end_multipliers,
@@ -186,12 +218,10 @@ where
 
 /// The controls and coordinates of the bounded unknowns `variables` of `layout`.
 fn locate(infeasibility: &mut Infeasibility, layout: &Layout, variables: &[usize]) {
-    let block = layout.n + layout.m;
     for &i in variables {
-        let within = i % block;
-        let list = match within < layout.n {
-            true => (&mut infeasibility.coordinates, within),
-            false => (&mut infeasibility.controls, within - layout.n),
+        let list = match layout.unknown(i) {
+            Unknown::Coordinate(c) | Unknown::Inner(c) => (&mut infeasibility.coordinates, c),
+            Unknown::Control(j) => (&mut infeasibility.controls, j),
         };
         if !list.0.contains(&list.1) {
             list.0.push(list.1);

@@ -1,7 +1,8 @@
 //! A short SQP iteration ([NW06] ch. 18) around the Clarabel subproblem ([`crate::qp`]).
 //!
 //! * Hessian: the exact Hessian of the Lagrangian `f + λᵀc` from automatic differentiation,
-//!   plus `δI`. Each iteration tries `δ = 0` first, then (as IPOPT does) a third of the last
+//!   plus `δI`. Each iteration tries `δ = 0` first (with `P = H`, then `H + ρJᵀJ` for a few `ρ`:
+//!   the same step, [`crate::qp`]), then (as IPOPT does) a third of the last
 //!   nonzero `δ`, growing eightfold, until Clarabel solves the subproblem and the step has
 //!   positive curvature `dᵀ(H + δI)d ≥ κ dᵀd`. Near a strict local minimum `δ = 0`
 //!   passes, so the steps are Newton steps on the KKT conditions (fast local convergence).
@@ -14,7 +15,9 @@
 //!
 //! [NW06]: crate#references
 
-use crate::qp::{Certificate, QpOutcome, QpSolution, Subproblem};
+use marsden::numerics::dense::max_or_nan;
+
+use crate::qp::{Certificate, Convexify, QpOutcome, QpSolution, Subproblem};
 use crate::solution::{Failure, Infeasibility, Iteration, Status};
 use crate::transcription::Evaluation;
 
@@ -198,6 +201,9 @@ enum Stop {
 /// feasibility does not depend on the Hessian, and a larger `δ` only degrades the solver's
 /// scaling until it can no longer tell (it then stalls at its iteration limit).
 fn regularised_step(sub: &Subproblem<'_>, last_delta: &mut f64) -> Result<(QpSolution, f64), Stop> {
+    if let Some(solved) = convexified_step(sub)? {
+        return Ok((solved, 0.0));
+    }
     let mut delta = 0.0;
     loop {
         let outcome = sub.solve(delta);
@@ -228,6 +234,20 @@ fn regularised_step(sub: &Subproblem<'_>, last_delta: &mut f64) -> Result<(QpSol
             regularization: delta,
         }));
     }
+}
+
+/// The subproblem's Newton step (`δ = 0`) with `P = H`, else with `P = H + ρJᵀJ` for
+/// `ρ = 1, 10², 10⁴` ([`crate::qp`]: the same step, a convex `P` when `H` is positive definite
+/// on the null space of `J`), if one is solved with positive curvature.
+fn convexified_step(sub: &Subproblem<'_>) -> Result<Option<QpSolution>, Stop> {
+    for rho in [0.0, 1.0, 1e2, 1e4] {
+        match sub.solve_with(Convexify { delta: 0.0, rho }) {
+            QpOutcome::Solved(s) if curvature_ok(sub.hessian, 0.0, &s.step) => return Ok(Some(s)),
+            QpOutcome::Infeasible(certificate) => return Err(Stop::Infeasible(certificate)),
+            _ => {}
+        }
+    }
+    Ok(None)
 }
 
 /// The ℓ1 penalty of this iteration: at least `‖λ‖∞` (exactness of the merit at a KKT point)
@@ -297,11 +317,11 @@ fn kkt_residual(e: &Evaluation, qp: &QpSolution, (upper, lower): BoundsRef<'_>) 
     let mut complementarity = 0.0_f64;
     for (&(i, slack), &m) in upper.iter().zip(&qp.upper) {
         r[i] += m;
-        complementarity = complementarity.max((m * slack).abs());
+        complementarity = max_or_nan(complementarity, (m * slack).abs());
     }
     for (&(i, slack), &m) in lower.iter().zip(&qp.lower) {
         r[i] -= m;
-        complementarity = complementarity.max((m * slack).abs());
+        complementarity = max_or_nan(complementarity, (m * slack).abs());
     }
     max_abs(&r).max(complementarity)
 }
@@ -312,7 +332,7 @@ type Bound = (usize, f64);
 type BoundsRef<'a> = (&'a [Bound], &'a [Bound]);
 
 fn max_abs(v: &[f64]) -> f64 {
-    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+    v.iter().fold(0.0, |m, x| max_or_nan(m, x.abs()))
 }
 
 fn l1(v: &[f64]) -> f64 {

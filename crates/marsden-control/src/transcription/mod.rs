@@ -1,10 +1,12 @@
 //! The nonlinear program of DMOC ([OJM11] §3): unknowns, constraints, cost and their
 //! derivatives.
 //!
-//! Unknowns in time order, `z = (q_0, u_0, q_1, u_1, …, u_{N−1}, q_N)`, so that step `k` reads
-//! the contiguous block `(q_k, u_k, q_{k+1})` and every matrix is banded in `k`. With
-//! `m_k = D₁L_d(q_k, q_{k+1}) + f_d⁻_k` and `P_k = D₂L_d(q_k, q_{k+1}) + f_d⁺_k` the
-//! constraints are, in this row order,
+//! Unknowns in time order, `z = (q_0, u_0, Q_0, q_1, u_1, Q_1, …, u_{N−1}, Q_{N−1}, q_N)`, so
+//! that step `k` reads the contiguous block `(q_k, u_k, Q_k, q_{k+1})` and every matrix is
+//! banded in `k`; `u_k` holds the step's control values (one, or one per stage:
+//! [`crate::stages`]) and `Q_k` the rule's inner control points (none for a two-point rule).
+//! With `m_k = D₁L_d + f_d⁻_k` and `P_k = D₂L_d + f_d⁺_k` (the derivatives at the step's first
+//! and last control points) the constraints are, in this row order,
 //!
 //! ```text
 //!     q_0,i − a_i = 0                       (fixed start positions)
@@ -12,6 +14,7 @@
 //!     P_{k−1} + m_k = 0,     k = 1 … N−1    (forced DEL: the core's step equations)
 //!     q_N,i − b_i = 0                       (fixed end positions)
 //!     P_{N−1},i − p^N_i = 0                 (fixed end momenta)
+//!     D_jL_d + f_j = 0,     j = 1 … s−1     (each step's inner points, step by step)
 //! ```
 //!
 //! and the cost is `Σ_k C_d,k + Φ(q_N, P_{N−1})`. The multipliers of the DEL rows are the
@@ -26,6 +29,7 @@ use marsden::{DiscreteAction, DiscreteForce, Lagrangian, TimeGrid};
 
 use crate::model::FinalCost;
 use crate::problem::{Boundary, Rate};
+use crate::stages::ControlStages;
 use step::{BoundaryMomentum, StepFunction, StepParts, Weighted};
 
 /// Where the unknowns sit in `z`.
@@ -37,25 +41,58 @@ pub struct Layout {
     pub m: usize,
     /// Steps `N`.
     pub steps: usize,
+    /// Control values per step `σ`.
+    pub stages: usize,
+    /// Inner control points per step `s − 1`.
+    pub inner: usize,
 }
 
 impl Layout {
+    /// Unknowns per step before the next node: `q_k`, `σ` controls, `s − 1` inner points.
+    pub fn stride(&self) -> usize {
+        self.n + self.stages * self.m + self.inner * self.n
+    }
     /// Index of `q_k`.
     pub fn q(&self, k: usize) -> usize {
-        k * (self.n + self.m)
+        k * self.stride()
     }
-    /// Index of `u_k`.
+    /// Index of `u_k` (its `σ m` control values, stage by stage).
     pub fn u(&self, k: usize) -> usize {
-        k * (self.n + self.m) + self.n
+        k * self.stride() + self.n
+    }
+    /// Index of the inner control points of step `k`.
+    pub fn inner_points(&self, k: usize) -> usize {
+        self.u(k) + self.stages * self.m
     }
     /// Length of `z`.
     pub fn unknowns(&self) -> usize {
-        self.steps * (self.n + self.m) + self.n
+        self.steps * self.stride() + self.n
     }
-    /// Length of a step's block `(q_k, u_k, q_{k+1})`.
+    /// Length of a step's block `(q_k, u_k, Q_k, q_{k+1})`.
     pub fn block(&self) -> usize {
-        2 * self.n + self.m
+        self.stride() + self.n
     }
+    /// What unknown `i` is.
+    pub fn unknown(&self, i: usize) -> Unknown {
+        let within = i % self.stride();
+        let controls = self.stages * self.m;
+        match within {
+            w if w < self.n => Unknown::Coordinate(w),
+            w if w < self.n + controls => Unknown::Control((w - self.n) % self.m),
+            w => Unknown::Inner((w - self.n - controls) % self.n),
+        }
+    }
+}
+
+/// What an unknown of `z` is ([`Layout::unknown`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Unknown {
+    /// Coordinate `i` of a node.
+    Coordinate(usize),
+    /// Control `j` (of some stage).
+    Control(usize),
+    /// Coordinate `i` of an inner control point.
+    Inner(usize),
 }
 
 /// The fixed components of one boundary and the rows they occupy.
@@ -130,7 +167,7 @@ impl Evaluation {
     }
 }
 
-/// The transcribed program of a two-point rule.
+/// The transcribed program.
 pub struct Transcription<'a, L, A, FD, CD, P> {
     lagrangian: &'a L,
     parts: StepParts<'a, A, FD, CD, P>,
@@ -143,6 +180,8 @@ pub struct Transcription<'a, L, A, FD, CD, P> {
     end: End,
     /// First DEL row.
     del_row: usize,
+    /// First row of the inner points' equations.
+    inner_row: usize,
     /// Number of constraints.
     pub rows: usize,
 }
@@ -167,11 +206,14 @@ where
             n: parts.n,
             m: parts.m,
             steps: grid.steps,
+            stages: parts.stages.count(),
+            inner: parts.stages.inner(),
         };
         let start = End::of(start, 0);
         let del_row = start.rows();
         let end = End::of(end, del_row + (grid.steps - 1) * parts.n);
-        let rows = end.row + end.rows();
+        let inner_row = end.row + end.rows();
+        let rows = inner_row + grid.steps * layout.inner * parts.n;
         let mut last = parts;
         last.final_cost = Some(final_cost);
         let mut parts = parts;
@@ -185,7 +227,28 @@ where
             start,
             end,
             del_row,
+            inner_row,
             rows,
+        }
+    }
+
+    /// How the steps see their controls.
+    pub fn stages(&self) -> &'a ControlStages {
+        self.parts.stages
+    }
+
+    /// The row and sign of output `out` of step `k` ([`StepFunction`]), `None` for the cost and
+    /// for a free boundary component.
+    fn output_row(&self, k: usize, out: usize) -> Option<(usize, f64)> {
+        let n = self.layout.n;
+        match out {
+            o if o < n => self.minus_row(k, o),
+            o if o < 2 * n => self.plus_row(k, o - n),
+            o if o == 2 * n => None,
+            o => Some((
+                self.inner_row + k * self.layout.inner * n + o - 2 * n - 1,
+                1.0,
+            )),
         }
     }
 
@@ -239,17 +302,14 @@ where
             jacobian: Vec::with_capacity(self.grid.steps * 2 * n * b + 4 * n * n),
             momenta: vec![0.0; 2 * n * self.grid.steps],
         };
-        let (mut values, mut jac) = (vec![0.0; 2 * n + 1], vec![0.0; (2 * n + 1) * b]);
+        let outputs = 2 * n + 1 + self.layout.inner * n;
+        let (mut values, mut jac) = (vec![0.0; outputs], vec![0.0; outputs * b]);
         for k in 0..self.grid.steps {
             let col = self.layout.q(k);
             ad::jacobian(&self.step(k), &z[col..col + b], 0..b, &mut values, &mut jac);
             e.momenta[2 * n * k..2 * n * (k + 1)].copy_from_slice(&values[..2 * n]);
-            for out in 0..2 * n {
-                let target = match out < n {
-                    true => self.minus_row(k, out),
-                    false => self.plus_row(k, out - n),
-                };
-                if let Some((row, sign)) = target {
+            for out in 0..outputs {
+                if let Some((row, sign)) = self.output_row(k, out) {
                     e.constraints[row] += sign * values[out];
                     let entries = jac[out * b..(out + 1) * b].iter();
                     e.jacobian
@@ -257,7 +317,7 @@ where
                 }
             }
             e.cost += values[2 * n];
-            let grad = &jac[2 * n * b..];
+            let grad = &jac[2 * n * b..(2 * n + 1) * b];
             e.gradient[col..col + b]
                 .iter_mut()
                 .zip(grad)
@@ -310,14 +370,12 @@ where
         let b = self.layout.block();
         let mut parts = HessianParts::default();
         let mut out = Vec::with_capacity(self.grid.steps * b * (b + 1) / 2);
-        let mut weights = vec![0.0; 2 * n + 1];
+        let mut weights = vec![0.0; 2 * n + 1 + self.layout.inner * n];
         for k in 0..self.grid.steps {
-            for (i, w) in weights.iter_mut().enumerate().take(2 * n) {
-                let target = match i < n {
-                    true => self.minus_row(k, i),
-                    false => self.plus_row(k, i - n),
-                };
-                *w = target.map_or(0.0, |(row, sign)| sign * lambda[row]);
+            for (i, w) in weights.iter_mut().enumerate() {
+                *w = self
+                    .output_row(k, i)
+                    .map_or(0.0, |(row, sign)| sign * lambda[row]);
             }
             weights[2 * n] = 1.0;
             let step = self.step(k);
@@ -361,7 +419,7 @@ where
     pub fn boundary_multipliers(&self, lambda: &[f64]) -> (Vec<f64>, Vec<f64>) {
         (
             lambda[..self.del_row].to_vec(),
-            lambda[self.end.row..self.rows].to_vec(),
+            lambda[self.end.row..self.inner_row].to_vec(),
         )
     }
 }

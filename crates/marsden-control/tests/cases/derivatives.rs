@@ -1,13 +1,17 @@
 //! The AD derivatives of the program against central differences (trep's `check_*` pattern):
-//! cost gradient, constraint Jacobian and Hessian of the Lagrangian, for midpoint and
-//! trapezoid, on a problem that exercises every term: a cart-pole (configuration-dependent
+//! cost gradient, constraint Jacobian and Hessian of the Lagrangian, for every kind of rule
+//! (midpoint, trapezoid, Gauss and Lobatto with control stages, a composition, a rule chosen by
+//! name), on a problem that exercises every term: a cart-pole (configuration-dependent
 //! mass), a force nonlinear in `q`, `v` and `u`, a running cost in all of them, a final cost
 //! in `(q_N, p_N)`, a start velocity (the target momentum `∂L/∂v(q_0, v_0)` depends on `q_0`)
 //! and an end with free components.
 
+use marsden::discrete::rules::{Composition, CompositionScheme, Galerkin, Method};
 use marsden::systems::PendulumOnCart;
 use marsden::{Midpoint, Rule, Scalar, Trapezoid};
-use marsden_control::{Boundary, ControlForce, FinalCost, OptimalControl, Rate, RunningCost};
+use marsden_control::{
+    Boundary, ControlForce, FinalCost, OptimalControl, Rate, RunningCost, StagedControls,
+};
 
 struct Actuator;
 
@@ -71,10 +75,17 @@ fn values(count: usize, seed: u64) -> Vec<f64> {
         .collect()
 }
 
-fn check<R: Rule>(rule: &R) {
+fn check<R: Rule + StagedControls>(rule: &R) {
     let p = problem();
-    let (unknowns, rows) = p.sizes();
-    assert_eq!((unknowns, rows), (4 * 4 + 2, 3 * 2 + 4 + 2));
+    let (unknowns, rows) = p.sizes(rule).unwrap();
+    // n = 2, m = 2, N = 4; σ control values and r inner points per step; 4 + 2 fixed ends.
+    let stages = rule.control_stages();
+    let (sigma, r) = (stages.count(), stages.inner());
+    let per_step = 2 + 2 * sigma + 2 * r;
+    assert_eq!(
+        (unknowns, rows),
+        (4 * per_step + 2, 3 * 2 + 4 + 2 + 4 * 2 * r)
+    );
     let z = values(unknowns, 7);
     let lambda = values(rows, 11);
     let c = p.check_derivatives(rule, &z, &lambda, 1e-5).unwrap();
@@ -100,4 +111,35 @@ fn midpoint_derivatives_match_central_differences() {
 #[test]
 fn trapezoid_derivatives_match_central_differences() {
     check(&Trapezoid);
+}
+
+#[test]
+fn gauss_derivatives_match_central_differences() {
+    check(&Galerkin::gauss(2).unwrap());
+}
+
+#[test]
+fn lobatto_derivatives_match_central_differences() {
+    check(&Galerkin::lobatto(3).unwrap());
+}
+
+#[test]
+fn galerkin_with_more_nodes_than_points_derivatives_match_central_differences() {
+    // P1 with 3 Gauss points: the control values sit at the two control points.
+    let rule = Galerkin::new(1, marsden::discrete::rules::QuadratureFamily::Gauss, 3).unwrap();
+    assert_eq!(rule.control_stages().count(), 2);
+    check(&rule);
+}
+
+#[test]
+fn composition_derivatives_match_central_differences() {
+    check(&Composition::new(
+        marsden::Midpoint,
+        CompositionScheme::TripleJump { order: 4 },
+    ));
+}
+
+#[test]
+fn rule_chosen_by_name_derivatives_match_central_differences() {
+    check(&Method::parse("suzuki-4(lobatto-3)").unwrap());
 }

@@ -1,6 +1,5 @@
 //! Bad input gives typed errors, with the numbers that locate it.
 
-use marsden::discrete::rules::Galerkin;
 use marsden::systems::Pendulum;
 use marsden_control::{Boundary, ControlError, Effort, InputMap, OptimalControl, Rate, SqpOptions};
 
@@ -95,17 +94,6 @@ fn an_empty_or_negative_horizon_is_refused() {
         .unwrap_err();
         assert!(matches!(err, ControlError::Horizon { .. }), "{err}");
     }
-}
-
-#[test]
-fn rules_with_internal_stages_are_refused() {
-    let p = problem(Boundary::rest(&[0.0])).unwrap();
-    let rule = Galerkin::gauss(2).unwrap();
-    let err = p.solve(&rule, &SqpOptions::default()).unwrap_err();
-    assert!(
-        matches!(err, ControlError::UnsupportedRule { stages, .. } if stages >= 1),
-        "{err}"
-    );
 }
 
 #[test]

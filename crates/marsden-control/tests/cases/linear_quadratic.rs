@@ -14,14 +14,14 @@
 use marsden::analysis::diagnostics::least_squares_slope;
 use marsden::systems::{FreeFall, HarmonicOscillator};
 use marsden::{Lagrangian, Midpoint, Rule, Trapezoid};
-use marsden_control::{Boundary, Effort, InputMap, OptimalControl, SqpOptions};
+use marsden_control::{Boundary, Effort, InputMap, OptimalControl, SqpOptions, StagedControls};
 
 const DOUBLE_INTEGRATOR: FreeFall = FreeFall { m: 1.0, g: 0.0 };
 
 /// The continuous optimum: `u(t)` and `J`.
-struct Optimum {
-    control: fn(f64) -> f64,
-    cost: f64,
+pub(super) struct Optimum {
+    pub(super) control: fn(f64) -> f64,
+    pub(super) cost: f64,
 }
 
 const DOUBLE_INTEGRATOR_OPTIMUM: Optimum = Optimum {
@@ -30,7 +30,7 @@ const DOUBLE_INTEGRATOR_OPTIMUM: Optimum = Optimum {
 };
 
 /// `(A, B)` of the oscillator's optimal control `A cos t + B sin t` (Cramer's rule).
-fn oscillator_coefficients() -> (f64, f64) {
+pub(super) fn oscillator_coefficients() -> (f64, f64) {
     let (s, c) = 1.0_f64.sin_cos();
     // q(1) = 1:  A s/2 + B (s − c)/2 = 1;   q̇(1) = 0:  A (s + c)/2 + B s/2 = 0.
     let (a11, a12, a21, a22) = (s / 2.0, (s - c) / 2.0, (s + c) / 2.0, s / 2.0);
@@ -38,7 +38,7 @@ fn oscillator_coefficients() -> (f64, f64) {
     (a22 / det, -a21 / det)
 }
 
-fn oscillator_optimum() -> Optimum {
+pub(super) fn oscillator_optimum() -> Optimum {
     let (a, b) = oscillator_coefficients();
     let (s, s2) = (1.0_f64.sin(), 2.0_f64.sin());
     Optimum {
@@ -51,7 +51,7 @@ fn oscillator_optimum() -> Optimum {
 }
 
 /// `(cost error, max |u_k − u(t_k + h/2)|)` of the discrete optimum with `steps` steps.
-fn errors<L: Lagrangian, R: Rule>(
+fn errors<L: Lagrangian, R: Rule + StagedControls>(
     system: L,
     optimum: &Optimum,
     rule: &R,
@@ -76,7 +76,11 @@ fn errors<L: Lagrangian, R: Rule>(
 }
 
 /// The slopes of `log error` against `log h` over N = 10, 20, 40, 80.
-fn slopes<L: Lagrangian + Copy, R: Rule>(system: L, optimum: &Optimum, rule: &R) -> (f64, f64) {
+fn slopes<L: Lagrangian + Copy, R: Rule + StagedControls>(
+    system: L,
+    optimum: &Optimum,
+    rule: &R,
+) -> (f64, f64) {
     let ns = [10, 20, 40, 80];
     let log_h: Vec<f64> = ns.iter().map(|&n| (1.0 / n as f64).ln()).collect();
     let (mut cost, mut control) = (Vec::new(), Vec::new());

@@ -7,5 +7,6 @@ mod errors;
 mod final_cost;
 mod linear_quadratic;
 mod reproduction;
+mod stages;
 mod status;
 mod swing_up;

@@ -8,13 +8,15 @@ use marsden::{
     DiscreteForce, GeneralizedMidpoint, Initial, Midpoint, Problem, Rule, SolveOptions, TimeGrid,
     Trapezoid,
 };
-use marsden_control::{FrozenControl, InputMap, SampledControl, Solution, SqpOptions, Status};
+use marsden_control::{
+    FrozenControl, InputMap, SampledControl, Solution, SqpOptions, StagedControls, Status,
+};
 
 use super::swing_up::swing_up;
 
 const STEPS: usize = 60;
 
-fn solve<R: Rule>(rule: &R) -> Solution {
+fn solve<R: Rule + StagedControls>(rule: &R) -> Solution {
     let solution = swing_up(STEPS).solve(rule, &SqpOptions::default()).unwrap();
     assert_eq!(solution.status, Status::Converged, "{}", rule.name());
     solution
