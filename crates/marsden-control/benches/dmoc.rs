@@ -4,6 +4,9 @@
 //!
 //! * `swing_up_n100`: `L = θ̇²/2 + cos θ`, torque `u`, rest at `θ = 0` to rest at `θ = π`,
 //!   `T = 6`, cost `∫ u²/2`, N = 100.
+//! * `swing_up`: the same for N = 100 … 1600 (the growth of the solve time with N).
+//! * `swing_up_gauss2`: the same with `gauss-2` (two controls per step at the Gauss nodes, one
+//!   inner control point per step: 5 unknowns per step instead of 2), N = 50 and 100.
 //! * `cart_pole`: the catalog's cart-pole (`PendulumOnCart`: `M = 1`, `m = 0.1`, `l = 0.5`,
 //!   `g = 9.8`, the parameters of Barto, Sutton & Anderson 1983), force `u` on the cart,
 //!   rest at `(x, θ) = (0, 0)` to rest at `(0, π)` in `T = 2`, cost `∫ u²/2`, for
@@ -13,26 +16,43 @@
 
 use std::f64::consts::PI;
 
-use marsden::Midpoint;
+use marsden::discrete::rules::Galerkin;
 use marsden::systems::{Pendulum, PendulumOnCart};
-use marsden_control::{Boundary, Effort, InputMap, OptimalControl, SqpOptions};
+use marsden::{Midpoint, Rule};
+use marsden_control::{Boundary, Effort, InputMap, OptimalControl, SqpOptions, StagedControls};
 
 fn main() {
     divan::main();
 }
 
-#[divan::bench(sample_count = 10)]
-fn swing_up_n100() -> f64 {
+/// The swing-up's cost with `steps` steps and `rule` (NaN if it could not be set up).
+fn swing_up_cost<R: Rule + StagedControls>(steps: usize, rule: &R) -> f64 {
     let problem = OptimalControl::new(
         Pendulum::default(),
         InputMap::full(1),
         Effort::default(),
-        (0.0, 6.0, 100),
+        (0.0, 6.0, steps),
         Boundary::rest(&[0.0]),
         Boundary::rest(&[PI]),
     );
-    let solution = problem.and_then(|p| p.solve(&Midpoint, &SqpOptions::default()));
-    divan::black_box(solution.map_or(f64::NAN, |s| s.cost))
+    let solution = problem.and_then(|p| p.solve(rule, &SqpOptions::default()));
+    solution.map_or(f64::NAN, |s| s.cost)
+}
+
+#[divan::bench(sample_count = 10)]
+fn swing_up_n100() -> f64 {
+    divan::black_box(swing_up_cost(100, &Midpoint))
+}
+
+#[divan::bench(args = [100, 200, 400, 800, 1600], sample_count = 5)]
+fn swing_up(steps: usize) -> f64 {
+    divan::black_box(swing_up_cost(steps, &Midpoint))
+}
+
+#[divan::bench(args = [50, 100], sample_count = 5)]
+fn swing_up_gauss2(steps: usize) -> f64 {
+    let cost = Galerkin::gauss(2).map_or(f64::NAN, |gauss2| swing_up_cost(steps, &gauss2));
+    divan::black_box(cost)
 }
 
 #[divan::bench(args = [50, 100, 200, 400], sample_count = 5)]

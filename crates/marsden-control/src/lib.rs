@@ -58,6 +58,8 @@
 //! * **OJM11**: S. Ober-Blöbaum, O. Junge, J. E. Marsden, *Discrete mechanics and optimal
 //!   control: an analysis*, ESAIM: COCV 17 (2011) 322–352.
 //! * **NW06**: J. Nocedal, S. J. Wright, *Numerical Optimization*, 2nd ed. (2006).
+//! * **GMS05**: P. E. Gill, W. Murray, M. A. Saunders, *SNOPT: an SQP algorithm for large-scale
+//!   constrained optimization*, SIAM Review 47 (2005) 99–131.
 //! * **BH75**: A. E. Bryson, Y.-C. Ho, *Applied Optimal Control* (1975).
 //! * **GW08**: Griewank & Walther, *Evaluating Derivatives*, 2nd ed. (2008).
 //! * **Sanz-Serna 2016**: J. M. Sanz-Serna, *Symplectic Runge–Kutta schemes for adjoint

@@ -59,6 +59,10 @@ pub struct QpSolution {
     pub upper: Vec<f64>,
     /// Multipliers of the lower bounds (≥ 0), in the order of [`Subproblem::lower`].
     pub lower: Vec<f64>,
+    /// Whether this is the elastic subproblem's solution.
+    pub elastic: bool,
+    /// `Σ (s⁺ + s⁻)` of the elastic subproblem (0 otherwise).
+    pub elastic_violation: f64,
 }
 
 /// How a subproblem ended.
@@ -122,8 +126,32 @@ impl Subproblem<'_> {
 
     /// Solves the subproblem with `H + δI + ρJᵀJ`; the multipliers returned are those of `H + δI`.
     pub fn solve_with(&self, convexify: Convexify) -> QpOutcome {
+        self.solve_general(convexify, None)
+    }
+
+    /// The elastic subproblem (SNOPT's elastic mode, [GMS05]; inconsistent linearisations,
+    /// [NW06] §18.3): the rows
+    /// of `J d = r` relaxed by slacks `s⁺, s⁻ ≥ 0` priced at `μ`,
+    ///
+    /// ```text
+    ///     minimise ½ dᵀ(H + δI)d + gᵀd + μ Σ_i (s⁺_i + s⁻_i)   s.t.   J d + s⁺ − s⁻ = r,  bounds,
+    /// ```
+    ///
+    /// always feasible (`d = 0` meets the bounds of an iterate inside them). Its step decreases
+    /// the ℓ1 merit `f + μ‖c‖₁` of a problem whose linearisation has no solution;
+    /// [`QpSolution::elastic_violation`] is `Σ (s⁺ + s⁻)`, the violation the step leaves in the
+    /// linearised constraints.
+    ///
+    /// [GMS05]: crate#references
+    pub fn solve_elastic(&self, delta: f64, mu: f64) -> QpOutcome {
+        self.solve_general(Convexify { delta, rho: 0.0 }, Some(mu))
+    }
+
+    fn solve_general(&self, convexify: Convexify, elastic: Option<f64>) -> QpOutcome {
         let Convexify { delta, rho } = convexify;
         let nx = self.gradient.len();
+        let slacks = if elastic.is_some() { 2 * self.rows } else { 0 };
+        let nv = nx + slacks;
         let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
         let gram = if rho > 0.0 {
             self.gram(rho)
@@ -140,7 +168,9 @@ impl Subproblem<'_> {
             cols.push(i);
             vals.push(delta);
         }
-        let p = CscMatrix::new_from_triplets(nx, nx, rows, cols, vals);
+        let p = CscMatrix::new_from_triplets(nv, nv, rows, cols, vals);
+        let mut q = self.gradient.to_vec();
+        q.extend(std::iter::repeat_n(elastic.unwrap_or(0.0), slacks));
         let bound_rows = self.upper.len() + self.lower.len();
         let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
         for &(r, c, v) in self.jacobian {
@@ -161,10 +191,20 @@ impl Subproblem<'_> {
             vals.push(-1.0);
             b.push(-lo);
         }
-        let a = CscMatrix::new_from_triplets(self.rows + bound_rows, nx, rows, cols, vals);
+        // The slacks: `+s⁺ − s⁻` in each equality row, and `−s ≤ 0` as rows of the cone.
+        for k in 0..slacks {
+            rows.push(k % self.rows);
+            cols.push(nx + k);
+            vals.push(if k < self.rows { 1.0 } else { -1.0 });
+            rows.push(self.rows + bound_rows + k);
+            cols.push(nx + k);
+            vals.push(-1.0);
+            b.push(0.0);
+        }
+        let a = CscMatrix::new_from_triplets(self.rows + bound_rows + slacks, nv, rows, cols, vals);
         let mut cones = vec![ZeroConeT(self.rows)];
-        if bound_rows > 0 {
-            cones.push(NonnegativeConeT(bound_rows));
+        if bound_rows + slacks > 0 {
+            cones.push(NonnegativeConeT(bound_rows + slacks));
         }
         let settings = DefaultSettings {
             verbose: false,
@@ -175,7 +215,7 @@ impl Subproblem<'_> {
             tol_ktratio: 1e-9,
             ..DefaultSettings::default()
         };
-        let mut solver = match DefaultSolver::new(&p, self.gradient, &a, &b, &cones, settings) {
+        let mut solver = match DefaultSolver::new(&p, &q, &a, &b, &cones, settings) {
             Ok(solver) => solver,
             Err(e) => return QpOutcome::Failed(e.to_string()),
         };
@@ -184,12 +224,15 @@ impl Subproblem<'_> {
         match s.status {
             SolverStatus::Solved | SolverStatus::AlmostSolved => {
                 let (lambda, bounds) = s.z.split_at(self.rows);
-                let (upper, lower) = bounds.split_at(self.upper.len());
+                let (upper, lower) = bounds[..bound_rows].split_at(self.upper.len());
+                let (step, slack) = s.x.split_at(nx);
                 QpOutcome::Solved(QpSolution {
-                    step: s.x.clone(),
-                    lambda: self.unshifted(lambda, &s.x, rho),
+                    step: step.to_vec(),
+                    lambda: self.unshifted(lambda, step, rho),
                     upper: upper.to_vec(),
                     lower: lower.to_vec(),
+                    elastic: elastic.is_some(),
+                    elastic_violation: slack.iter().sum(),
                 })
             }
             SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {

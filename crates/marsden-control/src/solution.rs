@@ -23,6 +23,9 @@ pub enum Status {
 pub struct Infeasibility {
     /// The SQP iteration whose subproblem it was (0: at the first iterate).
     pub iteration: usize,
+    /// The elastic steps taken from there, each reducing the violation, before it could be
+    /// reduced no further ([`crate::qp::Subproblem::solve_elastic`]).
+    pub elastic_steps: usize,
     /// The controls (indices) whose bounds the certificate uses, at some step.
     pub controls: Vec<usize>,
     /// The coordinates (indices) whose bounds the certificate uses, at some node.

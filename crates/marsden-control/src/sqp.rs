@@ -9,6 +9,11 @@
 //! * Globalisation: the ℓ1 merit `φ = f + μ‖c‖₁` with `μ ≥ ‖λ‖∞ + ρ`, Armijo backtracking,
 //!   and one second-order correction when the full step is refused (against the Maratos
 //!   effect, [NW06] §15.6).
+//! * Inconsistent linearisations: when a subproblem has no solution (a checked certificate),
+//!   the iteration continues in elastic mode ([`crate::qp::Subproblem::solve_elastic`]), each
+//!   step minimising the linearised violation plus the cost; it stops as infeasible, naming
+//!   the bounds of the first certificate, once a step cannot reduce the violation (a local
+//!   minimum of it: for dynamics linear in `(q, u)`, a proof).
 //! * Stopping: at iterate `z` with the subproblem's multipliers, the KKT residual
 //!   `max(‖g + Jᵀλ + ∂bounds‖∞, max |μ_i slack_i|)` and the violation `‖c‖∞` below their
 //!   tolerances. Bounds are linear, so every iterate keeps them.
@@ -97,6 +102,17 @@ impl Iterate {
         self.finish_with(status, None)
     }
 
+    /// Stops at a point whose linearised constraints cannot be met and whose violation the
+    /// elastic steps could not reduce: infeasible, located by the first certificate.
+    fn infeasible(self, elastic: &Elastic) -> SqpOutcome {
+        let status = Status::Infeasible(Infeasibility {
+            iteration: elastic.iteration,
+            elastic_steps: elastic.steps,
+            ..Infeasibility::default()
+        });
+        self.finish_with(status, Some(elastic.certificate.clone()))
+    }
+
     fn finish_with(self, status: Status, certificate: Option<Certificate>) -> SqpOutcome {
         SqpOutcome {
             certificate,
@@ -129,6 +145,8 @@ pub fn solve<P: Program>(
     };
     // The last nonzero regularisation (0: none needed yet).
     let mut last_delta = 0.0_f64;
+    // Since the first subproblem without a solution (elastic mode).
+    let mut elastic: Option<Elastic> = None;
     for _ in 0..options.max_iterations {
         let hessian = program.hessian(&it.z, &it.lambda);
         if !it.e.is_finite() || hessian.iter().any(|h| !h.2.is_finite()) {
@@ -148,13 +166,25 @@ pub fn solve<P: Program>(
         let (qp, delta) = match regularised_step(&sub, &mut last_delta) {
             Ok(step) => step,
             Err(Stop::Infeasible(certificate)) => {
-                let status = Status::Infeasible(Infeasibility {
+                let first = elastic.get_or_insert(Elastic {
                     iteration: it.history.len(),
-                    ..Infeasibility::default()
+                    certificate,
+                    steps: 0,
                 });
-                return it.finish_with(status, Some(certificate));
+                match elastic_step(&sub, &mut last_delta, &it) {
+                    Some(step) => step,
+                    None => return it.infeasible(first),
+                }
             }
-            Err(Stop::Failed(failure)) => return it.finish(Status::Failed(failure)),
+            // In elastic mode a subproblem the solver cannot solve (nor prove infeasible) is
+            // stepped over elastically as well.
+            Err(Stop::Failed(failure)) => match elastic.as_mut() {
+                None => return it.finish(Status::Failed(failure)),
+                Some(first) => match elastic_step(&sub, &mut last_delta, &it) {
+                    Some(step) => step,
+                    None => return it.infeasible(first),
+                },
+            },
         };
         it.lambda.clone_from(&qp.lambda);
         it.kkt = kkt_residual(&it.e, &qp, (&upper, &lower));
@@ -174,12 +204,20 @@ pub fn solve<P: Program>(
         let accepted = line_search(program, (&it.z, &it.e), &qp.step, &sub, delta, mu);
         match accepted {
             Ok((step, z, e)) => {
+                if let (Some(first), true) = (elastic.as_mut(), qp.elastic) {
+                    first.steps += 1;
+                }
                 record.step = step;
                 it.history.push(record);
                 (it.z, it.e) = (z, e);
             }
             Err(step) => {
                 it.history.push(record);
+                // No decrease of the merit from an iterate whose linearisation had no solution:
+                // the violation could not be reduced further.
+                if let (Some(first), true) = (&elastic, qp.elastic) {
+                    return it.infeasible(first);
+                }
                 return it.finish(Status::Failed(Failure::LineSearch { step }));
             }
         }
@@ -248,6 +286,49 @@ fn convexified_step(sub: &Subproblem<'_>) -> Result<Option<QpSolution>, Stop> {
         }
     }
     Ok(None)
+}
+
+/// Where elastic mode began, and how many elastic steps it has taken.
+struct Elastic {
+    /// The iteration of the first subproblem without a solution.
+    iteration: usize,
+    /// Its checked certificate (which bounds it uses).
+    certificate: Certificate,
+    /// Elastic steps taken.
+    steps: usize,
+}
+
+/// The elastic subproblem's step ([`Subproblem::solve_elastic`]) with the regularisation of
+/// [`regularised_step`], if it reduces the linearised ℓ1 violation by at least 0.1 %: else the
+/// iterate is a stationary point of the violation (locally infeasible), `None`.
+///
+/// The price of the slacks, `10³ max(1, ‖g‖∞, ‖λ‖∞)`, exceeds the multipliers the problem has
+/// near a feasible point, so that the ℓ1 merit's minimisers are its KKT points ([NW06] §17.2).
+fn elastic_step(
+    sub: &Subproblem<'_>,
+    last_delta: &mut f64,
+    it: &Iterate,
+) -> Option<(QpSolution, f64)> {
+    let mu = 1e3 * max_abs(&it.e.gradient).max(max_abs(&it.lambda)).max(1.0);
+    let violation = l1(&it.e.constraints);
+    let mut delta = 0.0;
+    loop {
+        if let QpOutcome::Solved(s) = sub.solve_elastic(delta, mu)
+            && curvature_ok(sub.hessian, delta, &s.step)
+        {
+            let reduces = s.elastic_violation < 0.999 * violation;
+            return reduces.then_some((s, delta));
+        }
+        if delta >= MAX_DELTA {
+            return None;
+        }
+        delta = match (delta, *last_delta) {
+            (0.0, 0.0) => 1e-6,
+            (0.0, last) => (last / 3.0).max(1e-6),
+            (d, _) => 8.0 * d,
+        };
+        *last_delta = delta;
+    }
 }
 
 /// The ℓ1 penalty of this iteration: at least `‖λ‖∞` (exactness of the merit at a KKT point)

@@ -9,6 +9,9 @@
 //!     J(q_N, p_N) − J(q_0, p_0) = Σ_k ( f_d⁻_k · ξ(q_k) + f_d⁺_k · ξ(q_{k+1}) ),   J = ⟨p, ξ(q)⟩,
 //! ```
 //!
+//! (with inner control points `Q_j` the impulse of a step is `Σ_j f_j · ξ(Q_j)`: their
+//! equations `D_jL_d + f_j = 0` hold, and invariance gives `Σ_j D_jL_d · ξ(Q_j) = 0`),
+//!
 //! the change of the momentum map equals the work of the discrete control forces along the
 //! symmetry; the residual of this balance is reported.
 //!
@@ -17,7 +20,7 @@
 // Maxima that keep a NaN: a non-finite defect must not be reported as a small one.
 use marsden::numerics::dense::max_or_nan;
 use marsden::{DiscreteForce, Initial, Lagrangian, Problem, Rule, SolveOptions, TimeGrid};
-use marsden_control::{ControlForce, FrozenControl, Solution};
+use marsden_control::{ControlForce, Solution, StepControl};
 use marsden_problem::model::{MomentumMap, Symmetry};
 
 /// What the checks need besides the solution.
@@ -51,7 +54,30 @@ pub struct NoetherBalance {
     pub steps: usize,
 }
 
-/// The discrete forces `(f_d⁻_k, f_d⁺_k)` of each step with its control.
+/// Step `k`'s controls as a core force ([`StepControl`]: the polynomial through its stage
+/// values, constant for one value per step).
+fn step_control<'a, F>(force: F, solution: &'a Solution, h: f64, k: usize) -> StepControl<'a, F> {
+    let sigma = solution.stages.count();
+    StepControl {
+        force,
+        step: (solution.t[k], h),
+        stages: &solution.stages,
+        u: &solution.u[k * sigma..(k + 1) * sigma],
+    }
+}
+
+/// The control points `Q_0 = q_k, Q_1 … Q_{s−1}, Q_s = q_{k+1}` of step `k`, back to back.
+fn control_points(solution: &Solution, k: usize) -> Vec<f64> {
+    let (q0, q1) = (&solution.q[k], &solution.q[k + 1]);
+    q0.iter()
+        .chain(&solution.inner[k])
+        .chain(q1)
+        .copied()
+        .collect()
+}
+
+/// The discrete forces `f_0 … f_s` on the control points of each step with its controls
+/// (`f_d⁻_k = f_0`, `f_d⁺_k = f_s` for a two-point rule).
 fn discrete_forces<L, F, R>(parts: &Parts<'_, L, F, R>, solution: &Solution) -> Vec<Vec<f64>>
 where
     L: Lagrangian,
@@ -59,16 +85,16 @@ where
     R: Rule,
 {
     let n = parts.lagrangian.dof();
-    (solution.u.iter().enumerate())
-        .map(|(k, u)| {
-            let frozen = FrozenControl {
-                force: parts.force,
-                u: u.clone(),
-            };
-            let fd = parts.rule.discretize_force(frozen, n);
-            let (q0, q1) = (&solution.q[k], &solution.q[k + 1]);
-            let offsets: Vec<f64> = q1.iter().zip(q0).map(|(b, a)| b - a).collect();
-            let mut forces = vec![0.0; 2 * n];
+    (0..solution.q.len() - 1)
+        .map(|k| {
+            let control = step_control(parts.force, solution, parts.grid.h, k);
+            let fd = parts.rule.discretize_force(control, n);
+            let points = control_points(solution, k);
+            let (q0, later) = points.split_at(n);
+            let offsets: Vec<f64> = (later.iter().enumerate())
+                .map(|(i, b)| b - q0[i % n])
+                .collect();
+            let mut forces = vec![0.0; points.len()];
             fd.discrete_force(solution.t[k], parts.grid.h, q0, &offsets, &mut forces);
             forces
         })
@@ -102,9 +128,10 @@ where
             let (mut total_impulse, mut max_defect) = (0.0, 0.0_f64);
             for (k, f) in forces.iter().enumerate() {
                 let mut impulse = 0.0;
-                for (side, node) in [(0, k), (1, k + 1)] {
-                    s.generator().eval_into(&solution.q[node], &mut xi);
-                    impulse += dot(&f[side * n..(side + 1) * n], &xi);
+                let points = control_points(solution, k);
+                for (point, force) in points.chunks(n).zip(f.chunks(n)) {
+                    s.generator().eval_into(point, &mut xi);
+                    impulse += dot(force, &xi);
                 }
                 total_impulse += impulse;
                 max_defect = max_or_nan(max_defect, (momenta[k + 1] - momenta[k] - impulse).abs());
@@ -123,7 +150,7 @@ where
 }
 
 /// `max_k |(q, p)_{k+1} − Φ_k(q_k, p_k)|` with `Φ_k` one step of the core integrator with the
-/// rule and the frozen control `u_k`: how well the transcription's nodes are the integrator's
+/// rule and the step's controls: how well the transcription's nodes are the integrator's
 /// own trajectory under the returned controls. `None` if a step fails.
 pub fn replay<L, F, R>(parts: &Parts<'_, L, F, R>, solution: &Solution) -> Option<f64>
 where
@@ -132,11 +159,8 @@ where
     R: Rule,
 {
     let mut defect: f64 = 0.0;
-    for (k, u) in solution.u.iter().enumerate() {
-        let frozen = FrozenControl {
-            force: parts.force,
-            u: u.clone(),
-        };
+    for k in 0..solution.q.len() - 1 {
+        let frozen = step_control(parts.force, solution, parts.grid.h, k);
         let grid = TimeGrid::new(solution.t[k], parts.grid.h, 1).ok()?;
         let initial = Initial::momentum(&solution.q[k], &solution.p[k]);
         let run = Problem::new(parts.lagrangian, initial, grid)

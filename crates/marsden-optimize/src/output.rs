@@ -69,10 +69,16 @@ fn infeasibility_text(spec: &OptimalControlSpec, i: &Infeasibility) -> String {
         true => "no bound: the boundary conditions contradict the dynamics".to_owned(),
         false => format!("the bounds on {}", names.join(", ")),
     };
+    let elastic = match i.elastic_steps {
+        0 => "no elastic step could reduce the violation".to_owned(),
+        1 => "1 elastic step reduced the violation, then none could".to_owned(),
+        k => format!("{k} elastic steps reduced the violation, then none could"),
+    };
     format!(
         "the linearised dynamics and boundary conditions {at} cannot be met within the bounds \
-         (a checked certificate of the QP solver, using {bounds}); loosen those bounds, \
-         lengthen t_end, or start from another guess"
+         (a checked certificate of the QP solver, using {bounds}); {elastic} (a local minimum \
+         of the violation: `constraint_violation`); loosen those bounds, lengthen t_end, or \
+         start from another guess"
     )
 }
 
@@ -96,7 +102,7 @@ pub struct Summary<'a> {
     /// Control names.
     pub controls: &'a [String],
     /// How the solve ended, and its checks.
-    pub optimal_control: OptimalControlSummary,
+    pub optimal_control: OptimalControlSummary<'a>,
     /// One record per SQP iteration.
     pub history: Vec<HistoryRecord>,
     /// The files written, relative to the output directory.
@@ -105,7 +111,7 @@ pub struct Summary<'a> {
 
 /// The `optimal_control` object of `summary.json`.
 #[derive(Debug, Serialize)]
-pub struct OptimalControlSummary {
+pub struct OptimalControlSummary<'a> {
     /// `"converged"`, `"failed"`, `"infeasible"` or `"iteration limit"`.
     pub status: &'static str,
     /// Why a failed solve stopped.
@@ -128,6 +134,11 @@ pub struct OptimalControlSummary {
     pub replay_defect: Option<f64>,
     /// How the first iterate was made.
     pub guess: &'static str,
+    /// Control values per step: 1 (piecewise constant), or one per quadrature node of a
+    /// Galerkin rule (the rows of `controls.csv` are then `t_k + c_i h`).
+    pub controls_per_step: usize,
+    /// The nodes `c_i` of the control values within a step (`[0]` for one value per step).
+    pub control_nodes: &'a [f64],
 }
 
 /// One SQP iteration.
@@ -189,9 +200,9 @@ pub fn trajectory_table(spec: &OptimalControlSpec, s: &Solution) -> Result<Table
     Table::new(columns).map_err(|e| OptimizeError::write(TRAJECTORY_CSV, e))
 }
 
-/// `t_k` and one column per control.
+/// `t` and one column per control: a row per step (`t_k`), or per stage (`t_k + c_i h`).
 pub fn controls_table(spec: &OptimalControlSpec, s: &Solution) -> Result<Table, OptimizeError> {
-    let mut columns = vec![Column::new("t", s.t[..s.u.len()].to_vec())];
+    let mut columns = vec![Column::new("t", s.control_times.clone())];
     for (j, name) in spec.controls.iter().enumerate() {
         columns.push(Column::new(
             name.clone(),
@@ -243,6 +254,8 @@ pub fn summary<'a>(
             noether_balance: noether,
             replay_defect: o.replay_defect,
             guess: o.guess,
+            controls_per_step: s.stages.count(),
+            control_nodes: &s.stages.times,
         },
         history: s
             .history

@@ -46,18 +46,29 @@ pub fn draw(
     .to_vec())
 }
 
-/// `u_k` on `[t_k, t_{k+1}]`: each value drawn at both ends of its step.
+/// `u_k` on `[t_k, t_{k+1}]`: each value drawn at both ends of its step; stage values (a
+/// Galerkin rule) drawn at their times `t_k + c_i h`.
 fn controls(
     dir: &Path,
     spec: &OptimalControlSpec,
     s: &Solution,
     opts: &PlotOptions,
 ) -> Result<(), OptimizeError> {
-    let steps = s.u.len();
-    let x: Vec<f64> = (0..steps).flat_map(|k| [s.t[k], s.t[k + 1]]).collect();
-    let values: Vec<Vec<f64>> = (0..spec.controls.len())
-        .map(|j| s.u.iter().flat_map(|u| [u[j], u[j]]).collect())
-        .collect();
+    let staged = s.stages.count() > 1;
+    let (x, values): (Vec<f64>, Vec<Vec<f64>>) = match staged {
+        true => (
+            s.control_times.clone(),
+            (0..spec.controls.len())
+                .map(|j| s.u.iter().map(|u| u[j]).collect())
+                .collect(),
+        ),
+        false => (
+            (0..s.u.len()).flat_map(|k| [s.t[k], s.t[k + 1]]).collect(),
+            (0..spec.controls.len())
+                .map(|j| s.u.iter().flat_map(|u| [u[j], u[j]]).collect())
+                .collect(),
+        ),
+    };
     let series: Vec<Series<'_>> = spec
         .controls
         .iter()
@@ -65,7 +76,10 @@ fn controls(
         .map(|(name, values)| Series { name, values })
         .collect();
     let panel = LinePanel {
-        title: "Controls (piecewise constant per step)",
+        title: match staged {
+            true => "Controls (at the rule's quadrature nodes)",
+            false => "Controls (piecewise constant per step)",
+        },
         x_label: "t",
         y_label: "u",
         x: &x,

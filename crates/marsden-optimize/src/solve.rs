@@ -2,8 +2,9 @@
 //! file's rule, and the checks read off the result ([`crate::balance`]).
 
 use marsden::Rule;
-use marsden::discrete::rules::WithRule;
-use marsden_control::{Boundary, ControlError, OptimalControl, Rate, Solution, SqpOptions};
+use marsden_control::{
+    Boundary, ControlError, OptimalControl, Rate, Solution, SqpOptions, StagedControls,
+};
 use marsden_problem::problem::optimal_control::{EndSpec, OptimalControlSpec, RateSpec};
 
 use crate::balance::{self, NoetherBalance};
@@ -38,61 +39,58 @@ pub fn optimize(spec: &OptimalControlSpec) -> Result<Optimized, OptimizeError> {
     let Some(rule) = spec.method.rule() else {
         return Err(ControlError::UnsupportedRule {
             rule: spec.method.to_string(),
-            stages: 0,
+            reason: "it has no discrete Lagrangian to transcribe".to_owned(),
         }
         .into());
     };
-    Ok(rule.dispatch(Solve { spec })?)
+    // The rule chosen at run time is itself a rule (`marsden::discrete::rules::chosen`): one
+    // compiled transcription for every rule, the same numbers as the concrete rule's.
+    Ok(solve(spec, rule)?)
 }
 
-struct Solve<'a> {
-    spec: &'a OptimalControlSpec,
-}
-
-impl WithRule for Solve<'_> {
-    type Output = Result<Optimized, ControlError>;
-
-    fn call<R: Rule>(self, rule: &R) -> Self::Output {
-        let spec = self.spec;
-        let force = ExprControlForce {
-            programs: &spec.force,
-            controls: spec.controls.len(),
-        };
-        let cost = ExprCost {
-            program: &spec.cost,
-        };
-        let final_cost = ExprFinalCost {
-            program: spec.final_cost.as_ref(),
-            t_end: spec.t_end,
-        };
-        let horizon = (spec.t0, spec.t_end - spec.t0, spec.steps);
-        let (start, end) = (boundary(&spec.start), boundary(&spec.end));
-        let problem = OptimalControl::new(&spec.lagrangian, force, cost, horizon, start, end)?
-            .with_final_cost(final_cost);
-        let problem = with_bounds(problem, spec)?;
-        let grid = *problem.grid();
-        let first = guess::initial(spec, (&spec.lagrangian, &force), grid, rule);
-        let problem = problem.with_guess(first.guess)?;
-        let options = SqpOptions {
-            kkt_tolerance: spec.solver.tolerance,
-            constraint_tolerance: spec.solver.constraint_tolerance,
-            max_iterations: spec.solver.max_iterations,
-        };
-        let solution = problem.solve(rule, &options)?;
-        let parts = balance::Parts {
-            lagrangian: &spec.lagrangian,
-            force: &force,
-            grid,
-            rule,
-        };
-        Ok(Optimized {
-            noether: balance::noether(&spec.symmetries, &parts, &solution),
-            replay_defect: balance::replay(&parts, &solution),
-            method: rule.name(),
-            guess: first.kind,
-            solution,
-        })
-    }
+/// Solves with `rule`.
+fn solve<R: Rule + StagedControls>(
+    spec: &OptimalControlSpec,
+    rule: &R,
+) -> Result<Optimized, ControlError> {
+    let force = ExprControlForce {
+        programs: &spec.force,
+        controls: spec.controls.len(),
+    };
+    let cost = ExprCost {
+        program: &spec.cost,
+    };
+    let final_cost = ExprFinalCost {
+        program: spec.final_cost.as_ref(),
+        t_end: spec.t_end,
+    };
+    let horizon = (spec.t0, spec.t_end - spec.t0, spec.steps);
+    let (start, end) = (boundary(&spec.start), boundary(&spec.end));
+    let problem = OptimalControl::new(&spec.lagrangian, force, cost, horizon, start, end)?
+        .with_final_cost(final_cost);
+    let problem = with_bounds(problem, spec)?;
+    let grid = *problem.grid();
+    let first = guess::initial(spec, (&spec.lagrangian, &force), grid, rule);
+    let problem = problem.with_guess(first.guess)?;
+    let options = SqpOptions {
+        kkt_tolerance: spec.solver.tolerance,
+        constraint_tolerance: spec.solver.constraint_tolerance,
+        max_iterations: spec.solver.max_iterations,
+    };
+    let solution = problem.solve(rule, &options)?;
+    let parts = balance::Parts {
+        lagrangian: &spec.lagrangian,
+        force: &force,
+        grid,
+        rule,
+    };
+    Ok(Optimized {
+        noether: balance::noether(&spec.symmetries, &parts, &solution),
+        replay_defect: balance::replay(&parts, &solution),
+        method: rule.name(),
+        guess: first.kind,
+        solution,
+    })
 }
 
 type Problem<'a> = OptimalControl<

@@ -37,7 +37,8 @@ pub fn describe<'py>(py: Python<'py>, text: &str, origin: &str) -> PyResult<Boun
 }
 
 /// Solves the `[optimal_control]` problem of problem text: `t` (N + 1), `q` and `p`
-/// (N + 1 × n), `u` (N × m), `cost`, `status` and `summary` (JSON text, as `summary.json`).
+/// (N + 1 × n), `u` (N σ × m, σ control values per step), `t_u` (their times), `cost`, `status`
+/// and `summary` (JSON text, as `summary.json`).
 #[pyfunction]
 pub fn optimize<'py>(py: Python<'py>, text: &str, origin: &str) -> PyResult<Bound<'py, PyDict>> {
     let spec = spec_of(text, origin)?;
@@ -55,6 +56,7 @@ pub fn optimize<'py>(py: Python<'py>, text: &str, origin: &str) -> PyResult<Boun
     d.set_item("q", matrix(&s.q).into_pyarray(py))?;
     d.set_item("p", matrix(&s.p).into_pyarray(py))?;
     d.set_item("u", matrix(&s.u).into_pyarray(py))?;
+    d.set_item("t_u", PyArray1::from_vec(py, s.control_times.clone()))?;
     d.set_item("cost", s.cost)?;
     d.set_item("status", status_name(&s.status))?;
     let summary = serde_json::to_string(&output::summary(&spec, &optimized, Vec::new()))

@@ -71,3 +71,69 @@ def test_bad_input_and_the_wrong_call() -> None:
     pendulum = marsden.Problem.builtin("pendulum", q0=[1.0], v0=[0.0], h=0.1, steps=10)
     with pytest.raises(marsden.ProblemError, match="no \\[optimal_control\\]"):
         pendulum.optimize()
+
+
+def test_optimal_control_from_keywords_is_the_file() -> None:
+    """``marsden.OptimalControl`` writes the file's ``[optimal_control]``: the same bits."""
+    system = marsden.Problem("0.5*x_dot^2", coordinates="x", q0=[0.0], v0=[0.0], h=0.1,
+                             steps=10)
+    oc = marsden.OptimalControl(system, controls=["u"], forces=["u"], cost="0.5*u^2",
+                                t_end=1.0, steps=40, start={"q": [0.0], "v": [0.0]},
+                                end={"q": [1.0], "v": [0.0]})
+    assert "[initial]" not in oc.toml and "[integrator]" not in oc.toml
+    s = oc.solve()
+    reference = marsden.Problem.from_toml(DOUBLE_INTEGRATOR).optimize()
+    assert s.status == "converged"
+    assert s.cost == reference.cost
+    assert np.array_equal(s.u, reference.u) and np.array_equal(s.q, reference.q)
+    assert np.array_equal(s.t_u, s.t[:-1])
+
+
+def test_optimal_control_keywords_bounds_and_free_components() -> None:
+    """A free end velocity: from rest at 0 to q(1) = ½, Pontryagin gives u(1) = 0, so
+    u = a(1 − t) with a/3 = ½: cost a²/6 = 0.375 (order 2 in h). With |u| ≤ 1.2 < a = 1.5 the
+    bound binds: it holds at every step and the cost rises."""
+    system = marsden.Problem("0.5*x_dot^2", coordinates="x", q0=[0.0], v0=[0.0], h=0.1,
+                             steps=10)
+
+    def solve(**extra):
+        return marsden.OptimalControl(system, controls="u", forces=["u"], cost="0.5*u^2",
+                                      t_end=1.0, steps=40, start={"q": [0.0], "v": [0.0]},
+                                      end={"q": [0.5], "v": ["free"]}, **extra).solve()
+
+    free = solve()
+    assert free.status == "converged"
+    assert abs(free.cost - 0.375) < 1e-3
+    assert abs(free.u[-1, 0] - 1.5 / 80) < 1e-3  # a(1 − t) at the last midpoint
+    bounded = solve(bounds={"u": [-1.2, 1.2]})
+    assert bounded.status == "converged"
+    assert np.max(np.abs(bounded.u)) <= 1.2 + 1e-9
+    assert bounded.cost > free.cost + 1e-3
+
+
+def test_optimal_control_refuses_bad_keywords() -> None:
+    system = marsden.Problem("0.5*x_dot^2", coordinates="x", q0=[0.0], v0=[0.0], h=0.1,
+                             steps=10)
+    with pytest.raises(marsden.ProblemError, match="`exact` cannot be used for optimal control"):
+        marsden.OptimalControl(system, controls=["u"], forces=["u"], cost="0.5*u^2",
+                               t_end=1.0, steps=10, start={"q": [0.0], "v": [0.0]},
+                               end={"q": [1.0], "v": [0.0]}, method="exact")
+    with pytest.raises(marsden.ProblemError, match="unknown name `k`"):
+        marsden.OptimalControl(system, controls=["u"], forces=["u"], cost="0.5*u^2 + k",
+                               t_end=1.0, steps=10, start={"q": [0.0], "v": [0.0]},
+                               end={"q": [1.0], "v": [0.0]})
+
+
+def test_gauss_two_takes_a_control_per_node() -> None:
+    """``gauss-2``: two control values per step at ``t_k + (1/2 ∓ √3/6) h``; the double
+    integrator's optimum u = 6 − 12t is affine, which the stage values reproduce exactly."""
+    text = DOUBLE_INTEGRATOR.replace("steps = 40", 'steps = 10\nmethod = "gauss-2"')
+    s = marsden.Problem.from_toml(text).optimize()
+    assert s.status == "converged"
+    assert s.u.shape == (20, 1) and s.t_u.shape == (20,)
+    h = 0.1
+    c = np.array([0.5 - np.sqrt(3) / 6, 0.5 + np.sqrt(3) / 6])
+    assert np.allclose(s.t_u, (np.arange(10)[:, None] * h + c * h).ravel(), atol=1e-15)
+    assert np.max(np.abs(s.u[:, 0] - (6 - 12 * s.t_u))) < 1e-8
+    assert abs(s.cost - 6.0) < 1e-9
+    assert s.summary["optimal_control"]["controls_per_step"] == 2

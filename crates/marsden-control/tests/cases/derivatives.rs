@@ -143,3 +143,9 @@ fn composition_derivatives_match_central_differences() {
 fn rule_chosen_by_name_derivatives_match_central_differences() {
     check(&Method::parse("suzuki-4(lobatto-3)").unwrap());
 }
+
+#[test]
+fn alpha_and_symmetrized_derivatives_match_central_differences() {
+    check(&marsden::GeneralizedMidpoint::new(0.3).unwrap());
+    check(&marsden::SymmetrizedMidpoint::new(0.3).unwrap());
+}

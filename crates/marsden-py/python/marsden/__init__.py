@@ -24,7 +24,7 @@ from typing import Any, Dict, List
 
 from . import _native
 from ._errors import ProblemError, SimulationError
-from ._optimize import OptimalControlSolution
+from ._optimize import OptimalControl, OptimalControlSolution
 from ._problem import Problem
 from ._resume import resume
 from ._sensitivity import Sensitivity
@@ -36,6 +36,7 @@ from ._sympy import to_grammar
 __all__ = [
     "__version__",
     "Body",
+    "OptimalControl",
     "OptimalControlSolution",
     "Problem",
     "ProblemError",

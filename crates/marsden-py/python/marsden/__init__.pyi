@@ -17,7 +17,7 @@ FloatArray = npt.NDArray[np.float64]
 
 __version__: str
 
-__all__ = ["__version__", "OptimalControlSolution", "Problem", "ProblemError", "Sensitivity",
+__all__ = ["__version__", "OptimalControl", "OptimalControlSolution", "Problem", "ProblemError", "Sensitivity",
            "SimulationError",
            "Solution", "sweep", "systems", "to_grammar"]
 
@@ -74,17 +74,46 @@ class Solution:
     def plot(self, ax: Any = ...) -> Any: ...
 
 class OptimalControlSolution:
+    """The optimal (or last) trajectory, its controls (``u`` at the times ``t_u``) and summary."""
     coordinates: List[str]
     controls: List[str]
     t: FloatArray
     q: FloatArray
     p: FloatArray
     u: FloatArray
+    t_u: FloatArray
     cost: float
     status: str
     summary: Dict[str, Any]
     @property
     def converged(self) -> bool: ...
+
+class OptimalControl:
+    """An optimal control problem (DMOC) on a problem's system, from keywords."""
+    problem: Problem
+    def __init__(
+        self,
+        problem: Problem,
+        cost: Expression,
+        t_end: float,
+        steps: int,
+        start: Mapping[str, Sequence[Any]],
+        end: Mapping[str, Sequence[Any]],
+        *,
+        controls: Optional[Sequence[str]] = ...,
+        forces: Optional[Sequence[Expression]] = ...,
+        final_cost: Optional[Expression] = ...,
+        t0: Optional[float] = ...,
+        method: Optional[str] = ...,
+        bounds: Optional[Mapping[str, Sequence[float]]] = ...,
+        guess: Optional[str] = ...,
+        tolerance: Optional[float] = ...,
+        constraint_tolerance: Optional[float] = ...,
+        max_iterations: Optional[int] = ...,
+    ) -> None: ...
+    @property
+    def toml(self) -> str: ...
+    def solve(self) -> OptimalControlSolution: ...
 
 class Problem:
     """A mechanical system, its initial state and the integrator: a problem file."""

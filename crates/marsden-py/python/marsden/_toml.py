@@ -67,3 +67,21 @@ def parameters(values: Mapping[str, Any]) -> str:
         else:
             items.append(f"{key(name)} = {number(float(value))}")
     return "{ " + ", ".join(items) + " }" if items else "{}"
+
+
+def value(v: Any) -> str:
+    """Any value read by ``tomllib`` (numbers, strings, booleans, lists, tables) as TOML text,
+    tables inline."""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, numbers.Real):
+        return number(v)
+    if isinstance(v, str):
+        return string(v)
+    if isinstance(v, Mapping):
+        items = [f"{key(k)} = {value(x)}" for k, x in v.items()]
+        return "{ " + ", ".join(items) + " }" if items else "{}"
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(value(x) for x in v) + "]"
+    raise TypeError(f"no TOML form for {type(v).__name__} {v!r}")
+

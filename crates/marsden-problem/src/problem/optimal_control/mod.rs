@@ -2,11 +2,12 @@
 //! (DMOC, [OJM11]) problem from a problem file, checked into an [`OptimalControlSpec`] that
 //! `marsden optimize` solves.
 //!
-//! The controls `u` are piecewise constant per step and enter the dynamics only through
-//! `[system] forces`, which then read `[q, q̇, t, u]`; the running cost `C(t, q, q̇, u)` reads
-//! the same inputs and the final cost `Φ(q_N, p_N)` reads `[q, p, t]` (momenta named
-//! `p_<coordinate>`). The rule must be a two-point rule (midpoint, trapezoid, `alpha-<a>`,
-//! `symmetrized-<a>`), the transcription's scope. A file with `[optimal_control]` is refused by
+//! The controls `u` enter the dynamics only through `[system] forces`, which then read
+//! `[q, q̇, t, u]`; the running cost `C(t, q, q̇, u)` reads the same inputs and the final cost
+//! `Φ(q_N, p_N)` reads `[q, p, t]` (momenta named `p_<coordinate>`). Any rule with a discrete
+//! Lagrangian transcribes: a two-point rule or a composition with controls piecewise constant
+//! per step, a Galerkin rule (`gauss-<s>`, `lobatto-<s>`) with one control value per quadrature
+//! node (`marsden_control::stages`). A file with `[optimal_control]` is refused by
 //! `marsden run` (see [`refuse_in_run`]); `[system] controls` alone run as zero controls, or
 //! as the values of a `[system] control_table` ([`super::control_table`]).
 //!
@@ -85,7 +86,7 @@ pub struct OptimalControlSpec {
     pub cost: Program,
     /// The final cost over `[q, p, t]`, if given.
     pub final_cost: Option<Program>,
-    /// The rule (a two-point rule).
+    /// The rule.
     pub method: Method,
     /// Initial time.
     pub t0: f64,

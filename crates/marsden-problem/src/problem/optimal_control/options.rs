@@ -1,6 +1,5 @@
 //! The horizon, rule, first iterate and solver options of `[optimal_control]`.
 
-use marsden::discrete::rules::{BaseMethod, Method as CoreMethod};
 use toml::Spanned;
 
 use super::raw::RawOptimalControl;
@@ -53,7 +52,8 @@ pub(super) fn horizon(
     Ok((t0, end, steps))
 }
 
-/// The rule: a two-point rule of the core (the transcription has no internal stages).
+/// The rule: any rule of the core (a two-point rule, a Galerkin rule with its control stages,
+/// a composition); `exact` has no discrete Lagrangian to transcribe.
 pub(super) fn method(
     ck: &Checker<'_>,
     raw: Option<&Spanned<String>>,
@@ -66,20 +66,16 @@ pub(super) fn method(
             .suggest(e.suggestion.as_deref())
     })?;
     match method.rule() {
-        Some(CoreMethod::Single(
-            BaseMethod::Midpoint
-            | BaseMethod::Trapezoid
-            | BaseMethod::Alpha(_)
-            | BaseMethod::Symmetrized(_),
-        )) => Ok(method),
-        _ => Err(ck
+        Some(_) => Ok(method),
+        None => Err(ck
             .error(
                 Some(name.span()),
                 format!("the method `{method}` cannot be used for optimal control"),
             )
             .note(
-                "the DMOC transcription takes two-point rules: midpoint, trapezoid, \
-                   alpha-<a>, symmetrized-<a>",
+                "the DMOC transcription needs a discrete Lagrangian: midpoint, trapezoid, \
+                 alpha-<a>, symmetrized-<a>, gauss-<s>, lobatto-<s>, galerkin-…, or a \
+                 composition such as triple-jump-4(midpoint)",
             )),
     }
 }

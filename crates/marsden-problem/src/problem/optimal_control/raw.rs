@@ -4,14 +4,14 @@
 //! [system]
 //! coordinates = ["x"]
 //! lagrangian = "0.5*x_dot^2"
-//! controls = ["u"]                  # piecewise constant per step, usable in `forces`
+//! controls = ["u"]                  # per step (per node for gauss/lobatto), usable in `forces`
 //! forces = ["u"]
 //! [optimal_control]
 //! cost = "0.5*u^2"                  # running cost C(t, q, q_dot, u)
 //! final_cost = "10*(x - 1)^2"       # optional Φ(q_N, p_N), in q, p_<coordinate> and t
 //! t_end = 1.0
 //! steps = 100
-//! method = "midpoint"               # a two-point rule (default midpoint)
+//! method = "midpoint"               # any rule but exact (default midpoint)
 //! start = { q = [0.0], v = [0.0] }  # or p; any component may be "free"
 //! end = { q = [1.0], v = [0.0] }
 //! guess = "simulation"              # or "line" (default: simulation when the start is complete)

@@ -148,13 +148,17 @@ fn refuses_wrong_lengths_and_partial_velocities() {
 }
 
 #[test]
-fn refuses_rules_with_internal_stages_and_unknown_guesses() {
-    let (e, under) = refused(&edit("steps = 20", "steps = 20\nmethod = \"gauss-2\""));
+fn refuses_exact_and_unknown_guesses() {
+    let (e, under) = refused(&edit("steps = 20", "steps = 20\nmethod = \"exact\""));
     assert!(
-        e.contains("`gauss-2` cannot be used for optimal control"),
+        e.contains("`exact` cannot be used for optimal control"),
         "{e}"
     );
-    assert_eq!(under, "\"gauss-2\"");
+    assert_eq!(under, "\"exact\"");
+    for rule in ["gauss-2", "lobatto-3", "triple-jump-4(midpoint)"] {
+        let text = edit("steps = 20", &format!("steps = 20\nmethod = \"{rule}\""));
+        assert_eq!(check(&text).unwrap().method.to_string(), rule);
+    }
     let (e, _) = refused(&edit("steps = 20", "steps = 20\nguess = \"lines\""));
     assert!(
         e.contains("unknown guess `lines`") && e.contains("did you mean `line`"),
