@@ -484,3 +484,64 @@ fn a_version_two_checkpoint_fixture_of_a_forced_run_still_resumes() {
         String::from_utf8_lossy(&read(&out, "summary.json").unwrap()).contains("energy_balance")
     );
 }
+
+/// A run stopped by SIGTERM (a cluster's time limit) is checkpointed where it stopped: with
+/// no periodic checkpoint before the signal (the only one is 100 steps before the end),
+/// `marsden resume` continues from the stop and leaves the uninterrupted run's files byte for
+/// byte, that last checkpoint included.
+#[test]
+fn sigterm_checkpoints_where_the_run_stops_and_the_resume_equals_the_uninterrupted_run() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("pendulum.toml");
+    let steps = 3_000_000;
+    std::fs::write(&file, pendulum("midpoint", steps)).unwrap();
+    let every = (steps - 100).to_string();
+    let whole = tmp.path().join("whole");
+    let clock = Instant::now();
+    assert!(spawn_run(&file, &whole, &every).wait().unwrap().success());
+    let limit = (clock.elapsed().as_millis() / 3).clamp(1, 400) as u64;
+    let expected = contents(&whole);
+    assert!(expected.iter().any(|(name, _)| name == "checkpoint.bin"));
+    let mut interrupted = 0;
+    for attempt in 0..3_u64 {
+        let out = tmp.path().join(format!("term-{attempt}"));
+        let mut child = spawn_run(&file, &out, &every);
+        let clock = Instant::now();
+        while !out.join("trajectory.csv").exists() && clock.elapsed() < Duration::from_secs(60) {
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        std::thread::sleep(delay(100 + attempt, limit));
+        let signal = Command::new("kill")
+            .args(["-TERM", &child.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(signal.success());
+        match child.wait().unwrap().code() {
+            Some(0) => continue, // finished before the signal
+            code => assert_eq!(code, Some(1), "attempt {attempt}"),
+        }
+        interrupted += 1;
+        assert!(
+            out.join("checkpoint.bin").exists(),
+            "attempt {attempt}: no checkpoint written at the stop"
+        );
+        let resumed = marsden_in(
+            tmp.path(),
+            &["resume", out.to_str().unwrap(), "-q", "--no-progress"],
+        );
+        assert!(
+            resumed.status.success(),
+            "{}",
+            String::from_utf8_lossy(&resumed.stderr)
+        );
+        let found = contents(&out);
+        assert_eq!(found.len(), expected.len(), "attempt {attempt}");
+        for ((name, a), (_, b)) in expected.iter().zip(&found) {
+            assert!(
+                a == b,
+                "attempt {attempt}: {name} differs after SIGTERM and resume"
+            );
+        }
+    }
+    assert!(interrupted > 0, "every signal came after the run had ended");
+}

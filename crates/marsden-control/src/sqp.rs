@@ -143,8 +143,7 @@ pub fn solve<P: Program>(
         kkt: f64::INFINITY,
         history: Vec::new(),
     };
-    // The last nonzero regularisation (0: none needed yet).
-    let mut last_delta = 0.0_f64;
+    let mut memory = Memory::default();
     // Since the first subproblem without a solution (elastic mode).
     let mut elastic: Option<Elastic> = None;
     for _ in 0..options.max_iterations {
@@ -163,7 +162,7 @@ pub fn solve<P: Program>(
             upper: &upper,
             lower: &lower,
         };
-        let (qp, delta) = match regularised_step(&sub, &mut last_delta) {
+        let (qp, shape) = match regularised_step(&sub, &mut memory) {
             Ok(step) => step,
             Err(Stop::Infeasible(certificate)) => {
                 let first = elastic.get_or_insert(Elastic {
@@ -171,7 +170,7 @@ pub fn solve<P: Program>(
                     certificate,
                     steps: 0,
                 });
-                match elastic_step(&sub, &mut last_delta, &it) {
+                match elastic_step(&sub, &mut memory.delta, &it) {
                     Some(step) => step,
                     None => return it.infeasible(first),
                 }
@@ -180,7 +179,7 @@ pub fn solve<P: Program>(
             // stepped over elastically as well.
             Err(Stop::Failed(failure)) => match elastic.as_mut() {
                 None => return it.finish(Status::Failed(failure)),
-                Some(first) => match elastic_step(&sub, &mut last_delta, &it) {
+                Some(first) => match elastic_step(&sub, &mut memory.delta, &it) {
                     Some(step) => step,
                     None => return it.infeasible(first),
                 },
@@ -194,14 +193,14 @@ pub fn solve<P: Program>(
             violation,
             kkt: it.kkt,
             step: 0.0,
-            regularization: delta,
+            regularization: shape.delta,
         };
         if it.kkt <= options.kkt_tolerance && violation <= options.constraint_tolerance {
             it.history.push(record);
             return it.finish(Status::Converged);
         }
-        let mu = penalty(&it.e, &qp, &hessian, delta);
-        let accepted = line_search(program, (&it.z, &it.e), &qp.step, &sub, delta, mu);
+        let mu = penalty(&it.e, &qp, &hessian, shape.delta);
+        let accepted = line_search(program, (&it.z, &it.e), &qp.step, &sub, shape, mu);
         match accepted {
             Ok((step, z, e)) => {
                 if let (Some(first), true) = (elastic.as_mut(), qp.elastic) {
@@ -233,35 +232,97 @@ enum Stop {
     Failed(Failure),
 }
 
-/// The subproblem's solution with the smallest regularisation `δ` that gives a step of
-/// positive curvature: `δ = 0`, then a third of the last nonzero `δ` (at least 1e-6), growing
-/// eightfold up to `MAX_DELTA`. A checked infeasibility certificate stops the search at once:
-/// feasibility does not depend on the Hessian, and a larger `δ` only degrades the solver's
-/// scaling until it can no longer tell (it then stalls at its iteration limit).
-fn regularised_step(sub: &Subproblem<'_>, last_delta: &mut f64) -> Result<(QpSolution, f64), Stop> {
-    if let Some(solved) = convexified_step(sub)? {
-        return Ok((solved, 0.0));
+/// How the last iteration's subproblem was solved ([`regularised_step`] tries it first).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+enum Worked {
+    /// With `P = H` (or nothing solved yet).
+    #[default]
+    Plain,
+    /// With `P = H + ρJᵀJ`, this `ρ`.
+    Convexified(f64),
+    /// With `P = H + δI`, `δ > 0`.
+    Regularised,
+}
+
+/// What the last iterations' subproblems needed.
+#[derive(Debug, Clone, Copy, Default)]
+struct Memory {
+    /// The last nonzero regularisation `δ` (0: none needed yet).
+    delta: f64,
+    /// How the last subproblem was solved.
+    worked: Worked,
+}
+
+/// The subproblem's step, tried in this order, each accepted if solved with positive
+/// curvature:
+///
+/// 1. what solved the last iteration's subproblem, if it was `P = H + ρJᵀJ`;
+/// 2. the Newton step with `P = H`;
+/// 3. the Newton step with `P = H + ρJᵀJ`, `ρ = 10⁴ ‖H‖_max / ‖J‖²_max`, unless the last
+///    iteration needed `δ` ([`crate::qp`]: the same step, a convex `P` when `H` is positive
+///    definite on the null space of `J` — the inner control points of Gauss and Lobatto steps
+///    have no curvature of their own; the scale keeps `ρJᵀJ` within a few orders of `H`);
+/// 4. `P = H + δI` with `δ` a third of the last nonzero one (at least 1e-6), growing eightfold
+///    up to `MAX_DELTA` — no longer a Newton step.
+///
+/// An interior-point solver on an indefinite `P` takes up to its iteration budget before it
+/// gives up, so what worked is tried first (BENCHMARKS.md has the solve times). A checked
+/// infeasibility certificate stops the search at once: feasibility does not depend on the
+/// Hessian, and a larger `δ` only degrades the solver's scaling until it can no longer tell.
+fn regularised_step(
+    sub: &Subproblem<'_>,
+    memory: &mut Memory,
+) -> Result<(QpSolution, Convexify), Stop> {
+    let largest = |m: &[(usize, usize, f64)]| m.iter().fold(0.0, |a, e| max_or_nan(a, e.2.abs()));
+    let (h, j) = (largest(sub.hessian), largest(sub.jacobian));
+    let rho = if h > 0.0 && j > 0.0 {
+        1e4 * h / (j * j)
+    } else {
+        1.0
+    };
+    let mut shapes = Vec::with_capacity(3);
+    if let Worked::Convexified(last) = memory.worked {
+        shapes.push((
+            Convexify {
+                delta: 0.0,
+                rho: last,
+            },
+            memory.worked,
+        ));
+    }
+    shapes.push((Convexify::default(), Worked::Plain));
+    if memory.worked != Worked::Regularised {
+        shapes.push((Convexify { delta: 0.0, rho }, Worked::Convexified(rho)));
+    }
+    for (shape, worked) in shapes {
+        match sub.solve_with(shape) {
+            QpOutcome::Solved(s) if curvature_ok(sub.hessian, 0.0, &s.step) => {
+                memory.worked = worked;
+                return Ok((s, shape));
+            }
+            QpOutcome::Infeasible(certificate) => return Err(Stop::Infeasible(certificate)),
+            _ => {}
+        }
     }
     let mut delta = 0.0;
     loop {
+        delta = match (delta, memory.delta) {
+            (0.0, 0.0) => 1e-6,
+            (0.0, last) => (last / 3.0).max(1e-6),
+            (d, _) => 8.0 * d,
+        };
+        memory.delta = delta;
         let outcome = sub.solve(delta);
         match &outcome {
             QpOutcome::Solved(s) if curvature_ok(sub.hessian, delta, &s.step) => {
-                return Ok((s.clone(), delta));
+                memory.worked = Worked::Regularised;
+                return Ok((s.clone(), Convexify { delta, rho: 0.0 }));
             }
             QpOutcome::Infeasible(certificate) => {
                 return Err(Stop::Infeasible(certificate.clone()));
             }
+            _ if delta < MAX_DELTA => continue,
             _ => {}
-        }
-        if delta < MAX_DELTA {
-            delta = match (delta, *last_delta) {
-                (0.0, 0.0) => 1e-6,
-                (0.0, last) => (last / 3.0).max(1e-6),
-                (d, _) => 8.0 * d,
-            };
-            *last_delta = delta;
-            continue;
         }
         let status = match outcome {
             QpOutcome::Failed(status) => status,
@@ -272,20 +333,6 @@ fn regularised_step(sub: &Subproblem<'_>, last_delta: &mut f64) -> Result<(QpSol
             regularization: delta,
         }));
     }
-}
-
-/// The subproblem's Newton step (`δ = 0`) with `P = H`, else with `P = H + ρJᵀJ` for
-/// `ρ = 1, 10², 10⁴` ([`crate::qp`]: the same step, a convex `P` when `H` is positive definite
-/// on the null space of `J`), if one is solved with positive curvature.
-fn convexified_step(sub: &Subproblem<'_>) -> Result<Option<QpSolution>, Stop> {
-    for rho in [0.0, 1.0, 1e2, 1e4] {
-        match sub.solve_with(Convexify { delta: 0.0, rho }) {
-            QpOutcome::Solved(s) if curvature_ok(sub.hessian, 0.0, &s.step) => return Ok(Some(s)),
-            QpOutcome::Infeasible(certificate) => return Err(Stop::Infeasible(certificate)),
-            _ => {}
-        }
-    }
-    Ok(None)
 }
 
 /// Where elastic mode began, and how many elastic steps it has taken.
@@ -308,7 +355,7 @@ fn elastic_step(
     sub: &Subproblem<'_>,
     last_delta: &mut f64,
     it: &Iterate,
-) -> Option<(QpSolution, f64)> {
+) -> Option<(QpSolution, Convexify)> {
     let mu = 1e3 * max_abs(&it.e.gradient).max(max_abs(&it.lambda)).max(1.0);
     let violation = l1(&it.e.constraints);
     let mut delta = 0.0;
@@ -317,7 +364,7 @@ fn elastic_step(
             && curvature_ok(sub.hessian, delta, &s.step)
         {
             let reduces = s.elastic_violation < 0.999 * violation;
-            return reduces.then_some((s, delta));
+            return reduces.then_some((s, Convexify { delta, rho: 0.0 }));
         }
         if delta >= MAX_DELTA {
             return None;
@@ -421,13 +468,14 @@ fn l1(v: &[f64]) -> f64 {
 }
 
 /// Armijo backtracking on `φ = f + μ‖c‖₁` along `d`, with one second-order correction when
-/// the full step is refused. `Ok((α, z⁺, e⁺))`, or `Err(α)` with the last step tried.
+/// the full step is refused (its subproblem made convex as the step's was). `Ok((α, z⁺, e⁺))`,
+/// or `Err(α)` with the last step tried.
 fn line_search<P: Program>(
     program: &P,
     (z, e): (&[f64], &Evaluation),
     d: &[f64],
     sub: &Subproblem<'_>,
-    delta: f64,
+    shape: Convexify,
     mu: f64,
 ) -> Result<(f64, Vec<f64>, Evaluation), f64> {
     let merit = |e: &Evaluation| e.cost + mu * l1(&e.constraints);
@@ -452,7 +500,7 @@ fn line_search<P: Program>(
             .zip(&e_trial.constraints)
             .for_each(|(r, c)| *r -= c);
         let corrected = Subproblem { rhs: &rhs, ..*sub };
-        if let QpOutcome::Solved(s) = corrected.solve(delta) {
+        if let QpOutcome::Solved(s) = corrected.solve_with(shape) {
             let trial = at(1.0, &s.step);
             let e_soc = program.evaluate(&trial);
             if e_soc.is_finite() && merit(&e_soc) <= phi0 + ARMIJO * slope {

@@ -223,6 +223,11 @@ pub struct Balanced<'o, L, F, T, O: ?Sized> {
 
 impl<L, F, T, O: ?Sized> Balanced<'_, L, F, T, O> {
     /// The observer it hands every step on to.
+    pub fn inner(&self) -> &O {
+        self.inner
+    }
+
+    /// The observer it hands every step on to.
     pub fn inner_mut(&mut self) -> &mut O {
         self.inner
     }

@@ -107,6 +107,11 @@ impl<'o, G: GroupAction, F: DiscreteForce, O: Observer + ?Sized> NoetherBalanced
     }
 
     /// The observer it hands every step on to.
+    pub fn inner(&self) -> &O {
+        self.inner
+    }
+
+    /// The observer it hands every step on to.
     pub fn inner_mut(&mut self) -> &mut O {
         self.inner
     }

@@ -24,6 +24,9 @@ pub trait Carries {
     /// # Errors
     /// A write error of a flush, as text.
     fn carried(&mut self) -> Result<Carried, String>;
+    /// Whether the run was stopped from outside (a signal): it is then checkpointed where it
+    /// stopped.
+    fn interrupted(&self) -> bool;
 }
 
 impl<L, C, M> Carries for Watched<'_, '_, L, StreamObserver<'_, '_, L, C, M>>
@@ -39,6 +42,9 @@ where
             balances: None,
             samples: self.samples_checkpoint()?,
         })
+    }
+    fn interrupted(&self) -> bool {
+        self.inner.interrupted
     }
 }
 
@@ -58,6 +64,9 @@ where
         let mut carried = self.inner_mut().inner_mut().carried()?;
         carried.balances = Some(BalancesCheckpoint { energy, noether });
         Ok(carried)
+    }
+    fn interrupted(&self) -> bool {
+        self.inner().inner().interrupted()
     }
 }
 
@@ -126,6 +135,12 @@ impl<O: Observer + Carries> Observer for Checkpointing<'_, O> {
 
     fn checkpoint_due(&self, step: usize) -> bool {
         step.is_multiple_of(self.plan.every)
+    }
+
+    /// A signal's stop is checkpointed where it happened (a resume continues from there); an
+    /// event's is not (the run has ended).
+    fn checkpoint_at_stop(&self) -> bool {
+        self.inner.interrupted()
     }
 
     fn checkpoint(

@@ -59,6 +59,12 @@ pub trait Observer {
     fn termination(&self) -> Option<Termination> {
         None
     }
+    /// Whether the run should be checkpointed where [`Observer::observe`] stopped it, because
+    /// the stop was asked from outside (a signal), not reached (an event that ends the run):
+    /// a resume then continues from there. Default: `false`.
+    fn checkpoint_at_stop(&self) -> bool {
+        false
+    }
     /// Whether the run should be checkpointed after `step` (default: never). The run loop
     /// then hands [`Observer::checkpoint`] what the stepper carries; an observer that asks
     /// for checkpoints also makes its [`Observer::cadence`] stop the loop at those steps.
@@ -67,8 +73,9 @@ pub trait Observer {
     }
     /// Saves a checkpoint of the run after the step `view` shows, with what the stepper
     /// carries to its next step (`carried`); called after [`Observer::observe`] let the run
-    /// go on. Return `ControlFlow::Break(())` to stop the run (the checkpoint could not be
-    /// saved). Default: nothing.
+    /// go on, or stopped it and [`Observer::checkpoint_at_stop`] asked for one. Return
+    /// `ControlFlow::Break(())` to stop the run (the checkpoint could not be saved). Default:
+    /// nothing.
     fn checkpoint(
         &mut self,
         _view: &StepView<'_>,

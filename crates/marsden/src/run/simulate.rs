@@ -138,12 +138,15 @@ where
             let multipliers = (stepper.multipliers(), stepper.projection_multipliers());
             traj.push_sample(k, (state.t, &state.q, &state.p), multipliers, last_report);
         }
-        if !stop
+        let due = match stop {
+            false => observer.checkpoint_due(k),
+            true => observer.checkpoint_at_stop(),
+        };
+        if due
             && k < grid.steps
-            && observer.checkpoint_due(k)
             && let Some(carried) = stepper.carried()
         {
-            stop = observer.checkpoint(&view, &carried).is_break();
+            stop |= observer.checkpoint(&view, &carried).is_break();
         }
         if stop {
             traj.termination = observer
