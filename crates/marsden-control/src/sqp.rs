@@ -306,11 +306,7 @@ fn regularised_step(
     }
     let mut delta = 0.0;
     loop {
-        delta = match (delta, memory.delta) {
-            (0.0, 0.0) => 1e-6,
-            (0.0, last) => (last / 3.0).max(1e-6),
-            (d, _) => 8.0 * d,
-        };
+        delta = next_delta(delta, memory.delta);
         memory.delta = delta;
         let outcome = sub.solve(delta);
         match &outcome {
@@ -332,6 +328,16 @@ fn regularised_step(
             status,
             regularization: delta,
         }));
+    }
+}
+
+/// The regularisation after `delta` failed: from 0, a third of the last nonzero one `last` (at
+/// least 1e-6, as IPOPT does); else eightfold.
+fn next_delta(delta: f64, last: f64) -> f64 {
+    match (delta, last) {
+        (0.0, 0.0) => 1e-6,
+        (0.0, last) => (last / 3.0).max(1e-6),
+        (d, _) => 8.0 * d,
     }
 }
 
@@ -369,11 +375,7 @@ fn elastic_step(
         if delta >= MAX_DELTA {
             return None;
         }
-        delta = match (delta, *last_delta) {
-            (0.0, 0.0) => 1e-6,
-            (0.0, last) => (last / 3.0).max(1e-6),
-            (d, _) => 8.0 * d,
-        };
+        delta = next_delta(delta, *last_delta);
         *last_delta = delta;
     }
 }

@@ -57,7 +57,7 @@ pub struct BalanceSummary {
 impl BalanceSummary {
     /// Adds a step whose energy changed by `delta_energy`, with the forces' work `work` and,
     /// for a time-dependent Lagrangian, `time_work = −∂L_d/∂t₀`.
-    fn push(&mut self, delta_energy: f64, work: f64, time_work: Option<f64>) {
+    pub(crate) fn push(&mut self, delta_energy: f64, work: f64, time_work: Option<f64>) {
         let defect = delta_energy - work - time_work.unwrap_or(0.0);
         self.steps += 1;
         self.total_work += work;
@@ -92,7 +92,7 @@ impl BalanceSeries {
     /// Most points kept.
     pub const CAP: usize = 8192;
 
-    fn new(every: usize, total: usize) -> Self {
+    pub(crate) fn new(every: usize, total: usize) -> Self {
         Self {
             stride: every.max(1),
             total,
@@ -100,7 +100,7 @@ impl BalanceSeries {
         }
     }
 
-    fn push(&mut self, step: usize, t: f64, s: &BalanceSummary) {
+    pub(crate) fn push(&mut self, step: usize, t: f64, s: &BalanceSummary) {
         if !step.is_multiple_of(self.stride) && step != self.total {
             return;
         }

@@ -33,11 +33,6 @@ use crate::problem::{LagrangianSpec, RunSpec};
 pub const RIGID_BALANCE_NOT_AVAILABLE: &str = "not computed for a rigid body: the discrete \
      energy balance of the Lie group integrator's torques is not implemented";
 
-/// Why jointed bodies with dampers have no energy balance.
-pub const MULTIBODY_BALANCE_NOT_AVAILABLE: &str = "not computed for a multibody system: the \
-     discrete energy balance of the dampers' work is not implemented (the energy column falls \
-     by their work up to the method's energy error)";
-
 /// How a run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -444,10 +439,9 @@ impl Summary {
             energy_not_available: not_available,
             energy_balance: record.balance,
             energy_balance_not_available: (not_conserved.is_some() && record.balance.is_none())
-                .then_some(match (&record.rigid, &record.multibody) {
-                    (Some(_), _) => RIGID_BALANCE_NOT_AVAILABLE,
-                    (None, Some(_)) => MULTIBODY_BALANCE_NOT_AVAILABLE,
-                    (None, None) => BALANCE_NOT_AVAILABLE,
+                .then_some(match &record.rigid {
+                    Some(_) => RIGID_BALANCE_NOT_AVAILABLE,
+                    None => BALANCE_NOT_AVAILABLE,
                 }),
             noether_balance: record.noether_balance.clone(),
             certificate: record.certificate.clone(),
