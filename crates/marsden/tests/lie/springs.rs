@@ -396,3 +396,27 @@ fn spring_at_coincident_points_is_finite() {
         assert!(dr.iter().chain(&dx).all(|g| *g == 0.0));
     }
 }
+
+/// The dampers' end loads are implicit in the end momenta; the step settles them by extra
+/// projections, a fixed-point iteration contracting by about `h c/m` per pass: for the
+/// dumbbell (`h = 0.01`, `c = 2`, smallest mass 1) `hc/m = 0.02`, so reaching round-off
+/// (`4ε` of the momenta) from an `O(1)` change takes at most `ln(4ε)/ln(0.02) ≈ 9` passes.
+#[test]
+fn damper_settles_in_few_projections() {
+    let mut lgvi = dumbbell(0.01, 2.0);
+    for _ in 0..1000 {
+        lgvi.step().unwrap();
+    }
+    let s = lgvi.statistics();
+    let per_step = s.damper_iterations as f64 / s.steps as f64;
+    println!("damper projections per step: {per_step:.2}");
+    assert!(
+        per_step >= 1.0,
+        "the damper's load was never settled: {per_step}"
+    );
+    let bound = (4.0 * f64::EPSILON).ln() / (0.01_f64 * 2.0 / 1.0).ln();
+    assert!(
+        per_step <= bound,
+        "{per_step} projections per step, bound {bound:.1}"
+    );
+}

@@ -54,6 +54,8 @@ pub struct MultibodyStatistics {
     pub joint_iterations: usize,
     /// Newton iterations of the bodies' Cayley solves.
     pub cayley_iterations: usize,
+    /// Extra projections of the end momenta for the dampers' implicit end loads.
+    pub damper_iterations: usize,
 }
 
 /// The buffers of one sub-step (reused, never reallocated after the first step).
@@ -326,6 +328,7 @@ impl<U: RigidPotential, E: ExternalLoads> MultibodyLgvi<U, E> {
             }
             last = impulse;
             self.project(h)?;
+            self.statistics.damper_iterations += 1;
         }
         Err(StepError::NewtonDidNotConverge {
             iterations: self.options.newton.max_iterations,
