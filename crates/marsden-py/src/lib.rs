@@ -293,6 +293,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(systems, m)?)?;
     m.add_function(wrap_pyfunction!(optimize::optimize, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::initial_state, m)?)?;
+    m.add_function(wrap_pyfunction!(simulation::checkpoint_state, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::stretch, m)?)?;
     Ok(())
 }

@@ -1,8 +1,11 @@
-//! The native half of `marsden.Simulation`: the problem's initial state, and a stretch of the
-//! run continued from a state ([`marsden_spec::run::segment`]).
+//! The native half of `marsden.Simulation`: the problem's initial state, a run's checkpointed
+//! state, and a stretch of the run continued from a state ([`marsden_spec::run::segment`]).
 
-use marsden_spec::Store;
+use std::path::PathBuf;
+
+use marsden_spec::run::resume::{self, Found};
 use marsden_spec::run::segment::{self, StretchEnd, StretchStart};
+use marsden_spec::{Diagnostic, Store};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -17,6 +20,35 @@ pub fn initial_state(text: &str, origin: &str) -> PyResult<(f64, Vec<f64>, Vec<f
     segment::steppable(&spec).map_err(bad)?;
     let start = marsden_spec::prepare(&spec).map_err(bad)?;
     Ok((start.t, start.q, start.p))
+}
+
+/// What a run's checkpoint in `dir` holds, to step on from: `(text, origin, t, q, p, steps)`.
+/// Refused for a sweep's checkpoint, and for a run whose step size came from `--h` (its problem
+/// text does not hold it, so a stretch would step with the file's).
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+pub fn checkpoint_state(
+    dir: PathBuf,
+) -> PyResult<(String, String, f64, Vec<f64>, Vec<f64>, usize)> {
+    let checkpoint = match resume::find(&dir, None).map_err(to_py)? {
+        Found::Run(checkpoint) => checkpoint,
+        Found::Sweep(_) => {
+            return Err(bad(Diagnostic::new(format!(
+                "{}: a sweep's checkpoint; a Simulation steps one run (resume the sweep with \
+                 marsden.resume)",
+                dir.display()
+            ))));
+        }
+    };
+    if let Some(h) = checkpoint.identity.h {
+        return Err(bad(Diagnostic::new(format!(
+            "the run in {} stepped with --h {h}, which its problem text does not hold: a \
+             Simulation would step with the file's h (resume it with marsden.resume)",
+            dir.display()
+        ))));
+    }
+    let c = *checkpoint;
+    Ok((c.identity.text, c.identity.absolute, c.t, c.q, c.p, c.step))
 }
 
 /// The run of problem text continued from `(t, q, p)` for `steps` steps or until `t_end`

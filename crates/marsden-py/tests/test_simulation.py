@@ -111,3 +111,20 @@ def test_what_cannot_be_stepped_is_refused():
                             method="trapezoid", h=0.01, steps=10)
     with pytest.raises(marsden.ProblemError, match="rigid body"):
         rigid.simulation()
+
+
+def test_a_run_checkpoint_becomes_a_simulation(tmp_path):
+    """A run that wrote checkpoints (every 150 steps of 400: the last at step 300) as a
+    Simulation: it stands at the checkpoint's state and steps on to the run's own end state,
+    bit for bit for the explicit trapezoid, to the Newton tolerance for the midpoint rule."""
+    for method, tolerance in [("trapezoid", 0.0), ("midpoint", 1e-13)]:
+        out = tmp_path / method
+        whole = oscillator(method).solve(dir=str(out), checkpoint_every=150)
+        sim = marsden.Simulation.from_checkpoint(out)
+        assert sim.steps == 300 and abs(sim.t - 3.0) < 1e-12
+        sim.step(100)
+        assert abs(sim.t - whole.t[-1]) < 1e-12
+        assert abs(sim.q[0] - whole.q[-1, 0]) <= tolerance
+        assert abs(sim.p[0] - whole.p[-1, 0]) <= tolerance
+    with pytest.raises(marsden.ProblemError, match="checkpoint"):
+        marsden.Simulation.from_checkpoint(tmp_path / "nowhere")

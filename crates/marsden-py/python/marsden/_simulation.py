@@ -118,6 +118,28 @@ class Simulation:
         os.replace(tmp, path)
 
     @classmethod
+    def from_checkpoint(cls, directory: Union[str, "os.PathLike[str]"]) -> "Simulation":
+        """The run whose checkpoint is in ``directory`` (``marsden run --checkpoint-every``,
+        ``problem.solve(dir=..., checkpoint_every=...)``, or a run stopped by a signal), as a
+        simulation standing at the checkpoint's state, to step on from interactively. The
+        integrator's carried data (Newton's predictor history) is not taken over: the steps
+        agree with ``marsden.resume`` to the Newton tolerance (bit for bit for explicit steps).
+
+            >>> sim = marsden.Simulation.from_checkpoint("out/long")
+            >>> sim.t, sim.steps
+            >>> sim.integrate(sim.t + 10.0)
+        """
+        from ._problem import Problem
+
+        text, origin, t, q, p, steps = _native.checkpoint_state(os.fspath(directory))
+        sim = cls(Problem.from_toml(text, origin=origin))
+        sim.t = float(t)
+        sim.q = np.array(q, dtype=float)
+        sim.p = np.array(p, dtype=float)
+        sim.steps = int(steps)
+        return sim
+
+    @classmethod
     def load(cls, path: Union[str, "os.PathLike[str]"]) -> "Simulation":
         """The simulation :meth:`save` wrote to ``path``, continuing where it stood."""
         from ._problem import Problem
