@@ -51,13 +51,13 @@ pub(super) fn oscillator_optimum() -> Optimum {
 }
 
 /// `(cost error, max |u_k − u(t_k + h/2)|)` of the discrete optimum with `steps` steps.
-fn errors<L: Lagrangian, R: Rule + StagedControls>(
+/// `system` with the force `u` and the cost `∫ ½u²`, from rest at 0 to rest at 1 in `T = 1`
+/// with `steps` steps.
+pub(super) fn rest_to_rest<L: Lagrangian>(
     system: L,
-    optimum: &Optimum,
-    rule: &R,
     steps: usize,
-) -> (f64, f64) {
-    let problem = OptimalControl::new(
+) -> OptimalControl<L, InputMap, Effort> {
+    OptimalControl::new(
         system,
         InputMap::full(1),
         Effort::default(),
@@ -65,7 +65,16 @@ fn errors<L: Lagrangian, R: Rule + StagedControls>(
         Boundary::rest(&[0.0]),
         Boundary::rest(&[1.0]),
     )
-    .unwrap();
+    .unwrap()
+}
+
+fn errors<L: Lagrangian, R: Rule + StagedControls>(
+    system: L,
+    optimum: &Optimum,
+    rule: &R,
+    steps: usize,
+) -> (f64, f64) {
+    let problem = rest_to_rest(system, steps);
     let solution = problem.solve(rule, &SqpOptions::default()).unwrap();
     assert!(solution.converged(), "{:?}", solution.status);
     let h = 1.0 / steps as f64;

@@ -16,12 +16,9 @@ use marsden::discrete::rules::{Composition, CompositionScheme, Galerkin};
 use marsden::numerics::dense::max_or_nan;
 use marsden::systems::{HarmonicOscillator, Pendulum};
 use marsden::{Initial, Midpoint, Problem, Rule, SolveOptions, TimeGrid};
-use marsden_control::{
-    Boundary, Effort, InputMap, OptimalControl, Solution, SqpOptions, StagedControls, Status,
-    StepControl,
-};
+use marsden_control::{InputMap, Solution, SqpOptions, StagedControls, Status, StepControl};
 
-use super::linear_quadratic::{oscillator_coefficients, oscillator_optimum};
+use super::linear_quadratic::{oscillator_coefficients, oscillator_optimum, rest_to_rest};
 use super::swing_up::swing_up;
 
 const OSCILLATOR: HarmonicOscillator = HarmonicOscillator { m: 1.0, k: 1.0 };
@@ -34,15 +31,7 @@ fn oscillator_q(t: f64) -> f64 {
 
 /// `(|J_d − J*|, max_k |q_k − q(t_k)|)` of the discrete optimum with `steps` steps.
 fn oscillator_errors<R: Rule + StagedControls>(rule: &R, steps: usize) -> (f64, f64) {
-    let problem = OptimalControl::new(
-        OSCILLATOR,
-        InputMap::full(1),
-        Effort::default(),
-        (0.0, 1.0, steps),
-        Boundary::rest(&[0.0]),
-        Boundary::rest(&[1.0]),
-    )
-    .unwrap();
+    let problem = rest_to_rest(OSCILLATOR, steps);
     let tight = SqpOptions {
         kkt_tolerance: 1e-11,
         constraint_tolerance: 1e-12,
