@@ -488,18 +488,37 @@ fn a_version_two_checkpoint_fixture_of_a_forced_run_still_resumes() {
 /// A run stopped by SIGTERM (a cluster's time limit) is checkpointed where it stopped: with
 /// no periodic checkpoint before the signal (the only one is 100 steps before the end),
 /// `marsden resume` continues from the stop and leaves the uninterrupted run's files byte for
-/// byte, that last checkpoint included.
+/// byte, that last checkpoint included — for a run, and for the tangent run of `[sensitivity]`
+/// (the signal sent once the run has ended and the tangent run goes).
 #[test]
 fn sigterm_checkpoints_where_the_run_stops_and_the_resume_equals_the_uninterrupted_run() {
-    let tmp = tempfile::tempdir().unwrap();
-    let file = tmp.path().join("pendulum.toml");
     let steps = 3_000_000;
-    std::fs::write(&file, pendulum("midpoint", steps)).unwrap();
+    let run = ("trajectory.csv", "checkpoint.bin");
+    sigterm_then_resume(&pendulum("midpoint", steps), steps, run);
+    let parametric = "[system]\ncoordinates = [\"theta\"]\n\
+        lagrangian = \"0.5*theta_dot^2 + g*cos(theta)\"\nparameters = { g = 9.81 }\n\
+        [initial]\nq = [1.0]\nv = [0.0]\n\
+        [integrator]\nmethod = \"midpoint\"\nh = 0.01\nsteps = 400000\n\
+        [sensitivity]\ninitial = true\nparameters = [\"g\"]\n\
+        [output]\nevery = 100\nplots = false\n";
+    let tangent = ("checkpoint.bin", "sensitivity-checkpoint.bin");
+    sigterm_then_resume(parametric, 400_000, tangent);
+}
+
+/// Runs `text` whole, then three times stopped by SIGTERM a pseudo-random moment after
+/// `wait_for` appears, each checked for the checkpoint `written` at the stop, resumed and
+/// compared with the whole run.
+fn sigterm_then_resume(text: &str, steps: u64, (wait_for, written): (&str, &str)) {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("problem.toml");
+    std::fs::write(&file, text).unwrap();
     let every = (steps - 100).to_string();
     let whole = tmp.path().join("whole");
     let clock = Instant::now();
     assert!(spawn_run(&file, &whole, &every).wait().unwrap().success());
-    let limit = (clock.elapsed().as_millis() / 3).clamp(1, 400) as u64;
+    // The signal lands between a sixteenth and three sixteenths of the whole run's duration
+    // (at most 100–300 ms) after `wait_for` appears: inside the run, or the tangent run.
+    let limit = (clock.elapsed().as_millis() / 4).clamp(4, 400) as u64;
     let expected = contents(&whole);
     assert!(expected.iter().any(|(name, _)| name == "checkpoint.bin"));
     let mut interrupted = 0;
@@ -507,10 +526,10 @@ fn sigterm_checkpoints_where_the_run_stops_and_the_resume_equals_the_uninterrupt
         let out = tmp.path().join(format!("term-{attempt}"));
         let mut child = spawn_run(&file, &out, &every);
         let clock = Instant::now();
-        while !out.join("trajectory.csv").exists() && clock.elapsed() < Duration::from_secs(60) {
+        while !out.join(wait_for).exists() && clock.elapsed() < Duration::from_secs(60) {
             std::thread::sleep(Duration::from_millis(5));
         }
-        std::thread::sleep(delay(100 + attempt, limit));
+        std::thread::sleep(Duration::from_millis(limit / 4) + delay(100 + attempt, limit / 2));
         let signal = Command::new("kill")
             .args(["-TERM", &child.id().to_string()])
             .status()
@@ -518,12 +537,12 @@ fn sigterm_checkpoints_where_the_run_stops_and_the_resume_equals_the_uninterrupt
         assert!(signal.success());
         match child.wait().unwrap().code() {
             Some(0) => continue, // finished before the signal
-            code => assert_eq!(code, Some(1), "attempt {attempt}"),
+            code => assert_eq!(code, Some(1), "{wait_for}: attempt {attempt}"),
         }
         interrupted += 1;
         assert!(
-            out.join("checkpoint.bin").exists(),
-            "attempt {attempt}: no checkpoint written at the stop"
+            out.join(written).exists(),
+            "{wait_for}: attempt {attempt}: no {written} written at the stop"
         );
         let resumed = marsden_in(
             tmp.path(),
@@ -535,13 +554,16 @@ fn sigterm_checkpoints_where_the_run_stops_and_the_resume_equals_the_uninterrupt
             String::from_utf8_lossy(&resumed.stderr)
         );
         let found = contents(&out);
-        assert_eq!(found.len(), expected.len(), "attempt {attempt}");
+        assert_eq!(found.len(), expected.len(), "{wait_for}: attempt {attempt}");
         for ((name, a), (_, b)) in expected.iter().zip(&found) {
             assert!(
                 a == b,
-                "attempt {attempt}: {name} differs after SIGTERM and resume"
+                "{wait_for}: attempt {attempt}: {name} differs after SIGTERM and resume"
             );
         }
     }
-    assert!(interrupted > 0, "every signal came after the run had ended");
+    assert!(
+        interrupted > 0,
+        "{wait_for}: every signal came after the run had ended"
+    );
 }

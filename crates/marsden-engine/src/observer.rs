@@ -331,36 +331,30 @@ impl<L: Lagrangian, C: Constraint, M: MomentumMap> Observer for StreamObserver<'
         let _ = self.record(s);
     }
 
+    /// Records the step (a row at a sampled step, the monitors at every step when they watch
+    /// every step), then reads the stop flag: a run stopped here has this step in its files and
+    /// monitors, so the checkpoint written at the stop continues exactly.
     fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()> {
         if self.io_error.is_some() {
             return ControlFlow::Break(());
         }
-        if self.watch && view.step.is_multiple_of(CHECK_EVERY) && self.tick(view.step).is_break() {
-            return ControlFlow::Break(());
-        }
-        if view.step.is_multiple_of(self.every) || view.step == self.total {
-            let s = Sample {
-                step: view.step,
-                t: view.t,
-                q: view.q,
-                p: view.p,
-            };
-            let flow = self.record(s);
-            if self.watch && flow.is_continue() {
-                return self.stop_if_requested();
-            }
-            return flow;
-        }
-        if self.monitor_every_step {
-            let s = Sample {
-                step: view.step,
-                t: view.t,
-                q: view.q,
-                p: view.p,
-            };
+        let s = Sample {
+            step: view.step,
+            t: view.t,
+            q: view.q,
+            p: view.p,
+        };
+        let sampled = view.step.is_multiple_of(self.every) || view.step == self.total;
+        if sampled {
+            self.record(s)?;
+        } else if self.monitor_every_step {
             self.monitor(s);
         }
-        ControlFlow::Continue(())
+        match self.watch {
+            true if view.step.is_multiple_of(CHECK_EVERY) => self.tick(view.step),
+            true if sampled => self.stop_if_requested(),
+            _ => ControlFlow::Continue(()),
+        }
     }
 
     fn every_step(&self) -> bool {

@@ -68,6 +68,9 @@ pub struct Sensitivities {
     pub summary: SensitivitySummary,
     /// `(t_k, J_k)` at the stored steps, `J_k` row-major `2n × columns`.
     pub samples: Vec<(f64, Vec<f64>)>,
+    /// The tangent run was stopped by the caller's stop flag (a signal) before its end: the
+    /// run is not complete, whatever its first loop did.
+    pub interrupted: bool,
 }
 
 /// Runs the tangent run of `spec` from `start`, unwatched ([`compute_with`]).
@@ -206,6 +209,7 @@ impl TangentRun<'_, '_> {
         if let Some(e) = checkpoint_error {
             found.summary.error = Some(format!("the tangent run stopped: {e}"));
         } else if let Termination::Stopped { steps } = run.termination {
+            found.interrupted = true;
             found.summary.error = Some(format!(
                 "the tangent run was stopped after {steps} of {} steps; the Jacobians are those \
                  of the steps taken",
@@ -321,6 +325,7 @@ fn select(
     Sensitivities {
         summary,
         samples: Vec::new(),
+        interrupted: false,
     }
 }
 

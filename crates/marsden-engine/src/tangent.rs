@@ -111,10 +111,17 @@ impl<'c, 'a> Watched<'c, 'a> {
                 return ControlFlow::Continue(());
             }
             self.report(k, false);
-            match self.controls.stop_requested() {
-                true => ControlFlow::Break(()),
-                false => ControlFlow::Continue(()),
+            if !self.controls.stop_requested() {
+                return ControlFlow::Continue(());
             }
+            // A signal's stop is checkpointed where it happened: the resume loses no steps.
+            if let Some(plan) = self.checkpoints
+                && !k.is_multiple_of(plan.every)
+                && let Err(e) = self.save(plan, stepper, sample)
+            {
+                *self.error.borrow_mut() = Some(e);
+            }
+            ControlFlow::Break(())
         };
         let grid: &TimeGrid = &spec.integrator.grid;
         let mut sink = |sample: &TangentSample| self.out.borrow_mut().sample(sample);

@@ -81,10 +81,14 @@ pub(super) fn conclude(spec: &RunSpec, outcome: &marsden_spec::Outcome, quiet: b
             Status::Failed
         }
         (None, _) => {
+            // The run's steps all taken, its tangent run (`[sensitivity]`) stopped.
+            let when = match s.sensitivity.as_ref().and_then(|b| b.error.as_deref()) {
+                Some(why) if s.steps == s.steps_requested => format!("in its tangent run ({why})"),
+                _ => format!("after {} of {} steps", s.steps, s.steps_requested),
+            };
             eprintln!(
-                "error: the run was interrupted after {} of {} steps\n  = note: the partial \
-                 trajectory and summary.json (status \"interrupted\") are in {dir}",
-                s.steps, s.steps_requested,
+                "error: the run was interrupted {when}\n  = note: the partial trajectory and \
+                 summary.json (status \"interrupted\") are in {dir}",
             );
             if spec.output.checkpoint_every.is_some() {
                 eprintln!("  = help: `marsden resume {dir}` continues it from its last checkpoint");

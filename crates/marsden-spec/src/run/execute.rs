@@ -10,7 +10,7 @@ use super::sampled_times::{self, SampleOutputs, SampledStates};
 use super::samples::{NullSink, Samples, Tee};
 use super::sensitivity::SensitivitySummary;
 use super::solve::{Destination, RunRecord};
-use super::summary::Summary;
+use super::summary::{RunStatus, Summary};
 use super::{balance, output, plots, sensitivity, start};
 use crate::error::{Diagnostic, Error};
 use crate::problem::RunSpec;
@@ -292,6 +292,9 @@ pub fn execute_from(
     }
     let mut summary = Summary::new(spec, &record, columns, written);
     summary.set_symmetry_checks(&start.symmetries);
+    if sensitivity.as_ref().is_some_and(|d| d.interrupted) {
+        summary.status = RunStatus::Interrupted;
+    }
     let (block, jacobians) = sensitivity.map_or((None, None), |d| (Some(d.summary), d.samples));
     summary.sensitivity = block;
     if !store.files() {
@@ -387,6 +390,8 @@ struct Derivatives {
     summary: SensitivitySummary,
     file: Option<String>,
     samples: Option<Vec<(f64, Vec<f64>)>>,
+    /// The tangent run was stopped by a signal: the run is interrupted.
+    interrupted: bool,
 }
 
 /// `[sensitivity]`: the tangent run beside a completed run (watched by the run's `controls`:
@@ -413,6 +418,7 @@ fn derivatives(
         },
         file: None,
         samples: None,
+        interrupted: false,
     };
     if record.error.is_some() || record.interrupted {
         return Some(failed("the run did not complete".to_owned()));
@@ -474,5 +480,6 @@ fn derivatives(
         summary,
         file,
         samples: out.kept,
+        interrupted: found.interrupted,
     })
 }
