@@ -30,6 +30,15 @@ fn pendulum(method: &str, steps: u64) -> String {
     )
 }
 
+/// A pendulum whose `g` is a parameter of `L`, with `[sensitivity]` to `(q₀, p₀, g)`: 4·10⁵
+/// midpoint steps, then as many of its tangent run.
+const PARAMETRIC: &str = "[system]\ncoordinates = [\"theta\"]\n\
+    lagrangian = \"0.5*theta_dot^2 + g*cos(theta)\"\nparameters = { g = 9.81 }\n\
+    [initial]\nq = [1.0]\nv = [0.0]\n\
+    [integrator]\nmethod = \"midpoint\"\nh = 0.01\nsteps = 400000\n\
+    [sensitivity]\ninitial = true\nparameters = [\"g\"]\n\
+    [output]\nevery = 100\nplots = false\n";
+
 fn cases() -> Vec<Case> {
     let constrained = "[system]\ncoordinates = [\"x\", \"y\"]\n\
         lagrangian = \"0.5*(x_dot^2 + y_dot^2) - y\"\nconstraints = [\"x^2 + y^2 - 1\"]\n\
@@ -47,14 +56,9 @@ fn cases() -> Vec<Case> {
             "[output]",
             "[[events]]\nname = \"down\"\nwhen = \"theta\"\ndirection = \"down\"\n[output]",
         );
-    // The tangent run of the parametric model (a parameter of L differentiated), killed while
-    // it goes; and a builtin's tangent run in `.npy`, killed in the run or in the tangent run.
-    let parametric = "[system]\ncoordinates = [\"theta\"]\n\
-        lagrangian = \"0.5*theta_dot^2 + g*cos(theta)\"\nparameters = { g = 9.81 }\n\
-        [initial]\nq = [1.0]\nv = [0.0]\n\
-        [integrator]\nmethod = \"midpoint\"\nh = 0.01\nsteps = 400000\n\
-        [sensitivity]\ninitial = true\nparameters = [\"g\"]\n\
-        [output]\nevery = 100\nplots = false\n";
+    // The tangent run of the parametric model (a parameter of L differentiated, `PARAMETRIC`),
+    // killed while it goes; and a builtin's tangent run in `.npy`, killed in the run or in the
+    // tangent run.
     let tangent_npy = pendulum("gauss-2", 200_000)
         .replace("plots = false", "plots = false\nformat = \"npy\"")
         .replace("[output]", "[sensitivity]\ninitial = true\n[output]");
@@ -99,7 +103,7 @@ fn cases() -> Vec<Case> {
         case("npy", npy, "50000"),
         Case {
             name: "sensitivity",
-            text: parametric.to_owned(),
+            text: PARAMETRIC.to_owned(),
             every: "20000",
             wait_for: "sensitivity-checkpoint.bin",
         },
@@ -495,14 +499,8 @@ fn sigterm_checkpoints_where_the_run_stops_and_the_resume_equals_the_uninterrupt
     let steps = 3_000_000;
     let run = ("trajectory.csv", "checkpoint.bin");
     sigterm_then_resume(&pendulum("midpoint", steps), steps, run);
-    let parametric = "[system]\ncoordinates = [\"theta\"]\n\
-        lagrangian = \"0.5*theta_dot^2 + g*cos(theta)\"\nparameters = { g = 9.81 }\n\
-        [initial]\nq = [1.0]\nv = [0.0]\n\
-        [integrator]\nmethod = \"midpoint\"\nh = 0.01\nsteps = 400000\n\
-        [sensitivity]\ninitial = true\nparameters = [\"g\"]\n\
-        [output]\nevery = 100\nplots = false\n";
     let tangent = ("checkpoint.bin", "sensitivity-checkpoint.bin");
-    sigterm_then_resume(parametric, 400_000, tangent);
+    sigterm_then_resume(PARAMETRIC, 400_000, tangent);
 }
 
 /// Runs `text` whole, then three times stopped by SIGTERM a pseudo-random moment after
