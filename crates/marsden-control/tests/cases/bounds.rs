@@ -1,4 +1,5 @@
-//! Control bounds: the double integrator of [`super::linear_quadratic`] with `|u| ≤ a`.
+//! Control bounds: the double integrator of [`super::linear_quadratic`] with `|u| ≤ a`; state
+//! bounds: the Bryson–Denham problem (at the end).
 //!
 //! Pontryagin's principle makes `u` the saturation of an affine function, `u = sat_a(c₁ + c₂t)`
 //! ([BH75] §3.8), and the problem is symmetric under `t ↦ 1 − t`, `q ↦ 1 − q`, so
@@ -60,5 +61,53 @@ fn bounded_double_integrator_approaches_the_saturated_optimum() {
     for pair in errors.windows(2) {
         let ratio = pair[0] / pair[1];
         assert!((3.6..=4.4).contains(&ratio), "ratio {ratio}");
+    }
+}
+
+/// State bounds: the Bryson–Denham problem ([BH75] §3.11; a standard benchmark of direct
+/// methods): `ẍ = u`, `J = ∫₀¹ ½u²`, from `(x, v) = (0, 1)` to `(0, −1)` with `x ≤ ℓ`. For
+/// `ℓ ≤ 1/6` the optimum rides the bound on a middle arc and costs `J = 4/(9ℓ)`: 4 for
+/// `ℓ = 1/9` (SNOPT through TOMLAB's collocation: 4.00002). The discrete optimum approaches it,
+/// the bound holds at every node, and it is active on the middle arc
+/// `t ∈ [3ℓ, 1 − 3ℓ] = [⅓, ⅔]`.
+#[test]
+fn bryson_denham_state_bound_approaches_four() {
+    let ell = 1.0 / 9.0;
+    let mut errors = Vec::new();
+    for steps in [30, 60, 120] {
+        let problem = OptimalControl::new(
+            FreeFall { m: 1.0, g: 0.0 },
+            InputMap::full(1),
+            Effort::default(),
+            (0.0, 1.0, steps),
+            Boundary::velocity(&[0.0], &[1.0]),
+            Boundary::velocity(&[0.0], &[-1.0]),
+        )
+        .unwrap()
+        .with_state_bounds(&[f64::NEG_INFINITY], &[ell])
+        .unwrap();
+        let s = problem.solve(&Midpoint, &SqpOptions::default()).unwrap();
+        assert_eq!(s.status, Status::Converged, "N = {steps}");
+        let highest = s.q.iter().map(|q| q[0]).fold(f64::NEG_INFINITY, f64::max);
+        assert!(highest <= ell + 1e-12, "x reaches {highest}");
+        let active: Vec<f64> = (s.t.iter().zip(&s.q))
+            .filter(|(_, q)| ell - q[0] <= 1e-9)
+            .map(|(&t, _)| t)
+            .collect();
+        let (first, last) = (active[0], active[active.len() - 1]);
+        println!(
+            "Bryson–Denham N = {steps}: cost {:.6}, {} iterations, bound active on [{first:.3}, \
+             {last:.3}]",
+            s.cost, s.iterations
+        );
+        let h = 1.0 / steps as f64;
+        assert!((first - 1.0 / 3.0).abs() <= 2.0 * h && (last - 2.0 / 3.0).abs() <= 2.0 * h);
+        errors.push((s.cost - 4.0).abs());
+    }
+    println!("Bryson–Denham |J − 4|: {errors:?}");
+    // Order 2: each halving of h divides the error by about 4.
+    for pair in errors.windows(2) {
+        let ratio = pair[0] / pair[1];
+        assert!((3.6..4.4).contains(&ratio), "{errors:?}");
     }
 }
