@@ -5,7 +5,7 @@
 use marsden::{Lagrangian, Rule};
 
 use crate::error::ControlError;
-use crate::model::{ControlForce, FinalCost, RunningCost};
+use crate::model::{ControlForce, FinalCost, PathConstraint, RunningCost};
 use crate::problem::{OptimalControl, check_len};
 use crate::stages::StagedControls;
 use crate::transcription::Evaluation;
@@ -24,12 +24,13 @@ pub struct DerivativeCheck {
     pub scale: f64,
 }
 
-impl<L, F, C, P> OptimalControl<L, F, C, P>
+impl<L, F, C, P, G> OptimalControl<L, F, C, P, G>
 where
     L: Lagrangian,
     F: ControlForce,
     C: RunningCost,
     P: FinalCost,
+    G: PathConstraint,
 {
     /// The number of unknowns and of constraints of the program transcribed with `rule`.
     ///

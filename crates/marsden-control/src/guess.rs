@@ -7,7 +7,7 @@
 
 use marsden::{Force, Initial, Lagrangian, Problem, Rule, Scalar, SolveOptions, TimeGrid};
 
-use crate::model::{ControlForce, FinalCost, RunningCost};
+use crate::model::{ControlForce, FinalCost, PathConstraint, RunningCost};
 use crate::problem::{OptimalControl, Rate};
 use crate::stages::ControlStages;
 use crate::transcription::Layout;
@@ -86,8 +86,8 @@ impl<F: ControlForce> Force for StepControl<'_, F> {
 
 /// The flat initial guess `z` of `problem` in `layout`: the nodes, each step's control (at
 /// every stage) and its inner control points on the straight line between its nodes.
-pub(crate) fn initial<L, F, C, P, R>(
-    problem: &OptimalControl<L, F, C, P>,
+pub(crate) fn initial<L, F, C, P, G, R>(
+    problem: &OptimalControl<L, F, C, P, G>,
     rule: &R,
     stages: &ControlStages,
     layout: &Layout,
@@ -97,6 +97,7 @@ where
     F: ControlForce,
     C: RunningCost,
     P: FinalCost,
+    G: PathConstraint,
     R: Rule,
 {
     let nodes = match &problem.guess {
@@ -128,12 +129,16 @@ where
     z
 }
 
-fn default_nodes<L, F, C, P, R>(problem: &OptimalControl<L, F, C, P>, rule: &R) -> Vec<Vec<f64>>
+fn default_nodes<L, F, C, P, G, R>(
+    problem: &OptimalControl<L, F, C, P, G>,
+    rule: &R,
+) -> Vec<Vec<f64>>
 where
     L: Lagrangian,
     F: ControlForce,
     C: RunningCost,
     P: FinalCost,
+    G: PathConstraint,
     R: Rule,
 {
     let steps = problem.grid.steps;
@@ -160,8 +165,8 @@ where
 }
 
 /// The core integrator's run from the (complete) start with `u = 0`, if it succeeds.
-fn simulate<L, F, C, P, R>(
-    problem: &OptimalControl<L, F, C, P>,
+fn simulate<L, F, C, P, G, R>(
+    problem: &OptimalControl<L, F, C, P, G>,
     rule: &R,
     q0: &[f64],
 ) -> Option<Vec<Vec<f64>>>
@@ -170,6 +175,7 @@ where
     F: ControlForce,
     C: RunningCost,
     P: FinalCost,
+    G: PathConstraint,
     R: Rule,
 {
     let rate: Vec<f64> = problem

@@ -44,8 +44,8 @@
 //!
 //! | module | concept |
 //! |---|---|
-//! | [`model`] | `f(t, q, v, u)`, `C(t, q, v, u)`, `Φ(q_N, p_N)`; ready-made input map and effort |
-//! | [`problem`] | [`OptimalControl`]: system, horizon, boundary conditions, bounds, guess |
+//! | [`model`] | `f(t, q, v, u)`, `C(t, q, v, u)`, `Φ(q_N, p_N)`, `g(t, q, v, u) ≤ 0`; ready-made input map and effort |
+//! | [`problem`] | [`OptimalControl`]: system, horizon, boundary conditions, bounds, path inequalities, guess |
 //! | [`transcription`] | unknowns, constraints, cost and their derivatives by AD |
 //! | [`stages`] | one control value per step, or one per stage of the rule |
 //! | [`qp`], [`sqp`] | the subproblem (Clarabel) and the SQP iteration |
@@ -82,8 +82,10 @@ pub mod transcription;
 pub use check::DerivativeCheck;
 pub use error::ControlError;
 pub use guess::{FrozenControl, SampledControl, StepControl};
-pub use model::{ControlForce, Effort, FinalCost, InputMap, NoFinalCost, RunningCost};
+pub use model::{
+    ControlForce, Effort, FinalCost, InputMap, NoFinalCost, NoPath, PathConstraint, RunningCost,
+};
 pub use problem::{Boundary, Bounds, Guess, OptimalControl, Rate};
 pub use solution::{Failure, Infeasibility, Iteration, Solution, Status};
 pub use sqp::SqpOptions;
-pub use stages::{ControlStages, StagedControls};
+pub use stages::{ControlStages, PathPoints, StagedControls};

@@ -1,6 +1,7 @@
 //! The continuous ingredients of an optimal control problem, written once over [`Scalar`] so
 //! that automatic differentiation reaches them: the controlled force `f(t, q, v, u)`, the
-//! running cost `C(t, q, v, u)` and the final cost `Φ(q_N, p_N)`.
+//! running cost `C(t, q, v, u)`, the final cost `Φ(q_N, p_N)` and the path inequalities
+//! `g(t, q, v, u) ≤ 0`.
 //!
 //! The controls `u` (m components) are piecewise constant: `u_k` acts on `[t_k, t_{k+1}]`
 //! ([OJM11] §3). Ready-made: [`InputMap`] (each control a generalised force on one coordinate,
@@ -60,6 +61,36 @@ impl FinalCost for NoFinalCost {
     fn cost<S: Scalar>(&self, _q: &[S], _p: &[S]) -> S {
         S::from(0.0)
     }
+}
+
+/// Path inequalities `g(t, q, v, u) ≤ 0` (`count` of them), required along the trajectory:
+/// the transcription imposes them at the points of each step where the controls act
+/// ([`crate::transcription`]).
+pub trait PathConstraint {
+    /// The number of inequalities `n_g`.
+    fn count(&self) -> usize;
+    /// Writes `g(t, q, v, u)` into `out` (length [`PathConstraint::count`]).
+    fn eval<S: Scalar>(&self, t: S, q: &[S], v: &[S], u: &[S], out: &mut [S]);
+}
+
+impl<G: PathConstraint + ?Sized> PathConstraint for &G {
+    fn count(&self) -> usize {
+        (**self).count()
+    }
+    fn eval<S: Scalar>(&self, t: S, q: &[S], v: &[S], u: &[S], out: &mut [S]) {
+        (**self).eval(t, q, v, u, out)
+    }
+}
+
+/// No path inequalities (the default).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct NoPath;
+
+impl PathConstraint for NoPath {
+    fn count(&self) -> usize {
+        0
+    }
+    fn eval<S: Scalar>(&self, _t: S, _q: &[S], _v: &[S], _u: &[S], _out: &mut [S]) {}
 }
 
 /// Controls acting directly on coordinates: `f_i = Σ_{j : coordinate_j = i} u_j`, zero on the

@@ -4,7 +4,8 @@
 //! ```text
 //!     minimise  J_d = Σ_k C_d(q_k, q_{k+1}, u_k) + Φ(q_N, p_N)
 //!     subject to the forced DEL equations at k = 1 … N−1, the boundary conditions on
-//!     (q_0, p_0) and (q_N, p_N), and lo ≤ u_k ≤ hi, lo ≤ q_k ≤ hi,
+//!     (q_0, p_0) and (q_N, p_N), lo ≤ u_k ≤ hi, lo ≤ q_k ≤ hi, and g(t, q, q̇, u) ≤ 0 at
+//!     each step's path points,
 //! ```
 //!
 //! with `C_d` the rule's quadrature of `∫ C dt` over a step ([OJM11] §3.2; see
@@ -15,7 +16,7 @@
 use marsden::{Lagrangian, TimeGrid};
 
 use crate::error::ControlError;
-use crate::model::{ControlForce, FinalCost, NoFinalCost, RunningCost};
+use crate::model::{ControlForce, FinalCost, NoFinalCost, NoPath, PathConstraint, RunningCost};
 
 /// How the rate at a boundary is given, component by component (`None`: free).
 #[derive(Debug, Clone, PartialEq)]
@@ -171,11 +172,12 @@ pub struct Guess {
 ///
 /// [OJM11]: crate#references
 #[derive(Debug, Clone)]
-pub struct OptimalControl<L, F, C, P = NoFinalCost> {
+pub struct OptimalControl<L, F, C, P = NoFinalCost, G = NoPath> {
     pub(crate) lagrangian: L,
     pub(crate) force: F,
     pub(crate) cost: C,
     pub(crate) final_cost: P,
+    pub(crate) path: G,
     pub(crate) grid: TimeGrid,
     pub(crate) start: Boundary,
     pub(crate) end: Boundary,
@@ -213,6 +215,7 @@ impl<L: Lagrangian, F: ControlForce, C: RunningCost> OptimalControl<L, F, C> {
             force,
             cost,
             final_cost: NoFinalCost,
+            path: NoPath,
             grid,
             start,
             end,
@@ -223,14 +226,40 @@ impl<L: Lagrangian, F: ControlForce, C: RunningCost> OptimalControl<L, F, C> {
     }
 }
 
-impl<L: Lagrangian, F: ControlForce, C: RunningCost, P: FinalCost> OptimalControl<L, F, C, P> {
+impl<L, F, C, P, G> OptimalControl<L, F, C, P, G>
+where
+    L: Lagrangian,
+    F: ControlForce,
+    C: RunningCost,
+    P: FinalCost,
+    G: PathConstraint,
+{
     /// The same problem with the final cost `Φ(q_N, p_N)`.
-    pub fn with_final_cost<P2: FinalCost>(self, final_cost: P2) -> OptimalControl<L, F, C, P2> {
+    pub fn with_final_cost<P2: FinalCost>(self, final_cost: P2) -> OptimalControl<L, F, C, P2, G> {
         OptimalControl {
             lagrangian: self.lagrangian,
             force: self.force,
             cost: self.cost,
             final_cost,
+            path: self.path,
+            grid: self.grid,
+            start: self.start,
+            end: self.end,
+            control_bounds: self.control_bounds,
+            state_bounds: self.state_bounds,
+            guess: self.guess,
+        }
+    }
+
+    /// The same problem with the path inequalities `g(t, q, q̇, u) ≤ 0`, imposed at each
+    /// control value's point of every step ([`crate::stages::PathPoints`]).
+    pub fn with_path<G2: PathConstraint>(self, path: G2) -> OptimalControl<L, F, C, P, G2> {
+        OptimalControl {
+            lagrangian: self.lagrangian,
+            force: self.force,
+            cost: self.cost,
+            final_cost: self.final_cost,
+            path,
             grid: self.grid,
             start: self.start,
             end: self.end,

@@ -2,22 +2,24 @@
 //! programs):
 //!
 //! ```text
-//!     minimise ½ dᵀ(H + δI + ρJᵀJ)d + gᵀd   subject to   J d = r,   lo − z ≤ d ≤ hi − z,
+//!     minimise ½ dᵀ(H + δI + ρJ_EᵀJ_E)d + gᵀd
+//!     subject to   J_E d = r_E,   J_I d ≤ r_I,   lo − z ≤ d ≤ hi − z,
 //! ```
 //!
-//! The term `ρJᵀJ` (an augmented Lagrangian's, [NW06] §17.3) is `ρ|r|²` on the feasible set, a
+//! with `E` the equality rows of the program and `I` its inequalities (the path constraints,
+//! the last rows). The term `ρJ_EᵀJ_E` (an augmented Lagrangian's, [NW06] §17.3) is `ρ|r|²` on the feasible set, a
 //! constant: it leaves the step unchanged and only shifts the multipliers (`λ = λ_ρ + ρJd`),
 //! but it makes `P` positive semidefinite when `H` is positive definite on the null space of
 //! `J` only, which an interior-point method for convex programs needs. That is the common case
 //! with inner control points: the Lagrangian has no curvature of its own along them.
 //!
-//! in Clarabel's form `min ½dᵀPd + gᵀd, A d + s = b, s ∈ {0}^rows × ℝ₊^bounds`, with `P` the
-//! upper triangle in compressed sparse columns. Clarabel's duals `y` satisfy
-//! `P d + g + Aᵀy = 0`: the rows of `J` give the multipliers `λ` of the Lagrangian
-//! `f + λᵀc` directly.
+//! in Clarabel's form `min ½dᵀPd + gᵀd, A d + s = b, s ∈ {0}^E × ℝ₊^(I + bounds)`, with `P`
+//! the upper triangle in compressed sparse columns. Clarabel's duals `y` satisfy
+//! `P d + g + Aᵀy = 0` (`y ≥ 0` on the nonnegative cone): the rows of `J` give the multipliers
+//! `λ` of the Lagrangian `f + λᵀc` directly, nonnegative on the inequalities.
 //!
 //! Infeasibility is reported only with a checked Farkas certificate ([NW06] §12.2): `y` with
-//! `y ≥ 0` on the bound rows, `Aᵀy ≈ 0` and `bᵀy < 0`. For any `d` meeting the constraints,
+//! `y ≥ 0` on the inequality and bound rows, `Aᵀy ≈ 0` and `bᵀy < 0`. For any `d` meeting the constraints,
 //! `yᵀ(b − Ad) = yᵀs ≥ 0`, so `bᵀy ≥ (Aᵀy)ᵀd ≥ −‖Aᵀy‖∞‖d‖₁`: no step with
 //! `‖d‖₁ < |bᵀy| / ‖Aᵀy‖∞` (at least 10⁶ here) meets them. The certificate does not involve
 //! the Hessian, so it holds whatever the regularisation.
@@ -40,6 +42,8 @@ pub struct Subproblem<'a> {
     pub jacobian: &'a [(usize, usize, f64)],
     /// Number of rows of `J`.
     pub rows: usize,
+    /// The last rows of `J` that are inequalities `J_I d ≤ r_I`.
+    pub inequalities: usize,
     /// The right-hand side `r` (`−c` for the SQP step).
     pub rhs: &'a [f64],
     /// `(variable, upper)`: `d_i ≤ upper`.
@@ -81,6 +85,8 @@ pub struct Certificate {
     /// The variables whose upper or lower bound carries a weight of the certificate (at least
     /// 10⁻⁶ of its largest weight), in increasing order.
     pub bounded: Vec<usize>,
+    /// The inequality rows (counted from the first) that carry such a weight.
+    pub inequalities: Vec<usize>,
 }
 
 /// The smallest `|bᵀy| / ‖Aᵀy‖∞` accepted: no step shorter than this (in ℓ1) is feasible.
@@ -101,11 +107,18 @@ impl Subproblem<'_> {
         self.solve_with(Convexify { delta, rho: 0.0 })
     }
 
-    /// The upper triangle of `ρJᵀJ` as triplets (repeated entries of `J` added).
+    /// The rows of `J` that are equalities.
+    fn equalities(&self) -> usize {
+        self.rows - self.inequalities
+    }
+
+    /// The upper triangle of `ρJ_EᵀJ_E` as triplets (repeated entries of `J` added).
     fn gram(&self, rho: f64) -> Vec<(usize, usize, f64)> {
-        let mut by_row = vec![Vec::new(); self.rows];
+        let mut by_row = vec![Vec::new(); self.equalities()];
         for &(r, c, v) in self.jacobian {
-            by_row[r].push((c, v));
+            if let Some(row) = by_row.get_mut(r) {
+                row.push((c, v));
+            }
         }
         let mut out = Vec::new();
         for row in &by_row {
@@ -140,7 +153,8 @@ impl Subproblem<'_> {
     /// always feasible (`d = 0` meets the bounds of an iterate inside them). Its step decreases
     /// the ℓ1 merit `f + μ‖c‖₁` of a problem whose linearisation has no solution;
     /// [`QpSolution::elastic_violation`] is `Σ (s⁺ + s⁻)`, the violation the step leaves in the
-    /// linearised constraints.
+    /// linearised constraints. An inequality row `J_I d + s⁺ − s⁻ ≤ r_I` has both slacks too:
+    /// `s⁺` only tightens it, so it is zero at the optimum, and `s⁻` is the row's violation.
     ///
     /// [GMS05]: crate#references
     pub fn solve_elastic(&self, delta: f64, mu: f64) -> QpOutcome {
@@ -202,9 +216,12 @@ impl Subproblem<'_> {
             b.push(0.0);
         }
         let a = CscMatrix::new_from_triplets(self.rows + bound_rows + slacks, nv, rows, cols, vals);
-        let mut cones = vec![ZeroConeT(self.rows)];
-        if bound_rows + slacks > 0 {
-            cones.push(NonnegativeConeT(bound_rows + slacks));
+        let mut cones = Vec::with_capacity(2);
+        if self.equalities() > 0 {
+            cones.push(ZeroConeT(self.equalities()));
+        }
+        if self.inequalities + bound_rows + slacks > 0 {
+            cones.push(NonnegativeConeT(self.inequalities + bound_rows + slacks));
         }
         let settings = DefaultSettings {
             verbose: false,
@@ -253,7 +270,8 @@ impl Subproblem<'_> {
     fn unshifted(&self, lambda: &[f64], d: &[f64], rho: f64) -> Vec<f64> {
         let mut out = lambda.to_vec();
         if rho > 0.0 {
-            for &(r, c, v) in self.jacobian {
+            let equalities = self.equalities();
+            for &(r, c, v) in self.jacobian.iter().filter(|e| e.0 < equalities) {
                 out[r] += rho * v * d[c];
             }
         }
@@ -265,8 +283,8 @@ impl Subproblem<'_> {
         // NaN-propagating maxima: a NaN anywhere must not pass as a certificate.
         let weight = y.iter().map(|v| v.abs()).fold(0.0, max_or_nan);
         let bty: f64 = b.iter().zip(y).map(|(b, y)| b * y).sum();
-        let bounds = &y[self.rows..];
-        if !(weight > 0.0 && bty < 0.0) || bounds.iter().any(|&v| v < -1e-9 * weight) {
+        let signed = &y[self.equalities()..];
+        if !(weight > 0.0 && bty < 0.0) || signed.iter().any(|&v| v < -1e-9 * weight) {
             return None;
         }
         // Aᵀy, column by column of the compressed sparse columns.
@@ -279,6 +297,11 @@ impl Subproblem<'_> {
         if residual.is_nan() || residual * CERTIFIED_RADIUS > -bty {
             return None;
         }
+        let (rows, bounds) = signed.split_at(self.inequalities);
+        let inequalities = (rows.iter().enumerate())
+            .filter(|(_, w)| **w >= 1e-6 * weight)
+            .map(|(i, _)| i)
+            .collect();
         let (upper, lower) = bounds.split_at(self.upper.len());
         let mut bounded: Vec<usize> = (self.upper.iter().zip(upper))
             .chain(self.lower.iter().zip(lower))
@@ -287,6 +310,9 @@ impl Subproblem<'_> {
             .collect();
         bounded.sort_unstable();
         bounded.dedup();
-        Some(Certificate { bounded })
+        Some(Certificate {
+            bounded,
+            inequalities,
+        })
     }
 }

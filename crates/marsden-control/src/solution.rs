@@ -30,6 +30,8 @@ pub struct Infeasibility {
     pub controls: Vec<usize>,
     /// The coordinates (indices) whose bounds the certificate uses, at some node.
     pub coordinates: Vec<usize>,
+    /// The path inequalities (indices) the certificate uses, at some step.
+    pub path: Vec<usize>,
 }
 
 /// Why an iteration failed.
@@ -56,7 +58,8 @@ pub enum Failure {
 pub struct Iteration {
     /// The cost at the iterate.
     pub cost: f64,
-    /// `max |c_i|` at the iterate.
+    /// The largest violation at the iterate: `|c_i|` of an equality, `max(0, g_i)` of a
+    /// path inequality.
     pub violation: f64,
     /// The KKT (stationarity and complementarity) residual at the iterate with the
     /// subproblem's multipliers.
@@ -78,7 +81,7 @@ pub struct Solution {
     pub iterations: usize,
     /// The KKT residual at the returned iterate.
     pub kkt_residual: f64,
-    /// `max |c_i|` at the returned iterate.
+    /// The largest violation at the returned iterate (`|c_i|`, `max(0, g_i)` of a path inequality).
     pub constraint_violation: f64,
     /// `t_0 … t_N`.
     pub t: Vec<f64>,
@@ -105,6 +108,9 @@ pub struct Solution {
     pub start_multipliers: Vec<f64>,
     /// The multipliers of the fixed end components (positions, then rates).
     pub end_multipliers: Vec<f64>,
+    /// The path inequalities' multipliers (`≥ 0`; positive where a constraint is active), step
+    /// by step: `σ n_g` per step, point by point.
+    pub path_multipliers: Vec<Vec<f64>>,
     /// One record per iteration.
     pub history: Vec<Iteration>,
 }

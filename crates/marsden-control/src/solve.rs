@@ -1,26 +1,26 @@
 //! Solving a problem with a rule: transcription, SQP, and the result read off the last
 //! iterate.
 
-use marsden::numerics::dense::max_or_nan;
 use marsden::{DiscreteAction, DiscreteForce, Lagrangian, Rule};
 
 use crate::error::ControlError;
 use crate::guess;
-use crate::model::{ControlForce, FinalCost, RunningCost};
+use crate::model::{ControlForce, FinalCost, PathConstraint, RunningCost};
 use crate::problem::OptimalControl;
 use crate::solution::{Infeasibility, Solution, Status};
 use crate::sqp::{self, Program, SqpOptions, SqpOutcome, VariableBounds};
 use crate::stages::StagedControls;
 use crate::transcription::step::{Augmented, CostLagrangian, StepParts};
-use crate::transcription::{Evaluation, Layout, Transcription, Unknown};
+use crate::transcription::{Evaluation, Ingredients, Layout, Transcription, Unknown};
 
-impl<L, A, FD, CD, P> Program for Transcription<'_, L, A, FD, CD, P>
+impl<L, A, FD, CD, P, G> Program for Transcription<'_, L, A, FD, CD, P, G>
 where
     L: Lagrangian,
     A: DiscreteAction,
     FD: DiscreteForce,
     CD: DiscreteAction,
     P: FinalCost,
+    G: PathConstraint,
 {
     fn evaluate(&self, z: &[f64]) -> Evaluation {
         Transcription::evaluate(self, z)
@@ -33,12 +33,13 @@ where
     }
 }
 
-impl<L, F, C, P> OptimalControl<L, F, C, P>
+impl<L, F, C, P, G> OptimalControl<L, F, C, P, G>
 where
     L: Lagrangian,
     F: ControlForce,
     C: RunningCost,
     P: FinalCost,
+    G: PathConstraint,
 {
     /// Solves the problem transcribed with `rule`: a two-point rule (midpoint, trapezoid, the
     /// α and symmetrised α rules) with one control value per step, a Galerkin rule (`gauss-s`,
@@ -83,6 +84,7 @@ where
                 R::DiscreteForce<Augmented<&'s F>>,
                 R::Discrete<CostLagrangian<&'s C>>,
                 P,
+                G,
             >,
         ) -> T,
     ) -> Result<T, ControlError> {
@@ -120,14 +122,14 @@ where
             n,
             m,
         };
-        let boundaries = (&self.start, &self.end);
-        let program = Transcription::new(
-            &self.lagrangian,
-            parts,
-            &self.final_cost,
-            self.grid,
-            boundaries,
-        );
+        let ingredients = Ingredients {
+            lagrangian: &self.lagrangian,
+            final_cost: &self.final_cost,
+            path: &self.path,
+            grid: self.grid,
+            ends: (&self.start, &self.end),
+        };
+        let program = Transcription::new(parts, ingredients);
         Ok(f(&program))
     }
 
@@ -154,7 +156,7 @@ where
 
     fn solution<A, FD, CD>(
         &self,
-        program: &Transcription<'_, L, A, FD, CD, P>,
+        program: &Transcription<'_, L, A, FD, CD, P, G>,
         outcome: SqpOutcome,
     ) -> Solution
     where
@@ -188,6 +190,10 @@ where
         let status = match (outcome.status, &outcome.certificate) {
             (Status::Infeasible(mut infeasibility), Some(certificate)) => {
                 locate(&mut infeasibility, &layout, &certificate.bounded);
+                let count = self.path.count().max(1);
+                infeasibility.path = certificate.inequalities.iter().map(|r| r % count).collect();
+                infeasibility.path.sort_unstable();
+                infeasibility.path.dedup();
                 Status::Infeasible(infeasibility)
             }
             (status, _) => status,
@@ -197,10 +203,7 @@ where
             cost: e.cost,
             iterations: outcome.history.len(),
             kkt_residual: outcome.kkt,
-            constraint_violation: e
-                .constraints
-                .iter()
-                .fold(0.0, |m, c| max_or_nan(m, c.abs())),
+            constraint_violation: e.max_violation(),
             t: (0..=steps).map(|k| self.grid.time(k)).collect(),
             q,
             p,
@@ -211,6 +214,7 @@ where
             costates: program.costates(&outcome.lambda),
             start_multipliers,
             end_multipliers,
+            path_multipliers: program.path_multipliers(&outcome.lambda),
             history: outcome.history,
         }
     }

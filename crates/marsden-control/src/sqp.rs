@@ -6,7 +6,7 @@
 //!   nonzero `δ`, growing eightfold, until Clarabel solves the subproblem and the step has
 //!   positive curvature `dᵀ(H + δI)d ≥ κ dᵀd`. Near a strict local minimum `δ = 0`
 //!   passes, so the steps are Newton steps on the KKT conditions (fast local convergence).
-//! * Globalisation: the ℓ1 merit `φ = f + μ‖c‖₁` with `μ ≥ ‖λ‖∞ + ρ`, Armijo backtracking,
+//! * Globalisation: the ℓ1 merit `φ = f + μ(‖c_E‖₁ + ‖max(0, c_I)‖₁)` with `μ ≥ ‖λ‖∞ + ρ`, Armijo backtracking,
 //!   and one second-order correction when the full step is refused (against the Maratos
 //!   effect, [NW06] §15.6).
 //! * Inconsistent linearisations: when a subproblem has no solution (a checked certificate),
@@ -15,8 +15,9 @@
 //!   the bounds of the first certificate, once a step cannot reduce the violation (a local
 //!   minimum of it: for dynamics linear in `(q, u)`, a proof).
 //! * Stopping: at iterate `z` with the subproblem's multipliers, the KKT residual
-//!   `max(‖g + Jᵀλ + ∂bounds‖∞, max |μ_i slack_i|)` and the violation `‖c‖∞` below their
-//!   tolerances. Bounds are linear, so every iterate keeps them.
+//!   `max(‖g + Jᵀλ + ∂bounds‖∞, max |μ_i slack_i|, max |λ_i g_i|)` and the violation
+//!   (`|c_i|` of an equality, `max(0, g_i)` of a path inequality) below their tolerances.
+//!   Bounds are linear, so every iterate keeps them; path inequalities are met at the limit.
 //!
 //! [NW06]: crate#references
 
@@ -158,6 +159,7 @@ pub fn solve<P: Program>(
             gradient: &it.e.gradient,
             jacobian: &it.e.jacobian,
             rows: program.rows(),
+            inequalities: it.e.inequalities,
             rhs: &rhs,
             upper: &upper,
             lower: &lower,
@@ -187,7 +189,7 @@ pub fn solve<P: Program>(
         };
         it.lambda.clone_from(&qp.lambda);
         it.kkt = kkt_residual(&it.e, &qp, (&upper, &lower));
-        let violation = max_abs(&it.e.constraints);
+        let violation = it.e.max_violation();
         let mut record = Iteration {
             cost: it.e.cost,
             violation,
@@ -363,7 +365,7 @@ fn elastic_step(
     it: &Iterate,
 ) -> Option<(QpSolution, Convexify)> {
     let mu = 1e3 * max_abs(&it.e.gradient).max(max_abs(&it.lambda)).max(1.0);
-    let violation = l1(&it.e.constraints);
+    let violation = it.e.l1_violation();
     let mut delta = 0.0;
     loop {
         if let QpOutcome::Solved(s) = sub.solve_elastic(delta, mu)
@@ -386,7 +388,7 @@ fn elastic_step(
 /// solution would otherwise hold the later steps short.
 fn penalty(e: &Evaluation, qp: &QpSolution, hessian: &[(usize, usize, f64)], delta: f64) -> f64 {
     let d = &qp.step;
-    let c1 = l1(&e.constraints);
+    let c1 = e.l1_violation();
     let by_multipliers = 1.1 * max_abs(&qp.lambda) + 1e-8;
     if c1 == 0.0 {
         return by_multipliers;
@@ -438,13 +440,17 @@ fn curvature_ok(hessian: &[(usize, usize, f64)], delta: f64, d: &[f64]) -> bool 
     dhd + delta * dd >= CURVATURE * dd
 }
 
-/// `max(‖g + Jᵀλ + Σ μ⁺e_i − Σ μ⁻e_i‖∞, max |μ_i · slack_i|)` at the iterate.
+/// `max(‖g + Jᵀλ + Σ μ⁺e_i − Σ μ⁻e_i‖∞, max |μ_i · slack_i|, max |λ_i c_i|)` at the
+/// iterate, the last over the inequality rows (their multipliers are `≥ 0` by the subproblem).
 fn kkt_residual(e: &Evaluation, qp: &QpSolution, (upper, lower): BoundsRef<'_>) -> f64 {
     let mut r = e.gradient.clone();
     for &(row, col, v) in &e.jacobian {
         r[col] += v * qp.lambda[row];
     }
-    let mut complementarity = 0.0_f64;
+    let equalities = e.equalities();
+    let mut complementarity = (e.constraints[equalities..].iter())
+        .zip(&qp.lambda[equalities..])
+        .fold(0.0, |m, (c, l)| max_or_nan(m, (c * l).abs()));
     for (&(i, slack), &m) in upper.iter().zip(&qp.upper) {
         r[i] += m;
         complementarity = max_or_nan(complementarity, (m * slack).abs());
@@ -465,10 +471,6 @@ fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, x| max_or_nan(m, x.abs()))
 }
 
-fn l1(v: &[f64]) -> f64 {
-    v.iter().map(|x| x.abs()).sum()
-}
-
 /// Armijo backtracking on `φ = f + μ‖c‖₁` along `d`, with one second-order correction when
 /// the full step is refused (its subproblem made convex as the step's was). `Ok((α, z⁺, e⁺))`,
 /// or `Err(α)` with the last step tried.
@@ -480,9 +482,9 @@ fn line_search<P: Program>(
     shape: Convexify,
     mu: f64,
 ) -> Result<(f64, Vec<f64>, Evaluation), f64> {
-    let merit = |e: &Evaluation| e.cost + mu * l1(&e.constraints);
+    let merit = |e: &Evaluation| e.cost + mu * e.l1_violation();
     let phi0 = merit(e);
-    let slope = dot(&e.gradient, d) - mu * l1(&e.constraints);
+    let slope = dot(&e.gradient, d) - mu * e.l1_violation();
     let slope = slope.min(0.0);
     let at = |alpha: f64, d: &[f64]| -> Vec<f64> {
         z.iter().zip(d).map(|(zi, di)| zi + alpha * di).collect()

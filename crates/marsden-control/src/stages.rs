@@ -89,6 +89,68 @@ impl ControlStages {
     }
 }
 
+/// Where a step's path inequalities are imposed, and how the state there is read off the
+/// step's control points `Q_0 … Q_s` ([`ControlStages::path_points`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathPoints {
+    /// The fractions `τ_i` of the step (one per control value: the value `u_{k,i}` acts there).
+    pub times: Vec<f64>,
+    /// `q(τ_i) = Σ_j position[i (s+1) + j] Q_j`, row-major.
+    pub position: Vec<f64>,
+    /// `q̇(τ_i) = Σ_j rate[i (s+1) + j] Q_j / h`, row-major.
+    pub rate: Vec<f64>,
+}
+
+impl ControlStages {
+    /// The points where the path inequalities `g(t, q, q̇, u) ≤ 0` are imposed: one per
+    /// control value. For one value per step, the step's midpoint with the secant
+    /// `q = (q_k + q_{k+1})/2`, `q̇ = (q_{k+1} − q_k)/h` — the midpoint rule's own state, and
+    /// a composition's inner points (which may lie outside the step) left out; for stage
+    /// values `u_{k,i}`, the node `c_i` with the rule's polynomial through its control points
+    /// (`q(c_i)`, `q̇(c_i)` of the Galerkin curve, [OJM11] §4.2).
+    ///
+    /// [OJM11]: crate#references
+    pub fn path_points(&self) -> PathPoints {
+        let points = self.points.len();
+        if self.count() == 1 {
+            let mut position = vec![0.0; points];
+            let mut rate = vec![0.0; points];
+            (position[0], position[points - 1]) = (0.5, 0.5);
+            (rate[0], rate[points - 1]) = (-1.0, 1.0);
+            return PathPoints {
+                times: vec![0.5],
+                position,
+                rate,
+            };
+        }
+        let at = |weight: fn(&[f64], usize, f64) -> f64| {
+            (self.times.iter())
+                .flat_map(|&c| (0..points).map(move |j| (c, j)))
+                .map(|(c, j)| weight(&self.points, j, c))
+                .collect()
+        };
+        PathPoints {
+            times: self.times.clone(),
+            position: at(lagrange),
+            rate: at(lagrange_derivative),
+        }
+    }
+}
+
+/// `ℓ_i'(τ) = Σ_{m≠i} 1/(c_i − c_m) Π_{l≠i,m} (τ − c_l)/(c_i − c_l)`.
+fn lagrange_derivative(c: &[f64], i: usize, tau: f64) -> f64 {
+    (0..c.len())
+        .filter(|&m| m != i)
+        .map(|m| {
+            let rest: f64 = (0..c.len())
+                .filter(|&l| l != i && l != m)
+                .map(|l| (tau - c[l]) / (c[i] - c[l]))
+                .product();
+            rest / (c[i] - c[m])
+        })
+        .sum()
+}
+
 /// `ℓ_i(τ) = Π_{m≠i} (τ − c_m)/(c_i − c_m)` (1 for a single node).
 fn lagrange(c: &[f64], i: usize, tau: f64) -> f64 {
     (0..c.len())
@@ -195,6 +257,26 @@ mod tests {
         let mut w = [0.0; 2];
         g.weights_at(g.times[1], &mut w);
         assert!((w[0]).abs() < 1e-15 && (w[1] - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn path_points_read_a_polynomial_and_its_derivative() {
+        // gauss-2 reads q(c_i), q̇(c_i) of the quadratic through its three control points:
+        // exact for q(τ) = 1 + 2τ − 3τ².
+        let g = Galerkin::gauss(2).unwrap().control_stages().path_points();
+        let q = |t: f64| 1.0 + 2.0 * t - 3.0 * t * t;
+        let points = [0.0, 0.5, 1.0].map(q);
+        for (i, &c) in g.times.iter().enumerate() {
+            let row = |w: &[f64]| (0..3).map(|j| w[i * 3 + j] * points[j]).sum::<f64>();
+            assert!((row(&g.position) - q(c)).abs() < 1e-14);
+            assert!((row(&g.rate) - (2.0 - 6.0 * c)).abs() < 1e-13);
+        }
+        // One value per step: the secant at the midpoint, inner points of a composition unused.
+        let c = Composition::new(Midpoint, CompositionScheme::TripleJump { order: 4 });
+        let p = c.control_stages().path_points();
+        assert_eq!(p.times, [0.5]);
+        assert_eq!(p.position, [0.5, 0.0, 0.0, 0.5]);
+        assert_eq!(p.rate, [-1.0, 0.0, 0.0, 1.0]);
     }
 
     #[test]

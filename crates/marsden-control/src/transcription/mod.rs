@@ -15,21 +15,28 @@
 //!     q_N,i − b_i = 0                       (fixed end positions)
 //!     P_{N−1},i − p^N_i = 0                 (fixed end momenta)
 //!     D_jL_d + f_j = 0,     j = 1 … s−1     (each step's inner points, step by step)
+//!     g(t, q(τ_i), q̇(τ_i), u_{k,i}) ≤ 0        (the path inequalities, step by step: [`path`])
 //! ```
+//!
+//! — the inequalities last, so that the equality rows come first in every matrix
+//! ([`Evaluation::inequalities`]).
 //!
 //! and the cost is `Σ_k C_d,k + Φ(q_N, P_{N−1})`. The multipliers of the DEL rows are the
 //! discrete costates.
 //!
 //! [OJM11]: crate#references
 
+pub mod path;
 pub mod step;
 
-use marsden::numerics::ad::{self, HessianParts};
+use marsden::numerics::ad::{self, HessianParts, MultiFunction};
+use marsden::numerics::dense::max_or_nan;
 use marsden::{DiscreteAction, DiscreteForce, Lagrangian, TimeGrid};
 
-use crate::model::FinalCost;
+use crate::model::{FinalCost, PathConstraint};
 use crate::problem::{Boundary, Rate};
-use crate::stages::ControlStages;
+use crate::stages::{ControlStages, PathPoints};
+use path::PathFunction;
 use step::{BoundaryMomentum, StepFunction, StepParts, Weighted};
 
 /// Where the unknowns sit in `z`.
@@ -155,6 +162,9 @@ pub struct Evaluation {
     pub jacobian: Vec<(usize, usize, f64)>,
     /// `m_k` and `P_k` of every step (`2n` per step), for the momenta of the result.
     pub momenta: Vec<f64>,
+    /// The last rows of `constraints` that are inequalities `c_i ≤ 0` (the others are
+    /// equalities `c_i = 0`).
+    pub inequalities: usize,
 }
 
 impl Evaluation {
@@ -165,12 +175,40 @@ impl Evaluation {
             && self.constraints.iter().all(|v| v.is_finite())
             && self.jacobian.iter().all(|e| e.2.is_finite())
     }
+
+    /// The rows that are equalities.
+    pub fn equalities(&self) -> usize {
+        self.constraints.len() - self.inequalities
+    }
+
+    /// How far each constraint is from being met: `|c_i|` for an equality, `max(0, c_i)` for
+    /// an inequality (NaN stays NaN).
+    pub fn violations(&self) -> impl Iterator<Item = f64> + '_ {
+        let equalities = self.equalities();
+        (self.constraints.iter().enumerate()).map(move |(i, &c)| match i < equalities {
+            true => c.abs(),
+            false if c.is_nan() => c,
+            false => c.max(0.0),
+        })
+    }
+
+    /// The largest violation ([`Evaluation::violations`]; NaN if any is).
+    pub fn max_violation(&self) -> f64 {
+        self.violations().fold(0.0, max_or_nan)
+    }
+
+    /// The sum of the violations: the ℓ1 norm of the constraints' infeasibility.
+    pub fn l1_violation(&self) -> f64 {
+        self.violations().sum()
+    }
 }
 
 /// The transcribed program.
-pub struct Transcription<'a, L, A, FD, CD, P> {
+pub struct Transcription<'a, L, A, FD, CD, P, G> {
     lagrangian: &'a L,
     parts: StepParts<'a, A, FD, CD, P>,
+    /// The path inequalities and where they are imposed.
+    path: (&'a G, PathPoints),
     /// The last step's parts (with `Φ`).
     last: StepParts<'a, A, FD, CD, P>,
     grid: TimeGrid,
@@ -182,26 +220,45 @@ pub struct Transcription<'a, L, A, FD, CD, P> {
     del_row: usize,
     /// First row of the inner points' equations.
     inner_row: usize,
+    /// First row of the path inequalities.
+    path_row: usize,
     /// Number of constraints.
     pub rows: usize,
 }
 
-impl<'a, L, A, FD, CD, P> Transcription<'a, L, A, FD, CD, P>
+/// What the transcription is made of besides the steps: the system, the final cost, the path
+/// inequalities, the grid and the boundaries.
+pub struct Ingredients<'a, L, P, G> {
+    /// The system (for boundary velocities).
+    pub lagrangian: &'a L,
+    /// `Φ(q_N, p_N)`.
+    pub final_cost: &'a P,
+    /// `g(t, q, q̇, u) ≤ 0`.
+    pub path: &'a G,
+    /// The time grid.
+    pub grid: TimeGrid,
+    /// The conditions at the start and at the end.
+    pub ends: (&'a Boundary, &'a Boundary),
+}
+
+impl<'a, L, A, FD, CD, P, G> Transcription<'a, L, A, FD, CD, P, G>
 where
     L: Lagrangian,
     A: DiscreteAction,
     FD: DiscreteForce,
     CD: DiscreteAction,
     P: FinalCost,
+    G: PathConstraint,
 {
-    /// The program of `parts` on `grid` with the given boundaries.
-    pub fn new(
-        lagrangian: &'a L,
-        parts: StepParts<'a, A, FD, CD, P>,
-        final_cost: &'a P,
-        grid: TimeGrid,
-        (start, end): (&Boundary, &Boundary),
-    ) -> Self {
+    /// The program of `parts` with `ingredients`.
+    pub fn new(parts: StepParts<'a, A, FD, CD, P>, ingredients: Ingredients<'a, L, P, G>) -> Self {
+        let Ingredients {
+            lagrangian,
+            final_cost,
+            path,
+            grid,
+            ends: (start, end),
+        } = ingredients;
         let layout = Layout {
             n: parts.n,
             m: parts.m,
@@ -213,7 +270,8 @@ where
         let del_row = start.rows();
         let end = End::of(end, del_row + (grid.steps - 1) * parts.n);
         let inner_row = end.row + end.rows();
-        let rows = inner_row + grid.steps * layout.inner * parts.n;
+        let path_row = inner_row + grid.steps * layout.inner * parts.n;
+        let rows = path_row + grid.steps * layout.stages * path.count();
         let mut last = parts;
         last.final_cost = Some(final_cost);
         let mut parts = parts;
@@ -221,6 +279,7 @@ where
         Self {
             lagrangian,
             parts,
+            path: (path, parts.stages.path_points()),
             last,
             grid,
             layout,
@@ -228,8 +287,31 @@ where
             end,
             del_row,
             inner_row,
+            path_row,
             rows,
         }
+    }
+
+    /// The number of path inequalities (the last rows).
+    pub fn inequalities(&self) -> usize {
+        self.rows - self.path_row
+    }
+
+    /// Step `k`'s path inequalities, if there are any.
+    fn path_step(&self, k: usize) -> Option<PathFunction<'_, G>> {
+        (self.path.0.count() > 0).then(|| PathFunction {
+            path: self.path.0,
+            points: &self.path.1,
+            t0: self.grid.time(k),
+            h: self.grid.h,
+            n: self.layout.n,
+            m: self.layout.m,
+        })
+    }
+
+    /// The first row of step `k`'s path inequalities.
+    fn path_rows(&self, k: usize) -> usize {
+        self.path_row + k * self.layout.stages * self.path.0.count()
     }
 
     /// How the steps see their controls.
@@ -301,6 +383,7 @@ where
             constraints: vec![0.0; self.rows],
             jacobian: Vec::with_capacity(self.grid.steps * 2 * n * b + 4 * n * n),
             momenta: vec![0.0; 2 * n * self.grid.steps],
+            inequalities: self.inequalities(),
         };
         let outputs = 2 * n + 1 + self.layout.inner * n;
         let (mut values, mut jac) = (vec![0.0; outputs], vec![0.0; outputs * b]);
@@ -322,6 +405,7 @@ where
                 .iter_mut()
                 .zip(grad)
                 .for_each(|(g, d)| *g += d);
+            self.evaluate_path(k, z, &mut e);
         }
         for (end, node, t) in self.ends() {
             let col = self.layout.q(node);
@@ -332,6 +416,23 @@ where
             self.rate_targets(end, (t, &z[col..col + n]), col, &mut e);
         }
         e
+    }
+
+    /// Step `k`'s path inequalities and their Jacobian.
+    fn evaluate_path(&self, k: usize, z: &[f64], e: &mut Evaluation) {
+        let Some(path) = self.path_step(k) else {
+            return;
+        };
+        let (b, rows) = (self.layout.block(), path.outputs());
+        let (mut values, mut jac) = (vec![0.0; rows], vec![0.0; rows * b]);
+        let (col, first) = (self.layout.q(k), self.path_rows(k));
+        ad::jacobian(&path, &z[col..col + b], 0..b, &mut values, &mut jac);
+        e.constraints[first..first + rows].copy_from_slice(&values);
+        for (r, row) in jac.chunks_exact(b).enumerate() {
+            let entries = row.iter().enumerate().filter(|e| *e.1 != 0.0);
+            e.jacobian
+                .extend(entries.map(|(j, &d)| (first + r, col + j, d)));
+        }
     }
 
     /// Subtracts the target momenta of the fixed rate components (and their derivatives in `q`
@@ -386,6 +487,15 @@ where
             let col = self.layout.q(k);
             ad::partial_hessian(&weighted, &z[col..col + b], 0..b, 0..b, &mut parts);
             push_upper(&parts.hess, b, col, &mut out);
+            if let Some(path) = self.path_step(k) {
+                let first = self.path_rows(k);
+                let weights = &lambda[first..first + path.outputs()];
+                if weights.iter().any(|&w| w != 0.0) {
+                    let weighted = Weighted { f: &path, weights };
+                    ad::partial_hessian(&weighted, &z[col..col + b], 0..b, 0..b, &mut parts);
+                    push_upper(&parts.hess, b, col, &mut out);
+                }
+            }
         }
         for (end, node, t) in self.ends() {
             let Some(v) = &end.velocity else { continue };
@@ -421,6 +531,13 @@ where
             lambda[..self.del_row].to_vec(),
             lambda[self.end.row..self.inner_row].to_vec(),
         )
+    }
+
+    /// The path inequalities' multipliers (`≥ 0`), step by step (`σ n_g` per step).
+    pub fn path_multipliers(&self, lambda: &[f64]) -> Vec<Vec<f64>> {
+        (0..self.grid.steps)
+            .map(|k| lambda[self.path_rows(k)..self.path_rows(k + 1)].to_vec())
+            .collect()
     }
 }
 

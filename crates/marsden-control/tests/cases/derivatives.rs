@@ -3,14 +3,15 @@
 //! (midpoint, trapezoid, Gauss and Lobatto with control stages, a composition, a rule chosen by
 //! name), on a problem that exercises every term: a cart-pole (configuration-dependent
 //! mass), a force nonlinear in `q`, `v` and `u`, a running cost in all of them, a final cost
-//! in `(q_N, p_N)`, a start velocity (the target momentum `∂L/∂v(q_0, v_0)` depends on `q_0`)
+//! in `(q_N, p_N)`, two path inequalities in all of `t, q, v, u`, a start velocity (the target momentum `∂L/∂v(q_0, v_0)` depends on `q_0`)
 //! and an end with free components.
 
 use marsden::discrete::rules::{Composition, CompositionScheme, Galerkin, Method};
 use marsden::systems::PendulumOnCart;
 use marsden::{Midpoint, Rule, Scalar, Trapezoid};
 use marsden_control::{
-    Boundary, ControlForce, FinalCost, OptimalControl, Rate, RunningCost, StagedControls,
+    Boundary, ControlForce, FinalCost, OptimalControl, PathConstraint, Rate, RunningCost,
+    StagedControls,
 };
 
 struct Actuator;
@@ -44,7 +45,19 @@ impl FinalCost for Terminal {
     }
 }
 
-fn problem() -> OptimalControl<PendulumOnCart, Actuator, Running, Terminal> {
+struct Envelope;
+
+impl PathConstraint for Envelope {
+    fn count(&self) -> usize {
+        2
+    }
+    fn eval<S: Scalar>(&self, t: S, q: &[S], v: &[S], u: &[S], out: &mut [S]) {
+        out[0] = q[0] * q[0] + v[1] * u[0] * 0.3 - t * 0.5;
+        out[1] = q[1].sin() * v[0] + u[1] * u[1] * q[0] - 1.0;
+    }
+}
+
+fn problem() -> OptimalControl<PendulumOnCart, Actuator, Running, Terminal, Envelope> {
     let start = Boundary::velocity(&[0.1, 0.4], &[0.5, -0.7]);
     let end = Boundary {
         q: vec![None, Some(2.0)],
@@ -60,6 +73,7 @@ fn problem() -> OptimalControl<PendulumOnCart, Actuator, Running, Terminal> {
     )
     .unwrap()
     .with_final_cost(Terminal)
+    .with_path(Envelope)
 }
 
 /// Deterministic values in [−1, 1] (a linear congruential generator).
@@ -78,13 +92,14 @@ fn values(count: usize, seed: u64) -> Vec<f64> {
 fn check<R: Rule + StagedControls>(rule: &R) {
     let p = problem();
     let (unknowns, rows) = p.sizes(rule).unwrap();
-    // n = 2, m = 2, N = 4; σ control values and r inner points per step; 4 + 2 fixed ends.
+    // n = 2, m = 2, N = 4; σ control values and r inner points per step; 4 + 2 fixed ends;
+    // two path inequalities at each of the σ points of a step.
     let stages = rule.control_stages();
     let (sigma, r) = (stages.count(), stages.inner());
     let per_step = 2 + 2 * sigma + 2 * r;
     assert_eq!(
         (unknowns, rows),
-        (4 * per_step + 2, 3 * 2 + 4 + 2 + 4 * 2 * r)
+        (4 * per_step + 2, 3 * 2 + 4 + 2 + 4 * 2 * r + 4 * 2 * sigma)
     );
     let z = values(unknowns, 7);
     let lambda = values(rows, 11);
