@@ -217,6 +217,11 @@ fn bad_inputs_exit_two_and_write_nothing() {
             ("method = \"midpoint\"", "method = \"exact\""),
             "`exact` cannot be used for optimal control",
         ),
+        (
+            ("[output]", "path = [\"x - 0.8\", \"u - k\"]\n[output]"),
+            "in [optimal_control] path[1]: unknown name `k`",
+        ),
+        (("[output]", "path = []\n[output]"), "`path` is empty"),
     ];
     for ((from, to), message) in cases {
         assert!(DOUBLE_INTEGRATOR.contains(from), "{from}");
@@ -470,4 +475,66 @@ fn inner_control_points_keep_the_replay_and_the_noether_balance() {
         );
         assert!((noether["total_impulse"].as_f64().unwrap() - 0.5).abs() < 1e-9);
     }
+}
+
+/// The Bryson–Denham problem ([BH75] §3.11) from a file, its state constraint `x ≤ 1/9` as
+/// the path inequality `path = ["x - 1/9"]`: the continuous optimum costs 4 with the
+/// constraint active on `[⅓, ⅔]`. The discrete optimum converges to 4 at order 2 (slope over
+/// N = 40, 80, 160). It touches the constraint where the continuous arc begins and ends (the
+/// first and last active midpoints within 2h of ⅓ and ⅔, with positive multipliers) and stays
+/// within `h²` below it in between — the discrete optimum rides the arc to `O(h²)`, like the
+/// cost. `summary.json` counts the active points the trajectory shows, the console says so.
+#[test]
+fn bryson_denham_path_inequality_from_a_file_converges_at_order_two() {
+    let text = DOUBLE_INTEGRATOR
+        .replace(
+            "start = { q = [0.0], v = [0.0] }",
+            "start = { q = [0.0], v = [1.0] }",
+        )
+        .replace(
+            "end = { q = [1.0], v = [0.0] }",
+            "end = { q = [0.0], v = [-1.0] }",
+        )
+        .replace("[output]", "path = [\"x - 1/9\"]\n[output]");
+    let ell = 1.0 / 9.0;
+    let (mut steps, mut errors) = (Vec::new(), Vec::new());
+    for n in [40, 80, 160] {
+        let (_dir, run) = optimize(&text, &["--steps", &n.to_string()]);
+        assert_eq!(run.code, 0, "N = {n}: {}", run.stderr);
+        let oc = &run.summary()["optimal_control"];
+        assert_eq!(oc["status"], "converged");
+        let g = &oc["path"][0];
+        assert_eq!(g["expression"], "x - 1/9");
+        assert_eq!(g["points"], n);
+        println!("N = {n}: cost {}, path {g}", oc["cost"]);
+        assert!(g["max"].as_f64().unwrap() <= 1e-10, "{g}");
+        assert!(g["max_multiplier"].as_f64().unwrap() > 0.0, "{g}");
+        let trajectory = table(&run.out, "trajectory.csv");
+        let x = column(&trajectory, "q_x");
+        let h = 1.0 / n as f64;
+        let values: Vec<(f64, f64)> = (x.windows(2).enumerate())
+            .map(|(k, w)| ((k as f64 + 0.5) * h, 0.5 * (w[0] + w[1]) - ell))
+            .collect();
+        let active: Vec<f64> = values
+            .iter()
+            .filter(|v| v.1 >= -1e-8)
+            .map(|v| v.0)
+            .collect();
+        assert_eq!(g["active_points"], active.len());
+        let (first, last) = (active[0], active[active.len() - 1]);
+        assert!((first - 1.0 / 3.0).abs() <= 2.0 * h && (last - 2.0 / 3.0).abs() <= 2.0 * h);
+        let arc = values.iter().filter(|v| v.0 >= first && v.0 <= last);
+        let lowest = arc.map(|v| v.1).fold(0.0, f64::min);
+        println!(
+            "  active from {first:.4} to {last:.4}, at most {:.3} h² below",
+            -lowest / (h * h)
+        );
+        assert!(lowest >= -h * h, "{lowest}");
+        assert!(run.stdout.contains("path x - 1/9 <= 0"), "{}", run.stdout);
+        errors.push((oc["cost"].as_f64().unwrap() - 4.0).abs());
+        steps.push(h);
+    }
+    let p = slope(&steps, &errors);
+    println!("errors {errors:?}, fitted order {p:.3}");
+    assert!((p - 2.0).abs() < 0.15, "order {p}");
 }

@@ -108,6 +108,9 @@ pub struct Solution {
     pub start_multipliers: Vec<f64>,
     /// The multipliers of the fixed end components (positions, then rates).
     pub end_multipliers: Vec<f64>,
+    /// The path inequalities' values `g` (`≤ 0` where met), step by step: `σ n_g` per step,
+    /// point by point ([`crate::stages::PathPoints`]).
+    pub path_values: Vec<Vec<f64>>,
     /// The path inequalities' multipliers (`≥ 0`; positive where a constraint is active), step
     /// by step: `σ n_g` per step, point by point.
     pub path_multipliers: Vec<Vec<f64>>,

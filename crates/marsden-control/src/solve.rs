@@ -214,7 +214,8 @@ where
             costates: program.costates(&outcome.lambda),
             start_multipliers,
             end_multipliers,
-            path_multipliers: program.path_multipliers(&outcome.lambda),
+            path_values: program.path_rows_by_step(&e.constraints),
+            path_multipliers: program.path_rows_by_step(&outcome.lambda),
             history: outcome.history,
         }
     }

@@ -1,9 +1,9 @@
 //! The expressions of a problem file as the DMOC core's model ([`marsden_control::model`]):
-//! the forces with controls `f(t, q, q̇, u)`, the running cost `C(t, q, q̇, u)` and the final
-//! cost `Φ(q_N, p_N)`, evaluated at `f64` and at the dual numbers the transcription
+//! the forces with controls `f(t, q, q̇, u)`, the running cost `C(t, q, q̇, u)`, the path
+//! inequalities `g(t, q, q̇, u) ≤ 0` and the final cost `Φ(q_N, p_N)`, evaluated at `f64` and at the dual numbers the transcription
 //! differentiates with ([OJM11] §3).
 //!
-//! The forces and the running cost read the inputs `[q₁ … qₙ, q̇₁ … q̇ₙ, t, u₁ … u_m]`, the
+//! The forces, the running cost and the path inequalities read the inputs `[q₁ … qₙ, q̇₁ … q̇ₙ, t, u₁ … u_m]`, the
 //! final cost `[q₁ … qₙ, p₁ … pₙ, t]` at `t = t_end`; the slice is filled on the stack for
 //! small systems ([`with_slice`]).
 //!
@@ -11,7 +11,7 @@
 
 use marsden::Scalar;
 use marsden::numerics::scratch::with_slice;
-use marsden_control::{ControlForce, FinalCost, RunningCost};
+use marsden_control::{ControlForce, FinalCost, PathConstraint, RunningCost};
 use marsden_expr::{Program, ProgramSet};
 
 /// Calls `body` with `[q, v, t, u]`.
@@ -71,6 +71,23 @@ pub struct ExprCost<'a> {
 impl RunningCost for ExprCost<'_> {
     fn cost<S: Scalar>(&self, t: S, q: &[S], v: &[S], u: &[S]) -> S {
         with_controlled_inputs((t, q, v, u), |x| self.program.eval(x))
+    }
+}
+
+/// `[optimal_control] path`: the inequalities `g(t, q, q̇, u) ≤ 0` over `[q, q̇, t, u]`.
+#[derive(Debug, Clone, Copy)]
+pub struct ExprPath<'a> {
+    /// The compiled inequalities (empty: none).
+    pub programs: &'a ProgramSet,
+}
+
+impl PathConstraint for ExprPath<'_> {
+    fn count(&self) -> usize {
+        self.programs.len()
+    }
+
+    fn eval<S: Scalar>(&self, t: S, q: &[S], v: &[S], u: &[S], out: &mut [S]) {
+        with_controlled_inputs((t, q, v, u), |x| self.programs.eval_into(x, out));
     }
 }
 

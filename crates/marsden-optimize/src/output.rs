@@ -4,6 +4,7 @@
 
 use std::path::Path;
 
+use marsden::numerics::dense::max_or_nan;
 use marsden_control::{Failure, Infeasibility, Solution, Status};
 use marsden_io::{Column, Table, write_csv};
 use marsden_problem::problem::optimal_control::OptimalControlSpec;
@@ -51,7 +52,8 @@ pub fn failure_text(spec: &OptimalControlSpec, status: &Status) -> Option<String
     }
 }
 
-/// The infeasible subproblem in words: where, and which bounds its certificate uses.
+/// The infeasible subproblem in words: where, and which bounds and path inequalities its
+/// certificate uses.
 fn infeasibility_text(spec: &OptimalControlSpec, i: &Infeasibility) -> String {
     let at = match i.iteration {
         0 => "at the first iterate".to_owned(),
@@ -65,9 +67,18 @@ fn infeasibility_text(spec: &OptimalControlSpec, i: &Infeasibility) -> String {
         )
         .map(|n| format!("`{n}`"))
         .collect::<Vec<_>>();
-    let bounds = match names.is_empty() {
-        true => "no bound: the boundary conditions contradict the dynamics".to_owned(),
-        false => format!("the bounds on {}", names.join(", ")),
+    let paths = (i.path.iter().filter_map(|&j| spec.path_texts.get(j)))
+        .map(|g| format!("`{g} <= 0`"))
+        .collect::<Vec<_>>();
+    let bounds = match (names.is_empty(), paths.is_empty()) {
+        (true, true) => "no bound: the boundary conditions contradict the dynamics".to_owned(),
+        (false, true) => format!("the bounds on {}", names.join(", ")),
+        (true, false) => format!("the path inequalities {}", paths.join(", ")),
+        (false, false) => format!(
+            "the bounds on {} and the path inequalities {}",
+            names.join(", "),
+            paths.join(", ")
+        ),
     };
     let elastic = match i.elastic_steps {
         0 => "no elastic step could reduce the violation".to_owned(),
@@ -77,8 +88,8 @@ fn infeasibility_text(spec: &OptimalControlSpec, i: &Infeasibility) -> String {
     format!(
         "the linearised dynamics and boundary conditions {at} cannot be met within the bounds \
          (a checked certificate of the QP solver, using {bounds}); {elastic} (a local minimum \
-         of the violation: `constraint_violation`); loosen those bounds, lengthen t_end, or \
-         start from another guess"
+         of the violation: `constraint_violation`); loosen those bounds or inequalities, \
+         lengthen t_end, or start from another guess"
     )
 }
 
@@ -124,8 +135,13 @@ pub struct OptimalControlSummary<'a> {
     pub iterations: usize,
     /// The KKT residual.
     pub kkt_residual: f64,
-    /// `max |c_i|` of the forced DEL and boundary constraints.
+    /// The largest violation of the forced DEL and boundary constraints (`|c_i|`) and of the
+    /// path inequalities (`max(0, g_i)`).
     pub constraint_violation: f64,
+    /// Per path inequality (`null` when the file has none): its largest value over the
+    /// points where it is imposed, how many of them it is active at, and its largest
+    /// multiplier.
+    pub path: Option<Vec<PathSummary>>,
     /// Per symmetry: `{momentum_change, total_impulse, total_defect, max_defect, steps}` of
     /// the forced Noether balance ([`crate::balance`]); `null` when the file declares none.
     pub noether_balance: Option<serde_json::Map<String, serde_json::Value>>,
@@ -139,6 +155,48 @@ pub struct OptimalControlSummary<'a> {
     pub controls_per_step: usize,
     /// The nodes `c_i` of the control values within a step (`[0]` for one value per step).
     pub control_nodes: &'a [f64],
+}
+
+/// One path inequality `g ≤ 0` at the returned iterate.
+#[derive(Debug, Serialize)]
+pub struct PathSummary {
+    /// The expression `g` as written.
+    pub expression: String,
+    /// `max g` over the points (≤ 0 where met).
+    pub max: f64,
+    /// The points where `g ≥ −10⁻⁸` (the inequality is active there).
+    pub active_points: usize,
+    /// The points where it is imposed (`N` × control values per step).
+    pub points: usize,
+    /// Its largest multiplier (`≥ 0`; 0 where inactive everywhere).
+    pub max_multiplier: f64,
+}
+
+/// Each path inequality's summary, from the values and multipliers of the solution.
+pub fn path_summary(spec: &OptimalControlSpec, s: &Solution) -> Option<Vec<PathSummary>> {
+    let count = spec.path_texts.len();
+    if count == 0 {
+        return None;
+    }
+    let column = |rows: &[Vec<f64>], i: usize| -> Vec<f64> {
+        rows.iter()
+            .flat_map(|step| step.iter().skip(i).step_by(count).copied())
+            .collect()
+    };
+    let summaries = (spec.path_texts.iter().enumerate())
+        .map(|(i, expression)| {
+            let values = column(&s.path_values, i);
+            let multipliers = column(&s.path_multipliers, i);
+            PathSummary {
+                expression: expression.clone(),
+                max: values.iter().copied().fold(f64::NEG_INFINITY, max_or_nan),
+                active_points: values.iter().filter(|&&g| g >= -1e-8).count(),
+                points: values.len(),
+                max_multiplier: multipliers.iter().copied().fold(0.0, max_or_nan),
+            }
+        })
+        .collect();
+    Some(summaries)
 }
 
 /// One SQP iteration.
@@ -251,6 +309,7 @@ pub fn summary<'a>(
             iterations: s.iterations,
             kkt_residual: s.kkt_residual,
             constraint_violation: s.constraint_violation,
+            path: path_summary(spec, s),
             noether_balance: noether,
             replay_defect: o.replay_defect,
             guess: o.guess,

@@ -10,7 +10,7 @@ use marsden_problem::problem::optimal_control::{EndSpec, OptimalControlSpec, Rat
 use crate::balance::{self, NoetherBalance};
 use crate::error::OptimizeError;
 use crate::guess;
-use crate::model::{ExprControlForce, ExprCost, ExprFinalCost};
+use crate::model::{ExprControlForce, ExprCost, ExprFinalCost, ExprPath};
 
 /// A solved (or stopped) optimal control problem.
 #[derive(Debug, Clone, PartialEq)]
@@ -67,7 +67,10 @@ fn solve<R: Rule + StagedControls>(
     let horizon = (spec.t0, spec.t_end - spec.t0, spec.steps);
     let (start, end) = (boundary(&spec.start), boundary(&spec.end));
     let problem = OptimalControl::new(&spec.lagrangian, force, cost, horizon, start, end)?
-        .with_final_cost(final_cost);
+        .with_final_cost(final_cost)
+        .with_path(ExprPath {
+            programs: &spec.path,
+        });
     let problem = with_bounds(problem, spec)?;
     let grid = *problem.grid();
     let first = guess::initial(spec, (&spec.lagrangian, &force), grid, rule);
@@ -98,6 +101,7 @@ type Problem<'a> = OptimalControl<
     ExprControlForce<'a>,
     ExprCost<'a>,
     ExprFinalCost<'a>,
+    ExprPath<'a>,
 >;
 
 fn with_bounds<'a>(

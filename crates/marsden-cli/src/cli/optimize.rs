@@ -85,6 +85,15 @@ fn render(spec: &OptimalControlSpec, outcome: &Outcome) -> String {
     if let Some(d) = o.replay_defect {
         line("replay defect", format!("{d:.3e}"));
     }
+    for g in output::path_summary(spec, s).unwrap_or_default() {
+        line(
+            &format!("path {} <= 0", g.expression),
+            format!(
+                "max {:.3e}, active at {} of {} points",
+                g.max, g.active_points, g.points
+            ),
+        );
+    }
     for b in &o.noether {
         line(
             &format!("Noether {}", b.name),

@@ -533,10 +533,11 @@ where
         )
     }
 
-    /// The path inequalities' multipliers (`≥ 0`), step by step (`σ n_g` per step).
-    pub fn path_multipliers(&self, lambda: &[f64]) -> Vec<Vec<f64>> {
+    /// The path inequalities' rows of `rows` (their values or their multipliers), step by
+    /// step (`σ n_g` per step).
+    pub fn path_rows_by_step(&self, rows: &[f64]) -> Vec<Vec<f64>> {
         (0..self.grid.steps)
-            .map(|k| lambda[self.path_rows(k)..self.path_rows(k + 1)].to_vec())
+            .map(|k| rows[self.path_rows(k)..self.path_rows(k + 1)].to_vec())
             .collect()
     }
 }

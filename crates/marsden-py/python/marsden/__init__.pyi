@@ -106,6 +106,7 @@ class OptimalControl:
         t0: Optional[float] = ...,
         method: Optional[str] = ...,
         bounds: Optional[Mapping[str, Sequence[float]]] = ...,
+        path: Optional[Sequence[Expression]] = ...,
         guess: Optional[str] = ...,
         tolerance: Optional[float] = ...,
         constraint_tolerance: Optional[float] = ...,

@@ -85,6 +85,11 @@ class OptimalControl:
         >>> s = swing_up.solve()
         >>> s.status, s.cost, s.u[:, 0]
 
+    ``path`` lists inequalities ``g(t, q, q̇, u) <= 0`` (``["x - 1/9"]``: a state constraint),
+    imposed at each step's midpoint (at each quadrature node for ``gauss-<s>``/``lobatto-<s>``);
+    ``summary["optimal_control"]["path"]`` reports each one's largest value, active points and
+    largest multiplier.
+
     ``method`` is any rule but ``exact`` (``gauss-<s>`` and ``lobatto-<s>`` take one control per
     quadrature node and converge with their own order). Bad input raises
     :class:`marsden.ProblemError` with the message of ``marsden optimize``; ``toml`` is the
@@ -106,6 +111,7 @@ class OptimalControl:
         t0: Optional[float] = None,
         method: Optional[str] = None,
         bounds: Optional[Mapping[str, Sequence[float]]] = None,
+        path: Optional[Sequence[kw.Expression]] = None,
         guess: Optional[str] = None,
         tolerance: Optional[float] = None,
         constraint_tolerance: Optional[float] = None,
@@ -128,6 +134,8 @@ class OptimalControl:
         }
         optional = {
             "final_cost": kw.maybe(lambda c: kw.expression(c, "final_cost"), final_cost),
+            "path": kw.maybe(lambda gs: [kw.expression(g, f"path[{i}]") for i, g in enumerate(gs)],
+                             path),
             "t0": kw.maybe(float, t0),
             "method": method,
             "guess": guess,

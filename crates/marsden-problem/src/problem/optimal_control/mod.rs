@@ -3,8 +3,9 @@
 //! `marsden optimize` solves.
 //!
 //! The controls `u` enter the dynamics only through `[system] forces`, which then read
-//! `[q, q̇, t, u]`; the running cost `C(t, q, q̇, u)` reads the same inputs and the final cost
-//! `Φ(q_N, p_N)` reads `[q, p, t]` (momenta named `p_<coordinate>`). Any rule with a discrete
+//! `[q, q̇, t, u]`; the running cost `C(t, q, q̇, u)` and the path inequalities
+//! `g(t, q, q̇, u) ≤ 0` read the same inputs and the final cost `Φ(q_N, p_N)` reads `[q, p, t]`
+//! (momenta named `p_<coordinate>`). Any rule with a discrete
 //! Lagrangian transcribes: a two-point rule or a composition with controls piecewise constant
 //! per step, a Galerkin rule (`gauss-<s>`, `lobatto-<s>`) with one control value per quadrature
 //! node (`marsden_control::stages`). A file with `[optimal_control]` is refused by
@@ -22,13 +23,13 @@ mod tests;
 
 use std::path::{Path, PathBuf};
 
-use marsden_expr::{Program, ProgramSet};
+use marsden_expr::{Program, ProgramSet, Symbols};
 use toml::Spanned;
 
 use super::check::Checker;
 use super::method::Method;
 use super::parameters::Parameters;
-use super::raw::{RawOutput, RawProblem, RawSystem};
+use super::raw::{RawOutput, RawProblem, RawSystem, SpannedList};
 use super::resolved::symbols;
 use super::spec::{LagrangianSpec, OutputSpec, Overrides, SystemSpec};
 use super::{settings, system, toml_error};
@@ -86,6 +87,10 @@ pub struct OptimalControlSpec {
     pub cost: Program,
     /// The final cost over `[q, p, t]`, if given.
     pub final_cost: Option<Program>,
+    /// The path inequalities `g ≤ 0` over `[q, q̇, t, u]` (empty: none).
+    pub path: ProgramSet,
+    /// The path inequalities as written, in order.
+    pub path_texts: Vec<String>,
     /// The rule.
     pub method: Method,
     /// Initial time.
@@ -227,6 +232,8 @@ fn validate(source: SourceFile, overrides: &Overrides) -> Result<OptimalControlS
         force: expressions.force,
         cost: expressions.cost,
         final_cost: expressions.final_cost,
+        path: expressions.path,
+        path_texts: expressions.path_texts,
         method,
         t0,
         t_end,
@@ -326,6 +333,8 @@ struct Expressions {
     force: ProgramSet,
     cost: Program,
     final_cost: Option<Program>,
+    path: ProgramSet,
+    path_texts: Vec<String>,
 }
 
 impl Expressions {
@@ -393,11 +402,36 @@ impl Expressions {
                 Some(program)
             }
         };
+        let (path, path_texts) = path(ck, table.path.as_ref(), &with_u)?;
         Ok(Self {
             controls,
             force,
             cost,
             final_cost,
+            path,
+            path_texts,
         })
     }
+}
+
+/// `path = ["g₁", …]`: each `g_i(t, q, q̇, u) ≤ 0`, compiled over the inputs of the forces.
+fn path(
+    ck: &Checker<'_>,
+    list: Option<&SpannedList<String>>,
+    with_u: &Symbols,
+) -> Result<(ProgramSet, Vec<String>), Diagnostic> {
+    let Some(list) = list else {
+        return Ok((ProgramSet::default(), Vec::new()));
+    };
+    if list.get_ref().is_empty() {
+        return Err(ck.error(Some(list.span()), "`path` is empty").help(
+            "give each inequality g(t, q, q_dot, u) <= 0 as an expression, or remove `path`",
+        ));
+    }
+    let parsed = (list.get_ref().iter().enumerate())
+        .map(|(i, v)| ck.parse_expr(&format!("[optimal_control] path[{i}]"), v))
+        .collect::<Result<Vec<_>, _>>()?;
+    let programs = ck.compile_all("[optimal_control] path", list, &parsed, with_u)?;
+    let texts = list.get_ref().iter().map(|v| v.get_ref().clone()).collect();
+    Ok((programs, texts))
 }

@@ -18,6 +18,7 @@
 //! max_iterations = 200
 //! tolerance = 1e-8                  # KKT residual
 //! constraint_tolerance = 1e-10
+//! path = ["x - 0.8"]               # optional path inequalities g(t, q, q_dot, u) <= 0
 //! [optimal_control.bounds]          # optional, per control or coordinate: [lo, hi]
 //! u = [-10.0, 10.0]
 //! ```
@@ -52,6 +53,8 @@ pub struct RawOptimalControl {
     pub end: Option<Spanned<RawEnd>>,
     /// `name = [lo, hi]` for controls and coordinates.
     pub bounds: Option<Spanned<Ordered<SpannedList<f64>>>>,
+    /// Path inequalities `g(t, q, q̇, u) ≤ 0`, each an expression over `[q, q̇, t, u]`.
+    pub path: Option<SpannedList<String>>,
     /// `"simulation"` or `"line"`.
     pub guess: Option<Spanned<String>>,
     /// SQP iteration budget (default 200).
