@@ -90,6 +90,23 @@ pub enum InputError {
         /// Its eigenvalues (principal moments), ascending (NaN when not symmetric).
         principal: [f64; 3],
     },
+    /// A joint acts on a particle other than at its position, or constrains its attitude: a
+    /// particle takes spherical and distance joints at its position only.
+    #[error(
+        "joint {joint} ({kind}) acts on particle {body}{where_}: a particle has no attitude, so it \
+         takes spherical and distance joints at its position ([0, 0, 0] in its frame)"
+    )]
+    ParticleJoint {
+        /// Index of the joint.
+        joint: usize,
+        /// Its kind.
+        kind: &'static str,
+        /// Index of the particle.
+        body: usize,
+        /// What is wrong (` at [a, b, c]` for a point off its position, empty for a kind that
+        /// constrains attitudes).
+        where_: String,
+    },
     /// A matrix given as an attitude is not a rotation: `max |RᵀR − I|` above the tolerance,
     /// or `det R < 0`.
     #[error(

@@ -1,6 +1,6 @@
 //! A rigid body: its inertia tensor `J` (about the fixed point, or about the centre of mass for a
 //! free body), validated once, and an optional mass for a free body, whose centre of mass moves
-//! in ℝ³.
+//! in ℝ³. A particle is a point mass: a free body without rotational degrees of freedom.
 //!
 //! The LGVI needs the nonstandard inertia `J_d = ½ tr(J) I − J` ([LLM07] §3): the kinetic energy
 //! is `½ ΩᵀJΩ = ½ tr(Ω^ J_d Ω^ᵀ)`, and `ξ^ J_d + J_d ξ^ = (J ξ)^`. In the principal frame
@@ -158,16 +158,32 @@ impl Inertia {
     pub fn principal_moments(&self) -> &Vec3 {
         &self.principal
     }
+
+    /// The inertia of a point mass: `J = 0`, and `J⁻¹ = 0` on its (zero) angular momentum, so its
+    /// rotational kinetic energy `½ΠᵀJ⁻¹Π` and angular velocity vanish ([`RigidBody::particle`]).
+    pub fn point() -> Self {
+        Self {
+            matrix: Mat3::zeros(),
+            inverse: Mat3::zeros(),
+            nonstandard: Mat3::zeros(),
+            principal: Vec3::zeros(),
+        }
+    }
 }
 
 /// A rigid body: an inertia, and a mass when the body is free (its centre of mass `x ∈ ℝ³` moves
-/// with momentum `p = m ẋ`); without a mass it turns about a fixed point.
+/// with momentum `p = m ẋ`); without a mass it turns about a fixed point. A particle has a mass
+/// and no attitude to speak of: its configuration space is ℝ³.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RigidBody {
-    /// The inertia tensor (about the fixed point, or the centre of mass for a free body).
+    /// The inertia tensor (about the fixed point, or the centre of mass for a free body;
+    /// [`Inertia::point`] for a particle).
     pub inertia: Inertia,
-    /// The mass of a free body; `None` for a body with a fixed point.
+    /// The mass of a free body or particle; `None` for a body with a fixed point.
     pub mass: Option<f64>,
+    /// A point mass: its attitude stays `I` and its angular momentum 0; loads on it act at its
+    /// position, so they have no moment.
+    pub particle: bool,
 }
 
 impl RigidBody {
@@ -176,6 +192,7 @@ impl RigidBody {
         Self {
             inertia,
             mass: None,
+            particle: false,
         }
     }
 
@@ -184,16 +201,37 @@ impl RigidBody {
     /// # Errors
     /// [`InputError::InvalidOption`] unless `mass` is positive and finite.
     pub fn free(inertia: Inertia, mass: f64) -> Result<Self, Error> {
-        if !(mass.is_finite() && mass > 0.0) {
-            return Err(Error::Input(InputError::InvalidOption {
-                name: "mass",
-                value: mass,
-                reason: "must be positive and finite",
-            }));
-        }
         Ok(Self {
             inertia,
-            mass: Some(mass),
+            mass: Some(checked_mass(mass)?),
+            particle: false,
         })
+    }
+
+    /// A particle of mass `mass` (configuration space ℝ³): a point mass among bodies, joined to
+    /// them by joints at its position (spherical or distance joints: rows without a moment on
+    /// it), pulled by springs and dampers attached there.
+    ///
+    /// # Errors
+    /// As [`RigidBody::free`].
+    pub fn particle(mass: f64) -> Result<Self, Error> {
+        Ok(Self {
+            inertia: Inertia::point(),
+            mass: Some(checked_mass(mass)?),
+            particle: true,
+        })
+    }
+}
+
+/// `mass` if it is positive and finite.
+fn checked_mass(mass: f64) -> Result<f64, Error> {
+    if mass.is_finite() && mass > 0.0 {
+        Ok(mass)
+    } else {
+        Err(Error::Input(InputError::InvalidOption {
+            name: "mass",
+            value: mass,
+            reason: "must be positive and finite",
+        }))
     }
 }

@@ -116,7 +116,8 @@ impl Clone for RigidState {
 
 impl RigidState {
     /// The state at `t` from one [`BodyInitial`] per body of `system` (attitudes checked and
-    /// re-orthonormalised; positions and momenta of fixed-point bodies set to zero).
+    /// re-orthonormalised; positions and momenta of fixed-point bodies set to zero; a particle's
+    /// attitude `I` and angular momentum 0).
     ///
     /// # Errors
     /// [`crate::error::InputError::DimensionMismatch`] for a wrong number of bodies,
@@ -141,10 +142,18 @@ impl RigidState {
             ..Self::default()
         };
         for (body, initial) in system.bodies.iter().zip(bodies) {
-            let r = attitude("initial attitude", &initial.attitude)?;
-            state.rotations.extend_from_slice(&super::so3::rows(&r));
-            Error::check_finite("initial angular momentum", &initial.angular_momentum)?;
-            state.momenta.extend_from_slice(&initial.angular_momentum);
+            if body.particle {
+                // A point mass: attitude I, angular momentum 0, whatever `initial` says.
+                state
+                    .rotations
+                    .extend_from_slice(&super::so3::rows(&Mat3::identity()));
+                state.momenta.extend_from_slice(&[0.0; 3]);
+            } else {
+                let r = attitude("initial attitude", &initial.attitude)?;
+                state.rotations.extend_from_slice(&super::so3::rows(&r));
+                Error::check_finite("initial angular momentum", &initial.angular_momentum)?;
+                state.momenta.extend_from_slice(&initial.angular_momentum);
+            }
             let free = body.mass.is_some();
             let (x, p) = if free {
                 (initial.position, initial.linear_momentum)

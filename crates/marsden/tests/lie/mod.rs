@@ -8,6 +8,7 @@ mod failures;
 mod free_bodies;
 mod group;
 mod multibody;
+mod particles;
 mod springs;
 
 use marsden::NewtonOptions;

@@ -6,8 +6,9 @@
 //! `G W Gᵀ ν = g` (`W = diag(J⁻¹, I/m)`; each attitude turned by `exp(ξ^)`, so it stays a
 //! rotation), then the momenta by the projection of the step ([`super::step`]).
 
+use super::joint::JointKind;
 use super::joints::{BodyWeight, JointRows, JointSet};
-use crate::error::{Error, SetupError};
+use crate::error::{Error, InputError, SetupError};
 use crate::lie::potential::{ExternalLoads, RigidPotential};
 use crate::lie::so3::{Vec3, exp};
 use crate::lie::state::{RigidState, RigidSystem};
@@ -35,7 +36,8 @@ pub fn length_scale(joints: &JointSet, state: &RigidState) -> f64 {
 /// The joint rows at `state`, after checking that it satisfies the joints.
 ///
 /// # Errors
-/// [`SetupError::InitialPositionOffConstraint`] (the most violated row; the problem layer names
+/// [`InputError::ParticleJoint`] for a joint that acts on a particle off its position or on
+/// its attitude, [`SetupError::InitialPositionOffConstraint`] (the most violated row; the problem layer names
 /// its joint), [`SetupError::SingularConstraintMass`] when `G W Gᵀ` is singular (redundant or
 /// singular joints), [`SetupError::InitialVelocityNotTangent`].
 pub fn check<U, E>(
@@ -43,6 +45,7 @@ pub fn check<U, E>(
     joints: &JointSet,
     state: &RigidState,
 ) -> Result<JointRows, Error> {
+    particles_joined_at_their_position(system, joints)?;
     let mut rows = JointRows::new(joints.rows());
     joints.evaluate(
         &system.bodies,
@@ -90,6 +93,7 @@ pub fn project<U: RigidPotential, E: ExternalLoads>(
     joints: &JointSet,
     state: &RigidState,
 ) -> Result<RigidState, Error> {
+    particles_joined_at_their_position(system, joints)?;
     let mut state = state.clone();
     let mut rows = JointRows::new(joints.rows());
     let mut lu = BandLu::new();
@@ -147,6 +151,45 @@ pub fn project<U: RigidPotential, E: ExternalLoads>(
 }
 
 /// Factors `G W Gᵀ` (`W = diag(J⁻¹, I/m)`) into `lu`.
+/// Every joint on a particle is spherical or a distance joint, at the particle's position: its
+/// rows then have no moment on the particle, which does not turn ([`RigidBody::particle`]).
+///
+/// # Errors
+/// [`InputError::ParticleJoint`] for the first that is not.
+///
+/// [`RigidBody::particle`]: crate::lie::body::RigidBody::particle
+pub fn particles_joined_at_their_position<U, E>(
+    system: &RigidSystem<U, E>,
+    joints: &JointSet,
+) -> Result<(), Error> {
+    for (index, joint) in joints.joints().iter().enumerate() {
+        for (side, body) in joint.bodies.iter().enumerate() {
+            let Some(body) = *body else { continue };
+            if !system.bodies.get(body).is_some_and(|b| b.particle) {
+                continue;
+            }
+            let point = joint.points[side];
+            let turns = !matches!(
+                joint.kind,
+                JointKind::Spherical | JointKind::Distance { .. }
+            );
+            if turns || point != Vec3::zeros() {
+                let where_ = match turns {
+                    true => String::new(),
+                    false => format!(" at [{}, {}, {}]", point.x, point.y, point.z),
+                };
+                return Err(Error::Input(InputError::ParticleJoint {
+                    joint: index,
+                    kind: joint.kind.name(),
+                    body,
+                    where_,
+                }));
+            }
+        }
+    }
+    Ok(())
+}
+
 fn factor_weighted<U, E>(
     system: &RigidSystem<U, E>,
     joints: &JointSet,

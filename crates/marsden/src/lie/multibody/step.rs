@@ -395,6 +395,16 @@ impl<U: RigidPotential, E: ExternalLoads> MultibodyLgvi<U, E> {
             &mut work.forces,
         );
         for (i, body) in self.system.bodies.iter().enumerate() {
+            if body.particle {
+                // A point mass does not turn: F = I, and no rotational response to `λ`.
+                work.turns[i] = Mat3::zeros();
+                work.q[i] = Vec3::zeros();
+                work.weights[i] = BodyWeight {
+                    rotation: Mat3::zeros(),
+                    translation: body.mass.map_or(0.0, |m| 1.0 / m),
+                };
+                continue;
+            }
             let moment = self.loads.moments[i] - work.moments[i];
             let q = self.state.momentum(i) + 0.5 * h * moment;
             let inertia = &body.inertia;
@@ -433,7 +443,10 @@ impl<U: RigidPotential, E: ExternalLoads> MultibodyLgvi<U, E> {
         let work = &mut self.work;
         for (i, body) in self.system.bodies.iter().enumerate() {
             let q = work.q[i];
-            let pi = q + work.turns[i].transpose() * q + 0.5 * h * self.loads.moments[i];
+            let pi = match body.particle {
+                true => Vec3::zeros(),
+                false => q + work.turns[i].transpose() * q + 0.5 * h * self.loads.moments[i],
+            };
             self.state.set_momentum(i, &pi);
             work.omega[i] = body.inertia.inverse() * pi;
             work.weights[i] = BodyWeight {
