@@ -67,6 +67,8 @@ mod rigid;
 // the satellite's momentum, the chain's columns, refusals.
 mod multibody;
 mod multibody_springs;
+// Particles among jointed bodies.
+mod particles;
 // `marsden run`: reference values read back from the trajectory, summary.json's fields, the
 // expression path against the Rust path, the output formats.
 mod run;

@@ -103,3 +103,38 @@ def test_body_keywords_with_unknown_keys_say_which():
                         h=0.01, steps=10)
     with pytest.raises(marsden.ProblemError, match="bodies: expected a list of dictionaries"):
         marsden.Problem(bodies={"name": "a"}, h=0.01, steps=10)
+
+
+def test_a_particle_has_a_position_and_no_attitude():
+    """``examples/pendulum_with_bob.toml``: a rod hinged at its top with a particle on a ball
+    joint at its tip. ``Solution.bodies["bob"]`` has ``x``, ``p`` and no ``R``/``Pi``; the bob
+    stays at the rod's tip ``x_rod − R_rod (0, 0, 0.5)``; the keywords ``particles=`` write the
+    file's ``[[system.particle]]`` and run to the same bits."""
+    text = (EXAMPLES / "pendulum_with_bob.toml").read_text().replace("t_end = 10.0", "steps = 300")
+    s = marsden.Problem.from_toml(text).solve(every=1)
+    rod, bob = s.bodies["rod"], s.bodies["bob"]
+    assert bob.R is None and bob.Pi is None
+    assert rod.R.shape == (len(s), 3, 3) and bob.x.shape == (len(s), 3)
+    tip = rod.x - np.einsum("kij,j->ki", rod.R, [0.0, 0.0, 0.5])
+    assert np.abs(tip - bob.x).max() < 1e-13
+    assert s.summary["multibody"]["particles"] == 1
+    keywords = marsden.Problem(
+        name="pendulum_with_bob", gravity=[0.0, 0.0, -9.81],
+        bodies=[{"name": "rod", "mass": 1.0, "inertia": [1 / 12, 1 / 12, 0.001]}],
+        particles=[{"name": "bob", "mass": 0.5}],
+        joints=[{"name": "hinge", "kind": "revolute", "bodies": ["ground", "rod"],
+                 "at": [[0.0, 0.0, 0.0], [0.0, 0.0, 0.5]],
+                 "axis": [[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]]},
+                {"name": "ball", "kind": "spherical", "bodies": ["rod", "bob"],
+                 "at": [[0.0, 0.0, -0.5], [0.0, 0.0, 0.0]]}],
+        bodies0={"rod": {"rotation_vector": [0.0, 0.8, 0.0], "Omega": [0.0, -0.6, 0.0],
+                         "x": [-0.3586780454497614, 0.0, -0.3483533546735827],
+                         "v": [0.2090120128041496, 0.0, -0.21520682726985682]},
+                 "bob": {"x": [-0.7173560908995228, 0.0, -0.6967067093471654],
+                         "v": [0.4180240256082992, 0.0, -0.43041365453971364]}},
+        method="trapezoid", h=0.01, steps=300).solve(every=1)
+    assert np.array_equal(keywords.bodies["bob"].x, bob.x)
+    assert np.array_equal(keywords.bodies["rod"].R, rod.R)
+    with pytest.raises(marsden.ProblemError, match="particle `bob` has no attitude"):
+        marsden.Problem.from_toml(text.replace("[initial.bob]\n", "[initial.bob]\nR = "
+                                               "[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]\n"))

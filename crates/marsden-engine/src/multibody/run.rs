@@ -268,8 +268,18 @@ impl<'b, 'd> Rows<'b, 'd> {
         let residual = max_norm(&lgvi.joint_rows().values);
         self.row.clear();
         self.row.push(state.t);
-        self.row.extend_from_slice(&state.rotations);
-        self.row.extend_from_slice(&state.momenta);
+        // Attitudes and body momenta of the bodies; a particle has none.
+        for (i, body) in self.bodies.bodies.iter().enumerate() {
+            if !body.particle {
+                self.row
+                    .extend_from_slice(&state.rotations[9 * i..9 * i + 9]);
+            }
+        }
+        for (i, body) in self.bodies.bodies.iter().enumerate() {
+            if !body.particle {
+                self.row.extend_from_slice(&state.momenta[3 * i..3 * i + 3]);
+            }
+        }
         self.row.extend_from_slice(&state.positions);
         self.row.extend_from_slice(&state.linear_momenta);
         self.row.push(energy);

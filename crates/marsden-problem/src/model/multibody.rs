@@ -36,7 +36,10 @@ pub fn core(
     t0: f64,
 ) -> Result<(MultibodySystem, JointSet, RigidState), Error> {
     let bodies = (spec.bodies.iter())
-        .map(|b| RigidBody::free(b.inertia, b.mass))
+        .map(|b| match b.particle {
+            true => RigidBody::particle(b.mass),
+            false => RigidBody::free(b.inertia, b.mass),
+        })
         .collect::<Result<Vec<_>, _>>()?;
     let gravity = GravityField {
         g: spec.gravity,

@@ -23,6 +23,7 @@ pub mod last_step;
 pub mod method;
 pub mod multibody;
 pub mod multibody_initial;
+pub mod multibody_particles;
 pub mod multibody_springs;
 pub mod named_symmetry;
 pub mod nbody_file;

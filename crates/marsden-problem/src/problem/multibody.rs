@@ -16,8 +16,11 @@
 //! axis = [[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]]    # revolute/prismatic: the axis in each frame
 //! ```
 //!
-//! The configuration is `(SO(3) × ℝ³)ᵐ`, one attitude and centre of mass per body; the columns
-//! are `<body>_R11 … <body>_R33`, `<body>_Pi1 …`, `<body>_x … <body>_z`, `<body>_p_x …`, then
+//! `[[system.particle]]` (`name`, `mass`) adds point masses: the configuration is
+//! `(SO(3) × ℝ³)ᵐ × (ℝ³)ⁿ`, one attitude and centre of mass per body and a position per particle;
+//! a particle takes spherical and distance joints, springs and dampers at its position
+//! (`at = [0, 0, 0]` on its side). The columns are `<body>_R11 … <body>_R33`, `<body>_Pi1 …` of
+//! the bodies, `<name>_x … <name>_z`, `<name>_p_x …` of the bodies then the particles, then
 //! `energy`, `constraint_residual` (the joints'), the multipliers `lambda_<joint>_<i>` and
 //! `constraint_velocity_residual`.
 
@@ -28,9 +31,10 @@ use marsden::lie::state::BodyInitial;
 use toml::Spanned;
 
 use super::check::Checker;
+use super::multibody_particles::{Sides, check_sides, span_or};
 use super::multibody_springs::{DamperSpec, SpringSpec};
 use super::raw::{RawInertia, RawSystem};
-use super::raw_multibody::{RawBody, RawJoint};
+use super::raw_multibody::{RawBody, RawJoint, RawParticle};
 use crate::error::Diagnostic;
 
 /// The name of the fixed space frame in `bodies = [...]`.
@@ -39,15 +43,17 @@ pub const GROUND: &str = "ground";
 /// The joint kinds, as files write them.
 pub const JOINT_KINDS: [&str; 5] = ["spherical", "revolute", "prismatic", "fixed", "distance"];
 
-/// One body.
+/// One body or particle.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BodySpec {
     /// Its name (the prefix of its columns).
     pub name: String,
     /// Its mass.
     pub mass: f64,
-    /// Its inertia about the centre of mass.
+    /// Its inertia about the centre of mass ([`Inertia::point`] for a particle).
     pub inertia: Inertia,
+    /// A particle (`[[system.particle]]`): a point mass without attitude.
+    pub particle: bool,
 }
 
 /// What a joint needs beyond its points.
@@ -91,7 +97,7 @@ pub struct JointSpec {
 /// ([`super::multibody_initial`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct MultibodySpec {
-    /// The bodies, in the file's order.
+    /// The bodies in the file's order, then the particles in theirs.
     pub bodies: Vec<BodySpec>,
     /// The uniform field `g`.
     pub gravity: [f64; 3],
@@ -109,6 +115,7 @@ pub struct MultibodySpec {
 /// Whether the file describes a multibody system.
 pub fn is_multibody(system: &RawSystem) -> bool {
     system.body.is_some()
+        || system.particle.is_some()
         || system.joint.is_some()
         || system.spring.is_some()
         || system.damper.is_some()
@@ -121,7 +128,9 @@ pub fn is_multibody(system: &RawSystem) -> bool {
 /// body, an unknown kind, points or axes of the wrong shape, keys of other kinds of systems.
 pub(super) fn system(ck: &Checker<'_>, system: &RawSystem) -> Result<MultibodySpec, Diagnostic> {
     refuse_other_keys(ck, system)?;
-    let Some(raw_bodies) = system.body.as_ref().filter(|b| !b.is_empty()) else {
+    let raw_bodies = system.body.as_deref().unwrap_or(&[]);
+    let raw_particles = system.particle.as_deref().unwrap_or(&[]);
+    if raw_bodies.is_empty() && raw_particles.is_empty() {
         let first =
             |list: Option<Vec<std::ops::Range<usize>>>| list.and_then(|l| l.into_iter().next());
         let span = first(
@@ -151,18 +160,23 @@ pub(super) fn system(ck: &Checker<'_>, system: &RawSystem) -> Result<MultibodySp
                 span,
                 "joints, springs and dampers need bodies: the file has no [[system.body]]",
             )
-            .help("add `[[system.body]]` tables with `name`, `mass` and `inertia`"));
-    };
-    let mut bodies: Vec<BodySpec> = Vec::with_capacity(raw_bodies.len());
-    for (index, raw) in raw_bodies.iter().enumerate() {
-        let body = body(ck, raw, index)?;
+            .help("add `[[system.body]]` tables with `name`, `mass` and `inertia` (or `[[system.particle]]` with `name` and `mass`)"));
+    }
+    let mut bodies: Vec<BodySpec> = Vec::with_capacity(raw_bodies.len() + raw_particles.len());
+    let written = (raw_bodies.iter().enumerate())
+        .map(|(index, raw)| (body(ck, raw, index), raw.get_ref().name.as_ref()))
+        .chain(
+            (raw_particles.iter().enumerate())
+                .map(|(index, raw)| (particle(ck, raw, index), raw.get_ref().name.as_ref())),
+        );
+    for (body, name) in written {
+        let body = body?;
         if body.name == GROUND || bodies.iter().any(|b| b.name == body.name) {
-            let span = raw.get_ref().name.as_ref().map(Spanned::span);
             let why = match body.name == GROUND {
                 true => "`ground` names the space frame; give the body another name".to_owned(),
-                false => format!("two bodies are named `{}`", body.name),
+                false => format!("two bodies or particles are named `{}`", body.name),
             };
-            return Err(ck.error(span, why));
+            return Err(ck.error(name.map(Spanned::span), why));
         }
         bodies.push(body);
     }
@@ -201,54 +215,93 @@ pub(super) fn system(ck: &Checker<'_>, system: &RawSystem) -> Result<MultibodySp
 
 fn body(ck: &Checker<'_>, raw: &Spanned<RawBody>, index: usize) -> Result<BodySpec, Diagnostic> {
     let b = raw.get_ref();
-    let Some(name) = &b.name else {
+    let written = Named {
+        what: "body",
+        whole: raw.span(),
+        index,
+        name: b.name.as_ref(),
+        mass: b.mass.as_ref(),
+    };
+    let (name, mass) = named_mass(ck, &written)?;
+    let Some(written) = &b.inertia else {
+        return Err(ck
+            .error(Some(raw.span()), format!("body `{name}` has no `inertia`"))
+            .help("e.g. `inertia = [0.0833, 0.0833, 0.001]` (principal moments about the centre of mass; or `[[system.particle]]` for a point mass)"));
+    };
+    let inertia = inertia(ck, written, index)?;
+    Ok(BodySpec {
+        name,
+        mass,
+        inertia,
+        particle: false,
+    })
+}
+
+/// `[[system.particle]]`: a name and a mass.
+fn particle(
+    ck: &Checker<'_>,
+    raw: &Spanned<RawParticle>,
+    index: usize,
+) -> Result<BodySpec, Diagnostic> {
+    let p = raw.get_ref();
+    let written = Named {
+        what: "particle",
+        whole: raw.span(),
+        index,
+        name: p.name.as_ref(),
+        mass: p.mass.as_ref(),
+    };
+    let (name, mass) = named_mass(ck, &written)?;
+    Ok(BodySpec {
+        name,
+        mass,
+        inertia: Inertia::point(),
+        particle: true,
+    })
+}
+
+/// The name and mass of a body or particle as written.
+struct Named<'a> {
+    what: &'static str,
+    whole: Range<usize>,
+    index: usize,
+    name: Option<&'a Spanned<String>>,
+    mass: Option<&'a Spanned<f64>>,
+}
+
+/// A valid name and a positive mass.
+fn named_mass(ck: &Checker<'_>, w: &Named<'_>) -> Result<(String, f64), Diagnostic> {
+    let Some(name) = w.name else {
         return Err(ck
             .error(
-                Some(raw.span()),
-                format!("body #{} has no `name`", index + 1),
+                Some(w.whole.clone()),
+                format!("{} #{} has no `name`", w.what, w.index + 1),
             )
-            .help("its columns are `<name>_x`, `<name>_R11`, …: e.g. `name = \"link1\"`"));
+            .help("its columns are `<name>_x`, `<name>_p_x`, …: e.g. `name = \"link1\"`"));
     };
     if !valid_name(name.get_ref()) {
         return Err(ck
             .error(
                 Some(name.span()),
-                format!("`{}` is not a valid body name", name.get_ref()),
+                format!("`{}` is not a valid {} name", name.get_ref(), w.what),
             )
             .help("a name is letters, digits and `_`, starting with a letter"));
     }
-    let Some(mass) = &b.mass else {
+    let Some(mass) = w.mass else {
         return Err(ck
             .error(
-                Some(raw.span()),
-                format!("body `{}` has no `mass`", name.get_ref()),
+                Some(w.whole.clone()),
+                format!("{} `{}` has no `mass`", w.what, name.get_ref()),
             )
-            .help("every body of a multibody system moves: give its `mass`"));
+            .help("every body and particle of a multibody system moves: give its `mass`"));
     };
-    let mass = match ck.finite("mass", mass)? {
-        m if m > 0.0 => m,
-        m => {
-            return Err(ck.error(
-                Some(mass_span(b)),
-                format!("the mass must be positive, not {m}"),
-            ));
-        }
-    };
-    let Some(written) = &b.inertia else {
-        return Err(ck
-            .error(Some(raw.span()), format!("body `{}` has no `inertia`", name.get_ref()))
-            .help("e.g. `inertia = [0.0833, 0.0833, 0.001]` (principal moments about the centre of mass)"));
-    };
-    let inertia = inertia(ck, written, index)?;
-    Ok(BodySpec {
-        name: name.get_ref().clone(),
-        mass,
-        inertia,
-    })
-}
-
-fn mass_span(b: &RawBody) -> Range<usize> {
-    b.mass.as_ref().map_or(0..0, Spanned::span)
+    match ck.finite("mass", mass)? {
+        m if m > 0.0 => Ok((name.get_ref().clone(), m)),
+        m => Err(ck.error(
+            Some(mass.span()),
+            format!("the mass must be positive, not {m}"),
+        )),
+    }
 }
 
 pub(super) fn valid_name(name: &str) -> bool {
@@ -344,6 +397,7 @@ fn joint(
         }
     };
     let kind_name = kind.get_ref().as_str();
+    let kind_span = kind.span();
     let kind = match kind_name {
         "spherical" => JointKindSpec::Spherical,
         "fixed" => JointKindSpec::Fixed,
@@ -394,6 +448,14 @@ fn joint(
             format!("a {kind_name} joint has no length"),
         ));
     }
+    let written = Sides {
+        what: "joint",
+        kind: Some((kind_name, kind_span.clone())),
+        bodies: pair,
+        points,
+        at: span_or(j.at.as_ref(), &raw.span()),
+    };
+    check_sides(ck, &written, bodies)?;
     let name = match &j.name {
         Some(n) if valid_name(n.get_ref()) => n.get_ref().clone(),
         Some(n) => {
@@ -552,9 +614,18 @@ impl MultibodySpec {
             .collect()
     }
 
-    /// The columns of a group of body quantities: `<body>_<suffix>` per body and suffix.
+    /// The columns of a group of body quantities: `<body>_<suffix>` per body and particle and
+    /// suffix (centres and momenta).
     pub fn body_columns(&self, suffixes: &[&str]) -> Vec<String> {
         (self.bodies.iter())
+            .flat_map(|b| suffixes.iter().map(move |s| format!("{}_{s}", b.name)))
+            .collect()
+    }
+
+    /// The columns of a group of attitude quantities: `<body>_<suffix>` per body (particles
+    /// have none) and suffix.
+    pub fn attitude_columns(&self, suffixes: &[&str]) -> Vec<String> {
+        (self.bodies.iter().filter(|b| !b.particle))
             .flat_map(|b| suffixes.iter().map(move |s| format!("{}_{s}", b.name)))
             .collect()
     }

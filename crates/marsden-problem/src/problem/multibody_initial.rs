@@ -11,6 +11,7 @@ use toml::Spanned;
 
 use super::check::Checker;
 use super::multibody::{BodySpec, MultibodySpec};
+use super::multibody_particles::no_attitude;
 use super::raw::{RawInitial, SpannedList};
 use super::raw_multibody::RawBodyInitial;
 use super::rigid_settings::{AttitudeForms, attitude_of};
@@ -91,6 +92,9 @@ fn body_initial(
     body: &BodySpec,
     data: &RawBodyInitial,
 ) -> Result<BodyInitial, Diagnostic> {
+    if body.particle {
+        no_attitude(ck, body, data)?;
+    }
     let key = |k: &str| format!("initial.{}.{k}", body.name);
     let three = |list: &SpannedList<f64>, k: &str| -> Result<[f64; 3], Diagnostic> {
         let names = AXES.map(str::to_owned);

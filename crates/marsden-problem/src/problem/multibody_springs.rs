@@ -23,6 +23,7 @@ use toml::Spanned;
 
 use super::check::Checker;
 use super::multibody::{BodySpec, GROUND, pair_of_vectors, quoted, valid_name};
+use super::multibody_particles::{Sides, check_sides};
 use super::raw::RawSystem;
 use crate::error::Diagnostic;
 
@@ -209,6 +210,14 @@ fn ends(ck: &Checker<'_>, w: &Written<'_>, bodies: &[BodySpec]) -> Result<Ends, 
             .help("the point in each frame: `at = [[x, y, z], [x, y, z]]`"));
     };
     let points = pair_of_vectors(ck, at, "at")?;
+    let written = Sides {
+        what: w.what,
+        kind: None,
+        bodies: pair,
+        points,
+        at: at.span(),
+    };
+    check_sides(ck, &written, bodies)?;
     let name = match w.name {
         Some(n) if valid_name(n.get_ref()) => n.get_ref().clone(),
         Some(n) => {

@@ -50,7 +50,7 @@ use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use toml::Spanned;
 
 use super::raw_multibody::{
-    BodyOrUnknown, NamedBodyInitial, RawBody, RawDamper, RawJoint, RawSpring,
+    BodyOrUnknown, NamedBodyInitial, RawBody, RawDamper, RawJoint, RawParticle, RawSpring,
 };
 
 /// A list of spanned values, itself spanned.
@@ -157,6 +157,8 @@ pub struct RawSystem {
     pub gravity: Option<SpannedList<f64>>,
     /// A multibody system's bodies ([`super::raw_multibody`]).
     pub body: Option<Vec<Spanned<RawBody>>>,
+    /// A multibody system's particles (point masses).
+    pub particle: Option<Vec<Spanned<RawParticle>>>,
     /// A multibody system's joints.
     pub joint: Option<Vec<Spanned<RawJoint>>>,
     /// A multibody system's springs between body points.

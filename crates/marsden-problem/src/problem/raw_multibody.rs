@@ -48,6 +48,16 @@ pub struct RawBody {
     pub inertia: Option<Spanned<RawInertia>>,
 }
 
+/// `[[system.particle]]`: a point mass (configuration ℝ³).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawParticle {
+    /// The particle's name (its columns are `<name>_x`, `<name>_p_x`, …).
+    pub name: Option<Spanned<String>>,
+    /// Its mass.
+    pub mass: Option<Spanned<f64>>,
+}
+
 /// `[[system.joint]]`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -168,9 +168,18 @@ impl LagrangianSpec {
                 r.potential.text().unwrap_or("0")
             ),
             LagrangianSpec::Multibody(m) => format!(
-                "{} rigid bod{} joined by {} joint{}: L = Σ ½ΩᵀJΩ + ½m|ẋ|² − U, U = −Σ m g·x{}, g = {:?}{}",
-                m.bodies.len(),
-                if m.bodies.len() == 1 { "y" } else { "ies" },
+                "{} rigid bod{}{} joined by {} joint{}: L = Σ ½ΩᵀJΩ + ½m|ẋ|² − U, U = −Σ m g·x{}, g = {:?}{}",
+                m.bodies.iter().filter(|b| !b.particle).count(),
+                if m.bodies.iter().filter(|b| !b.particle).count() == 1 {
+                    "y"
+                } else {
+                    "ies"
+                },
+                match m.bodies.iter().filter(|b| b.particle).count() {
+                    0 => String::new(),
+                    1 => " and 1 particle".to_owned(),
+                    n => format!(" and {n} particles"),
+                },
                 m.joints.len(),
                 if m.joints.len() == 1 { "" } else { "s" },
                 match m.springs.len() {

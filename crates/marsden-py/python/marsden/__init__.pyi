@@ -168,6 +168,7 @@ class Problem:
         Pi0: Optional[Sequence[float]] = ...,
         gravity: Optional[Sequence[float]] = ...,
         bodies: Optional[Sequence[Mapping[str, Any]]] = ...,
+        particles: Optional[Sequence[Mapping[str, Any]]] = ...,
         joints: Optional[Sequence[Mapping[str, Any]]] = ...,
         springs: Optional[Sequence[Mapping[str, Any]]] = ...,
         dampers: Optional[Sequence[Mapping[str, Any]]] = ...,

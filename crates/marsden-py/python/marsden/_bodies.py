@@ -1,7 +1,7 @@
-"""The keywords of jointed bodies (``gravity``, ``bodies``, ``joints``, ``springs``,
-``dampers``, ``bodies0``) written as a multibody problem file: ``[[system.body]]``,
-``[[system.joint]]``, ``[[system.spring]]``, ``[[system.damper]]`` and one ``[initial.<name>]``
-per body, each dictionary's keys the file's keys::
+"""The keywords of jointed bodies (``gravity``, ``bodies``, ``particles``, ``joints``,
+``springs``, ``dampers``, ``bodies0``) written as a multibody problem file: ``[[system.body]]``,
+``[[system.particle]]``, ``[[system.joint]]``, ``[[system.spring]]``, ``[[system.damper]]`` and
+one ``[initial.<name>]`` per body or particle, each dictionary's keys the file's keys::
 
     marsden.Problem(
         gravity=[0.0, 0.0, -9.81],
@@ -15,7 +15,7 @@ per body, each dictionary's keys the file's keys::
 from __future__ import annotations
 
 import numbers
-from typing import Any, Iterable, List, Mapping, Optional, Sequence, Tuple
+from typing import Any, Iterable, List, Mapping, NamedTuple, Optional, Sequence, Tuple
 
 from . import _toml
 from ._errors import ProblemError
@@ -23,6 +23,7 @@ from ._keywords import Generated, Value, boolean
 
 #: The keys of each table, as the problem file has them.
 BODY_KEYS = ("name", "mass", "inertia")
+PARTICLE_KEYS = ("name", "mass")
 JOINT_KEYS = ("name", "kind", "bodies", "at", "axis", "length")
 SPRING_KEYS = ("name", "bodies", "at", "stiffness", "rest_length")
 DAMPER_KEYS = ("name", "bodies", "at", "coefficient")
@@ -72,12 +73,23 @@ def _array_of_tables(out: Generated, header: str, keyword: str, items: Optional[
         out.table(header, _entries(item, f"{keyword}[{i}]", known))
 
 
-def system_tables(out: Generated, bodies: Any, joints: Any, springs: Any, dampers: Any) -> None:
-    """``[[system.body]]``, ``[[system.joint]]``, ``[[system.spring]]``, ``[[system.damper]]``."""
-    _array_of_tables(out, "[[system.body]]", "bodies", bodies, BODY_KEYS)
-    _array_of_tables(out, "[[system.joint]]", "joints", joints, JOINT_KEYS)
-    _array_of_tables(out, "[[system.spring]]", "springs", springs, SPRING_KEYS)
-    _array_of_tables(out, "[[system.damper]]", "dampers", dampers, DAMPER_KEYS)
+class Members(NamedTuple):
+    """The keywords of a multibody system's tables, as given."""
+    bodies: Any
+    particles: Any
+    joints: Any
+    springs: Any
+    dampers: Any
+
+
+def system_tables(out: Generated, m: Members) -> None:
+    """``[[system.body]]``, ``[[system.particle]]``, ``[[system.joint]]``,
+    ``[[system.spring]]``, ``[[system.damper]]``."""
+    _array_of_tables(out, "[[system.body]]", "bodies", m.bodies, BODY_KEYS)
+    _array_of_tables(out, "[[system.particle]]", "particles", m.particles, PARTICLE_KEYS)
+    _array_of_tables(out, "[[system.joint]]", "joints", m.joints, JOINT_KEYS)
+    _array_of_tables(out, "[[system.spring]]", "springs", m.springs, SPRING_KEYS)
+    _array_of_tables(out, "[[system.damper]]", "dampers", m.dampers, DAMPER_KEYS)
 
 
 def initial_tables(out: Generated, bodies0: Optional[Mapping[str, Any]]) -> None:

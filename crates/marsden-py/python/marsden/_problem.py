@@ -64,7 +64,8 @@ class Problem:
       initially ``R0`` / ``quaternion0`` / ``rotation_vector0`` and ``Omega0`` / ``Pi0``
       (``solution.R``, ``solution.Pi``, ``solution.quaternion``).
     - jointed bodies instead: ``gravity`` (``[gx, gy, gz]``), ``bodies`` (a list of
-      ``{"name", "mass", "inertia"}``), ``joints`` (``{"kind": "revolute", "bodies": ["ground",
+      ``{"name", "mass", "inertia"}``), ``particles`` (point masses: ``{"name", "mass"}``;
+      spherical and distance joints at their position), ``joints`` (``{"kind": "revolute", "bodies": ["ground",
       "a"], "at": [...], "axis": [...]}``, ``spherical``, ``prismatic``, ``fixed``, ``distance``
       with ``length``), ``springs`` (``{"bodies", "at", "stiffness", "rest_length"}``),
       ``dampers`` (``{"bodies", "at", "coefficient"}``), and initially ``bodies0`` (``{"a":
@@ -140,6 +141,7 @@ class Problem:
         Pi0: Optional[Sequence[float]] = None,
         gravity: Optional[Sequence[float]] = None,
         bodies: Optional[Sequence[Mapping[str, Any]]] = None,
+        particles: Optional[Sequence[Mapping[str, Any]]] = None,
         joints: Optional[Sequence[Mapping[str, Any]]] = None,
         springs: Optional[Sequence[Mapping[str, Any]]] = None,
         dampers: Optional[Sequence[Mapping[str, Any]]] = None,
@@ -158,7 +160,7 @@ class Problem:
             rigid_body=rigid_body, potential=potential, torques=torques,
             body_rotation=body_rotation, R0=R0, quaternion0=quaternion0,
             rotation_vector0=rotation_vector0, Omega0=Omega0, Pi0=Pi0, gravity=gravity,
-            bodies=bodies, joints=joints, springs=springs, dampers=dampers, bodies0=bodies0))
+            bodies=bodies, particles=particles, joints=joints, springs=springs, dampers=dampers, bodies0=bodies0))
         try:
             self._init(generated.text, _ORIGIN)
         except ProblemError as e:

@@ -11,9 +11,10 @@ parameters, lagrangian, hamiltonian,
 discrete_lagrangian, forces,
 constraints
 rigid_body, potential, torques         ``[system]`` (same keys: a rigid body on SO(3))
-gravity, bodies, joints, springs,      ``[system]`` gravity, ``[[system.body]]``,
-dampers                                ``[[system.joint]]``, ``[[system.spring]]``,
-                                       ``[[system.damper]]`` (jointed bodies)
+gravity, bodies, particles, joints,    ``[system]`` gravity, ``[[system.body]]``,
+springs, dampers                       ``[[system.particle]]``, ``[[system.joint]]``,
+                                       ``[[system.spring]]``, ``[[system.damper]]``
+                                       (jointed bodies and particles)
 symmetries, rotation, translation,     ``[[system.symmetry]]``
 body_rotation
 q0, v0, p0, t0, bodies_file, project   ``[initial]`` q, v, p, t0, file, project
@@ -89,6 +90,7 @@ class Keywords:
     body_rotation: Union[None, str, Sequence[str]] = None
     gravity: Optional[Sequence[Any]] = None
     bodies: Optional[Sequence[Mapping[str, Any]]] = None
+    particles: Optional[Sequence[Mapping[str, Any]]] = None
     joints: Optional[Sequence[Mapping[str, Any]]] = None
     springs: Optional[Sequence[Mapping[str, Any]]] = None
     dampers: Optional[Sequence[Mapping[str, Any]]] = None
@@ -143,7 +145,8 @@ def _system(out: Generated, k: Keywords) -> None:
         ("torques", "torques", _expressions("torques", k.torques)),
         ("gravity", "gravity", kw.maybe(lambda g: kw.floats(g, "gravity"), k.gravity)),
     ])
-    _bodies.system_tables(out, k.bodies, k.joints, k.springs, k.dampers)
+    _bodies.system_tables(out, _bodies.Members(k.bodies, k.particles, k.joints, k.springs,
+                                               k.dampers))
     for name, generator in kw.symmetry_items(k.symmetries):
         kw.symmetry(out, name, generator)
     kw.named_symmetries(out, "rotation", k.rotation)

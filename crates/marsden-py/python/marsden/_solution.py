@@ -199,11 +199,13 @@ class Body:
 
     - ``x``, ``p``, ``v`` (``k × 3``): the centre of mass, its momentum ``m ẋ`` and velocity;
     - ``R`` (``k × 3 × 3``): the attitude, body → space;
-    - ``Pi`` (``k × 3``): the body angular momentum ``Π = JΩ``.
+    - ``Pi`` (``k × 3``): the body angular momentum ``Π = JΩ``;
+
+    a particle (``[[system.particle]]``) has no attitude: its ``R`` and ``Pi`` are ``None``.
     """
 
     def __init__(self, name: str, x: np.ndarray, p: np.ndarray, v: np.ndarray,
-                 R: np.ndarray, Pi: np.ndarray) -> None:
+                 R: Optional[np.ndarray], Pi: Optional[np.ndarray]) -> None:
         self.name = name
         self.x = x
         self.p = p
@@ -217,7 +219,8 @@ class Body:
 
 def _bodies(fields: Dict[str, Any], coordinates: List[str], q: np.ndarray, p: np.ndarray,
             v: np.ndarray) -> Dict[str, "Body"]:
-    """The bodies of a multibody run, named by their centre coordinates ``<body>_x``."""
+    """The bodies then the particles of a multibody run, named by their centre coordinates
+    ``<name>_x``; the first ``attitudes.shape[1]`` are the bodies."""
     attitudes = fields.get("attitudes")
     momenta = fields.get("body_momenta")
     if attitudes is None or momenta is None:
@@ -227,8 +230,10 @@ def _bodies(fields: Dict[str, Any], coordinates: List[str], q: np.ndarray, p: np
     for b, name in enumerate(names):
         columns = slice(3 * b, 3 * b + 3)
         velocity = v[:, columns] if v.shape[1] == q.shape[1] else np.empty((0, 3))
-        out[name] = Body(name, q[:, columns], p[:, columns], velocity, attitudes[:, b],
-                         momenta[:, columns])
+        turning = b < attitudes.shape[1]
+        out[name] = Body(name, q[:, columns], p[:, columns], velocity,
+                         attitudes[:, b] if turning else None,
+                         momenta[:, columns] if turning else None)
     return out
 
 

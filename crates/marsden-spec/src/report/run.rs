@@ -32,10 +32,18 @@ pub fn render(outcome: &Outcome) -> String {
         match (&s.rigid_body, &s.multibody, s.coordinates.is_empty()) {
             (Some(_), _, true) => "on SO(3)".to_owned(),
             (Some(_), _, false) => format!("on SO(3) × ℝ³ ({})", s.coordinates.join(", ")),
-            (None, Some(m), _) => format!(
+            (None, Some(m), _) if m.particles == 0 => format!(
                 "{} on (SO(3) × ℝ³)^{}, {}",
                 count(m.bodies, "body", "bodies"),
                 m.bodies,
+                count(m.joints.len(), "joint", "joints")
+            ),
+            (None, Some(m), _) => format!(
+                "{} and {} on (SO(3) × ℝ³)^{} × (ℝ³)^{}, {}",
+                count(m.bodies, "body", "bodies"),
+                count(m.particles, "particle", "particles"),
+                m.bodies,
+                m.particles,
                 count(m.joints.len(), "joint", "joints")
             ),
             (None, None, _) => count_coordinates(&s.coordinates),

@@ -15,11 +15,13 @@ const MOST: usize = 12;
 
 const AXES: [&str; 3] = ["x", "y", "z"];
 
-/// The bodies of a multibody trajectory's columns: the prefixes of its `<body>_R11` columns.
-fn bodies<'n>(names: impl Iterator<Item = &'n str>) -> Vec<&'n str> {
+/// The bodies and particles of a multibody trajectory's columns: the prefixes `b` of its
+/// `<b>_p_x` columns that have a `<b>_x` column too (a body has `<b>_R11` besides).
+fn bodies<'n>(names: impl Iterator<Item = &'n str> + Clone) -> Vec<&'n str> {
+    let all = names.clone();
     names
-        .filter_map(|n| n.strip_suffix("_R11"))
-        .filter(|b| !b.is_empty())
+        .filter_map(|n| n.strip_suffix("_p_x"))
+        .filter(|b| !b.is_empty() && all.clone().any(|n| n.strip_suffix("_x") == Some(*b)))
         .take(MOST)
         .collect()
 }
@@ -106,13 +108,28 @@ mod tests {
     }
 
     #[test]
-    fn the_bodies_are_the_prefixes_of_the_attitude_columns() {
-        let names: Vec<String> = ["t", "a_R11", "a_R12", "link_2_R11", "q_x", "R11"]
-            .map(str::to_owned)
-            .to_vec();
+    fn the_bodies_and_particles_are_the_prefixes_of_centre_and_momentum_columns() {
+        let names: Vec<String> = [
+            "t",
+            "a_R11",
+            "link_2_R11",
+            "a_x",
+            "link_2_x",
+            "bob_x",
+            "a_p_x",
+            "link_2_p_x",
+            "bob_p_x",
+            "q_x",
+            "p_x",
+            "R11",
+        ]
+        .map(str::to_owned)
+        .to_vec();
         assert_eq!(
             columns(&names),
-            ["a_x", "a_y", "a_z", "link_2_x", "link_2_y", "link_2_z"]
+            [
+                "a_x", "a_y", "a_z", "link_2_x", "link_2_y", "link_2_z", "bob_x", "bob_y", "bob_z"
+            ]
         );
     }
 }

@@ -105,8 +105,11 @@ pub const BODY_LINEAR_MOMENTUM: [&str; 3] = ["p_x", "p_y", "p_z"];
 fn multibody_groups(bodies: &crate::problem::multibody::MultibodySpec) -> Vec<Group> {
     vec![
         Group::scalar("t"),
-        Group::vector(ATTITUDE, bodies.body_columns(&ATTITUDE_COLUMNS)),
-        Group::vector(BODY_MOMENTUM, bodies.body_columns(&BODY_MOMENTUM_COLUMNS)),
+        Group::vector(ATTITUDE, bodies.attitude_columns(&ATTITUDE_COLUMNS)),
+        Group::vector(
+            BODY_MOMENTUM,
+            bodies.attitude_columns(&BODY_MOMENTUM_COLUMNS),
+        ),
         Group::vector("q", bodies.body_columns(&BODY_CENTRE)),
         Group::vector("p", bodies.body_columns(&BODY_LINEAR_MOMENTUM)),
         Group::scalar("energy"),
@@ -115,18 +118,24 @@ fn multibody_groups(bodies: &crate::problem::multibody::MultibodySpec) -> Vec<Gr
     ]
 }
 
-/// The layout of a multibody run's columns (as `summary.json` lists them), or `None` for
-/// another system's: the bodies are the prefixes of the `_R11` columns.
-fn multibody_layout_from_columns(names: &[String]) -> Option<marsden_io::Result<Layout>> {
-    let bodies: Vec<&str> = (names.iter())
-        .filter_map(|n| n.strip_suffix("_R11"))
-        .filter(|b| !b.is_empty())
+/// The layout of a multibody run's columns (as `summary.json` lists them), its bodies and
+/// particles named by its `coordinates` (`<name>_x, <name>_y, <name>_z` each): the bodies are
+/// those with an `<name>_R11` column.
+///
+/// # Errors
+/// If the names do not form a valid layout.
+pub fn multibody_layout_from_columns(
+    names: &[String],
+    coordinates: &[String],
+) -> marsden_io::Result<Layout> {
+    let members: Vec<&str> = (coordinates.iter())
+        .filter_map(|c| c.strip_suffix("_x"))
         .collect();
-    if bodies.is_empty() {
-        return None;
-    }
-    let columns = |suffixes: &[&str]| -> Vec<String> {
-        (bodies.iter())
+    let bodies: Vec<&str> = (members.iter().copied())
+        .filter(|b| names.iter().any(|n| *n == format!("{b}_R11")))
+        .collect();
+    let columns = |of: &[&str], suffixes: &[&str]| -> Vec<String> {
+        (of.iter())
             .flat_map(|b| suffixes.iter().map(move |s| format!("{b}_{s}")))
             .collect()
     };
@@ -136,16 +145,16 @@ fn multibody_layout_from_columns(names: &[String]) -> Option<marsden_io::Result<
         .collect();
     let groups = vec![
         Group::scalar("t"),
-        Group::vector(ATTITUDE, columns(&ATTITUDE_COLUMNS)),
-        Group::vector(BODY_MOMENTUM, columns(&BODY_MOMENTUM_COLUMNS)),
-        Group::vector("q", columns(&BODY_CENTRE)),
-        Group::vector("p", columns(&BODY_LINEAR_MOMENTUM)),
+        Group::vector(ATTITUDE, columns(&bodies, &ATTITUDE_COLUMNS)),
+        Group::vector(BODY_MOMENTUM, columns(&bodies, &BODY_MOMENTUM_COLUMNS)),
+        Group::vector("q", columns(&members, &BODY_CENTRE)),
+        Group::vector("p", columns(&members, &BODY_LINEAR_MOMENTUM)),
         Group::scalar("energy"),
         Group::scalar(CONSTRAINT_RESIDUAL),
         Group::vector(LAMBDA, lambda),
         Group::scalar(CONSTRAINT_VELOCITY_RESIDUAL),
     ];
-    Some(Layout::new(groups))
+    Layout::new(groups)
 }
 
 /// The column layout of the trajectory of `spec`: its system's ([`layout`]), then its
@@ -168,14 +177,11 @@ pub fn layout_of(spec: &RunSpec) -> marsden_io::Result<Layout> {
 
 /// The layout of a finished run from its column names (as `summary.json` lists them):
 /// grouped by the prefixes `q_`, `p_`, `J_`; `t`, `energy`, `constraint_residual` and
-/// `constraint_velocity_residual` alone.
+/// `constraint_velocity_residual` alone (a multibody run's: [`multibody_layout_from_columns`]).
 ///
 /// # Errors
 /// If the names do not form a valid layout.
 pub fn layout_from_columns(names: &[String]) -> marsden_io::Result<Layout> {
-    if let Some(layout) = multibody_layout_from_columns(names) {
-        return layout;
-    }
     let with = |prefix: &str| -> Vec<String> {
         names
             .iter()

@@ -328,8 +328,13 @@ fn read_run(dir: &Path) -> Result<(Thinned, Vec<String>, bool), Error> {
         )));
     }
     let columns = strings(&json["output"]["columns"]);
-    let layout = layout_from_columns(&columns)
-        .map_err(|e| bad(format!("{}: output.columns: {e}", summary.display())))?;
+    let layout = match json["system"].as_str() {
+        Some("multibody") => {
+            output::multibody_layout_from_columns(&columns, &strings(&json["coordinates"]))
+        }
+        _ => layout_from_columns(&columns),
+    };
+    let layout = layout.map_err(|e| bad(format!("{}: output.columns: {e}", summary.display())))?;
     let sketch = read_npy_dir_thinned(dir, &layout, &monitored(&columns), DEFAULT_BUDGET)
         .map_err(|e| bad(e.to_string()))?;
     Ok((sketch, angles, conserved))

@@ -51,10 +51,11 @@ impl Samples {
         let multibody = system.multibody();
         let joint_rows = multibody.map_or(0, |m| m.joint_rows());
         let constrained = !system.constraint.components().is_empty() || multibody.is_some();
-        // One attitude per body: a rigid body's, or each of a multibody system's.
+        // One attitude per body: a rigid body's, or each of a multibody system's (particles
+        // have none).
         let bodies = match (system.rigid(), multibody) {
             (Some(_), _) => 1,
-            (None, Some(m)) => m.bodies.len(),
+            (None, Some(m)) => m.bodies.iter().filter(|b| !b.particle).count(),
             (None, None) => 0,
         };
         Self {

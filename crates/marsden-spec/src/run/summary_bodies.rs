@@ -24,6 +24,8 @@ pub struct RigidBodySummary {
 pub struct MultibodySummary {
     /// Number of bodies.
     pub bodies: usize,
+    /// Number of particles.
+    pub particles: usize,
     /// The joints, in the file's order.
     pub joints: Vec<JointSummary>,
     /// `max |g|` over the stored samples and all joint rows: the joints hold.
@@ -83,6 +85,7 @@ impl MultibodySummary {
             .collect();
         let r = &record.final_attitudes;
         let final_attitudes = (spec.bodies.iter().enumerate())
+            .filter(|(_, b)| !b.particle)
             .map(|(i, b)| {
                 let a = &r[9 * i..9 * i + 9];
                 (
@@ -106,7 +109,8 @@ impl MultibodySummary {
             .collect();
         let l = &record.angular_momentum;
         MultibodySummary {
-            bodies: spec.bodies.len(),
+            bodies: spec.bodies.iter().filter(|b| !b.particle).count(),
+            particles: spec.bodies.iter().filter(|b| b.particle).count(),
             joints,
             max_joint_residual: record.max_joint_residual,
             orthogonality_defect: record.max_orthogonality_defect,
