@@ -46,6 +46,8 @@ fn table_of(valid: &[&str]) -> &'static str {
         "[[system.joint]]"
     } else if has("inertia") && has("name") {
         "[[system.body]]"
+    } else if has("mass") && has("name") && valid.len() == 2 {
+        "[[system.particle]]"
     } else if has("Omega") && !has("q") {
         "[initial.<body>]"
     } else if has("generator") {
