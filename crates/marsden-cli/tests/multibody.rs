@@ -264,9 +264,9 @@ fn bad_bodies_joints_and_initial_tables_are_refused_with_their_messages() {
         (
             base.replace(
                 "gravity = [0.0, 0.0, -9.81]",
-                "gravity = [0.0, 0.0, -9.81]\npotential = \"a_z\"",
+                "gravity = [0.0, 0.0, -9.81]\ntorques = [\"0\", \"0\", \"a_z\"]",
             ),
-            vec!["`potential` cannot be used with `[[system.body]]`"],
+            vec!["`torques` cannot be used with `[[system.body]]`"],
         ),
         (
             base.replace("method = \"trapezoid\"", "method = \"gauss-2\""),

@@ -182,3 +182,58 @@ fn a_spring_without_bodies_is_refused() {
                 [integrator]\nmethod = \"trapezoid\"\nh = 0.01\nsteps = 10\n";
     refused(text, &["need bodies: the file has no [[system.body]]"]);
 }
+
+const SPRING: &str = "[[system.spring]]
+name = \"link\"
+bodies = [\"a\", \"b\"]
+at = [[0.1, 0.0, 0.0], [-0.1, 0.0, 0.0]]
+stiffness = 50.0
+rest_length = 1.0
+";
+
+/// The dumbbell's spring written instead as `potential = "…"` over the bodies' entries,
+/// `U = ½k(‖p_b − p_a‖ − ℓ₀)²` with `p = x + R X` spelled out in `a_x`, `a_R11`, …: the bodies'
+/// moments and forces then come from automatic differentiation of the expression, the
+/// spring's from its closed form, and the two runs agree to round-off over 2000 steps (every
+/// column of every row, 1e-9), energies included.
+#[test]
+fn a_potential_over_the_bodies_entries_moves_them_as_the_spring_does() {
+    let base = dumbbell_text()
+        .replace("t_end = 20.0", "steps = 2000")
+        .replace("every = 10", "every = 1\nplots = false");
+    assert!(base.contains(SPRING));
+    let written = base.replace(SPRING, "").replace(
+        "name = \"spring_dumbbell\"\n",
+        "name = \"spring_dumbbell\"\nparameters = { k = 50.0, l0 = 1.0 }\n\
+         potential = \"0.5*k*(sqrt((b_x - 0.1*b_R11 - a_x - 0.1*a_R11)^2 \
+         + (b_y - 0.1*b_R21 - a_y - 0.1*a_R21)^2 + (b_z - 0.1*b_R31 - a_z - 0.1*a_R31)^2) - l0)^2\"\n",
+    );
+    let (spring, _d1) = run_text(&base, &[]);
+    let (potential, _d2) = run_text(&written, &[]);
+    assert_eq!(
+        (spring.code, potential.code),
+        (0, 0),
+        "{}{}",
+        spring.stderr,
+        potential.stderr
+    );
+    let (a, b) = (spring.trajectory(), potential.trajectory());
+    let names: Vec<String> = a.names().map(str::to_owned).collect();
+    assert_eq!(names, b.names().map(str::to_owned).collect::<Vec<_>>());
+    let mut worst: f64 = 0.0;
+    for name in &names {
+        let (x, y) = (a.values(name).unwrap(), b.values(name).unwrap());
+        for (u, v) in x.iter().zip(y) {
+            worst = worst.max((u - v).abs());
+        }
+    }
+    println!("spring against the written potential: max difference {worst:.2e}");
+    assert!(worst <= 1e-9, "{worst:e}");
+    let e0 = number(&potential.summary(), "energy.initial");
+    assert!((e0 - 1.121875).abs() < 1e-12, "E0 = {e0}");
+    let bad = written.replace("- l0)^2\"", "- l0)^2 + t\"");
+    let (run, _d3) = run_text(&bad, &[]);
+    assert_eq!(run.code, 2, "{}", run.stderr);
+    assert!(run.stderr.contains("unknown name `t`"), "{}", run.stderr);
+    assert!(run.stderr.contains("not `t`"), "{}", run.stderr);
+}

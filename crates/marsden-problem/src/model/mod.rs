@@ -15,6 +15,7 @@ pub mod hamiltonian;
 pub mod inputs;
 pub mod lagrangian;
 pub mod multibody;
+pub mod multibody_potential;
 pub mod observables;
 pub mod parametric;
 pub mod rigid;

@@ -16,15 +16,17 @@ use marsden::lie::multibody::sum::PotentialSum;
 use marsden::lie::so3::{Mat3, Vec3};
 use marsden::lie::state::{RigidState, RigidSystem};
 
+use super::multibody_potential::ExprMultibodyPotential;
 use crate::problem::multibody::{JointKindSpec, JointSpec, MultibodySpec};
 use crate::problem::multibody_springs::{DamperSpec, SpringSpec};
 
-/// The core's system of a multibody file: free bodies in the field `g` and the springs'
-/// potential (the dampers, which depend on velocities, go to the stepper: [`dampers`]).
+/// The core's system of a multibody file: free bodies in the field `g`, the springs' potential
+/// and the file's `potential` (the dampers, which depend on velocities, go to the stepper:
+/// [`dampers`]).
 pub type MultibodySystem = RigidSystem<Potential>;
 
-/// The potential of a multibody file: the field and the springs.
-pub type Potential = PotentialSum<GravityField, Springs>;
+/// The potential of a multibody file: the field, the springs, and the written `U`.
+pub type Potential = PotentialSum<GravityField, PotentialSum<Springs, ExprMultibodyPotential>>;
 
 /// The system, the joints and the state at `t0` of `spec`.
 ///
@@ -51,11 +53,18 @@ pub fn core(
     let springs = Springs {
         springs: spec.springs.iter().map(|s| spring(s, &state)).collect(),
     };
+    let written = ExprMultibodyPotential {
+        program: spec.potential.clone(),
+        particles: spec.bodies.iter().map(|b| b.particle).collect(),
+    };
     let system = RigidSystem::new(
         unsprung.bodies,
         PotentialSum {
             first: gravity,
-            second: springs,
+            second: PotentialSum {
+                first: springs,
+                second: written,
+            },
         },
     );
     let joints = (spec.joints.iter())

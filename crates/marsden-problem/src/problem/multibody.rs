@@ -28,14 +28,18 @@ use std::ops::Range;
 
 use marsden::lie::body::{Inertia, Moments};
 use marsden::lie::state::BodyInitial;
+use marsden_expr::Program;
 use toml::Spanned;
 
 use super::check::Checker;
 use super::multibody_particles::{Sides, check_sides, span_or};
 use super::multibody_springs::{DamperSpec, SpringSpec};
+use super::parameters::Parameters;
 use super::raw::{RawInertia, RawSystem};
 use super::raw_multibody::{RawBody, RawJoint, RawParticle};
+use super::resolved::symbols;
 use crate::error::Diagnostic;
+use crate::model::multibody_potential::inputs;
 
 /// The name of the fixed space frame in `bodies = [...]`.
 pub const GROUND: &str = "ground";
@@ -110,6 +114,11 @@ pub struct MultibodySpec {
     pub dampers: Vec<DamperSpec>,
     /// Each body's initial attitude, body momentum, centre and momentum.
     pub initial: Vec<BodyInitial>,
+    /// `potential = "…"`: `U` over the bodies' entries
+    /// ([`crate::model::multibody_potential::inputs`]) and the parameters.
+    pub potential: Option<Program>,
+    /// The parameters with their values, in the file's order.
+    pub parameters: Vec<(String, f64)>,
 }
 
 /// Whether the file describes a multibody system.
@@ -203,6 +212,10 @@ pub(super) fn system(ck: &Checker<'_>, system: &RawSystem) -> Result<MultibodySp
     }
     let springs = super::multibody_springs::springs(ck, system, &bodies)?;
     let dampers = super::multibody_springs::dampers(ck, system, &bodies)?;
+    let Written {
+        potential,
+        parameters,
+    } = potential(ck, system, &bodies)?;
     Ok(MultibodySpec {
         bodies,
         gravity,
@@ -210,6 +223,47 @@ pub(super) fn system(ck: &Checker<'_>, system: &RawSystem) -> Result<MultibodySp
         springs,
         dampers,
         initial: Vec::new(),
+        potential,
+        parameters,
+    })
+}
+
+/// The file's `potential` and `parameters`.
+struct Written {
+    potential: Option<Program>,
+    parameters: Vec<(String, f64)>,
+}
+
+/// `potential = "…"` compiled over the bodies' entries and `parameters`.
+fn potential(
+    ck: &Checker<'_>,
+    system: &RawSystem,
+    bodies: &[BodySpec],
+) -> Result<Written, Diagnostic> {
+    let params = Parameters::read(ck, system)?;
+    let constants: Vec<(String, f64)> = (params.numbers.iter())
+        .map(|w| (w.name.clone(), w.value))
+        .collect();
+    let Some(text) = &system.potential else {
+        return Ok(Written {
+            potential: None,
+            parameters: constants,
+        });
+    };
+    let members: Vec<(String, bool)> = (bodies.iter())
+        .map(|b| (b.name.clone(), b.particle))
+        .collect();
+    let symbols = symbols(ck, inputs(&members), &constants, &params)?;
+    let what = "[system] potential";
+    let program = (ck.parse_expr(what, text)?.compile(&symbols)).map_err(|e| {
+        ck.expr_error(what, text, &e).note(
+            "a multibody potential reads `<body>_R11` … `<body>_R33` (bodies), `<name>_x`, \
+             `<name>_y`, `<name>_z` (bodies and particles) and the parameters; not `t`",
+        )
+    })?;
+    Ok(Written {
+        potential: Some(program),
+        parameters: constants,
     })
 }
 
@@ -555,10 +609,8 @@ fn refuse_other_keys(ck: &Checker<'_>, system: &RawSystem) -> Result<(), Diagnos
         ),
         ("controls", system.controls.as_ref().map(Spanned::span)),
         ("rigid_body", system.rigid_body.as_ref().map(Spanned::span)),
-        ("potential", system.potential.as_ref().map(Spanned::span)),
         ("torques", system.torques.as_ref().map(Spanned::span)),
         ("forces", system.forces.as_ref().map(Spanned::span)),
-        ("parameters", system.parameters.as_ref().map(Spanned::span)),
         (
             "symmetry",
             system
@@ -575,9 +627,10 @@ fn refuse_other_keys(ck: &Checker<'_>, system: &RawSystem) -> Result<(), Diagnos
                 format!("`{key}` cannot be used with `[[system.body]]`"),
             )
             .note(
-                "a multibody system is given by its bodies, its joints, a uniform `gravity` and \
-                   `[[system.spring]]`/`[[system.damper]]` between body points; potential and \
-                   load expressions and declared symmetries are not available for it yet",
+                "a multibody system is given by its bodies, its joints, a uniform `gravity`, \
+                   `[[system.spring]]`/`[[system.damper]]` between body points and a \
+                   `potential` over the bodies' entries; load expressions and declared \
+                   symmetries are not available for it yet",
             )),
         None => Ok(()),
     }

@@ -168,7 +168,7 @@ impl LagrangianSpec {
                 r.potential.text().unwrap_or("0")
             ),
             LagrangianSpec::Multibody(m) => format!(
-                "{} rigid bod{}{} joined by {} joint{}: L = Σ ½ΩᵀJΩ + ½m|ẋ|² − U, U = −Σ m g·x{}, g = {:?}{}",
+                "{} rigid bod{}{} joined by {} joint{}: L = Σ ½ΩᵀJΩ + ½m|ẋ|² − U, U = −Σ m g·x{}{}, g = {:?}{}",
                 m.bodies.iter().filter(|b| !b.particle).count(),
                 if m.bodies.iter().filter(|b| !b.particle).count() == 1 {
                     "y"
@@ -188,6 +188,10 @@ impl LagrangianSpec {
                         " + {n} spring{} ½k(‖d‖ − ℓ₀)²",
                         if n == 1 { "" } else { "s" }
                     ),
+                },
+                match &m.potential {
+                    None => String::new(),
+                    Some(u) => format!(" + {}", u.text()),
                 },
                 m.gravity,
                 match m.dampers.len() {

@@ -109,8 +109,8 @@ pub fn system(
         let spec = super::multibody::system(ck, system)?;
         return Ok(SystemSpec {
             coordinates: spec.centre_names(),
+            parameters: spec.parameters.clone(),
             lagrangian: LagrangianSpec::Multibody(Box::new(spec)),
-            parameters: Vec::new(),
             masses: None,
             force: crate::model::ExprForce::none(),
             constraint: crate::model::ExprConstraint::none(),
