@@ -402,16 +402,22 @@ impl Expressions {
                 Some(program)
             }
         };
-        let (path, path_texts) = path(ck, table.path.as_ref(), &with_u)?;
+        let PathInequalities { programs, texts } = path(ck, table.path.as_ref(), &with_u)?;
         Ok(Self {
             controls,
             force,
             cost,
             final_cost,
-            path,
-            path_texts,
+            path: programs,
+            path_texts: texts,
         })
     }
+}
+
+/// The path inequalities, compiled and as written.
+struct PathInequalities {
+    programs: ProgramSet,
+    texts: Vec<String>,
 }
 
 /// `path = ["g₁", …]`: each `g_i(t, q, q̇, u) ≤ 0`, compiled over the inputs of the forces.
@@ -419,9 +425,12 @@ fn path(
     ck: &Checker<'_>,
     list: Option<&SpannedList<String>>,
     with_u: &Symbols,
-) -> Result<(ProgramSet, Vec<String>), Diagnostic> {
+) -> Result<PathInequalities, Diagnostic> {
     let Some(list) = list else {
-        return Ok((ProgramSet::default(), Vec::new()));
+        return Ok(PathInequalities {
+            programs: ProgramSet::default(),
+            texts: Vec::new(),
+        });
     };
     if list.get_ref().is_empty() {
         return Err(ck.error(Some(list.span()), "`path` is empty").help(
@@ -433,5 +442,5 @@ fn path(
         .collect::<Result<Vec<_>, _>>()?;
     let programs = ck.compile_all("[optimal_control] path", list, &parsed, with_u)?;
     let texts = list.get_ref().iter().map(|v| v.get_ref().clone()).collect();
-    Ok((programs, texts))
+    Ok(PathInequalities { programs, texts })
 }
