@@ -660,6 +660,25 @@ impl JointKindSpec {
 }
 
 impl MultibodySpec {
+    /// "2 rigid bodies", "1 rigid body and 1 particle", "3 particles".
+    pub fn members(&self) -> String {
+        let particles = self.bodies.iter().filter(|b| b.particle).count();
+        let bodies = self.bodies.len() - particles;
+        let count = |n: usize, one: &str, many: &str| match n {
+            1 => format!("1 {one}"),
+            n => format!("{n} {many}"),
+        };
+        match (bodies, particles) {
+            (b, 0) => count(b, "rigid body", "rigid bodies"),
+            (0, p) => count(p, "particle", "particles"),
+            (b, p) => format!(
+                "{} and {}",
+                count(b, "rigid body", "rigid bodies"),
+                count(p, "particle", "particles")
+            ),
+        }
+    }
+
     /// The coordinates of the centres: `<body>_x, <body>_y, <body>_z` per body.
     pub fn centre_names(&self) -> Vec<String> {
         (self.bodies.iter())

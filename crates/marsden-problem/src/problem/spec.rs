@@ -123,7 +123,8 @@ pub enum LagrangianSpec {
     Discrete(ExprDiscreteLagrangian),
     /// `rigid_body = { … }`: a rigid body on SO(3) (× ℝ³), `L = ½ΩᵀJΩ (+ ½m|ẋ|²) − U`.
     Rigid(Box<RigidSpec>),
-    /// `[[system.body]]`, `[[system.joint]]`: rigid bodies on (SO(3) × ℝ³)ᵐ joined by joints.
+    /// `[[system.body]]`, `[[system.particle]]`, `[[system.joint]]`: rigid bodies on (SO(3) × ℝ³)ᵐ
+    /// and particles on (ℝ³)ⁿ joined by joints.
     Multibody(Box<MultibodySpec>),
 }
 
@@ -168,18 +169,8 @@ impl LagrangianSpec {
                 r.potential.text().unwrap_or("0")
             ),
             LagrangianSpec::Multibody(m) => format!(
-                "{} rigid bod{}{} joined by {} joint{}: L = Σ ½ΩᵀJΩ + ½m|ẋ|² − U, U = −Σ m g·x{}{}, g = {:?}{}",
-                m.bodies.iter().filter(|b| !b.particle).count(),
-                if m.bodies.iter().filter(|b| !b.particle).count() == 1 {
-                    "y"
-                } else {
-                    "ies"
-                },
-                match m.bodies.iter().filter(|b| b.particle).count() {
-                    0 => String::new(),
-                    1 => " and 1 particle".to_owned(),
-                    n => format!(" and {n} particles"),
-                },
+                "{} joined by {} joint{}: L = Σ ½ΩᵀJΩ + ½m|ẋ|² − U, U = −Σ m g·x{}{}, g = {:?}{}",
+                m.members(),
                 m.joints.len(),
                 if m.joints.len() == 1 { "" } else { "s" },
                 match m.springs.len() {

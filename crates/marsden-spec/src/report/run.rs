@@ -38,6 +38,12 @@ pub fn render(outcome: &Outcome) -> String {
                 m.bodies,
                 count(m.joints.len(), "joint", "joints")
             ),
+            (None, Some(m), _) if m.bodies == 0 => format!(
+                "{} on (ℝ³)^{}, {}",
+                count(m.particles, "particle", "particles"),
+                m.particles,
+                count(m.joints.len(), "joint", "joints")
+            ),
             (None, Some(m), _) => format!(
                 "{} and {} on (SO(3) × ℝ³)^{} × (ℝ³)^{}, {}",
                 count(m.bodies, "body", "bodies"),
