@@ -17,7 +17,7 @@ fn unknown_key_names_the_key_and_its_table() {
             "= note: valid keys in [system]: body, builtin, constraints, control_table, controls, \
              coordinates, damper, \
              discrete_lagrangian, forces, gravity, hamiltonian, joint, lagrangian, name, \
-             parameters, potential, rigid_body, spring, symmetry, torques",
+             parameters, particle, potential, rigid_body, spring, symmetry, torques",
         ],
     );
     assert_rejected(

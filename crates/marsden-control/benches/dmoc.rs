@@ -11,15 +11,20 @@
 //!   `g = 9.8`, the parameters of Barto, Sutton & Anderson 1983), force `u` on the cart,
 //!   rest at `(x, θ) = (0, 0)` to rest at `(0, π)` in `T = 2`, cost `∫ u²/2`, for
 //!   N = 50, 100, 200, 400 (the growth of the solve time with N; N = 200 is the headline).
+//! * `bryson_denham_bound`, `bryson_denham_path`: `ẍ = u`, `∫ u²/2`, from `(0, 1)` to `(0, −1)`
+//!   in `T = 1` with `x ≤ 1/9` as a bound on the nodes or as the path inequality `x − 1/9 ≤ 0`
+//!   at the midpoints (the cost of the inequality rows against simple bounds).
 //!
 //! Run (fat LTO, slow to build): `flock /work/release.lock cargo bench -p marsden-control`.
 
 use std::f64::consts::PI;
 
 use marsden::discrete::rules::Galerkin;
-use marsden::systems::{Pendulum, PendulumOnCart};
-use marsden::{Midpoint, Rule};
-use marsden_control::{Boundary, Effort, InputMap, OptimalControl, SqpOptions, StagedControls};
+use marsden::systems::{FreeFall, Pendulum, PendulumOnCart};
+use marsden::{Midpoint, Rule, Scalar};
+use marsden_control::{
+    Boundary, Effort, InputMap, OptimalControl, PathConstraint, SqpOptions, StagedControls,
+};
 
 fn main() {
     divan::main();
@@ -65,6 +70,47 @@ fn cart_pole(steps: usize) -> f64 {
         Boundary::rest(&[0.0, 0.0]),
         Boundary::rest(&[0.0, PI]),
     );
+    let solution = problem.and_then(|p| p.solve(&Midpoint, &SqpOptions::default()));
+    divan::black_box(solution.map_or(f64::NAN, |s| s.cost))
+}
+
+/// `x − 1/9 ≤ 0`.
+struct Ceiling;
+
+impl PathConstraint for Ceiling {
+    fn count(&self) -> usize {
+        1
+    }
+    fn eval<S: Scalar>(&self, _t: S, q: &[S], _v: &[S], _u: &[S], out: &mut [S]) {
+        out[0] = q[0] - 1.0 / 9.0;
+    }
+}
+
+/// The Bryson–Denham problem without its state constraint.
+fn bryson_denham(
+    steps: usize,
+) -> Result<OptimalControl<FreeFall, InputMap, Effort>, marsden_control::ControlError> {
+    OptimalControl::new(
+        FreeFall { m: 1.0, g: 0.0 },
+        InputMap::full(1),
+        Effort::default(),
+        (0.0, 1.0, steps),
+        Boundary::velocity(&[0.0], &[1.0]),
+        Boundary::velocity(&[0.0], &[-1.0]),
+    )
+}
+
+#[divan::bench(args = [50, 100, 200, 400], sample_count = 5)]
+fn bryson_denham_bound(steps: usize) -> f64 {
+    let problem =
+        bryson_denham(steps).and_then(|p| p.with_state_bounds(&[f64::NEG_INFINITY], &[1.0 / 9.0]));
+    let solution = problem.and_then(|p| p.solve(&Midpoint, &SqpOptions::default()));
+    divan::black_box(solution.map_or(f64::NAN, |s| s.cost))
+}
+
+#[divan::bench(args = [50, 100, 200, 400], sample_count = 5)]
+fn bryson_denham_path(steps: usize) -> f64 {
+    let problem = bryson_denham(steps).map(|p| p.with_path(Ceiling));
     let solution = problem.and_then(|p| p.solve(&Midpoint, &SqpOptions::default()));
     divan::black_box(solution.map_or(f64::NAN, |s| s.cost))
 }
