@@ -1,7 +1,7 @@
 //! Checkpoints and `marsden resume`: a run killed with SIGKILL at pseudo-random moments and
 //! resumed leaves the files of the uninterrupted run byte for byte (`summary.json`'s wall-clock
 //! times aside) — for the explicit Störmer–Verlet path, a Newton step (midpoint), a Galerkin
-//! rule (gauss-2), a constrained run (RATTLE), runs with events, runs with `[sensitivity]`
+//! rule (gauss-2, with samples at chosen times reached by steps aside), a constrained run (RATTLE), runs with events, runs with `[sensitivity]`
 //! (killed in the run or in its tangent run) and forced and time-dependent runs (their energy
 //! and Noether balances carried), in CSV and `.npy`; bad
 //! checkpoints and changed files are refused with nothing changed.
@@ -88,6 +88,18 @@ fn cases() -> Vec<Case> {
             times.join(", ")
         ),
     );
+    // Gauss-2 (its predictor carried) with 300 times reached by steps of their own size, taken
+    // aside between grid points.
+    let exact: Vec<String> = (0..300)
+        .map(|j| format!("{}", 0.37 + 13.1 * f64::from(j)))
+        .collect();
+    let gauss_exact = pendulum("gauss-2", 400_000).replace(
+        "plots = false",
+        &format!(
+            "plots = false\ntimes = [{}]\nexact_times = true",
+            exact.join(", ")
+        ),
+    );
     let case = |name, text: String, every| Case {
         name,
         text,
@@ -97,7 +109,7 @@ fn cases() -> Vec<Case> {
     vec![
         case("explicit", pendulum("trapezoid", 3_000_000), "100000"),
         case("midpoint", pendulum("midpoint", 1_000_000), "50000"),
-        case("gauss-2", pendulum("gauss-2", 400_000), "20000"),
+        case("gauss-2", gauss_exact, "20000"),
         case("constrained", constrained.to_owned(), "20000"),
         case("events", events.to_owned(), "30000"),
         case("npy", npy, "50000"),

@@ -149,6 +149,62 @@ fn npy_samples_are_the_csv_samples() {
     }
 }
 
+/// `exact_times = true` with gauss-2: the samples at π and 5.55 are, to the bit, the last rows
+/// of the same file run to `t_end = "pi"` and `t_end = 5.55` (whose last steps are the shorter
+/// ones the samples were reached by), the trajectory is byte for byte the one without
+/// `exact_times`, and the summary and the console say how the times were reached.
+#[test]
+fn exact_times_are_the_ends_of_runs_stopping_there() {
+    let gauss = |t_end: &str, output: &str| {
+        pendulum("0.1", t_end, output).replace("\"midpoint\"", "\"gauss-2\"")
+    };
+    let run_of = |text: String| {
+        let (dir, path) = file("pendulum.toml", &text);
+        let run = marsden("run", &path, &[]);
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        (dir, run)
+    };
+    let (_d1, exact) = run_of(gauss("12", "times = [\"pi\", 5.55]\nexact_times = true"));
+    let (_d2, read) = run_of(gauss("12", "times = [\"pi\", 5.55]"));
+    let s = exact.summary();
+    assert_eq!(s["samples"]["reached_by"], "step");
+    assert_eq!(read.summary()["samples"]["reached_by"], "interpolant");
+    assert!(
+        exact
+            .stdout
+            .contains("2 requested time(s) sampled by steps of their own size"),
+        "{}",
+        exact.stdout
+    );
+    let trajectory =
+        |run: &crate::util::Run| std::fs::read(run.out.join("trajectory.csv")).unwrap();
+    assert_eq!(
+        trajectory(&exact),
+        trajectory(&read),
+        "the run is unchanged"
+    );
+    let samples = read_samples(&exact.out);
+    let interpolated = read_samples(&read.out);
+    for (row, t_end) in ["pi", "5.55"].into_iter().enumerate() {
+        let (_d, ended) = run_of(gauss(&format!("\"{t_end}\""), ""));
+        let last = marsden_io::read_csv(ended.out.join("trajectory.csv")).unwrap();
+        let end = column(&last, "t").len() - 1;
+        for name in ["t", "q_theta", "p_theta"] {
+            let stored = column(&last, name);
+            assert_eq!(
+                column(&samples, name)[row],
+                stored[end],
+                "{name} at t = {t_end}"
+            );
+        }
+        let off = (column(&interpolated, "p_theta")[row] - column(&samples, "p_theta")[row]).abs();
+        assert!(
+            off > 0.0 && off < 1e-3,
+            "the interpolant's momentum differs a little: {off:e}"
+        );
+    }
+}
+
 /// A run stopped by an event at T/4 ≈ 1.825 reaches one of the times 1, 2, 3: the summary and
 /// the console say one of three, and `samples.csv` has one row.
 #[test]
@@ -196,6 +252,11 @@ fn bad_times_are_refused_with_a_caret() {
             rigid.to_owned(),
             "`times` cannot be sampled for a rigid body",
             "[0.05]",
+        ),
+        (
+            pendulum("0.05", "4", "exact_times = true"),
+            "`exact_times = true` needs the times to reach: `times` is not given",
+            "true",
         ),
     ];
     for (text, message, written) in cases {

@@ -286,6 +286,17 @@ impl<L: Lagrangian, O: Observer> Observer for Watched<'_, '_, L, O> {
         self.inner.next_stop(step)
     }
 
+    fn landing(&self, step: usize, t: f64, next: f64) -> Option<f64> {
+        (self.samples.as_ref()).and_then(|s| s.landing(step, t, next))
+    }
+
+    fn landed(&mut self, reached: Result<&StepView<'_>, &marsden::Error>) -> ControlFlow<()> {
+        match &mut self.samples {
+            Some(samples) => samples.landed(reached),
+            None => ControlFlow::Continue(()),
+        }
+    }
+
     fn termination(&self) -> Option<Termination> {
         (self.detector.as_ref())
             .and_then(|d| d.termination())

@@ -152,6 +152,15 @@ impl<G: GroupAction, F: DiscreteForce, O: Observer + ?Sized> Observer
         true
     }
 
+    /// The steps aside go to the inner observer alone (they are not steps of the run).
+    fn landing(&self, step: usize, t: f64, next: f64) -> Option<f64> {
+        self.inner.landing(step, t, next)
+    }
+
+    fn landed(&mut self, reached: Result<&StepView<'_>, &marsden::Error>) -> ControlFlow<()> {
+        self.inner.landed(reached)
+    }
+
     /// The inner observer's reason (an event that stopped the run, or failed to be located).
     fn termination(&self) -> Option<marsden::Termination> {
         self.inner.termination()

@@ -12,6 +12,7 @@ use marsden_io::RowSink;
 use crate::checkpoint::SamplesCheckpoint;
 use marsden_problem::error::Diagnostic;
 use marsden_problem::model::Observables;
+use marsden_problem::problem::OutputSpec;
 
 /// The file name of the samples.
 pub const SAMPLES_CSV: &str = "samples.csv";
@@ -51,22 +52,28 @@ pub struct TimeSamples<'a, 's, L> {
 }
 
 impl<'a, 's, L: Lagrangian> TimeSamples<'a, 's, L> {
-    /// The sampler of `lagrangian`'s runs at `times` (`None` when there are none), writing
-    /// into `sink` (none: counted only).
+    /// The sampler of `lagrangian`'s runs at the times of `output` (`None` when there are
+    /// none), each read off the step's interpolant or, with `exact_times`, reached by a step
+    /// of its own size; writing into `sink` (none: counted only).
     ///
     /// # Errors
     /// The core's objection to the times or to the Lagrangian (a singular declared mass
     /// matrix).
     pub fn new(
-        (lagrangian, times): (&'a L, &[f64]),
+        (lagrangian, output): (&'a L, &OutputSpec),
         observables: &'a Observables,
         sink: Option<&'s mut (dyn RowSink + 's)>,
     ) -> Result<Option<Self>, Diagnostic> {
+        let times = output.times.as_slice();
         if times.is_empty() {
             return Ok(None);
         }
         let sampler = TimeSampler::new(lagrangian, times)
             .map_err(|e| Diagnostic::new(format!("the times cannot be sampled: {e}")))?;
+        let sampler = match output.exact_times {
+            true => sampler.by_steps(),
+            false => sampler,
+        };
         Ok(Some(Self {
             sampler,
             observables,
@@ -170,6 +177,19 @@ impl<L: Lagrangian> Observer for TimeSamples<'_, '_, L> {
         let sampled = self.sampler.observe(view);
         let written = self.stream();
         match (sampled, written) {
+            (ControlFlow::Continue(()), ControlFlow::Continue(())) => ControlFlow::Continue(()),
+            _ => ControlFlow::Break(()),
+        }
+    }
+
+    fn landing(&self, step: usize, t: f64, next: f64) -> Option<f64> {
+        self.sampler.landing(step, t, next)
+    }
+
+    fn landed(&mut self, reached: Result<&StepView<'_>, &marsden::Error>) -> ControlFlow<()> {
+        let landed = self.sampler.landed(reached);
+        let written = self.stream();
+        match (landed, written) {
             (ControlFlow::Continue(()), ControlFlow::Continue(())) => ControlFlow::Continue(()),
             _ => ControlFlow::Break(()),
         }

@@ -403,7 +403,7 @@ impl<'a, 's, L: Lagrangian, F: Force> Session<'a, 's, L, F> {
             .monitoring_every_step(spec.analysis.every_step)
             .with_observables(&spec.events.observables);
         let events = (lagrangian, &spec.events);
-        let times = (lagrangian, spec.output.times.as_slice());
+        let times = (lagrangian, &spec.output);
         let samples = TimeSamples::new(times, &spec.events.observables, destination.samples)?;
         let mut observer = Watched::new(stream, events, destination.events)?.with_samples(samples);
         if let Some(c) = destination.checkpoints.and_then(|p| p.resume.as_deref()) {

@@ -73,3 +73,20 @@ def test_bad_times_raise_problem_error_with_the_reason():
         oscillator(0.1, [9.0])
     with pytest.raises(marsden.ProblemError, match="times: expected a list of numbers"):
         oscillator(0.1, 3.0)
+
+
+def test_exact_times_are_the_ends_of_runs_stopping_there():
+    """``exact_times=True``: the sample at e is, to the bit, the last state of the same problem
+    with ``t_end = e`` (its last step is the shorter one the sample was reached by), and the
+    run's own states are those of the run without it."""
+    exact = oscillator(0.1, [math.e], exact_times=True).solve()
+    plain = oscillator(0.1, None).solve()
+    assert exact.summary["samples"]["reached_by"] == "step"
+    ended = marsden.Problem(lagrangian="0.5*x_dot^2 - 0.5*x^2", coordinates=["x"], q0=[1.0],
+                            v0=[0.0], h=0.1, t_end=math.e, tolerance=1e-14).solve()
+    assert ended.t[-1] == math.e
+    assert exact.at_times["q"][0, 0] == ended.q[-1, 0]
+    assert exact.at_times["p"][0, 0] == ended.p[-1, 0]
+    assert np.array_equal(exact.q, plain.q) and np.array_equal(exact.p, plain.p)
+    with pytest.raises(marsden.ProblemError, match="needs the times to reach"):
+        oscillator(0.1, None, exact_times=True)

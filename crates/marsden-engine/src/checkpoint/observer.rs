@@ -133,6 +133,14 @@ impl<O: Observer + Carries> Observer for Checkpointing<'_, O> {
         self.inner.termination()
     }
 
+    fn landing(&self, step: usize, t: f64, next: f64) -> Option<f64> {
+        self.inner.landing(step, t, next)
+    }
+
+    fn landed(&mut self, reached: Result<&StepView<'_>, &marsden::Error>) -> ControlFlow<()> {
+        self.inner.landed(reached)
+    }
+
     fn checkpoint_due(&self, step: usize) -> bool {
         step.is_multiple_of(self.plan.every)
     }

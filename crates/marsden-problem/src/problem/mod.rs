@@ -301,6 +301,7 @@ fn validate_raw(
         &system.coordinates,
     )?;
     output.times = sampled_times::times(&ck, raw, &system, &integrator.grid)?;
+    output.exact_times = sampled_times::exact(&ck, raw, &output.times)?;
     let sweep = match with_sweep {
         true => {
             let parts = (&system, &initial, bodies.is_some());

@@ -344,6 +344,9 @@ pub struct RawOutput {
     /// expressions, [`super::sampled_times`]).
     #[serde(default, deserialize_with = "super::number::spanned_list")]
     pub times: Option<SpannedList<f64>>,
+    /// Reach each of `times` inside a step by a step of its own size (default false: read off
+    /// the step's interpolant).
+    pub exact_times: Option<Spanned<bool>>,
     /// Draw PNG plots (default true).
     pub plots: Option<Spanned<bool>>,
     /// Coordinates that are angles: plots show them wrapped to (−π, π].

@@ -4,6 +4,7 @@
 //! [output]
 //! times = [0.5, "pi", 10]     # numbers or constant expressions, strictly increasing,
 //!                             # from t0 to the final time
+//! exact_times = true          # optional: each reached by a step of its own size
 //! ```
 //!
 //! Each time is sampled on the Hermite interpolant of the step it lies in, with `v = FL⁻¹(q,
@@ -12,6 +13,11 @@
 //! trajectory. Checked here, each with the caret on the offending value: the order, the range
 //! of the run, and the kinds of run the interpolant is built for (a continuous Lagrangian or
 //! Hamiltonian: not a file's own `discrete_lagrangian`, nor rigid bodies, nor a sweep).
+//!
+//! With `exact_times = true` a time inside a step is reached instead by a variational step of
+//! its own size from the grid point before it, taken aside (the run goes on unchanged): the
+//! sample is bit for bit the final state of the same file with `t_end` at that time, exact to
+//! the method's order, for one extra step per time.
 
 use marsden::TimeGrid;
 
@@ -73,6 +79,27 @@ pub fn times(
         times.push(t);
     }
     Ok(times)
+}
+
+/// `[output] exact_times` (default false): each requested time inside a step reached by a
+/// variational step of its own size from the grid point before it — the state a run ending at
+/// that time reaches — rather than read off the step's interpolant.
+///
+/// # Errors
+/// `exact_times = true` without `times`, with the caret on it.
+pub fn exact(ck: &Checker<'_>, raw: &RawProblem, times: &[f64]) -> Result<bool, Diagnostic> {
+    let Some(exact) = (raw.output.as_ref()).and_then(|o| o.get_ref().exact_times.as_ref()) else {
+        return Ok(false);
+    };
+    if *exact.get_ref() && times.is_empty() {
+        return Err(ck
+            .error(
+                Some(exact.span()),
+                "`exact_times = true` needs the times to reach: `times` is not given",
+            )
+            .help("add `times = [...]` to [output], or remove `exact_times`"));
+    }
+    Ok(*exact.get_ref())
 }
 
 /// Which kind of system has no interpolant to sample (`None`: it has one).

@@ -377,6 +377,7 @@ pub fn output(
         angles,
         checkpoint_every,
         times: Vec::new(),
+        exact_times: false,
     })
 }
 

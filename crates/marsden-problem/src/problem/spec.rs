@@ -384,4 +384,7 @@ pub struct OutputSpec {
     /// Times at which the state is sampled (`[output] times`, checked: increasing, inside the
     /// run; empty: none).
     pub times: Vec<f64>,
+    /// `[output] exact_times`: each time inside a step reached by a variational step of its
+    /// own size from the grid point before it, not read off the step's interpolant.
+    pub exact_times: bool,
 }

@@ -153,6 +153,7 @@ class Problem:
         output_format: Optional[str] = ...,
         plots: Optional[bool] = ...,
         times: Optional[Sequence[float]] = ...,
+        exact_times: Optional[bool] = ...,
         every_step: Optional[bool] = ...,
         certify: Optional[bool] = ...,
         sensitivity: Optional[SensitivityRequest] = ...,

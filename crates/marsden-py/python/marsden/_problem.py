@@ -81,7 +81,8 @@ class Problem:
       ``fast_paths``, ``compensated``.
     - the output: ``every`` (store every k-th step), ``angles`` (coordinates that are
       angles: plots wrap them), ``times`` (the state at these times, between grid points
-      too, read off the step's interpolant: ``solution.at_times``), and for a file run by
+      too, read off the step's interpolant: ``solution.at_times``; with ``exact_times=True``
+      each reached by a step of its own size instead), and for a file run by
       ``marsden run``: ``output_dir``, ``output_format`` (``csv``, ``npy``) and ``plots``.
     - the analysis: ``every_step`` (monitor energy and momenta at every step, not only the
       stored ones) and ``certify`` (the symplecticity and equivariance defects, in
@@ -126,6 +127,7 @@ class Problem:
         output_format: Optional[str] = None,
         plots: Optional[bool] = None,
         times: Optional[Sequence[float]] = None,
+        exact_times: Optional[bool] = None,
         every_step: Optional[bool] = None,
         certify: Optional[bool] = None,
         sensitivity: Optional[_sensitivity.Request] = None,
@@ -156,6 +158,7 @@ class Problem:
             project=project, tolerance=tolerance, max_iterations=max_iterations,
             fast_paths=fast_paths, compensated=compensated, every=every, angles=angles,
             output_dir=output_dir, output_format=output_format, plots=plots, times=times,
+            exact_times=exact_times,
             every_step=every_step, certify=certify, sensitivity=sensitivity, sweep=sweep,
             rigid_body=rigid_body, potential=potential, torques=torques,
             body_rotation=body_rotation, R0=R0, quaternion0=quaternion0,

@@ -25,7 +25,8 @@ method, h, steps, t_end, tolerance,    ``[integrator]`` (same keys)
 max_iterations, fast_paths,
 compensated
 every, angles, output_dir,             ``[output]`` every, angles, dir, format, plots,
-output_format, plots, times            times
+output_format, plots, times,           times, exact_times
+exact_times
 every_step, certify                    ``[analysis]`` (same keys)
 sensitivity                            ``[sensitivity]``
 sweep                                  ``[sweep]`` (and ``[sweep.and]``)
@@ -80,6 +81,7 @@ class Keywords:
     output_format: Optional[str] = None
     plots: Optional[bool] = None
     times: Optional[Sequence[Any]] = None
+    exact_times: Optional[bool] = None
     every_step: Optional[bool] = None
     certify: Optional[bool] = None
     sensitivity: Any = None
@@ -196,6 +198,7 @@ def _tables(out: Generated, k: Keywords) -> None:
         ("angles", "angles",
          kw.maybe(lambda a: Value.strings_of("angles", kw.names(a, "angles")), k.angles)),
         ("times", "times", kw.maybe(lambda t: kw.floats(t, "times"), k.times)),
+        ("exact_times", "exact_times", kw.maybe(kw.boolean, k.exact_times)),
     ]
     if any(value is not None for _, _, value in output):
         out.table("[output]", output)

@@ -210,10 +210,14 @@ pub fn render(outcome: &Outcome) -> String {
         line(&mut out, "events", counts.join(", "));
     }
     if let Some(samples) = &s.samples {
+        let by = match samples.reached_by {
+            "step" => "by steps of their own size",
+            _ => "on the steps' interpolants",
+        };
         let reached = match samples.taken == samples.requested {
-            true => format!("{} requested time(s) sampled", samples.taken),
+            true => format!("{} requested time(s) sampled {by}", samples.taken),
             false => format!(
-                "{} of {} requested times sampled (the run ended before the others)",
+                "{} of {} requested times sampled {by} (the run ended before the others)",
                 samples.taken, samples.requested
             ),
         };

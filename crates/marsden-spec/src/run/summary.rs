@@ -196,6 +196,9 @@ pub struct SamplesSummary {
     pub requested: usize,
     /// Samples taken (fewer than requested when the run ended before the last time).
     pub taken: usize,
+    /// How a time inside a step was reached: `"interpolant"` (the step's Hermite
+    /// interpolant) or `"step"` (a variational step of its own size, `exact_times = true`).
+    pub reached_by: &'static str,
 }
 
 /// `energy { … }`.
@@ -457,6 +460,10 @@ impl Summary {
             samples: record.samples.as_ref().map(|s| SamplesSummary {
                 requested: s.requested,
                 taken: s.taken,
+                reached_by: match spec.output.exact_times {
+                    true => "step",
+                    false => "interpolant",
+                },
             }),
         }
     }

@@ -59,6 +59,23 @@ pub trait Observer {
     fn termination(&self) -> Option<Termination> {
         None
     }
+    /// When [`Observer::every_step`] is true: a time `τ` strictly inside the next step, from
+    /// grid point `step` (at `t`) to the one at `next`, at which the observer wants the state
+    /// reached by a variational step of its own size `τ − t` from `t` — the state a run ending
+    /// at `τ` would reach ([`crate::TimeGrid::ending_at`]). The run loop takes that step
+    /// aside, shows its state to [`Observer::landed`], and restores the stepper
+    /// ([`Stepper::restore_carried`](crate::run::Stepper::restore_carried)), so the run goes on
+    /// bit for bit as if it had not been taken; it asks again until this returns `None`.
+    /// Default: `None`.
+    fn landing(&self, _step: usize, _t: f64, _next: f64) -> Option<f64> {
+        None
+    }
+    /// The state of the step aside that [`Observer::landing`] asked for (its `step` is the
+    /// grid step it lies in, `k + 1`), or why it could not be taken. Return
+    /// `ControlFlow::Break(())` to stop the run. Default: nothing.
+    fn landed(&mut self, _reached: Result<&StepView<'_>, &crate::Error>) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
     /// Whether the run should be checkpointed where [`Observer::observe`] stopped it, because
     /// the stop was asked from outside (a signal), not reached (an event that ends the run):
     /// a resume then continues from there. Default: `false`.

@@ -5,10 +5,13 @@
 //! an [`Observer`], which can monitor, stream to disk, report progress or stop the run. Times are
 //! computed as `t₀ + k h`, never accumulated.
 
+use std::ops::ControlFlow;
+
 use super::grid::{RunOptions, TimeGrid};
 use super::observer::{Observer, StepView};
 use super::stepper::Stepper;
 use super::trajectory::{Termination, Trajectory};
+use crate::error::{Error, InputError};
 use crate::integrator::{Statistics, StepReport};
 use crate::mechanics::State;
 
@@ -112,6 +115,11 @@ where
         } else {
             1
         };
+        if !chunked && side_steps(stepper, &state, (k, grid.time(k + 1)), observer).is_break() {
+            traj.termination =
+                (observer.termination()).unwrap_or(Termination::Stopped { steps: k });
+            break;
+        }
         let done_before = stepper.steps_done();
         let outcome = stepper.advance_on(&mut state, grid, k, chunk);
         k += stepper.steps_done() - done_before;
@@ -159,6 +167,51 @@ where
     store_last_good(&mut traj, &state, multipliers, last_report);
     traj.statistics = difference(&stepper.statistics(), before);
     traj
+}
+
+/// The steps aside that `observer` asks for inside the step from grid point `k` to the time
+/// `next` ([`Observer::landing`]): each from `state` with a step of its own size `τ − t_k`,
+/// shown to [`Observer::landed`], the stepper restored after it to what it carried before, so
+/// the run's own steps are those of a run without them, bit for bit.
+fn side_steps<S, O>(
+    stepper: &mut S,
+    state: &State,
+    (k, next): (usize, f64),
+    observer: &mut O,
+) -> ControlFlow<()>
+where
+    S: Stepper + ?Sized,
+    O: Observer + ?Sized,
+{
+    while let Some(tau) = observer.landing(k, state.t, next) {
+        let Some(carried) = stepper.carried() else {
+            let error = Error::Input(InputError::InvalidOption {
+                name: "landing",
+                value: tau,
+                reason: "this stepper cannot step aside to a time between its grid points (it \
+                         cannot be restored after the step)",
+            });
+            return observer.landed(Err(&error));
+        };
+        let mut aside = state.clone();
+        let flow = match stepper.advance(&mut aside, tau - state.t, 1) {
+            Ok(report) => observer.landed(Ok(&StepView {
+                step: k + 1,
+                t: tau,
+                q: &aside.q,
+                p: &aside.p,
+                multipliers: stepper.multipliers(),
+                end_multipliers: stepper.end_multipliers(),
+                report: &report,
+            })),
+            Err(error) => observer.landed(Err(&error)),
+        };
+        if let Err(error) = stepper.restore_carried(&carried) {
+            return observer.landed(Err(&error));
+        }
+        flow?;
+    }
+    ControlFlow::Continue(())
 }
 
 /// After a failure, makes sure the last good state is the last sample.

@@ -7,4 +7,5 @@ mod events;
 mod last_step;
 mod maps_and_runs;
 mod nbody_file;
+mod sampled_by_steps;
 mod sampled_times;

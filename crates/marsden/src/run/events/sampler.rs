@@ -16,6 +16,10 @@
 //! contains a requested time — a run with a few sampled times costs little more than without.
 //! Requested times before the run's start or after its end are never reached.
 //!
+//! [`TimeSampler::by_steps`] reaches a time inside a step instead by a variational step of its
+//! own size from the grid point before it, taken aside ([`Observer::landing`]): the state a run
+//! ending there would reach, exact to the method's order, at the cost of one step per time.
+//!
 //! ```
 //! use marsden::run::events::TimeSampler;
 //! use marsden::{Initial, Midpoint, Problem, SolveOptions, TimeGrid};
@@ -108,6 +112,9 @@ pub struct TimeSampler<'l, L> {
     v1: Vec<f64>,
     samples: Vec<Sample>,
     failure: Option<Error>,
+    /// Whether a requested time inside a step is reached by a step of its own size
+    /// ([`TimeSampler::by_steps`]) rather than read off the interpolant.
+    by_steps: bool,
 }
 
 impl<'l, L: Lagrangian> TimeSampler<'l, L> {
@@ -138,7 +145,29 @@ impl<'l, L: Lagrangian> TimeSampler<'l, L> {
             v1: vec![0.0; n],
             samples: Vec::new(),
             failure: None,
+            by_steps: false,
         })
+    }
+
+    /// The sampler that reaches each requested time `τ` inside a step `(t_k, t_{k+1})` by a
+    /// variational step of its own size `τ − t_k` from the grid point before it, taken aside
+    /// by the run loop ([`Observer::landing`]): the sample is, bit for bit, the end of the
+    /// same run asked to end at `τ` ([`crate::TimeGrid::ending_at`]: its last step is that
+    /// shorter step), exact to the method's order like every grid state, while the run itself
+    /// goes on unchanged. Costs one step per requested time; needs a stepper that can be
+    /// restored after the step aside ([`crate::run::Stepper::carried`]).
+    #[must_use]
+    pub fn by_steps(self) -> Self {
+        Self {
+            by_steps: true,
+            ..self
+        }
+    }
+
+    /// Whether requested times are reached by steps of their own size
+    /// ([`TimeSampler::by_steps`]).
+    pub fn is_by_steps(&self) -> bool {
+        self.by_steps
     }
 
     /// The samples taken so far, in the order of their times.
@@ -279,6 +308,40 @@ impl<L: Lagrangian> Observer for TimeSampler<'_, L> {
         if self.due_soon(view.t, h) {
             self.before.set(view);
         }
+        ControlFlow::Continue(())
+    }
+
+    fn landing(&self, _step: usize, t: f64, next: f64) -> Option<f64> {
+        let tau = *self.times.get(self.next)?;
+        (self.by_steps && self.failure.is_none() && t < tau && tau < next).then_some(tau)
+    }
+
+    /// Keeps the state of the step aside as the sample at its time, its velocity from the
+    /// inverse Legendre transform started from the secant of the step to it.
+    fn landed(&mut self, reached: Result<&StepView<'_>, &Error>) -> ControlFlow<()> {
+        let view = match reached {
+            Ok(view) => view,
+            Err(error) => {
+                self.failure = Some(error.clone());
+                return ControlFlow::Break(());
+            }
+        };
+        self.next += 1;
+        let h = view.t - self.before.t;
+        let mut v: Vec<f64> = (view.q.iter().zip(&self.before.q))
+            .map(|(q1, q0)| (q1 - q0) / h)
+            .collect();
+        if let Err(error) = self.legendre.velocity(view.t, view.q, view.p, &mut v) {
+            self.failure = Some(error);
+            return ControlFlow::Break(());
+        }
+        self.samples.push(Sample {
+            step: view.step,
+            t: view.t,
+            q: view.q.to_vec(),
+            v,
+            p: view.p.to_vec(),
+        });
         ControlFlow::Continue(())
     }
 
