@@ -4,7 +4,11 @@ between two runs of the same problem with N1 and N2 steps, divided by N2 − N1 
 set-up and writing cancel). Deterministic where wall time on a shared machine is not: the
 figure to compare two builds with (BENCHMARKS.md, headline table).
 
-    scripts/instructions.py BIN [BIN2 ...] [--cases k,ke,p,pe,dp,dpe,nb]
+    scripts/instructions.py BIN [BIN2 ...] [--cases k,ke,p,pe,dp,dpe,nb] [--every K]
+
+A case name with `+ev` (`p+ev`, `pe+ev`) adds an event that never fires (`when = "theta - 3"`):
+the cost of watching a run for events. `--every K` stores every K-th step (default: none but
+the first and the last).
 
 Cases (the headline cases of BENCHMARKS.md): Kepler e = 0.6, h = 0.01, trapezoid (k builtin,
 ke as text); pendulum q0 = 1.5, h = 0.05, midpoint (p, pe); double pendulum, h = 0.01,
@@ -45,17 +49,22 @@ CASES = {
 }
 
 
-def problem(case, steps, out):
-    system, initial, method, h, _ = CASES[case]
+EVENT = '[[events]]\nname = "never"\nwhen = "theta - 3"\n\n'
+
+
+def problem(case, steps, out, every):
+    base, _, extra = case.partition("+")
+    system, initial, method, h, _ = CASES[base]
+    event = EVENT if extra == "ev" else ""
     return (f"[system]\n{system}\n\n[initial]\n{initial}\n\n[integrator]\nmethod = \"{method}\"\n"
-            f"h = {h}\nsteps = {steps}\ntolerance = 1e-12\n\n[output]\ndir = \"{out}\"\n"
-            "every = 10000000\nplots = false\n")
+            f"h = {h}\nsteps = {steps}\ntolerance = 1e-12\n\n{event}[output]\ndir = \"{out}\"\n"
+            f"every = {every}\nplots = false\n")
 
 
-def instructions(binary, case, steps, work):
+def instructions(binary, case, steps, work, every):
     path = os.path.join(work, f"{case}-{steps}.toml")
     with open(path, "w") as f:
-        f.write(problem(case, steps, os.path.join(work, "out")))
+        f.write(problem(case, steps, os.path.join(work, "out"), every))
     run = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null",
                           binary, "run", path, "--quiet"], capture_output=True, text=True)
     found = re.search(r"Collected : (\d+)", run.stderr)
@@ -68,15 +77,17 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("binaries", nargs="+")
     ap.add_argument("--cases", default="k,ke,p,pe,dp,dpe,nb")
+    ap.add_argument("--every", type=int, default=10_000_000)
     args = ap.parse_args()
     work = tempfile.mkdtemp(prefix="marsden-instructions-")
     cases = args.cases.split(",")
     print("case  " + "  ".join(f"{os.path.basename(os.path.dirname(os.path.dirname(os.path.dirname(b)))) or b:>14}" for b in args.binaries))
     for case in cases:
-        n1, n2 = CASES[case][4]
+        n1, n2 = CASES[case.partition("+")[0]][4]
         row = []
         for b in args.binaries:
-            per_step = (instructions(b, case, n2, work) - instructions(b, case, n1, work)) / (n2 - n1)
+            counts = [instructions(b, case, n, work, args.every) for n in (n2, n1)]
+            per_step = (counts[0] - counts[1]) / (n2 - n1)
             row.append(per_step)
         ratios = "  ".join(f"{r / row[0]:.3f}" for r in row[1:])
         print(f"{case:<5} " + "  ".join(f"{r:>14.1f}" for r in row) + (f"   ratio {ratios}" if ratios else ""), flush=True)

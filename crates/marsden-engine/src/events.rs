@@ -4,13 +4,15 @@
 //! `event, t, q…, p…` (`event` is the index of the event in the file's `[[events]]`).
 //!
 //! A file without events is watched by nothing: [`Watched`] then forwards every call to the
-//! streaming observer unchanged (same steps seen, same rows written). With events the run is
-//! observed at every step: the detector evaluates each `g` once per step (with the velocities,
-//! an inverse Legendre transform, only if some `when` reads them) and locates a sign change on
-//! the step's Hermite interpolant (Brent's method).
+//! streaming observer unchanged (same steps seen, same rows written). With events the detector
+//! watches every step inside the stretches the run loop hands the stepper: it evaluates each
+//! `g` once per step (with the velocities, an inverse Legendre transform, only if some `when`
+//! reads them), ends the stretch at a sign change, and locates it on the step's Hermite
+//! interpolant (Brent's method).
 
 use std::ops::ControlFlow;
 
+use marsden::run::StepWatch;
 use marsden::run::events::{Event, EventDetector, EventRecord};
 use marsden::{Lagrangian, Observer, StepView, Termination};
 use marsden_io::RowSink;
@@ -278,8 +280,14 @@ impl<L: Lagrangian, O: Observer> Observer for Watched<'_, '_, L, O> {
         }
     }
 
+    /// The detector watches the steps inside the stretches the run loop hands the stepper
+    /// ([`Observer::step_watch`]): events alone do not make the run go step by step.
     fn every_step(&self) -> bool {
-        self.detector.is_some() || self.samples.is_some() || self.inner.every_step()
+        self.samples.is_some() || self.inner.every_step()
+    }
+
+    fn step_watch(&mut self) -> Option<&mut dyn StepWatch> {
+        self.detector.as_mut().map(|d| d as &mut dyn StepWatch)
     }
 
     fn next_stop(&self, step: usize) -> usize {

@@ -133,6 +133,10 @@ impl<O: Observer + Carries> Observer for Checkpointing<'_, O> {
         self.inner.termination()
     }
 
+    fn step_watch(&mut self) -> Option<&mut dyn marsden::run::StepWatch> {
+        self.inner.step_watch()
+    }
+
     fn landing(&self, step: usize, t: f64, next: f64) -> Option<f64> {
         self.inner.landing(step, t, next)
     }

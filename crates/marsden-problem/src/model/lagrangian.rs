@@ -207,7 +207,7 @@ pub fn jit_compile_seconds() -> f64 {
 
 /// Whether native code is wanted: built with the `jit` feature and not switched off by
 /// `MARSDEN_JIT=0`.
-fn jit_wanted() -> bool {
+pub(crate) fn jit_wanted() -> bool {
     cfg!(feature = "jit") && std::env::var_os("MARSDEN_JIT").is_none_or(|v| v != "0")
 }
 

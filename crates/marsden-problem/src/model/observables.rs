@@ -8,6 +8,9 @@
 //! then `when`. Every evaluation fills its inputs on the stack
 //! ([`marsden::numerics::scratch::with_slice`]): no allocation per step.
 
+#[cfg(feature = "jit")]
+use std::sync::{Arc, OnceLock};
+
 use marsden::numerics::scratch::with_slice;
 use marsden::run::events::EventFunction;
 use marsden_expr::Program;
@@ -70,12 +73,57 @@ fn fill_state(x: &mut [f64], q: &[f64], v: &[f64], p: &[f64]) {
     x[2 * n..3 * n].copy_from_slice(p);
 }
 
+/// An event's `when` as native code (`marsden_jit`, Cranelift), compiled at its first use:
+/// the detector evaluates `g` at every step of the run, where the interpreter's dispatch costs
+/// more than the arithmetic of a `when` such as `theta - 3`. Without it (`MARSDEN_JIT=0`, no
+/// `jit` feature, or a failed compilation) `when` is interpreted; both give the same values bit
+/// for bit (the JIT's contract: the same IEEE operations in the same order). One code belongs to
+/// one program (the event's `when`, beside it in the spec).
+#[derive(Debug, Clone, Default)]
+pub struct WhenCode {
+    #[cfg(feature = "jit")]
+    native: Arc<OnceLock<Option<marsden_jit::CompiledTape>>>,
+}
+
+/// The code is a function of the program: any two are equal.
+impl PartialEq for WhenCode {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
+}
+
+impl WhenCode {
+    /// `when` at `inputs`, by its native code if it has any.
+    #[inline(always)]
+    fn eval(&self, when: &Program, inputs: &[f64]) -> f64 {
+        #[cfg(feature = "jit")]
+        if let Some(native) = self.native(when) {
+            let mut out = [0.0];
+            native.eval(inputs, &mut out);
+            return out[0];
+        }
+        when.eval(inputs)
+    }
+
+    /// The native code of `when`, compiled now if this is its first use.
+    #[cfg(feature = "jit")]
+    #[inline(always)]
+    fn native(&self, when: &Program) -> Option<&marsden_jit::CompiledTape> {
+        let compile = || marsden_jit::CompiledTape::compile(&when.tape()).ok();
+        (self.native)
+            .get_or_init(|| super::lagrangian::jit_wanted().then(compile).flatten())
+            .as_ref()
+    }
+}
+
 /// An event's `when` as the core's [`EventFunction`]: `g(t, q, v, p)`, reading the observables
 /// (slots `3n + 1 …`) when it names one.
 #[derive(Debug, Clone, Copy)]
 pub struct ExprEvent<'a> {
     /// `when`, compiled against [`state_inputs`] followed by the observables' names.
     pub when: &'a Program,
+    /// Its native code.
+    pub code: &'a WhenCode,
     /// The observables it may read.
     pub observables: &'a Observables,
 }
@@ -91,11 +139,22 @@ impl EventFunction for ExprEvent<'_> {
     /// `when` at the state. A `when` that reads positions only (its slots all below `n`, the
     /// common section `θ = 0`) is evaluated on `q` itself, the slots it reads the same values
     /// at the same places: no input slice is filled.
+    #[inline(always)]
     fn value(&self, t: f64, q: &[f64], v: &[f64], p: &[f64]) -> f64 {
-        let n = q.len();
-        if self.when.input_len() <= n {
-            return self.when.eval(q);
+        match self.when.input_len() <= q.len() {
+            true => self.code.eval(self.when, q),
+            false => self.value_of_state(t, q, v, p),
         }
+    }
+}
+
+impl ExprEvent<'_> {
+    /// `when` over the whole state `[q, v, p, t]` and the observables it reads, filled on the
+    /// stack (kept out of [`EventFunction::value`], whose common case, a `when` of the
+    /// positions, needs no stack frame of its own).
+    #[inline(never)]
+    fn value_of_state(&self, t: f64, q: &[f64], v: &[f64], p: &[f64]) -> f64 {
+        let n = q.len();
         let m = if self.reads_observables(n) {
             self.observables.len()
         } else {
@@ -108,7 +167,7 @@ impl EventFunction for ExprEvent<'_> {
                 self.observables.eval_into((t, q, v, p), values);
                 state[3 * n] = t;
             }
-            self.when.eval(x)
+            self.code.eval(self.when, x)
         })
     }
 }
@@ -157,17 +216,30 @@ mod tests {
         };
         let (section, mixed) = (compile("y - 0.25*x"), compile("y - p_x*t"));
         let obs = Observables::none();
-        let event = |when| ExprEvent {
-            when,
+        let codes = [
+            WhenCode::default(),
+            WhenCode::default(),
+            WhenCode::default(),
+        ];
+        let event = |when: &'static str| ExprEvent {
+            when: match when {
+                "section" => &section,
+                _ => &mixed,
+            },
+            code: match when {
+                "section" => &codes[0],
+                "mixed" => &codes[1],
+                _ => &codes[2],
+            },
             observables: &obs,
         };
         let (q, v, p) = ([2.0, 3.0], [f64::NAN, f64::NAN], [5.0, 6.0]);
-        assert_eq!(event(&section).value(0.5, &q, &v, &p), 2.5);
-        assert_eq!(event(&mixed).value(0.5, &q, &v, &p), 0.5);
+        assert_eq!(event("section").value(0.5, &q, &v, &p), 2.5);
+        assert_eq!(event("mixed").value(0.5, &q, &v, &p), 0.5);
         let mut full = [0.0; 7];
         fill_state(&mut full, &q, &v, &p);
         full[6] = 0.5;
-        assert_eq!(event(&section).value(0.5, &q, &v, &p), section.eval(&full));
+        assert_eq!(event("section").value(0.5, &q, &v, &p), section.eval(&full));
     }
 
     #[test]
@@ -190,9 +262,46 @@ mod tests {
             .unwrap();
         let event = ExprEvent {
             when: &when,
+            code: &WhenCode::default(),
             observables: &obs,
         };
         let g = event.value(0.5, &[2.0, 3.0], &[0.0, 0.0], &[0.0, 0.0]);
         assert_eq!(g, 5.5);
+    }
+
+    /// The native code of `when` (positions only, and reading `v`, `p`, `t`) gives the
+    /// interpreter's values bit for bit, at many states.
+    #[test]
+    fn native_when_is_the_interpreter_bit_for_bit() {
+        let symbols = Symbols::with_inputs(state_inputs(&coordinates())).unwrap();
+        let obs = Observables::none();
+        let texts = [
+            "x - 3",
+            "sin(x)*cos(y) - 0.25*x^3 + 1/(1 + y^2)",
+            "sqrt(x^2 + y^2) - exp(-x)*y",
+            "x_dot*p_y - t^2 + atan2(y, x)",
+        ];
+        for text in texts {
+            let when = marsden_expr::Expr::parse(text)
+                .unwrap()
+                .compile(&symbols)
+                .unwrap();
+            let code = WhenCode::default();
+            let native = ExprEvent {
+                when: &when,
+                code: &code,
+                observables: &obs,
+            };
+            for k in 0..50 {
+                let a = f64::from(k) * 0.37 - 9.0;
+                let (q, v, p) = ([a, 1.3 - 0.1 * a], [0.5 * a, -a], [a * a, 0.2]);
+                let t = 0.01 * f64::from(k);
+                let mut full = [0.0; 7];
+                fill_state(&mut full, &q, &v, &p);
+                full[6] = t;
+                let (got, want) = (native.value(t, &q, &v, &p), when.eval(&full));
+                assert_eq!(got.to_bits(), want.to_bits(), "{text} at {full:?}");
+            }
+        }
     }
 }

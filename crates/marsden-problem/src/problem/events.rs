@@ -27,6 +27,7 @@ use super::raw::{RawProblem, SpannedList};
 use super::spec::SystemSpec;
 use crate::error::Diagnostic;
 use crate::model::hamiltonian::momentum_name;
+use crate::model::observables::WhenCode;
 use crate::model::observables::state_inputs;
 use crate::model::slots::velocity_name;
 use crate::model::{ExprEvent, Observables};
@@ -84,6 +85,8 @@ pub struct EventSpec {
     pub name: String,
     /// `g`, compiled against the state's inputs then the observables ([`ExprEvent`]).
     pub when: Program,
+    /// Its native code, compiled at the first use.
+    pub code: WhenCode,
     /// The crossings watched.
     pub direction: Direction,
     /// Record them, or stop the run.
@@ -138,6 +141,7 @@ impl EventsSpec {
         (self.events.iter())
             .map(|e| ExprEvent {
                 when: &e.when,
+                code: &e.code,
                 observables: &self.observables,
             })
             .collect()
@@ -346,6 +350,7 @@ fn event(
     Ok(EventSpec {
         name: label,
         when: program,
+        code: WhenCode::default(),
         direction,
         action,
         count,

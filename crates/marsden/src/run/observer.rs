@@ -5,6 +5,7 @@ use std::ops::ControlFlow;
 use super::trajectory::Termination;
 use crate::integrator::IntegratorCheckpoint;
 use crate::integrator::StepReport;
+use crate::mechanics::State;
 
 /// What an observer sees after each completed step.
 #[derive(Debug, Clone, Copy)]
@@ -59,6 +60,15 @@ pub trait Observer {
     fn termination(&self) -> Option<Termination> {
         None
     }
+    /// When [`Observer::every_step`] is false: a light check the stepper runs after each step
+    /// it takes between the steps shown to [`Observer::observe`]
+    /// ([`Stepper::advance_watched`](crate::run::Stepper::advance_watched)); when it asks, the
+    /// run loop ends the stretch there and shows that step to [`Observer::observe`]. An event
+    /// detector watches each step so, at the cost of one evaluation of its `g`, without
+    /// the run loop's every-step path. Default: `None`.
+    fn step_watch(&mut self) -> Option<&mut dyn StepWatch> {
+        None
+    }
     /// When [`Observer::every_step`] is true: a time `τ` strictly inside the next step, from
     /// grid point `step` (at `t`) to the one at `next`, at which the observer wants the state
     /// reached by a variational step of its own size `τ − t` from `t` — the state a run ending
@@ -100,6 +110,14 @@ pub trait Observer {
     ) -> ControlFlow<()> {
         ControlFlow::Continue(())
     }
+}
+
+/// A check run after each step inside a stretch of steps that the run loop hands the stepper in
+/// one call ([`Observer::step_watch`]).
+pub trait StepWatch {
+    /// Looks at the state after step `step`; `true` ends the stretch there, and the run loop
+    /// shows the step to the observer.
+    fn after_step(&mut self, step: usize, state: &State) -> bool;
 }
 
 /// The first multiple of `period` after `step` (`usize::MAX` when there is none).

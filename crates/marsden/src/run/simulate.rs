@@ -121,7 +121,10 @@ where
             break;
         }
         let done_before = stepper.steps_done();
-        let outcome = stepper.advance_on(&mut state, grid, k, chunk);
+        let outcome = match observer.step_watch().filter(|_| chunked) {
+            Some(watch) => stepper.advance_watched(&mut state, (grid, k, chunk), watch),
+            None => stepper.advance_on(&mut state, grid, k, chunk),
+        };
         k += stepper.steps_done() - done_before;
         state.t = grid.time(k);
         traj.steps = k;

@@ -11,6 +11,7 @@ use crate::integrator::{Integrator, Statistics, StepReport};
 use crate::mechanics::{Constraint, State};
 
 use super::grid::TimeGrid;
+use super::observer::StepWatch;
 
 /// A one-step method with its buffers, as the run loop sees it.
 pub trait Stepper {
@@ -36,6 +37,26 @@ pub trait Stepper {
         steps: usize,
     ) -> Result<StepReport, Error> {
         step_by_step(self, state, grid, k, steps)
+    }
+
+    /// [`Stepper::advance_on`] with `watch` looking at each new state: the stretch ends early
+    /// at the first step it asks to see (the run loop counts the steps taken by
+    /// [`Stepper::steps_done`]). Default: one [`Stepper::advance`] per step.
+    fn advance_watched(
+        &mut self,
+        state: &mut State,
+        (grid, k, steps): (&TimeGrid, usize, usize),
+        watch: &mut dyn StepWatch,
+    ) -> Result<StepReport, Error> {
+        let mut report = StepReport::default();
+        for j in 1..=steps {
+            report = self.advance(state, grid.step_size(k + j - 1), 1)?;
+            state.t = grid.time(k + j);
+            if watch.after_step(k + j, state) {
+                break;
+            }
+        }
+        Ok(report)
     }
 
     /// The multipliers `λ` of the last step (length d; default: none).
@@ -124,6 +145,27 @@ where
                 Ok(report)
             }
         }
+    }
+    /// The Newton paths step by [`Integrator::step`] (the explicit path by the default, one
+    /// [`Integrator::advance`] per step, as a run shown every step takes it).
+    fn advance_watched(
+        &mut self,
+        state: &mut State,
+        (grid, k, steps): (&TimeGrid, usize, usize),
+        watch: &mut dyn StepWatch,
+    ) -> Result<StepReport, Error> {
+        let mut report = StepReport::default();
+        for j in 1..=steps {
+            report = match self.is_explicit() {
+                true => Integrator::advance(self, state, grid.step_size(k + j - 1), 1)?,
+                false => self.step(state, grid.step_size(k + j - 1))?,
+            };
+            state.t = grid.time(k + j);
+            if watch.after_step(k + j, state) {
+                break;
+            }
+        }
+        Ok(report)
     }
     fn multipliers(&self) -> &[f64] {
         Integrator::multipliers(self)

@@ -391,3 +391,57 @@ fn r07_general_inverse_at_the_crossings_alone_resumes_bit_for_bit() {
     assert!(first.records().len() < 6 && !first.records().is_empty());
     assert_eq!(bits(resumed.records()), bits(whole.records()));
 }
+
+/// The detector shown every step by the run loop (as beside an every-step observer).
+struct EveryStep<'d, 'l>(&'d mut EventDetector<'l, Kepler, G>);
+
+impl marsden::Observer for EveryStep<'_, '_> {
+    fn start(&mut self, initial: &marsden::StepView<'_>) {
+        self.0.start(initial);
+    }
+    fn observe(&mut self, view: &marsden::StepView<'_>) -> std::ops::ControlFlow<()> {
+        self.0.observe(view)
+    }
+    fn termination(&self) -> Option<Termination> {
+        self.0.termination()
+    }
+}
+
+/// The detector watching the steps inside one long stretch of the run (`StepWatch`: nothing
+/// stored between the first and the last state) locates, records and stops exactly as when
+/// the run loop shows it every step: the same records bit for bit, the run ended at the same
+/// step with the same last state (Kepler, e = 0.6: every pericentre recorded, and a stop at the
+/// third apocentre).
+#[test]
+fn a_detector_watching_stretches_of_steps_is_the_every_step_detector_bit_for_bit() {
+    let (q0, p0) = Kepler::pericentre(0.6);
+    let grid = TimeGrid::new(0.0, 0.003, 8000).unwrap();
+    let problem = Problem::new(Kepler::default(), Initial::momentum(&q0, &p0), grid).unwrap();
+    let events = || {
+        vec![
+            Event::record(radial as G, Direction::Up),
+            Event::stop(radial as G, Direction::Down).count(3),
+        ]
+    };
+    let stretches = SolveOptions {
+        run: RunOptions { stride: usize::MAX },
+        ..options()
+    };
+    let mut watching = EventDetector::new(problem.lagrangian(), events()).unwrap();
+    let watched = (problem.solve_with(&Midpoint, &stretches, &mut watching)).unwrap();
+    let mut shown = EventDetector::new(problem.lagrangian(), events()).unwrap();
+    let every = (problem.solve_with(&Midpoint, &stretches, &mut EveryStep(&mut shown))).unwrap();
+    assert!(matches!(
+        watched.termination,
+        Termination::Event { event: 1, .. }
+    ));
+    assert_eq!(watched.termination, every.termination);
+    assert_eq!(watching.records(), shown.records());
+    assert_eq!(
+        watching.records().len(),
+        5,
+        "three apocentres, two pericentres between"
+    );
+    let last = |run: &marsden::Trajectory| (run.steps, run.q(run.len() - 1).to_vec());
+    assert_eq!(last(&watched), last(&every));
+}

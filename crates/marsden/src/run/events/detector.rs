@@ -10,8 +10,9 @@ use super::legendre::LegendreMaps;
 use super::{Action, Direction, Event, EventFunction, EventRecord};
 use crate::error::{Error, InputError, StepError};
 use crate::mechanics::Lagrangian;
+use crate::mechanics::State;
 use crate::numerics::brent::{self, BrentOptions, RootError};
-use crate::run::observer::{Observer, StepView};
+use crate::run::observer::{Observer, StepView, StepWatch};
 use crate::run::trajectory::Termination;
 
 pub use checkpoint::DetectorCheckpoint;
@@ -41,6 +42,51 @@ impl Point {
             p: vec![0.0; n],
         }
     }
+}
+
+/// The state after a step, as the detector reads it: from the run's view, or from the stepper
+/// inside a stretch of steps ([`StepWatch`]).
+#[derive(Debug, Clone, Copy)]
+struct At<'a> {
+    step: usize,
+    t: f64,
+    q: &'a [f64],
+    p: &'a [f64],
+}
+
+impl<'a> At<'a> {
+    fn view(view: &StepView<'a>) -> Self {
+        Self {
+            step: view.step,
+            t: view.t,
+            q: view.q,
+            p: view.p,
+        }
+    }
+}
+
+/// `dst ← src`, element by element for the short states of most problems (a call of `memcpy`
+/// per copy would cost more than the copy, at every step of a watched run).
+#[inline(always)]
+fn copy_short(dst: &mut [f64], src: &[f64]) {
+    match (dst, src) {
+        ([d], [s]) => *d = *s,
+        ([d0, d1], [s0, s1]) => (*d0, *d1) = (*s0, *s1),
+        ([d0, d1, d2], [s0, s1, s2]) => (*d0, *d1, *d2) = (*s0, *s1, *s2),
+        (dst, src) => dst.copy_from_slice(src),
+    }
+}
+
+/// The error of a `g` (event `i`, value `g`) that is not finite at the end of the step from
+/// `t_before` to the view.
+#[cold]
+fn not_finite((event, value): (usize, f64), view: &At<'_>, t_before: f64) -> Error {
+    let cause = StepError::EventNotFinite {
+        event,
+        at: view.t,
+        value,
+    };
+    Error::step(view.step.saturating_sub(1), t_before, cause)
 }
 
 /// A sign change found at the end of a step, located.
@@ -78,6 +124,9 @@ pub struct EventDetector<'l, L, G> {
     ending: Option<Termination>,
     /// A point of the interpolant.
     probe: Point,
+    /// A sign change the step watch found at the end of the step after `before` (its `g` in
+    /// `g_after`), located when the run loop shows that step.
+    pending: bool,
 }
 
 impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
@@ -111,6 +160,7 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
             records: Vec::new(),
             ending: None,
             probe: Point::empty(n),
+            pending: false,
         })
     }
 
@@ -133,7 +183,8 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
     /// reads them), and whether some event's `g` changed sign in its direction from
     /// `g_before`: one pass over the events. Nothing is copied: the state is read from the
     /// view.
-    fn evaluate(&mut self, view: &StepView<'_>) -> Result<bool, Error> {
+    #[inline(always)]
+    fn evaluate(&mut self, view: &At<'_>) -> Result<bool, Error> {
         let v = if self.velocities_every_step {
             // The previous velocities are the general inverse's first guess.
             let v = &mut self.after.v;
@@ -148,13 +199,7 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
         for (i, (event, (g_after, &g_before))) in self.events.iter().zip(values).enumerate() {
             let g = event.function.value(view.t, view.q, v, view.p);
             if !g.is_finite() {
-                let cause = StepError::EventNotFinite {
-                    event: i,
-                    at: view.t,
-                    value: g,
-                };
-                let step = view.step.saturating_sub(1);
-                return Err(Error::step(step, self.before.t, cause));
+                return Err(not_finite((i, g), view, self.before.t));
             }
             *g_after = g;
             crossed |= event.direction.crosses(g_before, g);
@@ -162,24 +207,35 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
         Ok(crossed)
     }
 
+    /// [`EventDetector::evaluate`] for events that read the velocities, out of the watch's
+    /// common path (an inverse Legendre transform per step costs more than the call).
+    #[inline(never)]
+    fn evaluate_with_velocities(&mut self, view: &At<'_>) -> Result<bool, Error> {
+        self.evaluate(view)
+    }
+
     /// `after` ← the view's state, to locate a crossing in the step (its velocities are
     /// already there if computed at every step).
-    fn keep_after(&mut self, view: &StepView<'_>) {
+    fn keep_after(&mut self, view: &At<'_>) {
         let after = &mut self.after;
         after.step = view.step;
         after.t = view.t;
-        after.q.copy_from_slice(view.q);
-        after.p.copy_from_slice(view.p);
+        copy_short(&mut after.q, view.q);
+        copy_short(&mut after.p, view.p);
     }
 
-    /// `before` ← the view's state with its velocities and `g`: the next step starts there.
-    fn advance(&mut self, view: &StepView<'_>) {
+    /// `before` ← the view's state with its velocities (when computed at every step; else
+    /// they are computed at a crossing) and `g`: the next step starts there.
+    #[inline(always)]
+    fn advance(&mut self, view: &At<'_>) {
         let before = &mut self.before;
         before.step = view.step;
         before.t = view.t;
-        before.q.copy_from_slice(view.q);
-        before.p.copy_from_slice(view.p);
-        std::mem::swap(&mut before.v, &mut self.after.v);
+        copy_short(&mut before.q, view.q);
+        copy_short(&mut before.p, view.p);
+        if self.velocities_every_step {
+            std::mem::swap(&mut before.v, &mut self.after.v);
+        }
         std::mem::swap(&mut self.g_before, &mut self.g_after);
     }
 
@@ -337,10 +393,15 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
 
 impl<L: Lagrangian, G: EventFunction> EventDetector<'_, L, G> {
     /// Takes the step `view` ends, and locates and acts on its crossings, if any.
-    fn look_at(&mut self, view: &StepView<'_>) -> Result<(), Error> {
-        if !self.evaluate(view)? {
-            return Ok(());
+    fn look_at(&mut self, view: &At<'_>) -> Result<(), Error> {
+        match self.evaluate(view)? {
+            true => self.locate_in_step(view),
+            false => Ok(()),
         }
+    }
+
+    /// Locates and acts on the crossings of the step `view` ends, whose `g` is in `g_after`.
+    fn locate_in_step(&mut self, view: &At<'_>) -> Result<(), Error> {
         self.keep_after(view);
         if !self.velocities_every_step {
             self.end_velocities()?;
@@ -351,30 +412,88 @@ impl<L: Lagrangian, G: EventFunction> EventDetector<'_, L, G> {
     }
 }
 
+/// The detector as the stepper's watch inside a stretch of steps: `g` evaluated at each new
+/// state and the state kept as the next step's start, as [`Observer::observe`] does; at a sign
+/// change (or a `g` that is not finite) the stretch ends there, and the crossing is located
+/// when the run loop shows the step. The run is then not taken step by step through the run
+/// loop: watching costs one evaluation of `g` and a copy of the state per step.
+impl<L: Lagrangian, G: EventFunction> StepWatch for EventDetector<'_, L, G> {
+    fn after_step(&mut self, step: usize, state: &State) -> bool {
+        if self.ending.is_some() || self.pending {
+            return true;
+        }
+        let at = At {
+            step,
+            t: state.t,
+            q: &state.q,
+            p: &state.p,
+        };
+        let seen = match self.velocities_every_step {
+            true => self.evaluate_with_velocities(&at),
+            false => self.evaluate(&at),
+        };
+        match seen {
+            Ok(false) => {
+                self.advance(&at);
+                false
+            }
+            Ok(true) => {
+                self.pending = true;
+                true
+            }
+            Err(error) => {
+                self.ending = Some(Termination::Failed(error));
+                true
+            }
+        }
+    }
+}
+
 impl<L: Lagrangian, G: EventFunction> Observer for EventDetector<'_, L, G> {
     fn start(&mut self, initial: &StepView<'_>) {
         self.records.clear();
         self.crossings.iter_mut().for_each(|c| *c = 0);
-        self.ending = None;
+        (self.ending, self.pending) = (None, false);
         self.before.v.iter_mut().for_each(|v| *v = 0.0);
-        if let Err(error) = self.evaluate(initial) {
+        let initial = At::view(initial);
+        if let Err(error) = self.evaluate(&initial) {
             self.ending = Some(Termination::Failed(error));
         }
-        self.advance(initial);
+        self.advance(&initial);
     }
 
+    /// A step the watch has looked at ([`StepWatch`]) is passed over, unless the watch found a
+    /// sign change at it: that is located now.
     fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()> {
         if self.ending.is_some() {
             return ControlFlow::Break(());
         }
-        if let Err(error) = self.look_at(view) {
+        let view = At::view(view);
+        if self.before.step == view.step && !self.pending {
+            return ControlFlow::Continue(());
+        }
+        let found = match std::mem::take(&mut self.pending) {
+            true => self.locate_in_step(&view),
+            false => self.look_at(&view),
+        };
+        if let Err(error) = found {
             self.ending = Some(Termination::Failed(error));
         }
-        self.advance(view);
+        self.advance(&view);
         match self.ending {
             Some(_) => ControlFlow::Break(()),
             None => ControlFlow::Continue(()),
         }
+    }
+
+    /// The run loop may hand the stepper stretches of steps: the detector watches each step
+    /// inside them ([`Observer::step_watch`]).
+    fn every_step(&self) -> bool {
+        false
+    }
+
+    fn step_watch(&mut self) -> Option<&mut dyn StepWatch> {
+        Some(self)
     }
 
     fn termination(&self) -> Option<Termination> {
