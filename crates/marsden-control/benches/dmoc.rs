@@ -15,7 +15,7 @@
 //!   in `T = 1` with `x ≤ 1/9` as a bound on the nodes or as the path inequality `x − 1/9 ≤ 0`
 //!   at the midpoints (the cost of the inequality rows against simple bounds).
 //!
-//! Run (fat LTO, slow to build): `flock /work/release.lock cargo bench -p marsden-control`.
+//! Run: `cargo bench -p marsden-control`.
 
 use std::f64::consts::PI;
 

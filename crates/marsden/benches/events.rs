@@ -26,7 +26,12 @@
 //! on θ̇ 1 440.3 (+37.3 %); the budget is still not met (BENCHMARKS.md, "Events and
 //! checkpoints").
 //!
-//! `flock /work/release.lock cargo bench -p marsden --bench events`
+//! 2026-11-30: the detector no longer needs the every-step path (it watches the steps inside
+//! the stretches the run loop hands the stepper, `StepWatch`), so `with_event` runs in one
+//! stretch like `plain`; the file runs' figures before and after are in BENCHMARKS.md ("Events
+//! and checkpoints").
+//!
+//! `cargo bench -p marsden --bench events`
 
 use divan::Bencher;
 use marsden::run::events::{Direction, Event, EventDetector};
