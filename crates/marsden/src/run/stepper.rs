@@ -48,15 +48,8 @@ pub trait Stepper {
         (grid, k, steps): (&TimeGrid, usize, usize),
         watch: &mut dyn StepWatch,
     ) -> Result<StepReport, Error> {
-        let mut report = StepReport::default();
-        for j in 1..=steps {
-            report = self.advance(state, grid.step_size(k + j - 1), 1)?;
-            state.t = grid.time(k + j);
-            if watch.after_step(k + j, state) {
-                break;
-            }
-        }
-        Ok(report)
+        let one = |s: &mut Self, state: &mut State, h| s.advance(state, h, 1);
+        watched_steps(self, state, (grid, k, steps), (watch, one))
     }
 
     /// The multipliers `λ` of the last step (length d; default: none).
@@ -154,18 +147,11 @@ where
         (grid, k, steps): (&TimeGrid, usize, usize),
         watch: &mut dyn StepWatch,
     ) -> Result<StepReport, Error> {
-        let mut report = StepReport::default();
-        for j in 1..=steps {
-            report = match self.is_explicit() {
-                true => Integrator::advance(self, state, grid.step_size(k + j - 1), 1)?,
-                false => self.step(state, grid.step_size(k + j - 1))?,
-            };
-            state.t = grid.time(k + j);
-            if watch.after_step(k + j, state) {
-                break;
-            }
-        }
-        Ok(report)
+        let one = |s: &mut Self, state: &mut State, h| match s.is_explicit() {
+            true => Integrator::advance(s, state, h, 1),
+            false => s.step(state, h),
+        };
+        watched_steps(self, state, (grid, k, steps), (watch, one))
     }
     fn multipliers(&self) -> &[f64] {
         Integrator::multipliers(self)
@@ -185,6 +171,29 @@ where
     fn restore_carried(&mut self, carried: &IntegratorCheckpoint) -> Result<(), Error> {
         Integrator::restore(self, carried)
     }
+}
+
+/// `steps` single steps from grid point `k`, each of the grid's size for it taken by `one`, the
+/// time of each new state set to the grid's, until `watch` asks to see one.
+#[inline]
+fn watched_steps<S: ?Sized, F>(
+    stepper: &mut S,
+    state: &mut State,
+    (grid, k, steps): (&TimeGrid, usize, usize),
+    (watch, mut one): (&mut dyn StepWatch, F),
+) -> Result<StepReport, Error>
+where
+    F: FnMut(&mut S, &mut State, f64) -> Result<StepReport, Error>,
+{
+    let mut report = StepReport::default();
+    for j in 1..=steps {
+        report = one(stepper, state, grid.step_size(k + j - 1))?;
+        state.t = grid.time(k + j);
+        if watch.after_step(k + j, state) {
+            break;
+        }
+    }
+    Ok(report)
 }
 
 /// `steps` single steps from grid point `k`, each of the grid's size for it
