@@ -66,7 +66,8 @@ impl<L: Lagrangian, G: EventFunction> EventDetector<'_, L, G> {
         self.g_before.clone_from(&checkpoint.g_before);
         self.crossings.clone_from(&checkpoint.crossings);
         self.records.clone_from(&checkpoint.records);
-        self.ending = None;
+        // A checkpoint is taken after the step is shown: no sign change is left to locate.
+        (self.ending, self.pending) = (None, false);
         Ok(())
     }
 }
