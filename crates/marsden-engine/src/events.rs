@@ -122,7 +122,7 @@ impl<'a, 's, L: Lagrangian, O: Observer> Watched<'a, 's, L, O> {
         }
         let n = lagrangian.dof();
         let events = (spec.events.iter())
-            .zip(spec.functions())
+            .zip(spec.functions(n))
             .map(|(e, function)| Event {
                 reads_velocity: reads_velocity(&function, n),
                 function,

@@ -93,21 +93,8 @@ impl PartialEq for WhenCode {
 }
 
 impl WhenCode {
-    /// `when` at `inputs`, by its native code if it has any.
-    #[inline(always)]
-    fn eval(&self, when: &Program, inputs: &[f64]) -> f64 {
-        #[cfg(feature = "jit")]
-        if let Some(native) = self.native(when) {
-            let mut out = [0.0];
-            native.eval(inputs, &mut out);
-            return out[0];
-        }
-        when.eval(inputs)
-    }
-
     /// The native code of `when`, compiled now if this is its first use.
     #[cfg(feature = "jit")]
-    #[inline(always)]
     fn native(&self, when: &Program) -> Option<&marsden_jit::CompiledTape> {
         let compile = || marsden_jit::CompiledTape::compile(&when.tape()).ok();
         (self.native)
@@ -117,32 +104,68 @@ impl WhenCode {
 }
 
 /// An event's `when` as the core's [`EventFunction`]: `g(t, q, v, p)`, reading the observables
-/// (slots `3n + 1 …`) when it names one.
+/// (slots `3n + 1 …`) when it names one. What the detector would otherwise look up at every
+/// step — the native code, and whether `when` reads positions only — is settled when it is
+/// made ([`ExprEvent::new`]).
 #[derive(Debug, Clone, Copy)]
 pub struct ExprEvent<'a> {
     /// `when`, compiled against [`state_inputs`] followed by the observables' names.
     pub when: &'a Program,
-    /// Its native code.
-    pub code: &'a WhenCode,
     /// The observables it may read.
     pub observables: &'a Observables,
+    /// The native code of `when`, if it has any ([`WhenCode`]).
+    #[cfg(feature = "jit")]
+    native: Option<&'a marsden_jit::CompiledTape>,
+    /// Whether `when` reads positions only (its slots all below `n`).
+    positions_only: bool,
 }
 
-impl ExprEvent<'_> {
+impl<'a> ExprEvent<'a> {
+    /// The event function of `when` with its code (compiled here if this is its first use)
+    /// for a system of `n` coordinates.
+    pub fn new(
+        when: &'a Program,
+        code: &'a WhenCode,
+        observables: &'a Observables,
+        n: usize,
+    ) -> Self {
+        #[cfg(not(feature = "jit"))]
+        let _ = code;
+        Self {
+            when,
+            observables,
+            #[cfg(feature = "jit")]
+            native: code.native(when),
+            positions_only: when.input_len() <= n,
+        }
+    }
+
     /// Whether `when` reads an observable (a slot past `t`, the slot `3n`).
     fn reads_observables(&self, n: usize) -> bool {
         self.when.input_len() > 3 * n + 1
     }
+
+    /// `when` at `inputs`, by its native code if it has any.
+    #[inline(always)]
+    fn eval(&self, inputs: &[f64]) -> f64 {
+        #[cfg(feature = "jit")]
+        if let Some(native) = self.native {
+            let mut out = [0.0];
+            native.eval(inputs, &mut out);
+            return out[0];
+        }
+        self.when.eval(inputs)
+    }
 }
 
 impl EventFunction for ExprEvent<'_> {
-    /// `when` at the state. A `when` that reads positions only (its slots all below `n`, the
-    /// common section `θ = 0`) is evaluated on `q` itself, the slots it reads the same values
-    /// at the same places: no input slice is filled.
+    /// `when` at the state. A `when` that reads positions only (the common section `θ = 0`)
+    /// is evaluated on `q` itself, the slots it reads the same values at the same places: no
+    /// input slice is filled.
     #[inline(always)]
     fn value(&self, t: f64, q: &[f64], v: &[f64], p: &[f64]) -> f64 {
-        match self.when.input_len() <= q.len() {
-            true => self.code.eval(self.when, q),
+        match self.positions_only {
+            true => self.eval(q),
             false => self.value_of_state(t, q, v, p),
         }
     }
@@ -167,7 +190,7 @@ impl ExprEvent<'_> {
                 self.observables.eval_into((t, q, v, p), values);
                 state[3 * n] = t;
             }
-            self.code.eval(self.when, x)
+            self.eval(x)
         })
     }
 }
@@ -221,17 +244,13 @@ mod tests {
             WhenCode::default(),
             WhenCode::default(),
         ];
-        let event = |when: &'static str| ExprEvent {
-            when: match when {
-                "section" => &section,
-                _ => &mixed,
-            },
-            code: match when {
-                "section" => &codes[0],
-                "mixed" => &codes[1],
-                _ => &codes[2],
-            },
-            observables: &obs,
+        let event = |when: &'static str| {
+            let (program, code) = match when {
+                "section" => (&section, &codes[0]),
+                "mixed" => (&mixed, &codes[1]),
+                _ => (&mixed, &codes[2]),
+            };
+            ExprEvent::new(program, code, &obs, 2)
         };
         let (q, v, p) = ([2.0, 3.0], [f64::NAN, f64::NAN], [5.0, 6.0]);
         assert_eq!(event("section").value(0.5, &q, &v, &p), 2.5);
@@ -260,11 +279,8 @@ mod tests {
             .unwrap()
             .compile(&with_obs)
             .unwrap();
-        let event = ExprEvent {
-            when: &when,
-            code: &WhenCode::default(),
-            observables: &obs,
-        };
+        let code = WhenCode::default();
+        let event = ExprEvent::new(&when, &code, &obs, 2);
         let g = event.value(0.5, &[2.0, 3.0], &[0.0, 0.0], &[0.0, 0.0]);
         assert_eq!(g, 5.5);
     }
@@ -287,11 +303,7 @@ mod tests {
                 .compile(&symbols)
                 .unwrap();
             let code = WhenCode::default();
-            let native = ExprEvent {
-                when: &when,
-                code: &code,
-                observables: &obs,
-            };
+            let native = ExprEvent::new(&when, &code, &obs, 2);
             for k in 0..50 {
                 let a = f64::from(k) * 0.37 - 9.0;
                 let (q, v, p) = ([a, 1.3 - 0.1 * a], [0.5 * a, -a], [a * a, 0.2]);

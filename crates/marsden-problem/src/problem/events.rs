@@ -136,14 +136,11 @@ pub struct EventsSpec {
 }
 
 impl EventsSpec {
-    /// The event functions of the core's detector, in the file's order.
-    pub fn functions(&self) -> Vec<ExprEvent<'_>> {
+    /// The event functions of the core's detector for a system of `n` coordinates, in the
+    /// file's order (their native code compiled here, at its first use).
+    pub fn functions(&self, n: usize) -> Vec<ExprEvent<'_>> {
         (self.events.iter())
-            .map(|e| ExprEvent {
-                when: &e.when,
-                code: &e.code,
-                observables: &self.observables,
-            })
+            .map(|e| ExprEvent::new(&e.when, &e.code, &self.observables, n))
             .collect()
     }
 }

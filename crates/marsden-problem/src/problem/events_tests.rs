@@ -71,7 +71,7 @@ when = \"x\"
     assert_eq!(section.y.1, "p_x");
     // `cross` reads the observable r2 = x² + y² at (x, y) = (1, 2): 5 − 0.5.
     let g = marsden::run::events::EventFunction::value(
-        &e.functions()[0],
+        &e.functions(2)[0],
         0.0,
         &[1.0, 2.0],
         &[0.0; 2],

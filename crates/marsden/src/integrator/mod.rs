@@ -36,6 +36,7 @@ use crate::holonomic::{MomentumProjection, NoProjection};
 use crate::mechanics::{Constraint, NoForce, State, Unconstrained};
 use crate::numerics::ad::HessianParts;
 use crate::numerics::newton::{NewtonOptions, NewtonReport, NewtonWorkspace};
+use crate::numerics::short;
 use crate::separable::{ExplicitWorkspace, JacobianWorkspace, SeparableWorkspace};
 
 /// Steps a discrete action `A` with discrete forces `F`, constraints `C` and a momentum
@@ -308,6 +309,7 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     }
 
     /// Writes the converged step into `state`.
+    #[inline]
     fn accept(&mut self, z: &[f64], state: &mut State, h: f64) {
         let sn = self.shape.s * self.shape.n;
         if self.is_compensated() {
@@ -318,9 +320,8 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
                 &z[..sn],
             );
         } else {
-            let delta = &z[sn - self.shape.n..sn];
-            state.q.iter_mut().zip(delta).for_each(|(q, d)| *q += d);
-            state.p.copy_from_slice(&self.buffers.p_next);
+            short::add(&mut state.q, &z[sn - self.shape.n..sn]);
+            short::copy(&mut state.p, &self.buffers.p_next);
         }
         state.t += h;
     }

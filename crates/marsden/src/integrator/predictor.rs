@@ -1,6 +1,7 @@
 //! The predictor: a starting guess for the unknowns of the next step from the last ones.
 
 use super::equations::StepShape;
+use crate::numerics::short;
 
 /// Starting guess for the unknowns of the next step.
 ///
@@ -23,36 +24,42 @@ pub(super) struct Predictor {
 }
 
 impl Predictor {
+    /// `z` ← the guess for a step of size `h` (inlined into the generic step, which is compiled
+    /// in the crate that names the system: a call across crates costs more than the work here).
+    #[inline]
     pub(super) fn predict(&mut self, z: &mut Vec<f64>, h: f64, sh: StepShape) {
         let m = sh.unknowns();
-        z.resize(m, 0.0);
+        if z.len() != m {
+            z.resize(m, 0.0);
+        }
         if h != self.h || self.ring.len() != 3 * m {
             self.reset_ring(m);
         }
-        let [a, b, c] = self.order.map(|slot| slot * m);
-        let (r, z) = (&self.ring, &mut z[..m]);
-        match self.len {
-            0 => return self.fresh(z, h, sh),
-            1 => z.copy_from_slice(&r[a..a + m]),
-            2 => z
-                .iter_mut()
-                .enumerate()
-                .for_each(|(i, zi)| *zi = 2.0 * r[a + i] - r[b + i]),
-            _ => z
-                .iter_mut()
-                .enumerate()
-                .for_each(|(i, zi)| *zi = 3.0 * (r[a + i] - r[b + i]) + r[c + i]),
+        if self.len == 0 {
+            return self.fresh(z, h, sh);
         }
+        let [a, b, c] = self.order.map(|slot| &self.ring[slot * m..(slot + 1) * m]);
+        // The offsets are extrapolated, the multipliers (after them) start from their last values.
         let sn = sh.s * sh.n;
-        z[sn..].copy_from_slice(&r[a + sn..a + m]);
+        let (offsets, multipliers) = z.split_at_mut(sn);
+        match self.len {
+            1 => short::copy(offsets, &a[..sn]),
+            2 => short::combine3(offsets, a, b, c, |a, b, _| 2.0 * a - b),
+            _ => short::combine3(offsets, a, b, c, |a, b, c| 3.0 * (a - b) + c),
+        }
+        if !multipliers.is_empty() {
+            multipliers.copy_from_slice(&a[sn..]);
+        }
     }
 
+    #[cold]
     fn reset_ring(&mut self, m: usize) {
         self.ring.resize(3 * m, 0.0);
         self.order = [0, 1, 2];
         self.len = 0;
     }
 
+    #[inline(never)]
     fn fresh(&self, z: &mut [f64], h: f64, sh: StepShape) {
         let n = sh.n;
         for j in 1..=sh.s {
@@ -70,6 +77,8 @@ impl Predictor {
         self.velocity = Some(v.to_vec());
     }
 
+    /// Keeps the solution `z` of a step of size `h` (inlined as [`Predictor::predict`] is).
+    #[inline]
     pub(super) fn record(&mut self, z: &[f64], h: f64) {
         let m = z.len();
         if self.ring.len() != 3 * m {
@@ -77,7 +86,7 @@ impl Predictor {
         }
         let [newest, previous, oldest] = self.order;
         self.order = [oldest, newest, previous];
-        self.ring[oldest * m..(oldest + 1) * m].copy_from_slice(z);
+        short::copy(&mut self.ring[oldest * m..(oldest + 1) * m], z);
         self.len = (self.len + 1).min(3);
         self.h = h;
         self.velocity = None;

@@ -18,3 +18,4 @@ pub mod dense;
 pub mod dual;
 pub mod newton;
 pub mod scratch;
+pub mod short;

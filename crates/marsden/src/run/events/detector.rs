@@ -12,6 +12,7 @@ use crate::error::{Error, InputError, StepError};
 use crate::mechanics::Lagrangian;
 use crate::mechanics::State;
 use crate::numerics::brent::{self, BrentOptions, RootError};
+use crate::numerics::short;
 use crate::run::observer::{Observer, StepView, StepWatch};
 use crate::run::trajectory::Termination;
 
@@ -65,28 +66,15 @@ impl<'a> At<'a> {
     }
 }
 
-/// `dst ← src`, element by element for the short states of most problems (a call of `memcpy`
-/// per copy would cost more than the copy, at every step of a watched run).
-#[inline(always)]
-fn copy_short(dst: &mut [f64], src: &[f64]) {
-    match (dst, src) {
-        ([d], [s]) => *d = *s,
-        ([d0, d1], [s0, s1]) => (*d0, *d1) = (*s0, *s1),
-        ([d0, d1, d2], [s0, s1, s2]) => (*d0, *d1, *d2) = (*s0, *s1, *s2),
-        (dst, src) => dst.copy_from_slice(src),
-    }
-}
-
-/// The error of a `g` (event `i`, value `g`) that is not finite at the end of the step from
-/// `t_before` to the view.
-#[cold]
-fn not_finite((event, value): (usize, f64), view: &At<'_>, t_before: f64) -> Error {
-    let cause = StepError::EventNotFinite {
-        event,
-        at: view.t,
-        value,
-    };
-    Error::step(view.step.saturating_sub(1), t_before, cause)
+/// What one pass of `g` over the events found at a state ([`EventDetector::scan`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Scan {
+    /// No sign change.
+    Quiet,
+    /// Some event's `g` changed sign in its direction.
+    Crossed,
+    /// Event `i`'s `g` is not finite (its value is in `g_after[i]`).
+    NotFinite(usize),
 }
 
 /// A sign change found at the end of a step, located.
@@ -183,35 +171,83 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
     /// reads them), and whether some event's `g` changed sign in its direction from
     /// `g_before`: one pass over the events. Nothing is copied: the state is read from the
     /// view.
-    #[inline(always)]
     fn evaluate(&mut self, view: &At<'_>) -> Result<bool, Error> {
-        let v = if self.velocities_every_step {
+        if self.velocities_every_step {
             // The previous velocities are the general inverse's first guess.
             let v = &mut self.after.v;
             v.copy_from_slice(&self.before.v);
             self.legendre.velocity(view.t, view.q, view.p, v)?;
-            &self.after.v
-        } else {
-            &self.no_velocity
+        }
+        match self.scan(view.t, view.q, view.p) {
+            Scan::Quiet => Ok(false),
+            Scan::Crossed => Ok(true),
+            Scan::NotFinite(i) => Err(self.not_finite(i, view.step, view.t)),
+        }
+    }
+
+    /// `g_after` ← `g` of every event at `(t, q, p)` with the velocities in `after.v` (when an
+    /// event reads them; NaN otherwise), and what it found against `g_before`. Returns a small
+    /// value, not a `Result`: the watch calls it at every step, and the error of a `g` that is
+    /// not finite is built out of line ([`EventDetector::not_finite`]).
+    #[inline(always)]
+    fn scan(&mut self, t: f64, q: &[f64], p: &[f64]) -> Scan {
+        let v = match self.velocities_every_step {
+            true => &self.after.v,
+            false => &self.no_velocity,
         };
         let mut crossed = false;
         let values = self.g_after.iter_mut().zip(&self.g_before);
         for (i, (event, (g_after, &g_before))) in self.events.iter().zip(values).enumerate() {
-            let g = event.function.value(view.t, view.q, v, view.p);
-            if !g.is_finite() {
-                return Err(not_finite((i, g), view, self.before.t));
-            }
+            let g = event.function.value(t, q, v, p);
             *g_after = g;
+            if !g.is_finite() {
+                return Scan::NotFinite(i);
+            }
             crossed |= event.direction.crosses(g_before, g);
         }
-        Ok(crossed)
+        match crossed {
+            true => Scan::Crossed,
+            false => Scan::Quiet,
+        }
     }
 
-    /// [`EventDetector::evaluate`] for events that read the velocities, out of the watch's
-    /// common path (an inverse Legendre transform per step costs more than the call).
+    /// The error of event `i`'s `g` (in `g_after`), not finite at the state after `step`
+    /// (at `t`), which ends the step from `before`.
+    #[cold]
     #[inline(never)]
-    fn evaluate_with_velocities(&mut self, view: &At<'_>) -> Result<bool, Error> {
-        self.evaluate(view)
+    fn not_finite(&self, i: usize, step: usize, t: f64) -> Error {
+        let cause = StepError::EventNotFinite {
+            event: i,
+            at: t,
+            value: self.g_after[i],
+        };
+        Error::step(step.saturating_sub(1), self.before.t, cause)
+    }
+
+    /// The watch at a step when an event reads the velocities: the inverse Legendre transform
+    /// first, out of the common path (it costs more than the call).
+    #[inline(never)]
+    fn watch_with_velocities(&mut self, step: usize, state: &State) -> bool {
+        let at = At {
+            step,
+            t: state.t,
+            q: &state.q,
+            p: &state.p,
+        };
+        match self.evaluate(&at) {
+            Ok(false) => {
+                self.advance(&at);
+                false
+            }
+            Ok(true) => {
+                self.pending = true;
+                true
+            }
+            Err(error) => {
+                self.ending = Some(Termination::Failed(error));
+                true
+            }
+        }
     }
 
     /// `after` ← the view's state, to locate a crossing in the step (its velocities are
@@ -220,8 +256,8 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
         let after = &mut self.after;
         after.step = view.step;
         after.t = view.t;
-        copy_short(&mut after.q, view.q);
-        copy_short(&mut after.p, view.p);
+        short::copy(&mut after.q, view.q);
+        short::copy(&mut after.p, view.p);
     }
 
     /// `before` ← the view's state with its velocities (when computed at every step; else
@@ -231,12 +267,12 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
         let before = &mut self.before;
         before.step = view.step;
         before.t = view.t;
-        copy_short(&mut before.q, view.q);
-        copy_short(&mut before.p, view.p);
+        short::copy(&mut before.q, view.q);
+        short::copy(&mut before.p, view.p);
         if self.velocities_every_step {
             std::mem::swap(&mut before.v, &mut self.after.v);
         }
-        std::mem::swap(&mut self.g_before, &mut self.g_after);
+        short::copy(&mut self.g_before, &self.g_after);
     }
 
     /// The velocities at both ends of the step, when they are not computed at every step: the
@@ -422,26 +458,26 @@ impl<L: Lagrangian, G: EventFunction> StepWatch for EventDetector<'_, L, G> {
         if self.ending.is_some() || self.pending {
             return true;
         }
-        let at = At {
-            step,
-            t: state.t,
-            q: &state.q,
-            p: &state.p,
-        };
-        let seen = match self.velocities_every_step {
-            true => self.evaluate_with_velocities(&at),
-            false => self.evaluate(&at),
-        };
-        match seen {
-            Ok(false) => {
+        if self.velocities_every_step {
+            return self.watch_with_velocities(step, state);
+        }
+        match self.scan(state.t, &state.q, &state.p) {
+            Scan::Quiet => {
+                let at = At {
+                    step,
+                    t: state.t,
+                    q: &state.q,
+                    p: &state.p,
+                };
                 self.advance(&at);
                 false
             }
-            Ok(true) => {
+            Scan::Crossed => {
                 self.pending = true;
                 true
             }
-            Err(error) => {
+            Scan::NotFinite(i) => {
+                let error = self.not_finite(i, step, state.t);
                 self.ending = Some(Termination::Failed(error));
                 true
             }
