@@ -51,4 +51,6 @@ pub use marsden_problem::{
     Diagnostic, Error, ErrorKind, Overrides, RunSpec, SweepSpec, catalog, error, from_toml_str,
     load, model, problem, source,
 };
-pub use run::{Controls, Outcome, Progress, RunStatus, Samples, Store, Summary, execute};
+pub use run::{
+    Controls, Outcome, Prepared, Progress, RunStatus, Samples, Store, Summary, execute,
+};

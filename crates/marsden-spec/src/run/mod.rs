@@ -25,6 +25,7 @@ pub mod execute;
 pub mod multibody_plots;
 pub mod output;
 pub mod plots;
+pub mod prepared;
 pub mod resume;
 pub mod rigid_plots;
 pub mod sampled_times;
@@ -39,6 +40,7 @@ pub mod sweep_table;
 pub mod sweep_writer;
 
 pub use execute::{Outcome, Store, execute, execute_from};
+pub use prepared::Prepared;
 pub use marsden_engine::{
     CHECK_EVERY, Controls, Progress, RunRecord, balance, certify, checkpoint, controls,
     diagnostics, discrete, engine, noether_balance, observer, sensitivity, solve, start,
