@@ -6,7 +6,7 @@
 
 use std::borrow::Cow;
 
-use marsden_spec::run::segment;
+use marsden_spec::segment;
 use marsden_spec::{Diagnostic, Overrides, Prepared, RunSpec};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};

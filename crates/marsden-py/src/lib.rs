@@ -24,7 +24,7 @@ use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
 use marsden_spec::catalog::Builtin;
-use marsden_spec::run::sweep::{self as sweeps, SweepOptions};
+use marsden_spec::sweep::{self as sweeps, SweepOptions};
 use marsden_spec::{Controls, Diagnostic, Error, ErrorKind, Overrides, RunSpec, Store};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -167,10 +167,10 @@ fn resume(
     dir: std::path::PathBuf,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<String> {
-    use marsden_spec::run::resume::{self, Found};
+    use marsden_spec::resume::{self, Found};
     let outcome = watched(py, progress, |controls| match resume::find(&dir, None)? {
         Found::Run(checkpoint) => resume::resume_from(&dir, *checkpoint, controls)
-            .map(|_| marsden_spec::run::output::SUMMARY_JSON.to_owned()),
+            .map(|_| marsden_spec::output::SUMMARY_JSON.to_owned()),
         Found::Sweep(checkpoint) => {
             let summary = format!("summary{}.json", checkpoint.shard().suffix());
             let options = SweepOptions {

@@ -1,11 +1,11 @@
 //! The native half of `marsden.Simulation`: a run's checkpointed state, and a stretch of the
-//! run continued from a state ([`marsden_spec::run::segment`]); the problem's initial state is
+//! run continued from a state ([`marsden_spec::segment`]); the problem's initial state is
 //! the one prepared when it was checked ([`crate::checked::CheckedProblem`]).
 
 use std::path::PathBuf;
 
-use marsden_spec::run::resume::{self, Found};
-use marsden_spec::run::segment::{self, StretchEnd, StretchStart};
+use marsden_spec::resume::{self, Found};
+use marsden_spec::segment::{self, StretchEnd, StretchStart};
 use marsden_spec::{Diagnostic, RunSpec, Store};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
