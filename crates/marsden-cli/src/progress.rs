@@ -7,8 +7,7 @@ use std::io::IsTerminal;
 use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use marsden_spec::Progress;
-use marsden_spec::run::CHECK_EVERY;
+use marsden_spec::{CHECK_EVERY, Progress};
 
 /// How long a run goes before the bar appears.
 const DELAY: Duration = Duration::from_secs(1);

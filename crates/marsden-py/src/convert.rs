@@ -7,8 +7,8 @@
 //! `[sensitivity]`, the stored Jacobians as a `samples × 2n × columns` array; the observables
 //! by name, and the events' located crossings by event name.
 
-use marsden_spec::run::event_outputs::EventSamples;
-use marsden_spec::run::sampled_times::SampledStates;
+use marsden_spec::EventSamples;
+use marsden_spec::SampledStates;
 use marsden_spec::{Outcome, Samples};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3};

@@ -10,9 +10,11 @@
 //! | [`watch`] | runs off the interpreter's lock; Ctrl-C sets the run's stop flag; progress to a Python function |
 //! | [`convert`] | an [`marsden_spec::Outcome`] as a dictionary of NumPy arrays |
 //! | [`optimize`] | `[optimal_control]` problems: checked, solved, returned as arrays |
+//! | [`checked`] | `check`: a problem validated and prepared once ([`checked::CheckedProblem`]), run from there |
 //! | [`simulation`] | `Simulation`: the initial state, stretches of a run continued from a state |
 //! | this file | the functions Python calls and the `ProblemError` exception |
 
+mod checked;
 mod convert;
 mod optimize;
 mod simulation;
@@ -22,7 +24,7 @@ use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
 use marsden_spec::catalog::Builtin;
-use marsden_spec::run::sweep::{self as sweeps, SweepOptions};
+use marsden_spec::sweep::{self as sweeps, SweepOptions};
 use marsden_spec::{Controls, Diagnostic, Error, ErrorKind, Overrides, RunSpec, Store};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -50,51 +52,53 @@ fn bad(diagnostic: Diagnostic) -> PyErr {
 
 /// Validates problem text (`origin` names it in messages).
 fn spec_of(text: &str, origin: &str, every: Option<usize>) -> PyResult<RunSpec> {
-    spec_with(text, origin, every, Overrides::default())
+    marsden_spec::from_toml_str(text, origin, &every_override(every)?).map_err(bad)
 }
 
-/// [`spec_of`] with further overrides (the output directory and checkpoints of `solve`).
-fn spec_with(
-    text: &str,
-    origin: &str,
-    every: Option<usize>,
-    overrides: Overrides,
-) -> PyResult<RunSpec> {
+/// The override of `every` a caller gave (`solve(every=…)`), refused if 0.
+fn every_override(every: Option<usize>) -> PyResult<Overrides> {
     if every == Some(0) {
         return Err(bad(Diagnostic::new("`every` must be at least 1")));
     }
-    let overrides = Overrides {
+    Ok(Overrides {
         every: every.map(|e| e as u64),
-        ..overrides
-    };
-    marsden_spec::from_toml_str(text, origin, &overrides).map_err(bad)
+        ..Overrides::default()
+    })
 }
 
-/// Checks problem text and describes it: name, coordinates, parameters, method, `h`, steps,
-/// the sweep's target, if any, and whether it has a `[sensitivity]` table.
-#[pyfunction]
-fn check<'py>(py: Python<'py>, text: &str, origin: &str) -> PyResult<Bound<'py, PyDict>> {
-    if marsden_problem::problem::optimal_control::is_optimal_control(text) {
-        return optimize::describe(py, text, origin);
+/// What `solve` was asked besides the problem: where the samples go, and the overrides of
+/// `every`, the output directory and the checkpoints.
+struct SolveRequest {
+    store: Store,
+    overrides: Overrides,
+}
+
+impl SolveRequest {
+    /// The request of `solve(every, dir, checkpoint_every)`.
+    ///
+    /// # Errors
+    /// Checkpoints without a directory; an `every` of 0.
+    fn new(
+        every: Option<usize>,
+        dir: Option<std::path::PathBuf>,
+        checkpoint_every: Option<u64>,
+    ) -> PyResult<SolveRequest> {
+        if checkpoint_every.is_some() && dir.is_none() {
+            return Err(bad(Diagnostic::new(
+                "checkpoints are written into an output directory: give `dir` with `checkpoint_every`",
+            )));
+        }
+        let store = match dir {
+            Some(_) => Store::FilesAndMemory,
+            None => Store::Memory,
+        };
+        let overrides = Overrides {
+            out: dir,
+            checkpoint_every,
+            ..every_override(every)?
+        };
+        Ok(SolveRequest { store, overrides })
     }
-    let spec = spec_of(text, origin, None)?;
-    marsden_spec::prepare(&spec).map_err(bad)?;
-    let d = PyDict::new(py);
-    d.set_item("name", &spec.name)?;
-    d.set_item("coordinates", &spec.system.coordinates)?;
-    d.set_item("parameters", spec.system.parameters.clone())?;
-    d.set_item("method", spec.integrator.method.to_string())?;
-    d.set_item("h", spec.integrator.grid.h)?;
-    d.set_item("steps", spec.integrator.grid.steps)?;
-    d.set_item("every", spec.output.every)?;
-    d.set_item("lagrangian", spec.system.lagrangian.describe())?;
-    let sweep = spec.sweep.as_ref().map(|s| {
-        let members: Vec<Vec<f64>> = (0..s.count()).map(|k| s.values_of(k)).collect();
-        (s.label(), members)
-    });
-    d.set_item("sweep", sweep)?;
-    d.set_item("sensitivity", spec.sensitivity.is_some())?;
-    Ok(d)
 }
 
 /// Runs problem text with its samples in memory (every `every`-th step, the first and the
@@ -115,23 +119,10 @@ fn solve<'py>(
     dir: Option<std::path::PathBuf>,
     checkpoint_every: Option<u64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    if checkpoint_every.is_some() && dir.is_none() {
-        return Err(bad(Diagnostic::new(
-            "checkpoints are written into an output directory: give `dir` with `checkpoint_every`",
-        )));
-    }
-    let store = match dir {
-        Some(_) => Store::FilesAndMemory,
-        None => Store::Memory,
-    };
-    let overrides = Overrides {
-        out: dir,
-        checkpoint_every,
-        ..Overrides::default()
-    };
-    let spec = spec_with(text, origin, every, overrides)?;
+    let request = SolveRequest::new(every, dir, checkpoint_every)?;
+    let spec = marsden_spec::from_toml_str(text, origin, &request.overrides).map_err(bad)?;
     let outcome = watched(py, progress, |controls| {
-        marsden_spec::execute(&spec, store, controls)
+        marsden_spec::execute(&spec, request.store, controls)
     })?;
     convert::outcome(py, &outcome.map_err(to_py)?)
 }
@@ -176,10 +167,10 @@ fn resume(
     dir: std::path::PathBuf,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<String> {
-    use marsden_spec::run::resume::{self, Found};
+    use marsden_spec::resume::{self, Found};
     let outcome = watched(py, progress, |controls| match resume::find(&dir, None)? {
         Found::Run(checkpoint) => resume::resume_from(&dir, *checkpoint, controls)
-            .map(|_| marsden_spec::run::output::SUMMARY_JSON.to_owned()),
+            .map(|_| marsden_spec::output::SUMMARY_JSON.to_owned()),
         Found::Sweep(checkpoint) => {
             let summary = format!("summary{}.json", checkpoint.shard().suffix());
             let options = SweepOptions {
@@ -211,6 +202,15 @@ fn sweep<'py>(
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyList>> {
     let base = spec_of(text, origin, every)?;
+    sweep_of(py, &base, threads)
+}
+
+/// The members of the `[sweep]` of `base`, run as [`sweep`] runs them.
+fn sweep_of<'py>(
+    py: Python<'py>,
+    base: &RunSpec,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyList>> {
     let Some(members) = base.sweep.clone() else {
         return Err(bad(Diagnostic::new("the problem has no [sweep]")));
     };
@@ -222,7 +222,7 @@ fn sweep<'py>(
     };
     let overrides = Overrides::default();
     let results = watch::off_the_lock(py, &stop, || {
-        sweeps::member_outcomes(&base, &members, &overrides, &options)
+        sweeps::member_outcomes(base, &members, &overrides, &options)
     })?
     .map_err(to_py)?;
     let list = PyList::empty(py);
@@ -285,15 +285,14 @@ fn systems<'py>(py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ProblemError", m.py().get_type::<ProblemError>())?;
-    m.add_function(wrap_pyfunction!(check, m)?)?;
+    m.add_class::<checked::CheckedProblem>()?;
+    m.add_function(wrap_pyfunction!(checked::check, m)?)?;
     m.add_function(wrap_pyfunction!(solve, m)?)?;
     m.add_function(wrap_pyfunction!(resume, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(member, m)?)?;
     m.add_function(wrap_pyfunction!(systems, m)?)?;
     m.add_function(wrap_pyfunction!(optimize::optimize, m)?)?;
-    m.add_function(wrap_pyfunction!(simulation::initial_state, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::checkpoint_state, m)?)?;
-    m.add_function(wrap_pyfunction!(simulation::stretch, m)?)?;
     Ok(())
 }

@@ -1,26 +1,16 @@
-//! The native half of `marsden.Simulation`: the problem's initial state, a run's checkpointed
-//! state, and a stretch of the run continued from a state ([`marsden_spec::run::segment`]).
+//! The native half of `marsden.Simulation`: a run's checkpointed state, and a stretch of the
+//! run continued from a state ([`marsden_spec::segment`]); the problem's initial state is
+//! the one prepared when it was checked ([`crate::checked::CheckedProblem`]).
 
 use std::path::PathBuf;
 
-use marsden_spec::run::resume::{self, Found};
-use marsden_spec::run::segment::{self, StretchEnd, StretchStart};
-use marsden_spec::{Diagnostic, Store};
+use marsden_spec::resume::{self, Found};
+use marsden_spec::segment::{self, StretchEnd, StretchStart};
+use marsden_spec::{Diagnostic, RunSpec, Store};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::{bad, convert, spec_of, to_py, watched};
-
-/// The complete initial state of problem text: `(t0, q, p)` (`p` from `v` where the file
-/// gives velocities, projected onto the constraints where it asks); refused for what cannot
-/// be stepped ([`segment::steppable`]).
-#[pyfunction]
-pub fn initial_state(text: &str, origin: &str) -> PyResult<(f64, Vec<f64>, Vec<f64>)> {
-    let spec = spec_of(text, origin, None)?;
-    segment::steppable(&spec).map_err(bad)?;
-    let start = marsden_spec::prepare(&spec).map_err(bad)?;
-    Ok((start.t, start.q, start.p))
-}
+use crate::{bad, convert, to_py, watched};
 
 /// What a run's checkpoint in `dir` holds, to step on from: `(text, origin, t, q, p, steps)`.
 /// Refused for a sweep's checkpoint, and for a run whose step size came from `--h` (its problem
@@ -51,33 +41,38 @@ pub fn checkpoint_state(
     Ok((c.identity.text, c.identity.absolute, c.t, c.q, c.p, c.step))
 }
 
-/// The run of problem text continued from `(t, q, p)` for `steps` steps or until `t_end`
-/// (exactly one of them), kept in memory, as [`crate::solve`] returns it.
-#[pyfunction]
-#[pyo3(signature = (text, origin, state, steps=None, t_end=None, every=None, progress=None))]
-#[allow(clippy::too_many_arguments)]
-pub fn stretch<'py>(
+/// Where a stretch starts and where it ends.
+pub struct Stretch {
+    /// `(t, q, p)`: the state it continues from.
+    pub state: (f64, Vec<f64>, Vec<f64>),
+    /// After some steps, or at a time.
+    pub end: StretchEnd,
+}
+
+/// The end of a stretch: after `steps` steps or at `t_end` (exactly one of them).
+///
+/// # Errors
+/// Neither or both given.
+pub fn stretch_end(steps: Option<usize>, t_end: Option<f64>) -> PyResult<StretchEnd> {
+    match (steps, t_end) {
+        (Some(n), None) => Ok(StretchEnd::Steps(n)),
+        (None, Some(t)) => Ok(StretchEnd::Time(t)),
+        _ => Err(bad(Diagnostic::new(
+            "a stretch ends after `steps` or at `t_end`: give exactly one",
+        ))),
+    }
+}
+
+/// The run of `spec` continued as `stretch` asks, kept in memory, as `solve` returns it. The
+/// initial state differs from the problem's, so the run prepares it.
+pub fn stretch_of<'py>(
     py: Python<'py>,
-    text: &str,
-    origin: &str,
-    state: (f64, Vec<f64>, Vec<f64>),
-    steps: Option<usize>,
-    t_end: Option<f64>,
-    every: Option<usize>,
+    spec: &RunSpec,
+    stretch: Stretch,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let end = match (steps, t_end) {
-        (Some(n), None) => StretchEnd::Steps(n),
-        (None, Some(t)) => StretchEnd::Time(t),
-        _ => {
-            return Err(bad(marsden_spec::Diagnostic::new(
-                "a stretch ends after `steps` or at `t_end`: give exactly one",
-            )));
-        }
-    };
-    let spec = spec_of(text, origin, every)?;
-    let (t, q, p) = state;
-    let spec = segment::continued(&spec, StretchStart { t, q, p }, end).map_err(bad)?;
+    let (t, q, p) = stretch.state;
+    let spec = segment::continued(spec, StretchStart { t, q, p }, stretch.end).map_err(bad)?;
     let outcome = watched(py, progress, |controls| {
         marsden_spec::execute(&spec, Store::Memory, controls)
     })?;

@@ -5,7 +5,7 @@ use std::cell::RefCell;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use marsden_spec::run::sweep::{self, NOT_RUN, SweepOptions};
+use marsden_spec::sweep::{self, NOT_RUN, SweepOptions};
 use marsden_spec::{Controls, Progress, RunStatus, Store, execute};
 
 use crate::load_example;

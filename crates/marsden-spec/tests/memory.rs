@@ -1,7 +1,7 @@
 //! Runs in memory, to files, and both: the same samples bit for bit, the same summaries.
 
 use marsden_io::read_csv;
-use marsden_spec::run::sweep::{self, SweepOptions};
+use marsden_spec::sweep::{self, SweepOptions};
 use marsden_spec::{Controls, RunStatus, Samples, Store, execute};
 
 use crate::load_example;

@@ -18,7 +18,7 @@ use std::process::ExitCode;
 use clap::{Args, Parser, Subcommand};
 
 use marsden_spec::Overrides;
-use marsden_spec::run::shard::Shard;
+use marsden_spec::sweep::Shard;
 
 use crate::error::{CliError, Status};
 

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use marsden_spec::run::plots;
+use marsden_spec::plots;
 
 use crate::error::{CliError, Status};
 

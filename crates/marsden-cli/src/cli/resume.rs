@@ -4,9 +4,8 @@
 //! members kept; `--shard` picks one shard's when several ran into `DIR`). Exit statuses as `marsden run`; 2, with nothing changed, for a missing or damaged
 //! checkpoint, a version this build cannot read, or a problem file changed since.
 
-use marsden_spec::run::resume::{self, Found};
-use marsden_spec::run::sweep::SweepOptions;
-use marsden_spec::run::sweep_checkpoint::SweepCheckpoint;
+use marsden_spec::resume::{self, Found, SweepCheckpoint};
+use marsden_spec::sweep::SweepOptions;
 
 use super::ResumeArgs;
 use super::run::{conclude, conclude_sweep, stop_on_ctrl_c, with_controls};
@@ -15,7 +14,7 @@ use crate::error::{CliError, Status};
 /// The step of the tangent run's checkpoint in `dir`, if there is a readable one (an unreadable
 /// one is refused by the resume itself, with the reason).
 fn tangent_step(dir: &std::path::Path) -> Option<usize> {
-    use marsden_spec::run::checkpoint::{file, tangent};
+    use marsden_spec::checkpoint::{file, tangent};
     let path = dir.join(tangent::SENSITIVITY_CHECKPOINT_FILE);
     let found: tangent::SensitivityCheckpoint = file::load(&path).ok()?;
     Some(found.tangent.step)

@@ -8,9 +8,9 @@
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use marsden_spec::run::sweep::{self, SweepOptions, SweepOutcome};
-use marsden_spec::run::{RunStatus, sweep_table};
-use marsden_spec::{Controls, Diagnostic, Progress, RunSpec, Store, SweepSpec, report};
+use marsden_spec::report::sweep_table;
+use marsden_spec::sweep::{self, SweepOptions, SweepOutcome};
+use marsden_spec::{Controls, Diagnostic, Progress, RunSpec, RunStatus, Store, SweepSpec, report};
 
 use super::RunArgs;
 use crate::error::{CliError, Status};
@@ -65,7 +65,7 @@ pub(super) fn conclude(spec: &RunSpec, outcome: &marsden_spec::Outcome, quiet: b
     if !quiet {
         print!("{}", report::run::render(outcome));
         if let Some(sensitivity) = &outcome.summary.sensitivity {
-            println!("{}", marsden_spec::run::sensitivity::describe(sensitivity));
+            println!("{}", marsden_spec::sensitivity::describe(sensitivity));
         }
     }
     let s = &outcome.summary;

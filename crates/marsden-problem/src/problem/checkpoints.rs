@@ -9,6 +9,8 @@
 //! reason. A sweep checkpoints its finished members instead (each member reruns whole), so a
 //! sweep of any kind of member takes `checkpoint_every` and is not checked here.
 
+use std::ops::Range;
+
 use super::check::Checker;
 use super::method::Method;
 use super::raw::RawProblem;
@@ -35,15 +37,29 @@ pub fn refuse_unsupported(
     every: Option<usize>,
     run: RunKind<'_>,
 ) -> Result<(), Diagnostic> {
+    let span = (raw.output.as_ref())
+        .and_then(|o| o.get_ref().checkpoint_every.as_ref())
+        .map(|c| c.span());
+    refuse_at(ck, span, every, run)
+}
+
+/// [`refuse_unsupported`] with the caret on `span` (`None`: the value came from an override,
+/// not from the file).
+///
+/// # Errors
+/// As [`refuse_unsupported`].
+pub fn refuse_at(
+    ck: &Checker<'_>,
+    span: Option<Range<usize>>,
+    every: Option<usize>,
+    run: RunKind<'_>,
+) -> Result<(), Diagnostic> {
     if every.is_none() {
         return Ok(());
     }
     let Some(reason) = unsupported(run) else {
         return Ok(());
     };
-    let span = (raw.output.as_ref())
-        .and_then(|o| o.get_ref().checkpoint_every.as_ref())
-        .map(|c| c.span());
     Err(ck
         .error(span, format!("checkpoints are not available for {reason}"))
         .note(

@@ -31,6 +31,7 @@ pub mod named_symmetry;
 pub mod nbody_file;
 pub mod number;
 pub mod optimal_control;
+mod overrides;
 pub mod parameters;
 pub mod raw;
 pub mod raw_multibody;

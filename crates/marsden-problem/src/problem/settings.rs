@@ -346,8 +346,7 @@ pub fn output(
         },
     };
     let every = match (overrides.every, table.and_then(|t| t.every.as_ref())) {
-        (Some(0), _) => return Err(ck.error(None, "`every` must be at least 1, got 0")),
-        (Some(n), _) => usize::try_from(n).unwrap_or(usize::MAX),
+        (Some(n), _) => every_override(n)?,
         (None, None) => 1,
         (None, Some(e)) => count(ck, "every", e)?,
     };
@@ -362,10 +361,7 @@ pub fn output(
         overrides.checkpoint_every,
         table.and_then(|t| t.checkpoint_every.as_ref()),
     ) {
-        (Some(0), _) => {
-            return Err(ck.error(None, "--checkpoint-every must be at least 1, got 0"));
-        }
-        (Some(n), _) => Some(usize::try_from(n).unwrap_or(usize::MAX)),
+        (Some(n), _) => Some(checkpoint_every_override(n)?),
         (None, Some(e)) => Some(count(ck, "checkpoint_every", e)?),
         (None, None) => None,
     };
@@ -379,6 +375,33 @@ pub fn output(
         times: Vec::new(),
         exact_times: false,
     })
+}
+
+/// The override of `[output] every` (Python's `solve(every=…)`): at least 1. Shared by the
+/// file's checks and [`RunSpec::with_overrides`](super::RunSpec::with_overrides), so both
+/// refuse a 0 with the same words.
+///
+/// # Errors
+/// A 0.
+pub fn every_override(n: u64) -> Result<usize, Diagnostic> {
+    match n {
+        0 => Err(Diagnostic::new("`every` must be at least 1, got 0")),
+        n => Ok(usize::try_from(n).unwrap_or(usize::MAX)),
+    }
+}
+
+/// The override of `[output] checkpoint_every` (`--checkpoint-every`): at least 1 (as
+/// [`every_override`]).
+///
+/// # Errors
+/// A 0.
+pub fn checkpoint_every_override(n: u64) -> Result<usize, Diagnostic> {
+    match n {
+        0 => Err(Diagnostic::new(
+            "--checkpoint-every must be at least 1, got 0",
+        )),
+        n => Ok(usize::try_from(n).unwrap_or(usize::MAX)),
+    }
 }
 
 /// `angles = ["theta"]`: each must name a coordinate.

@@ -174,7 +174,10 @@ class Problem:
         self._text = text
         self._origin = origin
         self._generated = None
-        self._info: Dict[str, Any] = dict(_native.check(text, origin))
+        # Checked once: solve(), sweep() and simulation() run the checked problem, without
+        # reading the text or preparing the initial state again.
+        self._checked = _native.check(text, origin)
+        self._info: Dict[str, Any] = dict(self._checked.info)
 
     def _error(self, error: ProblemError) -> ProblemError:
         """``error`` in the terms the problem was given in (keywords, or text)."""
@@ -292,15 +295,20 @@ class Problem:
                 "solve() runs one problem\n"
                 "  = help: run every member with problem.sweep() (or marsden.sweep(problem)), "
                 "or `marsden run` the file")
-        text = self._text
-        if sensitivity is not None:
-            if self._info.get("sensitivity"):
-                raise ProblemError("this problem already has a [sensitivity] table: leave out "
-                                   "solve(sensitivity=...), or remove the table")
-            text += _sensitivity.table(sensitivity)
+        if sensitivity is not None and self._info.get("sensitivity"):
+            raise ProblemError("this problem already has a [sensitivity] table: leave out "
+                               "solve(sensitivity=...), or remove the table")
+        # With derivatives asked, another problem: the text with the [sensitivity] table,
+        # checked by the run.
+        text = None if sensitivity is None else self._text + _sensitivity.table(sensitivity)
         try:
-            fields = _native.solve(text, self._origin, every, _progress.callback(progress),
-                                   None if dir is None else str(dir), checkpoint_every)
+            callback = _progress.callback(progress)
+            out = None if dir is None else str(dir)
+            if text is None:
+                fields = self._checked.solve(every, callback, out, checkpoint_every)
+            else:
+                fields = _native.solve(text, self._origin, every, callback, out,
+                                       checkpoint_every)
         except ProblemError as e:
             raise self._error(e) from None
         return from_native(fields)

@@ -35,8 +35,8 @@ class Simulation:
     Euler–Lagrange equations), so each stretch continues from the state ``(t, q, p)`` the one
     before it reached: the same discrete flow as one run of the whole time, to the Newton
     tolerance of the steps (bit for bit for explicit steps). A simulation saved and loaded
-    continues exactly as the one that was not stopped. Each stretch reads the problem again
-    and compiles its expressions (about a millisecond): take many steps per call where you can.
+    continues exactly as the one that was not stopped. Each stretch starts a run from its state
+    (about a millisecond): take many steps per call where you can.
     Rigid bodies, multibody systems, sweeps, ``[sensitivity]`` and control tables are
     refused; ``[output] times`` are left to :meth:`Problem.solve` (ask ``integrate`` for the
     times instead). A stretch stopped by an event leaves the simulation at that step (its
@@ -50,8 +50,11 @@ class Simulation:
                                "not stepped")
         self._text: str = problem._text
         self._origin: str = problem._origin
+        # The problem as checked: its initial state prepared then, its stretches run without
+        # reading the text again.
+        self._problem = problem
         try:
-            t, q, p = _native.initial_state(self._text, self._origin)
+            t, q, p = problem._checked.initial_state()
         except ProblemError as e:
             raise problem._error(e) from None
         self.t: float = t
@@ -85,8 +88,8 @@ class Simulation:
     def _stretch(self, steps: Optional[int] = None, t_end: Optional[float] = None,
                  every: Optional[int] = None, progress: _progress.Request = False) -> Solution:
         state = (self.t, [float(x) for x in self.q], [float(x) for x in self.p])
-        fields = _native.stretch(self._text, self._origin, state, steps=steps, t_end=t_end,
-                                 every=every, progress=_progress.callback(progress))
+        fields = self._problem._checked.stretch(state, steps=steps, t_end=t_end, every=every,
+                                                progress=_progress.callback(progress))
         try:
             solution = from_native(fields)
         except SimulationError as e:

@@ -42,10 +42,17 @@ def sweep(
     """
     text = _with_sweep(problem, parameter, initial, values)
     origin = problem._origin
+    # The problem's own sweep was checked with the problem; a sweep given here makes other
+    # text, checked here.
+    own = parameter is None and initial is None
     if executor is None:
-        results = _native.sweep(text, origin, every, threads)
+        if own:
+            results = problem._checked.sweep(every, threads)
+        else:
+            results = _native.sweep(text, origin, every, threads)
         return [_member(r) for r in results]
-    count = len(_native.check(text, origin)["sweep"][1])
+    info = problem._info if own else _native.check(text, origin).info
+    count = len(info["sweep"][1])
     futures = [executor.submit(_run_member, text, origin, k, every) for k in range(count)]
     return [f.result() for f in futures]
 

@@ -92,6 +92,43 @@ pub fn execute_from(
 ) -> Result<Outcome, Error> {
     let engine = crate::engine_for(spec);
     let start = engine.prepare(spec)?;
+    let run = PreparedRun {
+        engine: engine.as_ref(),
+        spec,
+        start: &start,
+    };
+    execute_prepared(run, store, controls, resume)
+}
+
+/// A run whose initial state was prepared already: the engine of `spec`, and the
+/// [`start::Start`] its [`Engine::prepare`] gave for a spec that differs from `spec` at most in
+/// `[output]` (which the initial state does not depend on).
+#[derive(Clone, Copy)]
+pub(crate) struct PreparedRun<'a> {
+    /// The engine of `spec`'s system ([`crate::engine_for`]).
+    pub engine: &'a dyn Engine,
+    /// The problem to run.
+    pub spec: &'a RunSpec,
+    /// Its complete initial state, checked.
+    pub start: &'a start::Start,
+}
+
+/// [`execute_from`] without preparing the initial state again ([`super::prepared::Prepared`]
+/// holds it from when the problem was checked).
+///
+/// # Errors
+/// As [`execute_from`].
+pub(crate) fn execute_prepared(
+    run: PreparedRun<'_>,
+    store: Store,
+    controls: &Controls<'_>,
+    resume: Option<Box<RunCheckpoint>>,
+) -> Result<Outcome, Error> {
+    let PreparedRun {
+        engine,
+        spec,
+        start,
+    } = run;
     let dir = spec.output.dir.clone();
     let plan = checkpoint_plan(spec, store, resume)?;
     let resumed = plan.as_ref().and_then(|p| p.resume.as_deref());
@@ -275,9 +312,9 @@ pub fn execute_from(
         .map(str::to_owned)
         .collect();
     let sensitivity = derivatives(
-        engine.as_ref(),
+        engine,
         spec,
-        (&record, &start),
+        (&record, start),
         (store.files().then_some(&dir), store.memory()),
         (controls, tangent_plan.as_ref()),
     );

@@ -40,21 +40,13 @@ pub fn identity(spec: &RunSpec) -> RunIdentity {
     }
 }
 
-/// The run whose checkpoint is in `dir`, continued to its end with `controls` watching; its
-/// files written into `dir` as an uninterrupted run writes them.
+/// The run whose checkpoint `checkpoint` was read from `dir` ([`find`]), continued to its end
+/// with `controls` watching; its files written into `dir` as an uninterrupted run writes them.
 ///
 /// # Errors
 /// Bad input (status 2), with nothing in `dir` changed: no checkpoint, a damaged one or one of
 /// a format version this build cannot read, a problem file changed since the checkpoint, or
 /// output files that no longer reach the checkpoint.
-pub fn resume(dir: &Path, controls: &Controls<'_>) -> Result<(RunSpec, Outcome), Error> {
-    resume_from(dir, peek(dir)?, controls)
-}
-
-/// [`resume`] from `checkpoint`, already read from `dir` ([`peek`]).
-///
-/// # Errors
-/// As [`resume`].
 pub fn resume_from(
     dir: &Path,
     checkpoint: RunCheckpoint,
@@ -68,8 +60,8 @@ pub fn resume_from(
 /// The checkpoint in `dir`, read and checked (its format version and CRC-32).
 ///
 /// # Errors
-/// As [`resume`].
-pub fn peek(dir: &Path) -> Result<RunCheckpoint, Error> {
+/// As [`resume_from`].
+fn peek(dir: &Path) -> Result<RunCheckpoint, Error> {
     RunCheckpoint::load(&dir.join(CHECKPOINT_FILE))
         .map_err(|e| Error::bad_input(Diagnostic::new(e.to_string())))
 }
@@ -87,7 +79,7 @@ pub enum Found {
 /// given, else the only one there.
 ///
 /// # Errors
-/// As [`resume`]; also several shards' checkpoints in `dir` and no `shard` to choose one.
+/// As [`resume_from`]; also several shards' checkpoints in `dir` and no `shard` to choose one.
 pub fn find(dir: &Path, shard: Option<Shard>) -> Result<Found, Error> {
     if let Some(shard) = shard {
         return sweep_checkpoint::load(&sweep_checkpoint::path(dir, shard))
@@ -119,7 +111,7 @@ pub fn find(dir: &Path, shard: Option<Shard>) -> Result<Found, Error> {
 /// back to it, the members after it run with `options`' threads and stop flag.
 ///
 /// # Errors
-/// As [`resume`].
+/// As [`resume_from`].
 pub fn resume_sweep(
     dir: &Path,
     checkpoint: SweepCheckpoint,

@@ -5,7 +5,7 @@
 //! member). Rows keep their global member index.
 //!
 //! ```
-//! use marsden_spec::run::shard::Shard;
+//! use marsden_spec::sweep::Shard;
 //!
 //! let shard: Shard = "1/3".parse()?;
 //! assert_eq!(shard.members(8), [1, 4, 7]);

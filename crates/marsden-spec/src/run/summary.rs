@@ -16,9 +16,7 @@ use super::solve::{FinalState, RunRecord};
 use crate::problem::spec::ENERGY_NOT_AVAILABLE;
 use marsden_engine::serialize::as_object;
 
-pub use super::summary_bodies::{
-    AngularMomentumSummary, CasimirSummary, JointSummary, MultibodySummary, RigidBodySummary,
-};
+pub use super::summary_bodies::{MultibodySummary, RigidBodySummary};
 
 /// Why a forced or time-dependent run has no energy balance: the balance is that of two-point
 /// rules (forces and `∂L_d/∂t₀` at `q_k`, `q_{k+1}`); a method with internal stages puts its
@@ -43,7 +41,7 @@ pub enum RunStatus {
     Failed,
     /// Stopped through [`Controls::stop`](super::Controls::stop); the samples are kept.
     Interrupted,
-    /// Ended by an event with `action = "stop"` (`summary.json`: "stopped by event <name>").
+    /// Ended by an event with `action = "stop"` (`summary.json`: `"stopped by event <name>"`).
     Stopped,
 }
 
@@ -79,7 +77,7 @@ impl RunStatus {
         }
     }
 
-    /// The status as `summary.json` writes it: the name, or "stopped by event <name>".
+    /// The status as `summary.json` writes it: the name, or `"stopped by event <name>"`.
     pub fn text(self, stopped_by: Option<&str>) -> String {
         match (self, stopped_by) {
             (RunStatus::Stopped, Some(event)) => format!("stopped by event {event}"),

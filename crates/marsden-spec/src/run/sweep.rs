@@ -34,7 +34,7 @@ pub const NOT_RUN: &str = "not run: the sweep was interrupted";
 /// What `marsden run` did with a sweep.
 #[derive(Debug, Clone)]
 pub struct SweepOutcome {
-    /// The rows to show, in member order: the first [`SHOWN`] members' and up to [`SHOWN`]
+    /// The rows to show, in member order: the first `SHOWN` (20) members' and up to as many
     /// more that did not complete (the table file has every row).
     pub rows: Vec<SweepRow>,
     /// The table's columns.

@@ -23,7 +23,8 @@ use marsden_engine::checkpoint::{Mark, RunIdentity, file};
 /// The start of a sweep checkpoint's file name.
 const PREFIX: &str = "sweep-checkpoint";
 
-/// A sweep's checkpoint (see the [module](self) docs).
+/// A sweep's checkpoint: where the table of a sweep stands after its last chunk of ended
+/// members, which `marsden resume` cuts the table back to before running the others.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SweepCheckpoint {
     /// The problem file and the command-line values of the sweep.

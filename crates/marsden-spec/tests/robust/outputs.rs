@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use marsden_spec::run::output;
+use marsden_spec::output;
 use marsden_spec::{Controls, ErrorKind, Overrides, RunSpec, Store, execute, from_toml_str};
 
 fn named(name: &str) -> String {
@@ -56,8 +56,8 @@ fn second_run_into_a_locked_directory_is_refused() {
 /// nothing; another shard of it may write beside it.
 #[test]
 fn a_sweep_into_a_locked_directory_is_refused() {
-    use marsden_spec::run::shard::Shard;
-    use marsden_spec::run::sweep::{self, SweepOptions};
+    use marsden_spec::sweep::Shard;
+    use marsden_spec::sweep::{self, SweepOptions};
     let dir = tempfile::tempdir().unwrap();
     let overrides = Overrides {
         out: Some(dir.path().to_owned()),

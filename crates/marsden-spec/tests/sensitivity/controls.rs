@@ -7,7 +7,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use marsden_spec::prepare;
-use marsden_spec::run::sensitivity::compute_with;
+use marsden_spec::sensitivity::compute_with;
 use marsden_spec::{Controls, Progress, RunSpec};
 
 use super::{OSCILLATOR, product};
@@ -75,7 +75,7 @@ fn r1_stop_flag_set_from_the_progress_callback_ends_the_tangent_run_at_512_steps
 /// bit; a files-only run writes them and keeps nothing in memory.
 #[test]
 fn r1_jacobians_are_streamed_to_the_sink_not_kept() {
-    use marsden_spec::run::sensitivity::compute_streamed;
+    use marsden_spec::sensitivity::compute_streamed;
     let spec =
         RunSpec::from_toml_str(OSCILLATOR, "sensitivity.toml").unwrap_or_else(|d| panic!("{d}"));
     let start = prepare(&spec).unwrap_or_else(|d| panic!("{d}"));
