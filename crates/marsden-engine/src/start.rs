@@ -44,8 +44,9 @@ pub fn prepare_with<L: Lagrangian>(spec: &RunSpec, lagrangian: &L) -> Result<Sta
     if !energy.is_finite() {
         return Err(non_finite_energy(spec, energy));
     }
-    let (symmetries, mut warnings) = non_symmetries(lagrangian, spec, (start.t, &start.q, &v));
-    warnings.extend(constraint_non_symmetries(spec, (start.t, &start.q, &v)));
+    let initial = Sample::new(start.t, &start.q, &v);
+    let (symmetries, mut warnings) = non_symmetries(lagrangian, spec, &initial);
+    warnings.extend(constraint_non_symmetries(spec, &initial));
     warnings.extend(crate::step_system::large_step_system(spec, lagrangian));
     Ok(Start {
         t: start.t,
@@ -78,7 +79,7 @@ pub fn prepare_discrete(
     let n = marsden::DiscreteLagrangian::dof(ld);
     let (t, q) = (spec.initial.t0, &spec.initial.q);
     regular_discrete(ld, spec, (t, q, p))?;
-    let (symmetries, warnings) = discrete_non_symmetries(ld, spec, (t, q, p));
+    let (symmetries, warnings) = discrete_non_symmetries(ld, spec, &Sample::new(t, q, p));
     Ok(Start {
         t,
         q: q.clone(),
@@ -263,17 +264,17 @@ fn off_manifold(e: &marsden::Error) -> String {
 /// A warning for each declared symmetry that does not keep the constraints invariant at the
 /// initial state (`Dφ(q)·ξ_Q(q) ≠ 0`, by the core's check): the constraint forces then push
 /// along the generator and its momentum map is not conserved.
-fn constraint_non_symmetries(spec: &RunSpec, (t, q, v): (f64, &[f64], &[f64])) -> Vec<String> {
-    use marsden::symmetry::check::{DEFAULT_TOLERANCE, Sample, check_constraint};
+fn constraint_non_symmetries(spec: &RunSpec, initial: &Sample) -> Vec<String> {
+    use marsden::symmetry::check::{DEFAULT_TOLERANCE, check_constraint};
     let constraint = &spec.system.constraint;
     if constraint.count() == 0 {
         return Vec::new();
     }
-    let samples = [Sample::new(t, q, v)];
+    let samples = std::slice::from_ref(initial);
     spec.system
         .symmetries
         .iter()
-        .filter_map(|s| check_constraint(constraint, s, &samples, DEFAULT_TOLERANCE).ok())
+        .filter_map(|s| check_constraint(constraint, s, samples, DEFAULT_TOLERANCE).ok())
         .filter(|report| !report.is_symmetry())
         .map(|report| {
             let defect = report.worst().map_or(f64::NAN, |w| w.max_defect);
@@ -294,11 +295,11 @@ fn constraint_non_symmetries(spec: &RunSpec, (t, q, v): (f64, &[f64], &[f64])) -
 fn discrete_non_symmetries<D: marsden::DiscreteLagrangian>(
     ld: &D,
     spec: &RunSpec,
-    state: (f64, &[f64], &[f64]),
+    initial: &Sample,
 ) -> (Vec<SymmetryCheck>, Vec<String>) {
     use marsden::symmetry::check::{DEFAULT_TOLERANCE, check_discrete};
     let h = spec.integrator.grid.h;
-    let samples = nearby_samples(state, |s| {
+    let samples = nearby_samples(initial, |s| {
         let q1: Vec<f64> = s.q.iter().zip(&s.v).map(|(q, v)| q + h * v).collect();
         ld.discrete_lagrangian(s.t, h, &s.q, &q1).is_finite()
     });
@@ -343,11 +344,9 @@ const NEARBY_RADIUS: f64 = 0.05;
 /// Lagrangian's domain says nothing about its invariance). A single state cannot tell a symmetry
 /// from a coincidence: `L = ½ẋ² − ½x²` has `∂L/∂x = 0` at `x = 0`, and translations are no
 /// symmetry of it.
-pub fn nearby_samples(
-    (t, q, v): (f64, &[f64], &[f64]),
-    finite: impl Fn(&Sample) -> bool,
-) -> Vec<Sample> {
-    let n = q.len();
+pub fn nearby_samples(initial: &Sample, finite: impl Fn(&Sample) -> bool) -> Vec<Sample> {
+    let Sample { t, q, v } = initial;
+    let (t, n) = (*t, q.len());
     let q_scale = NEARBY_RADIUS * q.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
     let v_scale = NEARBY_RADIUS * v.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
     let t_scale = NEARBY_RADIUS * t.abs().max(1.0);
@@ -355,7 +354,7 @@ pub fn nearby_samples(
     // be invariant at `t₀` only: `∂L/∂x ∝ sin √t`), never before `t₀` (its domain may start
     // there).
     let offsets = Sample::random(n + 1, NEARBY_STATES, 0x005E_ED0F_5EED, 1.0);
-    std::iter::once(Sample::new(t, q, v))
+    std::iter::once(initial.clone())
         .chain(offsets.into_iter().map(|o| Sample {
             t: t + t_scale * 0.5 * (1.0 + o.q[n]),
             q: q.iter().zip(&o.q).map(|(x, r)| x + q_scale * r).collect(),
@@ -442,10 +441,10 @@ impl SymmetryCheck {
 fn non_symmetries<L: Lagrangian>(
     lagrangian: &L,
     spec: &RunSpec,
-    state: (f64, &[f64], &[f64]),
+    initial: &Sample,
 ) -> (Vec<SymmetryCheck>, Vec<String>) {
     use marsden::symmetry::check::{DEFAULT_TOLERANCE, check_lagrangian};
-    let samples = nearby_samples(state, |s| {
+    let samples = nearby_samples(initial, |s| {
         let value = lagrangian.lagrangian(s.t, &s.q, &s.v);
         let mut p = vec![0.0; s.q.len()];
         mechanics::momentum(lagrangian, s.t, &s.q, &s.v, &mut p);
