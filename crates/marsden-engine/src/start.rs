@@ -78,8 +78,9 @@ pub fn prepare_discrete(
     };
     let n = marsden::DiscreteLagrangian::dof(ld);
     let (t, q) = (spec.initial.t0, &spec.initial.q);
-    regular_discrete(ld, spec, (t, q, p))?;
-    let (symmetries, warnings) = discrete_non_symmetries(ld, spec, &Sample::new(t, q, p));
+    let initial = Sample::new(t, q, p);
+    regular_discrete(ld, spec, &initial)?;
+    let (symmetries, warnings) = discrete_non_symmetries(ld, spec, &initial);
     Ok(Start {
         t,
         q: q.clone(),
@@ -120,11 +121,13 @@ impl<D: marsden::DiscreteLagrangian> marsden::numerics::ad::MultiFunction for Di
 fn regular_discrete<D: marsden::DiscreteLagrangian>(
     ld: &D,
     spec: &RunSpec,
-    (t, q, p): (f64, &[f64], &[f64]),
+    initial: &Sample,
 ) -> Result<(), Diagnostic> {
     use marsden::numerics::ad::{HessianParts, partial_hessian};
     use marsden::numerics::dense::{Lu, max_norm};
-    let n = q.len();
+    // The sample's second vector is the momentum `p₀` here (as in `discrete_non_symmetries`).
+    let Sample { t, q, v: p } = initial;
+    let (t, n) = (*t, q.len());
     let h = spec.integrator.grid.h;
     let x: Vec<f64> = q
         .iter()
