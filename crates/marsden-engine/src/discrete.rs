@@ -11,7 +11,7 @@ use std::time::Instant;
 use marsden::{DiscreteLagrangian as _, Integrator, RunFailure, State, Trajectory, simulate};
 
 use crate::controls::Controls;
-use crate::observer::StreamObserver;
+use crate::observer::{StreamObserver, StreamRows, StreamSystem};
 use crate::solve::{Destination, RunRecord, finish};
 use marsden_problem::error::Diagnostic;
 use marsden_problem::model::{ExprDiscreteLagrangian, ExprLagrangian};
@@ -42,13 +42,19 @@ pub fn run(
     let (grid, n) = (spec.integrator.grid, ld.dof());
     let s = &spec.system;
     // No continuous Lagrangian: the observer's type parameter is never used for a value.
-    let parts = (
-        (None::<&ExprLagrangian>, n),
-        &s.constraint,
-        s.symmetries.as_slice(),
-    );
-    let sink = (destination.sink, destination.with_velocity);
-    let mut observer = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), controls)
+    let system = StreamSystem {
+        lagrangian: None::<&ExprLagrangian>,
+        n,
+        constraint: &s.constraint,
+        maps: s.symmetries.as_slice(),
+    };
+    let rows = StreamRows {
+        sink: destination.sink,
+        with_velocity: destination.with_velocity,
+        every: spec.output.every,
+        total: grid.steps,
+    };
+    let mut observer = StreamObserver::new(system, rows, controls)
         .monitoring_every_step(spec.analysis.every_step)
         .with_observables(&spec.events.observables);
     let (clock, jit_before) = (

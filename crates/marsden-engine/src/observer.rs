@@ -71,17 +71,51 @@ pub struct Sample<'s> {
     pub p: &'s [f64],
 }
 
+/// The system a [`StreamObserver`] reads its rows from.
+#[derive(Debug)]
+pub struct StreamSystem<'a, L, C, M> {
+    /// The Lagrangian (energy, velocities); `None` for a file's own `L_d`, whose rows have no
+    /// energy and NaN velocities.
+    pub lagrangian: Option<&'a L>,
+    /// Number of coordinates.
+    pub n: usize,
+    /// The constraint (its residuals are columns of the row).
+    pub constraint: &'a C,
+    /// The momentum maps of the declared symmetries.
+    pub maps: &'a [M],
+}
+
+/// Where a [`StreamObserver`]'s rows go, and which.
+pub struct StreamRows<'s> {
+    /// The sink.
+    pub sink: &'s mut (dyn RowSink + 's),
+    /// Whether each row is followed by the velocities.
+    pub with_velocity: bool,
+    /// Every `every`-th step is written (and the first and the last).
+    pub every: usize,
+    /// Steps of the run.
+    pub total: usize,
+}
+
 impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's, L, C, M> {
-    /// An observer writing every `every`-th of `total` steps to `sink` (each row followed by
-    /// the velocities if `with_velocity`), watched by `controls`; without a `lagrangian` (`n`
-    /// coordinates of a file's own `L_d`) the rows have no energy and the velocities are NaN.
+    /// An observer writing the rows `rows` asks for of `system`'s run, watched by `controls`.
     pub fn new(
-        (lagrangian, constraint, maps): ((Option<&'a L>, usize), &'a C, &'a [M]),
-        (sink, with_velocity): (&'s mut (dyn RowSink + 's), bool),
-        (every, total): (usize, usize),
+        system: StreamSystem<'a, L, C, M>,
+        rows: StreamRows<'s>,
         controls: &'a Controls<'a>,
     ) -> Self {
-        let (lagrangian, n) = lagrangian;
+        let StreamSystem {
+            lagrangian,
+            n,
+            constraint,
+            maps,
+        } = system;
+        let StreamRows {
+            sink,
+            with_velocity,
+            every,
+            total,
+        } = rows;
         Self {
             lagrangian,
             constraint,

@@ -21,7 +21,7 @@ use crate::controls::Controls;
 use crate::diagnostics::Diagnostics;
 use crate::events::{EventTally, Watched};
 use crate::noether_balance::{NoetherBalance, NoetherBalanced};
-use crate::observer::StreamObserver;
+use crate::observer::{StreamObserver, StreamRows, StreamSystem};
 use crate::samples::{SampleTally, TimeSamples};
 use crate::start;
 use marsden::run::Resumed;
@@ -393,13 +393,19 @@ impl<'a, 's, L: Lagrangian, F: Force> Session<'a, 's, L, F> {
             general_path: !spec.integrator.fast_paths,
             compensated: spec.integrator.compensated,
         };
-        let parts = (
-            (Some(lagrangian), lagrangian.dof()),
-            &s.constraint,
-            s.symmetries.as_slice(),
-        );
-        let sink = (destination.sink, destination.with_velocity);
-        let stream = StreamObserver::new(parts, sink, (spec.output.every, grid.steps), controls)
+        let system = StreamSystem {
+            lagrangian: Some(lagrangian),
+            n: lagrangian.dof(),
+            constraint: &s.constraint,
+            maps: s.symmetries.as_slice(),
+        };
+        let rows = StreamRows {
+            sink: destination.sink,
+            with_velocity: destination.with_velocity,
+            every: spec.output.every,
+            total: grid.steps,
+        };
+        let stream = StreamObserver::new(system, rows, controls)
             .monitoring_every_step(spec.analysis.every_step)
             .with_observables(&spec.events.observables);
         let events = (lagrangian, &spec.events);
