@@ -60,10 +60,10 @@ pub trait Observer {
     fn termination(&self) -> Option<Termination> {
         None
     }
-    /// When [`Observer::every_step`] is false: a light check the stepper runs after each step
-    /// it takes between the steps shown to [`Observer::observe`]
-    /// ([`Stepper::advance_watched`](crate::run::Stepper::advance_watched)); when it asks, the
-    /// run loop ends the stretch there and shows that step to [`Observer::observe`]. An event
+    /// When [`Observer::every_step`] is false: a light check of each step the stepper takes
+    /// between the steps shown to [`Observer::observe`]: the watch takes those steps itself
+    /// ([`Stepper::advance_watched`](crate::run::Stepper::advance_watched)); where it stops,
+    /// the run loop ends the stretch and shows that step to [`Observer::observe`]. An event
     /// detector watches each step so, at the cost of one evaluation of its `g`, without
     /// the run loop's every-step path. Default: `None`.
     fn step_watch(&mut self) -> Option<&mut dyn StepWatch> {
@@ -112,12 +112,23 @@ pub trait Observer {
     }
 }
 
-/// A check run after each step inside a stretch of steps that the run loop hands the stepper in
-/// one call ([`Observer::step_watch`]).
+/// A check of each step inside a stretch of steps that the run loop hands the stepper in one
+/// call ([`Observer::step_watch`]). The watch takes the stretch's steps itself, one by one
+/// ([`WatchedSteps::next_step`]), so that what it keeps between two steps stays at hand in its
+/// own loop instead of being looked up again at every step through the stepper's call.
 pub trait StepWatch {
-    /// Looks at the state after step `step`; `true` ends the stretch there, and the run loop
-    /// shows the step to the observer.
-    fn after_step(&mut self, step: usize, state: &State) -> bool;
+    /// Takes the steps of `steps` one by one, looking at each new state, and stops taking them
+    /// at the first step it wants shown to the observer (the run loop then shows it) or when
+    /// `steps` has none left. Takes at least one step when there is one.
+    fn watch(&mut self, steps: &mut dyn WatchedSteps);
+}
+
+/// The steps of a stretch, as a [`StepWatch`] takes them.
+pub trait WatchedSteps {
+    /// Takes the next step: its number (steps completed) and the new state; `None` when the
+    /// stretch is done or the step failed (the stepper keeps the error for the run loop, and
+    /// the state is the last good one).
+    fn next_step(&mut self) -> Option<(usize, &State)>;
 }
 
 /// The first multiple of `period` after `step` (`usize::MAX` when there is none).

@@ -122,7 +122,7 @@ where
         }
         let done_before = stepper.steps_done();
         let outcome = match observer.step_watch().filter(|_| chunked) {
-            Some(watch) => stepper.advance_watched(&mut state, (grid, k, chunk), watch),
+            Some(watch) => stepper.advance_watched(&mut state, grid, k, chunk, watch),
             None => stepper.advance_on(&mut state, grid, k, chunk),
         };
         k += stepper.steps_done() - done_before;

@@ -11,7 +11,7 @@ use crate::integrator::{Integrator, Statistics, StepReport};
 use crate::mechanics::{Constraint, State};
 
 use super::grid::TimeGrid;
-use super::observer::StepWatch;
+use super::observer::{StepWatch, WatchedSteps};
 
 /// A one-step method with its buffers, as the run loop sees it.
 pub trait Stepper {
@@ -39,17 +39,20 @@ pub trait Stepper {
         step_by_step(self, state, grid, k, steps)
     }
 
-    /// [`Stepper::advance_on`] with `watch` looking at each new state: the stretch ends early
-    /// at the first step it asks to see (the run loop counts the steps taken by
-    /// [`Stepper::steps_done`]). Default: one [`Stepper::advance`] per step.
+    /// [`Stepper::advance_on`] with the steps taken by `watch` ([`StepWatch::watch`]), which
+    /// looks at each new state: the stretch ends early at the first step it asks to see (the
+    /// run loop counts the steps taken by [`Stepper::steps_done`]). Default: one
+    /// [`Stepper::advance`] per step.
     fn advance_watched(
         &mut self,
         state: &mut State,
-        (grid, k, steps): (&TimeGrid, usize, usize),
+        grid: &TimeGrid,
+        k: usize,
+        steps: usize,
         watch: &mut dyn StepWatch,
     ) -> Result<StepReport, Error> {
         let one = |s: &mut Self, state: &mut State, h| s.advance(state, h, 1);
-        watched_steps(self, state, (grid, k, steps), (watch, one))
+        Stretch::new(self, state, one).watched(grid, k..k + steps, watch)
     }
 
     /// The multipliers `λ` of the last step (length d; default: none).
@@ -144,14 +147,16 @@ where
     fn advance_watched(
         &mut self,
         state: &mut State,
-        (grid, k, steps): (&TimeGrid, usize, usize),
+        grid: &TimeGrid,
+        k: usize,
+        steps: usize,
         watch: &mut dyn StepWatch,
     ) -> Result<StepReport, Error> {
         let one = |s: &mut Self, state: &mut State, h| match s.is_explicit() {
             true => Integrator::advance(s, state, h, 1),
             false => s.step(state, h),
         };
-        watched_steps(self, state, (grid, k, steps), (watch, one))
+        Stretch::new(self, state, one).watched(grid, k..k + steps, watch)
     }
     fn multipliers(&self) -> &[f64] {
         Integrator::multipliers(self)
@@ -173,27 +178,86 @@ where
     }
 }
 
-/// `steps` single steps from grid point `k`, each of the grid's size for it taken by `one`, the
-/// time of each new state set to the grid's, until `watch` asks to see one.
-#[inline]
-fn watched_steps<S: ?Sized, F>(
-    stepper: &mut S,
-    state: &mut State,
-    (grid, k, steps): (&TimeGrid, usize, usize),
-    (watch, mut one): (&mut dyn StepWatch, F),
-) -> Result<StepReport, Error>
+/// A stretch of steps handed to a [`StepWatch`]: single steps taken by `one`, each of the
+/// grid's size for it ([`TimeGrid::step_size`]), the time of each new state set to the grid's.
+struct Stretch<'a, S: ?Sized, F> {
+    stepper: &'a mut S,
+    state: &'a mut State,
+    one: F,
+}
+
+impl<'a, S: ?Sized, F> Stretch<'a, S, F>
 where
     F: FnMut(&mut S, &mut State, f64) -> Result<StepReport, Error>,
 {
-    let mut report = StepReport::default();
-    for j in 1..=steps {
-        report = one(stepper, state, grid.step_size(k + j - 1))?;
-        state.t = grid.time(k + j);
-        if watch.after_step(k + j, state) {
-            break;
+    fn new(stepper: &'a mut S, state: &'a mut State, one: F) -> Self {
+        Self {
+            stepper,
+            state,
+            one,
         }
     }
-    Ok(report)
+
+    /// The steps from grid point `points.start` of `grid` to `points.end` at most, taken by
+    /// `watch` until it has seen what it wants; the report of the last step taken.
+    fn watched(
+        self,
+        grid: &'a TimeGrid,
+        points: std::ops::Range<usize>,
+        watch: &mut dyn StepWatch,
+    ) -> Result<StepReport, Error> {
+        let mut steps = StretchSteps {
+            stretch: self,
+            grid,
+            k: points.start,
+            end: points.end,
+            report: StepReport::default(),
+            failure: None,
+        };
+        watch.watch(&mut steps);
+        match steps.failure {
+            Some(error) => Err(error),
+            None => Ok(steps.report),
+        }
+    }
+}
+
+/// A [`Stretch`] being taken: the grid point `k` of the current state, the last one `end`
+/// (`k` itself once a step failed), the report of the last step and the error of the one that
+/// failed.
+struct StretchSteps<'a, S: ?Sized, F> {
+    stretch: Stretch<'a, S, F>,
+    grid: &'a TimeGrid,
+    k: usize,
+    end: usize,
+    report: StepReport,
+    failure: Option<Error>,
+}
+
+impl<S: ?Sized, F> WatchedSteps for StretchSteps<'_, S, F>
+where
+    F: FnMut(&mut S, &mut State, f64) -> Result<StepReport, Error>,
+{
+    fn next_step(&mut self) -> Option<(usize, &State)> {
+        if self.k >= self.end {
+            return None;
+        }
+        let Stretch {
+            stepper,
+            state,
+            one,
+        } = &mut self.stretch;
+        match one(stepper, state, self.grid.step_size(self.k)) {
+            Ok(report) => self.report = report,
+            Err(error) => {
+                (self.failure, self.end) = (Some(error), self.k);
+                return None;
+            }
+        }
+        self.k += 1;
+        state.t = self.grid.time(self.k);
+        Some((self.k, state))
+    }
 }
 
 /// `steps` single steps from grid point `k`, each of the grid's size for it

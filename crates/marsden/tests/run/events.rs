@@ -445,3 +445,53 @@ fn a_detector_watching_stretches_of_steps_is_the_every_step_detector_bit_for_bit
     let last = |run: &marsden::Trajectory| (run.steps, run.q(run.len() - 1).to_vec());
     assert_eq!(last(&watched), last(&every));
 }
+
+/// The pendulum whose Lagrangian turns NaN after t = 0.52: the step across it fails.
+struct FailingAfter(Pendulum);
+
+impl marsden::Lagrangian for FailingAfter {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn lagrangian<S: marsden::Scalar>(&self, t: S, q: &[S], v: &[S]) -> S {
+        let l = self.0.lagrangian(t, q, v);
+        match t.re() > 0.52 {
+            true => l * S::from(f64::NAN),
+            false => l,
+        }
+    }
+}
+
+/// A step that fails inside a stretch the detector watches (nothing stored between the first
+/// and the last state) ends the run as it does without events: the same step error, the
+/// trajectory kept up to the last good state, that state bit for bit.
+#[test]
+fn a_step_failing_inside_a_watched_stretch_fails_the_run_as_without_events() {
+    let grid = TimeGrid::new(0.0, 0.1, 20).unwrap();
+    let lagrangian = FailingAfter(Pendulum::default());
+    let problem = Problem::new(lagrangian, Initial::velocity(&[1.5], &[0.0]), grid).unwrap();
+    let stretches = SolveOptions {
+        run: RunOptions { stride: usize::MAX },
+        ..options()
+    };
+    let never = |_t: f64, q: &[f64], _v: &[f64], _p: &[f64]| q[0] - 3.0;
+    let mut detector = EventDetector::new(
+        problem.lagrangian(),
+        vec![Event::record(never, Direction::Both)],
+    )
+    .unwrap();
+    let watched = (problem.solve_with(&Midpoint, &stretches, &mut detector)).unwrap_err();
+    let plain = problem.solve(&Midpoint, &stretches).unwrap_err();
+    let (Error::Step(a), Error::Step(b)) = (&watched.error, &plain.error) else {
+        panic!("{:?} and {:?}", watched.error, plain.error)
+    };
+    assert_eq!((a.step, a.t.to_bits()), (b.step, b.t.to_bits()));
+    assert_eq!(
+        watched.trajectory.steps, 5,
+        "t = 0.5 is the last good state"
+    );
+    assert_eq!(watched.trajectory.steps, plain.trajectory.steps);
+    let last = |run: &marsden::Trajectory| run.q(run.len() - 1)[0].to_bits();
+    assert_eq!(last(&watched.trajectory), last(&plain.trajectory));
+    assert!(detector.records().is_empty());
+}

@@ -13,7 +13,7 @@ use crate::mechanics::Lagrangian;
 use crate::mechanics::State;
 use crate::numerics::brent::{self, BrentOptions, RootError};
 use crate::numerics::short;
-use crate::run::observer::{Observer, StepView, StepWatch};
+use crate::run::observer::{Observer, StepView, StepWatch, WatchedSteps};
 use crate::run::trajectory::Termination;
 
 pub use checkpoint::DetectorCheckpoint;
@@ -77,12 +77,62 @@ enum Scan {
     NotFinite(usize),
 }
 
+/// What the watch's loop saw last ([`EventDetector::watch_positions`]).
+#[derive(Debug, Clone, Copy)]
+struct LastScan {
+    /// What the last scan found: a sign change or a `g` that is not finite ends the loop at
+    /// that step; `Quiet` when the stretch is done (or a step failed).
+    found: Scan,
+    /// The step of that state and its time.
+    step: usize,
+    t: f64,
+    /// Whether the slices of `g` ended up traded (`g_before`'s values in the vector
+    /// `g_after`).
+    traded: bool,
+}
+
 /// A sign change found at the end of a step, located.
 #[derive(Debug, Clone, Copy)]
 struct Crossing {
     event: usize,
     direction: Direction,
     t: f64,
+}
+
+/// `g` of every event at the two ends of a step: at its start (known) and at its end (being
+/// filled).
+struct Values<'a> {
+    g_before: &'a [f64],
+    g_after: &'a mut [f64],
+}
+
+/// `g_after` ← `g` of every event at the state `(t, q, v, p)`, and whether some event's `g`
+/// changed sign in its direction from `g_before`: one pass over the events. Returns a small
+/// value, not a `Result`: the watch calls it at every step, and the error of a `g` that is not
+/// finite is built out of line ([`EventDetector::not_finite`]).
+#[inline(always)]
+fn scan<G: EventFunction>(
+    events: &[Event<G>],
+    values: Values<'_>,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+    p: &[f64],
+) -> Scan {
+    let mut crossed = false;
+    let pairs = values.g_after.iter_mut().zip(values.g_before);
+    for (i, (event, (g_after, &g_before))) in events.iter().zip(pairs).enumerate() {
+        let g = event.function.value(t, q, v, p);
+        *g_after = g;
+        if !g.is_finite() {
+            return Scan::NotFinite(i);
+        }
+        crossed |= event.direction.crosses(g_before, g);
+    }
+    match crossed {
+        true => Scan::Crossed,
+        false => Scan::Quiet,
+    }
 }
 
 /// Watches a run for the zero crossings of its [`Event`]s (see the [module](super) docs):
@@ -186,29 +236,18 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
     }
 
     /// `g_after` ← `g` of every event at `(t, q, p)` with the velocities in `after.v` (when an
-    /// event reads them; NaN otherwise), and what it found against `g_before`. Returns a small
-    /// value, not a `Result`: the watch calls it at every step, and the error of a `g` that is
-    /// not finite is built out of line ([`EventDetector::not_finite`]).
+    /// event reads them; NaN otherwise), and what it found against `g_before` ([`scan`]).
     #[inline(always)]
     fn scan(&mut self, t: f64, q: &[f64], p: &[f64]) -> Scan {
         let v = match self.velocities_every_step {
             true => &self.after.v,
             false => &self.no_velocity,
         };
-        let mut crossed = false;
-        let values = self.g_after.iter_mut().zip(&self.g_before);
-        for (i, (event, (g_after, &g_before))) in self.events.iter().zip(values).enumerate() {
-            let g = event.function.value(t, q, v, p);
-            *g_after = g;
-            if !g.is_finite() {
-                return Scan::NotFinite(i);
-            }
-            crossed |= event.direction.crosses(g_before, g);
-        }
-        match crossed {
-            true => Scan::Crossed,
-            false => Scan::Quiet,
-        }
+        let values = Values {
+            g_before: &self.g_before,
+            g_after: &mut self.g_after,
+        };
+        scan(&self.events, values, t, q, v, p)
     }
 
     /// The error of event `i`'s `g` (in `g_after`), not finite at the state after `step`
@@ -454,33 +493,79 @@ impl<L: Lagrangian, G: EventFunction> EventDetector<'_, L, G> {
 /// when the run loop shows the step. The run is then not taken step by step through the run
 /// loop: watching costs one evaluation of `g` and a copy of the state per step.
 impl<L: Lagrangian, G: EventFunction> StepWatch for EventDetector<'_, L, G> {
-    fn after_step(&mut self, step: usize, state: &State) -> bool {
+    fn watch(&mut self, steps: &mut dyn WatchedSteps) {
         if self.ending.is_some() || self.pending {
-            return true;
+            // Shown to the observer after one step, which ends the run or locates the crossing.
+            steps.next_step();
+            return;
         }
         if self.velocities_every_step {
-            return self.watch_with_velocities(step, state);
+            while let Some((step, state)) = steps.next_step() {
+                if self.watch_with_velocities(step, state) {
+                    return;
+                }
+            }
+            return;
         }
-        match self.scan(state.t, &state.q, &state.p) {
-            Scan::Quiet => {
-                let at = At {
-                    step,
-                    t: state.t,
-                    q: &state.q,
-                    p: &state.p,
-                };
-                self.advance(&at);
-                false
-            }
-            Scan::Crossed => {
-                self.pending = true;
-                true
-            }
+        let last = self.watch_positions(steps);
+        if last.traded {
+            std::mem::swap(&mut self.g_before, &mut self.g_after);
+        }
+        match last.found {
+            Scan::Quiet => {}
+            Scan::Crossed => self.pending = true,
             Scan::NotFinite(i) => {
-                let error = self.not_finite(i, step, state.t);
+                let error = self.not_finite(i, last.step, last.t);
                 self.ending = Some(Termination::Failed(error));
-                true
             }
+        }
+    }
+}
+
+impl<L: Lagrangian, G: EventFunction> EventDetector<'_, L, G> {
+    /// The watch's loop when no event reads the velocities, over what it needs held in local
+    /// borrows (so that they are not looked up again after each step): `g` at each new state,
+    /// the state kept as the next step's start while `g` has not changed sign, the two slices
+    /// of `g` trading their roles instead of being copied.
+    #[inline(always)]
+    fn watch_positions(&mut self, steps: &mut dyn WatchedSteps) -> LastScan {
+        let Self {
+            events,
+            no_velocity,
+            before,
+            g_before,
+            g_after,
+            ..
+        } = self;
+        let (events, v) = (&events[..], &no_velocity[..]);
+        let (mut g0, mut g1) = (&mut g_before[..], &mut g_after[..]);
+        let mut traded = false;
+        while let Some((step, state)) = steps.next_step() {
+            let values = Values {
+                g_before: g0,
+                g_after: g1,
+            };
+            let found = scan(events, values, state.t, &state.q, v, &state.p);
+            if found != Scan::Quiet {
+                let t = state.t;
+                return LastScan {
+                    found,
+                    step,
+                    t,
+                    traded,
+                };
+            }
+            (before.step, before.t) = (step, state.t);
+            short::copy(&mut before.q, &state.q);
+            short::copy(&mut before.p, &state.p);
+            std::mem::swap(&mut g0, &mut g1);
+            traded = !traded;
+        }
+        LastScan {
+            found: Scan::Quiet,
+            step: before.step,
+            t: before.t,
+            traded,
         }
     }
 }
