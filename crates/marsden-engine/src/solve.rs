@@ -14,7 +14,7 @@ use marsden_io::RowSink;
 use serde::Serialize;
 
 use crate::balance::{BalanceSeries, BalanceSummary, Balanced, TimeDerivative};
-use crate::certify::{Certificate, Ends, certify, without_step_jacobian};
+use crate::certify::{Certificate, Ends, StepRule, certify, without_step_jacobian};
 use crate::checkpoint::observer::{Carries, Checkpointing};
 use crate::checkpoint::{BalancesCheckpoint, CheckpointPlan};
 use crate::controls::Controls;
@@ -324,9 +324,12 @@ pub fn run_by_rule<L: Lagrangian>(
     if spec.analysis.certify {
         let ends = RunEnds::of(&problem, &record);
         let (names, i) = (symmetry_names(spec), &spec.integrator);
-        let symmetries = (names.as_slice(), maps);
-        let step = (rule, i.newton, i.grid.h);
-        record.certificate = Some(certify(&problem, symmetries, step, &ends.view()));
+        let step = StepRule {
+            rule,
+            newton: i.newton,
+            h: i.grid.h,
+        };
+        record.certificate = Some(certify(&problem, &names, maps, step, &ends.view()));
     }
     Ok(record)
 }
