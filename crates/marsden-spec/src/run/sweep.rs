@@ -270,9 +270,9 @@ fn run_rows(
             let k = ks[m.index];
             let values = sweep.values_of(k);
             match m.result {
-                Ok(Some(record)) => SweepRow::new(k, values, (steps, conserved), Ok(record)),
+                Ok(Some(record)) => SweepRow::new(k, values, steps, conserved, Ok(record)),
                 Ok(None) => SweepRow::not_run(k, values, steps, NOT_RUN),
-                Err(message) => SweepRow::new(k, values, (steps, conserved), Err(message)),
+                Err(message) => SweepRow::new(k, values, steps, conserved, Err(message)),
             }
         })
         .collect()
