@@ -245,7 +245,9 @@ where
     /// `grid`, around `inner`; the series keeps every `every`-th step.
     pub fn new(
         lagrangian: &'o L,
-        (force, time, grid): (F, Option<T>, &TimeGrid),
+        force: F,
+        time: Option<T>,
+        grid: &TimeGrid,
         every: usize,
         inner: &'o mut O,
     ) -> Self {

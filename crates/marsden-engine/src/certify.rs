@@ -30,7 +30,7 @@ use marsden::analysis::certificate::{DifferentiableStep, symplectic_defect};
 use marsden::discrete::rules::Method as ChosenRule;
 use marsden::numerics::ad::{self, MultiFunction};
 use marsden::symmetry::GroupAction;
-use marsden::symmetry::check::relative_defect;
+use marsden::symmetry::check::{Sample, relative_defect};
 use marsden::{
     Constraint, DiscreteAction, Force, Lagrangian, NewtonOptions, Problem, Rule as _, Scalar,
     State, mechanics,
@@ -95,18 +95,30 @@ pub struct Ends<'a> {
     pub end: &'a State,
 }
 
+/// The step a certificate measures: the run's own rule, Newton options and step size.
+pub struct StepRule<'a> {
+    /// The file's rule.
+    pub rule: &'a ChosenRule,
+    /// The Newton options of each step.
+    pub newton: NewtonOptions,
+    /// The step size `h`.
+    pub h: f64,
+}
+
 /// The certificate of a run of `problem` (its Lagrangian, forces and constraints) with the
-/// file's `rule` and step `h`, for the declared `symmetries` (named by `names`); a run with
-/// `method = "exact"` has [`without_step_jacobian`] instead.
+/// file's rule and step `h` (`step`), for the declared `symmetries` (named by `names`); a run
+/// with `method = "exact"` has [`without_step_jacobian`] instead.
 ///
 /// The step map is that of `problem`'s own integrator type, the one the run compiled, so a
 /// certificate adds no integrator code to the build.
 pub fn certify<L: Lagrangian, F: Force, C: Constraint, G: GroupAction>(
     problem: &Problem<L, F, C>,
-    (names, symmetries): (&[String], &[G]),
-    (rule, newton, h): (&ChosenRule, NewtonOptions, f64),
+    names: &[String],
+    symmetries: &[G],
+    step: StepRule<'_>,
     ends: &Ends<'_>,
 ) -> Certificate {
+    let StepRule { rule, newton, h } = step;
     Certify {
         problem,
         names,
@@ -224,14 +236,22 @@ impl<L: Lagrangian, F: Force, C: Constraint, G: GroupAction> Certify<'_, L, F, C
     }
 
     /// `(t, q, v)` at the start and, if its velocity is known, at the end.
-    fn samples(&self) -> Vec<(f64, Vec<f64>, Vec<f64>)> {
+    fn samples(&self) -> Vec<Sample> {
         let start = self.ends.start;
-        let mut samples = vec![(start.t, start.q.clone(), self.ends.v0.to_vec())];
+        let mut samples = vec![Sample {
+            t: start.t,
+            q: start.q.clone(),
+            v: self.ends.v0.to_vec(),
+        }];
         let end = self.ends.end;
         if end.q.len() == start.q.len()
             && let Some(v) = self.velocity(end)
         {
-            samples.push((end.t, end.q.clone(), v));
+            samples.push(Sample {
+                t: end.t,
+                q: end.q.clone(),
+                v,
+            });
         }
         samples
     }
@@ -275,16 +295,16 @@ fn equivariance<A: DiscreteAction, G: GroupAction>(
     action: &A,
     g: &G,
     h: f64,
-    samples: &[(f64, Vec<f64>, Vec<f64>)],
+    samples: &[Sample],
 ) -> Equivariance {
     let mut out = Equivariance {
         max_abs_defect: 0.0,
         max_rel_defect: 0.0,
         samples: samples.len(),
     };
-    for (t, q, v) in samples {
+    for sample in samples {
         for a in 0..g.algebra_dim() {
-            let (defect, scale) = step_invariance(action, (g, a), (*t, h), (q, v));
+            let (defect, scale) = step_invariance(action, g, a, h, sample);
             let d = defect.abs();
             let relative = relative_defect(d, scale);
             // NaN sticks: an action that cannot be evaluated is no certified symmetry.
@@ -297,14 +317,17 @@ fn equivariance<A: DiscreteAction, G: GroupAction>(
     out
 }
 
-/// `(Σ_j ⟨∂A/∂Q_j, ξ_a(Q_j)⟩, Σ_j Σ_i |∂A/∂Q_{j,i} ξ_{a,i}(Q_j)|)` for the step from `(t, q)`
-/// with control points `Q_j = q + (j/s) h v`.
+/// `(Σ_j ⟨∂A/∂Q_j, ξ_a(Q_j)⟩, Σ_j Σ_i |∂A/∂Q_{j,i} ξ_{a,i}(Q_j)|)` for generator `a` of `g`
+/// and the step of size `h` from `(t, q)` of `sample`, with control points
+/// `Q_j = q + (j/s) h v`.
 fn step_invariance<A: DiscreteAction, G: GroupAction>(
     action: &A,
-    (g, a): (&G, usize),
-    (t, h): (f64, f64),
-    (q, v): (&[f64], &[f64]),
+    g: &G,
+    a: usize,
+    h: f64,
+    sample: &Sample,
 ) -> (f64, f64) {
+    let (t, q, v) = (sample.t, sample.q.as_slice(), sample.v.as_slice());
     let (n, s) = (q.len(), action.internal_stages() + 1);
     let mut x = q.to_vec();
     for j in 1..=s {

@@ -114,7 +114,8 @@ impl<'a, 's, L: Lagrangian, O: Observer> Watched<'a, 's, L, O> {
     /// The core's objection to the events (a singular declared mass matrix).
     pub fn new(
         inner: O,
-        (lagrangian, spec): (&'a L, &'a EventsSpec),
+        lagrangian: &'a L,
+        spec: &'a EventsSpec,
         sink: Option<&'s mut (dyn RowSink + 's)>,
     ) -> Result<Self, Diagnostic> {
         if spec.events.is_empty() {

@@ -71,8 +71,10 @@ impl<'o, G: GroupAction, F: DiscreteForce, O: Observer + ?Sized> NoetherBalanced
     /// The balances of `actions` (named by `names`) under the two-point discrete force `force`
     /// on the steps of `grid`, around `inner`.
     pub fn new(
-        (names, actions): (Vec<String>, &'o [G]),
-        (force, grid): (&'o F, &TimeGrid),
+        names: Vec<String>,
+        actions: &'o [G],
+        force: &'o F,
+        grid: &TimeGrid,
         inner: &'o mut O,
     ) -> Self {
         let monitors = names

@@ -116,10 +116,11 @@ pub fn study_with<L: Lagrangian>(
         );
         ((r.q, r.p), source)
     };
+    let (q, p) = &reference;
     let studies = plan
         .methods
         .iter()
-        .map(|method| study(&problem, method, plan, &reference, &options))
+        .map(|method| study(&problem, method, plan, q, p, &options))
         .collect::<Result<_, _>>()?;
     Ok(Results {
         reference,
@@ -128,12 +129,14 @@ pub fn study_with<L: Lagrangian>(
     })
 }
 
-/// One method's study (the method itself is the rule, [`marsden::discrete::rules::chosen`]).
+/// One method's study against the reference `(q(T), p(T))` (the method itself is the rule,
+/// [`marsden::discrete::rules::chosen`]).
 fn study<L: Lagrangian, F: Force, C: Constraint>(
     problem: &Problem<L, F, C>,
     method: &Method,
     plan: &Plan,
-    (q, p): &(Vec<f64>, Vec<f64>),
+    q: &[f64],
+    p: &[f64],
     options: &OrderOptions,
 ) -> Result<OrderStudy, Error>
 where

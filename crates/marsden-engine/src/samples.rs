@@ -60,7 +60,8 @@ impl<'a, 's, L: Lagrangian> TimeSamples<'a, 's, L> {
     /// The core's objection to the times or to the Lagrangian (a singular declared mass
     /// matrix).
     pub fn new(
-        (lagrangian, output): (&'a L, &OutputSpec),
+        lagrangian: &'a L,
+        output: &OutputSpec,
         observables: &'a Observables,
         sink: Option<&'s mut (dyn RowSink + 's)>,
     ) -> Result<Option<Self>, Diagnostic> {

@@ -14,7 +14,7 @@ use marsden_io::RowSink;
 use serde::Serialize;
 
 use crate::balance::{BalanceSeries, BalanceSummary, Balanced, TimeDerivative};
-use crate::certify::{Certificate, Ends, certify, without_step_jacobian};
+use crate::certify::{Certificate, Ends, StepRule, certify, without_step_jacobian};
 use crate::checkpoint::observer::{Carries, Checkpointing};
 use crate::checkpoint::{BalancesCheckpoint, CheckpointPlan};
 use crate::controls::Controls;
@@ -127,18 +127,21 @@ fn explain_exact_failure<L: Lagrangian>(
     failure
 }
 
-/// Runs `problem` by `rule`, shown to `observer`; for a forced or time-dependent run with a
-/// two-point rule, around the energy balance of every step ([`Balanced`], with `output.every`'s
-/// series) and the forced Noether balance of every symmetry in `maps` ([`NoetherBalanced`]).
-/// With `checkpoints`, the run (balances included) is checkpointed as planned, and continued
-/// from the plan's checkpoint when it has one.
+/// Runs `problem` by `rule` with the solver's `options`, shown to `observer`; for a forced or
+/// time-dependent run with a two-point rule, around the energy balance of every step
+/// ([`Balanced`], with `output.every`'s series) and the forced Noether balance of every
+/// symmetry in `maps` ([`NoetherBalanced`]). With `checkpoints`, the run (balances included)
+/// is checkpointed as planned, and continued from the plan's checkpoint when it has one.
 ///
 /// Returns the result, the balances (`None` when the run keeps none), and why a checkpoint
 /// could not be written or restored (the run then stopped there, or did not start).
 pub fn solve_balanced<L: Lagrangian, F: Force, C: Constraint, M, O>(
-    (problem, maps): (&Problem<L, F, C>, &[M]),
-    (rule, output): (&Rule, Output),
-    (options, checkpoints): (&SolveOptions, Option<&CheckpointPlan>),
+    problem: &Problem<L, F, C>,
+    maps: &[M],
+    rule: &Rule,
+    output: Output,
+    options: &SolveOptions,
+    checkpoints: Option<&CheckpointPlan>,
     observer: &mut O,
 ) -> Solved
 where
@@ -153,7 +156,7 @@ where
     let l = problem.lagrangian();
     let two_point = rule.discretize(l).internal_stages() == 0;
     if !(problem.force().is_active() || time_dependent) || !two_point {
-        let (result, error) = solve_checkpointed(problem, (rule, options), checkpoints, observer);
+        let (result, error) = solve_checkpointed(problem, rule, options, checkpoints, observer);
         return (result, None, error);
     }
     let force = rule.discretize_force(problem.force(), l.dof());
@@ -163,9 +166,9 @@ where
         .iter()
         .map(|m| MomentumMap::name(m).to_owned())
         .collect();
-    let mut noether = NoetherBalanced::new((names, maps), (&noether_force, grid), observer);
+    let mut noether = NoetherBalanced::new(names, maps, &noether_force, grid, observer);
     let time = time_dependent.then(|| rule.discretize_force(TimeDerivative(l), l.dof()));
-    let mut balanced = Balanced::new(l, (force, time, grid), every, &mut noether);
+    let mut balanced = Balanced::new(l, force, time, grid, every, &mut noether);
     let resumed = checkpoints.and_then(|p| p.resume.as_deref());
     if let Some(c) = resumed
         && let Err(e) = restore_balances(&mut balanced, c.balances.as_ref())
@@ -178,7 +181,7 @@ where
         };
         return (Err(Box::new(failure)), None, Some(e));
     }
-    let (result, error) = solve_checkpointed(problem, (rule, options), checkpoints, &mut balanced);
+    let (result, error) = solve_checkpointed(problem, rule, options, checkpoints, &mut balanced);
     let balances = Balances {
         energy: balanced.summary,
         series: balanced.series,
@@ -214,11 +217,13 @@ where
     balanced.inner_mut().restore(&carried.noether)
 }
 
-/// Runs `problem` shown to `observer`, checkpointed as `checkpoints` plans (from its start, or
-/// from the plan's checkpoint); and why a checkpoint could not be written, if one could not.
+/// Runs `problem` by `rule` with the solver's `options`, shown to `observer`, checkpointed as
+/// `checkpoints` plans (from its start, or from the plan's checkpoint); and why a checkpoint
+/// could not be written, if one could not.
 fn solve_checkpointed<L: Lagrangian, F: Force, C: Constraint, O>(
     problem: &Problem<L, F, C>,
-    (rule, options): (&Rule, &SolveOptions),
+    rule: &Rule,
+    options: &SolveOptions,
     checkpoints: Option<&CheckpointPlan>,
     observer: &mut O,
 ) -> (Result<Trajectory, Box<RunFailure>>, Option<String>)
@@ -306,15 +311,18 @@ pub fn run_by_rule<L: Lagrangian>(
     let force = s.force.on(lagrangian);
     let maps = s.symmetries.as_slice();
     let plan = destination.checkpoints;
-    let mut session = Session::open(spec, (lagrangian, &force), destination, controls)?;
+    let mut session = Session::open(spec, lagrangian, &force, destination, controls)?;
     let output = Output {
         every: spec.output.every,
         time_dependent: s.depends_on_time(),
     };
     let (result, balance, checkpoint_error) = solve_balanced(
-        (&session.problem, maps),
-        (rule, output),
-        (&session.options, plan),
+        &session.problem,
+        maps,
+        rule,
+        output,
+        &session.options,
+        plan,
         &mut session.observer,
     );
     let (mut record, problem) = session.finish(result, balance);
@@ -324,9 +332,12 @@ pub fn run_by_rule<L: Lagrangian>(
     if spec.analysis.certify {
         let ends = RunEnds::of(&problem, &record);
         let (names, i) = (symmetry_names(spec), &spec.integrator);
-        let symmetries = (names.as_slice(), maps);
-        let step = (rule, i.newton, i.grid.h);
-        record.certificate = Some(certify(&problem, symmetries, step, &ends.view()));
+        let step = StepRule {
+            rule,
+            newton: i.newton,
+            h: i.grid.h,
+        };
+        record.certificate = Some(certify(&problem, &names, maps, step, &ends.view()));
     }
     Ok(record)
 }
@@ -344,7 +355,7 @@ pub fn run_exact<L: Lagrangian>(
     controls: &Controls<'_>,
 ) -> Result<RunRecord, Diagnostic> {
     let force = spec.system.force.on(lagrangian);
-    let mut session = Session::open(spec, (lagrangian, &force), destination, controls)?;
+    let mut session = Session::open(spec, lagrangian, &force, destination, controls)?;
     let result = solve_exact(&session.problem, &session.options, &mut session.observer);
     let (mut record, _) = session.finish(result, None);
     if spec.analysis.certify {
@@ -375,10 +386,12 @@ struct Session<'a, 's, L, F> {
 }
 
 impl<'a, 's, L: Lagrangian, F: Force> Session<'a, 's, L, F> {
-    /// The problem of `spec` with `force`, and an observer writing into `destination`.
+    /// The problem of `spec` with `lagrangian` and `force`, and an observer writing into
+    /// `destination`.
     fn open(
         spec: &'a RunSpec,
-        (lagrangian, force): (&'a L, &'a F),
+        lagrangian: &'a L,
+        force: &'a F,
         destination: Destination<'s>,
         controls: &'a Controls<'a>,
     ) -> Result<Self, Diagnostic> {
@@ -408,10 +421,10 @@ impl<'a, 's, L: Lagrangian, F: Force> Session<'a, 's, L, F> {
         let stream = StreamObserver::new(system, rows, controls)
             .monitoring_every_step(spec.analysis.every_step)
             .with_observables(&spec.events.observables);
-        let events = (lagrangian, &spec.events);
-        let times = (lagrangian, &spec.output);
-        let samples = TimeSamples::new(times, &spec.events.observables, destination.samples)?;
-        let mut observer = Watched::new(stream, events, destination.events)?.with_samples(samples);
+        let observables = &spec.events.observables;
+        let samples = TimeSamples::new(lagrangian, &spec.output, observables, destination.samples)?;
+        let watched = Watched::new(stream, lagrangian, &spec.events, destination.events)?;
+        let mut observer = watched.with_samples(samples);
         if let Some(c) = destination.checkpoints.and_then(|p| p.resume.as_deref()) {
             let restored = (observer.inner.restore(&c.stream))
                 .and_then(|()| observer.restore(c.events.as_ref()))

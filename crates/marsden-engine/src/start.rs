@@ -317,11 +317,9 @@ fn discrete_non_symmetries<D: marsden::DiscreteLagrangian>(
         };
         let check = SymmetryCheck::of_report(&report);
         let initial = check_discrete(ld, symmetry, h, &samples[..1], DEFAULT_TOLERANCE);
-        let defects = (
-            largest_defect(initial.ok().as_ref()),
-            largest_defect(Some(&report)),
-        );
-        warnings.extend(check.warning(defects));
+        let initial = largest_defect(initial.ok().as_ref());
+        let worst = largest_defect(Some(&report));
+        warnings.extend(check.warning(initial, worst));
         checks.push(check);
     }
     (checks, warnings)
@@ -421,7 +419,7 @@ impl SymmetryCheck {
 
     /// The warning for a declared symmetry that is not one (`None` for a symmetry), with the
     /// defect at the initial state and the largest over the states near it.
-    pub fn warning(&self, (initial, worst): (f64, f64)) -> Option<String> {
+    pub fn warning(&self, initial: f64, worst: f64) -> Option<String> {
         let (what, at) = match self.of {
             "L_d" => ("the discrete Lagrangian: ⟨dL_d, ξ_Q×Q⟩", "the first step"),
             _ => ("the Lagrangian: ⟨dL, ξ_TQ⟩", "the initial state"),
@@ -467,11 +465,9 @@ fn non_symmetries<L: Lagrangian>(
         };
         let check = SymmetryCheck::of_report(&report);
         let initial = check_lagrangian(lagrangian, symmetry, &samples[..1], DEFAULT_TOLERANCE);
-        let defects = (
-            largest_defect(initial.ok().as_ref()),
-            largest_defect(Some(&report)),
-        );
-        warnings.extend(check.warning(defects));
+        let initial = largest_defect(initial.ok().as_ref());
+        let worst = largest_defect(Some(&report));
+        warnings.extend(check.warning(initial, worst));
         checks.push(check);
     }
     (checks, warnings)

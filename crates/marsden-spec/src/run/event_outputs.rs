@@ -201,17 +201,19 @@ pub fn draw_section(dir: &Path, spec: &RunSpec) -> Result<String, String> {
         return Err("the system has no coordinates".to_owned());
     };
     let table = read(dir, spec)?;
-    draw_section_of(dir, &table, (x, y))
+    draw_section_of(dir, &table, x, y)
 }
 
-/// Draws `section.png` in `dir` from the records `table`, with the `[column, label]` axes.
+/// Draws `section.png` in `dir` from the records `table`, with the `[column, label]` axes `x`
+/// and `y`.
 ///
 /// # Errors
 /// A column the records lack, or a plot that cannot be written, as text.
 pub fn draw_section_of(
     dir: &Path,
     table: &Table,
-    (x, y): (&[String; 2], &[String; 2]),
+    x: &[String; 2],
+    y: &[String; 2],
 ) -> Result<String, String> {
     let x = series_of(table, &x[0], &x[1])?;
     let y = series_of(table, &y[0], &y[1])?;
@@ -233,14 +235,16 @@ fn series_of<'t>(table: &'t Table, name: &str, label: &'t str) -> Result<Series<
 }
 
 /// Draws `observables.png` from the trajectory's sketch `table` (the columns `names`: the
-/// observables of the file, `summary.json`'s `output.observables`); nothing without them.
+/// observables of the file, `summary.json`'s `output.observables`) with the plot options
+/// `opts`; nothing without them.
 ///
 /// # Errors
 /// The plot cannot be written.
 pub fn draw_observables(
     dir: &Path,
     names: &[String],
-    (table, opts): (&Table, &PlotOptions),
+    table: &Table,
+    opts: &PlotOptions,
 ) -> marsden_io::Result<Option<String>> {
     let find = |name: &str| table.columns().iter().find(|c| c.name == name);
     let (Some(t), false) = (find("t"), names.is_empty()) else {

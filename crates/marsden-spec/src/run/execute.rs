@@ -312,11 +312,12 @@ pub(crate) fn execute_prepared(
         .map(str::to_owned)
         .collect();
     let sensitivity = derivatives(
-        engine,
-        spec,
-        (&record, start),
-        (store.files().then_some(&dir), store.memory()),
-        (controls, tangent_plan.as_ref()),
+        run,
+        &record,
+        store.files().then_some(&dir),
+        store.memory(),
+        controls,
+        tangent_plan.as_ref(),
     );
     if let Some(Derivatives {
         file: Some(file), ..
@@ -431,18 +432,24 @@ struct Derivatives {
     interrupted: bool,
 }
 
-/// `[sensitivity]`: the tangent run beside a completed run (watched by the run's `controls`:
-/// Ctrl-C and the progress bar), its Jacobians streamed into the file in `dir` as the run
-/// reaches them (and kept in memory only with `keep`), checkpointed as `checkpoints` plans and
-/// continued from its checkpoint when the plan has one; `None` without `[sensitivity]`. A
-/// failure is reported in the summary's block.
+/// `[sensitivity]`: the tangent run beside `run` once it has completed (its `record`; watched
+/// by the run's `controls`: Ctrl-C and the progress bar), its Jacobians streamed into the file
+/// in `dir` as the run reaches them (and kept in memory only with `keep`), checkpointed as
+/// `checkpoints` plans and continued from its checkpoint when the plan has one; `None` without
+/// `[sensitivity]`. A failure is reported in the summary's block.
 fn derivatives(
-    engine: &dyn Engine,
-    spec: &RunSpec,
-    (record, start): (&RunRecord, &start::Start),
-    (dir, keep): (Option<&PathBuf>, bool),
-    (controls, checkpoints): (&Controls<'_>, Option<&TangentPlan>),
+    run: PreparedRun<'_>,
+    record: &RunRecord,
+    dir: Option<&PathBuf>,
+    keep: bool,
+    controls: &Controls<'_>,
+    checkpoints: Option<&TangentPlan>,
 ) -> Option<Derivatives> {
+    let PreparedRun {
+        engine,
+        spec,
+        start,
+    } = run;
     let asked = spec.sensitivity.as_ref()?;
     let failed = |error: String| Derivatives {
         summary: SensitivitySummary {

@@ -43,11 +43,11 @@ pub fn draw(spec: &RunSpec, layout: &Layout) -> marsden_io::Result<Vec<String>> 
         .collect();
     files.extend(super::rigid_plots::draw(&sketch.table, dir, &opts)?);
     files.extend(super::multibody_plots::draw(&sketch.table, dir, &opts)?);
-    let observables = (&sketch.table, &opts);
     files.extend(super::event_outputs::draw_observables(
         dir,
         &spec.events.observables.names,
-        observables,
+        &sketch.table,
+        &opts,
     )?);
     Ok(files)
 }
@@ -72,7 +72,7 @@ pub fn redraw(dir: &Path) -> Result<Vec<PlotReport>, Error> {
     let mut more = super::rigid_plots::draw(&sketch.table, dir, &opts).map_err(|e| failed(&e))?;
     more.extend(super::multibody_plots::draw(&sketch.table, dir, &opts).map_err(|e| failed(&e))?);
     let observables = strings(&summary["output"]["observables"]);
-    let drawn = super::event_outputs::draw_observables(dir, &observables, (&sketch.table, &opts));
+    let drawn = super::event_outputs::draw_observables(dir, &observables, &sketch.table, &opts);
     more.extend(drawn.map_err(|e| failed(&e))?);
     more.extend(redraw_section(dir, &summary)?);
     reports.extend(more.into_iter().map(|name| PlotReport {
@@ -134,7 +134,7 @@ fn redraw_section(dir: &Path, summary: &serde_json::Value) -> Result<Option<Stri
             .map_err(|e| {
                 Error::bad_input(Diagnostic::new(format!("cannot read the events: {e}")))
             })?;
-    super::event_outputs::draw_section_of(dir, &records, (&x, &y))
+    super::event_outputs::draw_section_of(dir, &records, &x, &y)
         .map(Some)
         .map_err(|e| Error::failed(Diagnostic::new(format!("cannot draw the section: {e}"))))
 }

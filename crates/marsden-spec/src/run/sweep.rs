@@ -193,8 +193,8 @@ fn open_table(
     let failed = |e: String| Error::failed(Diagnostic::new(e));
     match &options.resume {
         Some(c) => {
-            let parts = (options.shard, columns.clone(), format);
-            let writer = SweepWriter::reopen(dir, parts, &c.table, c.counts.clone())
+            let (shard, counts) = (options.shard, c.counts.clone());
+            let writer = SweepWriter::reopen(dir, shard, columns.clone(), format, &c.table, counts)
                 .map_err(|e| Error::bad_input(Diagnostic::new(e)))?;
             Ok((writer, c.counts.rows))
         }
@@ -270,9 +270,9 @@ fn run_rows(
             let k = ks[m.index];
             let values = sweep.values_of(k);
             match m.result {
-                Ok(Some(record)) => SweepRow::new(k, values, (steps, conserved), Ok(record)),
+                Ok(Some(record)) => SweepRow::new(k, values, steps, conserved, Ok(record)),
                 Ok(None) => SweepRow::not_run(k, values, steps, NOT_RUN),
-                Err(message) => SweepRow::new(k, values, (steps, conserved), Err(message)),
+                Err(message) => SweepRow::new(k, values, steps, conserved, Err(message)),
             }
         })
         .collect()

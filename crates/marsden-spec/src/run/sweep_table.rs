@@ -144,12 +144,14 @@ pub struct SweepRow {
 }
 
 impl SweepRow {
-    /// The row of member `member` with swept `values` from its run (or the reason it could not
-    /// run); energy errors are NaN when `energy_conserved` is false.
+    /// The row of member `member` with swept `values` from its run of `steps_requested` steps
+    /// (or the reason it could not run); energy errors are NaN when `energy_conserved` is
+    /// false.
     pub fn new(
         member: usize,
         values: Vec<f64>,
-        (steps_requested, energy_conserved): (usize, bool),
+        steps_requested: usize,
+        energy_conserved: bool,
         result: Result<RunRecord, String>,
     ) -> Self {
         match result {
@@ -200,7 +202,8 @@ impl SweepRow {
             ..Self::new(
                 member,
                 values,
-                (steps_requested, true),
+                steps_requested,
+                true,
                 Err(message.to_owned()),
             )
         }
@@ -344,7 +347,7 @@ mod tests {
     #[test]
     fn a_failed_row_has_every_column_and_its_message() {
         let cols = columns(Preserved::Energy);
-        let row = SweepRow::new(3, vec![0.5, 0.1], (10, true), Err("bad, \"x\"".into()));
+        let row = SweepRow::new(3, vec![0.5, 0.1], 10, true, Err("bad, \"x\"".into()));
         let numeric = row.numeric(&cols);
         assert_eq!(numeric.len(), cols.numeric_names().len());
         assert_eq!(numeric[..3], [3.0, 0.5, 0.1]);
@@ -376,7 +379,7 @@ mod tests {
                 .any(|n| n.starts_with("energy") || n.starts_with("balance")),
             "{names:?}"
         );
-        let row = SweepRow::new(0, vec![0.5, 0.1], (10, false), Err("x".into()));
+        let row = SweepRow::new(0, vec![0.5, 0.1], 10, false, Err("x".into()));
         assert_eq!(row.numeric(&cols).len(), names.len());
         assert!(!render(&cols, &[row]).contains("max"));
     }

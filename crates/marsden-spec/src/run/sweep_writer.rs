@@ -89,14 +89,17 @@ impl SweepWriter {
         })
     }
 
-    /// Opens the table a killed sweep left in `dir` to go on after its checkpoint: cuts off
-    /// the rows written after `mark` and takes up the `counts` of that moment.
+    /// Opens the table a killed sweep left in `dir` (as [`SweepWriter::create`] made it) to go
+    /// on after its checkpoint: cuts off the rows written after `mark` and takes up the
+    /// `counts` of that moment.
     ///
     /// # Errors
     /// The table is missing or shorter than the mark, or cannot be opened, as text naming it.
     pub fn reopen(
         dir: &Path,
-        (shard, columns, format): (Shard, SweepColumns, Format),
+        shard: Shard,
+        columns: SweepColumns,
+        format: Format,
         mark: &Mark,
         counts: SweepCounts,
     ) -> Result<Self, String> {
