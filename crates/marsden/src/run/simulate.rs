@@ -44,7 +44,7 @@ where
         step: 0,
         state: start,
     };
-    run_loop(stepper, from, (grid, options), observer, &before)
+    run_loop(stepper, from, grid, options, observer, &before)
 }
 
 /// Where a resumed run starts: after `step` steps of its grid, at `state` (whose `t` is
@@ -77,7 +77,8 @@ where
     run_loop(
         stepper,
         from,
-        (grid, options),
+        grid,
+        options,
         observer,
         &Statistics::default(),
     )
@@ -89,7 +90,8 @@ where
 fn run_loop<S, O>(
     stepper: &mut S,
     from: Resumed,
-    (grid, options): (&TimeGrid, &RunOptions),
+    grid: &TimeGrid,
+    options: &RunOptions,
     observer: &mut O,
     before: &Statistics,
 ) -> Trajectory
@@ -115,13 +117,15 @@ where
         } else {
             1
         };
-        if !chunked && side_steps(stepper, &state, (k, grid.time(k + 1)), observer).is_break() {
+        if !chunked && side_steps(stepper, &state, k, grid.time(k + 1), observer).is_break() {
             traj.termination =
                 (observer.termination()).unwrap_or(Termination::Stopped { steps: k });
             break;
         }
         let done_before = stepper.steps_done();
-        let outcome = match observer.step_watch().filter(|_| chunked) {
+        // A stretch of one step is shown to the observer as it is: a watch would add its entry
+        // and exit to the same look at the state.
+        let outcome = match observer.step_watch().filter(|_| chunked && chunk > 1) {
             Some(watch) => stepper.advance_watched(&mut state, grid, k, chunk, watch),
             None => stepper.advance_on(&mut state, grid, k, chunk),
         };
@@ -179,7 +183,8 @@ where
 fn side_steps<S, O>(
     stepper: &mut S,
     state: &State,
-    (k, next): (usize, f64),
+    k: usize,
+    next: f64,
     observer: &mut O,
 ) -> ControlFlow<()>
 where

@@ -467,15 +467,26 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
 }
 
 impl<L: Lagrangian, G: EventFunction> EventDetector<'_, L, G> {
-    /// Takes the step `view` ends, and locates and acts on its crossings, if any.
+    /// Takes the step `view` ends, and locates and acts on its crossings, if any. Where no
+    /// event reads the velocities, the scan alone: the run loop shows every step here when
+    /// each step is a stretch of its own.
     fn look_at(&mut self, view: &At<'_>) -> Result<(), Error> {
-        match self.evaluate(view)? {
-            true => self.locate_in_step(view),
-            false => Ok(()),
+        if self.velocities_every_step {
+            return match self.evaluate(view)? {
+                true => self.locate_in_step(view),
+                false => Ok(()),
+            };
+        }
+        match self.scan(view.t, view.q, view.p) {
+            Scan::Quiet => Ok(()),
+            Scan::Crossed => self.locate_in_step(view),
+            Scan::NotFinite(i) => Err(self.not_finite(i, view.step, view.t)),
         }
     }
 
-    /// Locates and acts on the crossings of the step `view` ends, whose `g` is in `g_after`.
+    /// Locates and acts on the crossings of the step `view` ends, whose `g` is in `g_after`
+    /// (out of line: the common step has none).
+    #[inline(never)]
     fn locate_in_step(&mut self, view: &At<'_>) -> Result<(), Error> {
         self.keep_after(view);
         if !self.velocities_every_step {
