@@ -222,14 +222,6 @@ pub(crate) struct Verlet<'a, L> {
     pub inverse_mass: &'a InverseMass,
 }
 
-impl<L> Clone for Verlet<'_, L> {
-    fn clone(&self) -> Self {
-        *self
-    }
-}
-
-impl<L> Copy for Verlet<'_, L> {}
-
 /// One velocity Störmer–Verlet step of a separable `L` (the trapezoid variational step) from
 /// `(q, p)` at `t`: `Δ = h M⁻¹ p½` into `delta`, `p ← p_{k+1}`; returns the gradients evaluated.
 pub(crate) fn velocity_verlet<L: Lagrangian>(
