@@ -202,7 +202,7 @@ pub fn solve<P: Program>(
             return it.finish(Status::Converged);
         }
         let mu = penalty(&it.e, &qp, &hessian, shape.delta);
-        let accepted = line_search(program, (&it.z, &it.e), &qp.step, &sub, shape, mu);
+        let accepted = line_search(program, &it.z, &it.e, &qp.step, &sub, shape, mu);
         match accepted {
             Ok((step, z, e)) => {
                 if let (Some(first), true) = (elastic.as_mut(), qp.elastic) {
@@ -476,7 +476,8 @@ fn max_abs(v: &[f64]) -> f64 {
 /// or `Err(α)` with the last step tried.
 fn line_search<P: Program>(
     program: &P,
-    (z, e): (&[f64], &Evaluation),
+    z: &[f64],
+    e: &Evaluation,
     d: &[f64],
     sub: &Subproblem<'_>,
     shape: Convexify,

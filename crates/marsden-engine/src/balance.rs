@@ -397,7 +397,7 @@ pub fn draw(
 ) -> Result<(), String> {
     let opts = marsden_io::PlotOptions::default();
     let path = dir.join(ENERGY_BALANCE_PNG);
-    marsden_io::plot_energy_balance(&path, &series.t, (&series.change, &series.work), &opts)
+    marsden_io::plot_energy_balance(&path, &series.t, &series.change, &series.work, &opts)
         .map_err(|e| e.to_string())?;
     written.push(ENERGY_BALANCE_PNG.to_owned());
     Ok(())

@@ -197,9 +197,11 @@ impl<L: Lagrangian, F: Force, C: Constraint, G: GroupAction> Certify<'_, L, F, C
         let mut failures = Vec::new();
         let (v0, start) = (self.ends.v0, self.ends.start);
         integrator.set_velocity_hint(v0);
-        let model = (self.problem.lagrangian(), self.problem.constraint());
+        let (lagrangian, constraint) = (self.problem.lagrangian(), self.problem.constraint());
         let defect = |integrator: &mut _, state: &State, v: &[f64]| match constrained {
-            true => step_defect_on_cotangent_bundle(integrator, model, (state, v), self.h),
+            true => step_defect_on_cotangent_bundle(
+                integrator, lagrangian, constraint, state, v, self.h,
+            ),
             false => step_defect(integrator, state, self.h),
         };
         match defect(&mut integrator, start, v0) {

@@ -148,7 +148,7 @@ where
             "`{method}` has no order to measure"
         ))));
     };
-    measure_order(problem, rule, (plan.t_end, &steps), (q, p), options).map_err(|e| {
+    measure_order(problem, rule, plan.t_end, &steps, q, p, options).map_err(|e| {
         Error::bad_input(Diagnostic::new(format!(
             "cannot set up the runs of {method}: {e}"
         )))

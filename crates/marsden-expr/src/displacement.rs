@@ -170,7 +170,8 @@ impl Program {
             generate(&tree),
             tree,
             self.text(),
-            (self.names().to_vec(), inputs_used),
+            self.names().to_vec(),
+            inputs_used,
         );
         DisplacementForm {
             body,

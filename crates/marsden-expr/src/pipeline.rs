@@ -89,7 +89,8 @@ impl Expr {
             generate(&node),
             node,
             &self.text,
-            (names, inputs_used),
+            names,
+            inputs_used,
         ))
     }
 }

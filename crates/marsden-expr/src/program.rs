@@ -44,7 +44,8 @@ impl Program {
         code: Code,
         tree: Node,
         text: &str,
-        (names, inputs_used): (Vec<String>, Vec<usize>),
+        names: Vec<String>,
+        inputs_used: Vec<usize>,
     ) -> Self {
         Program {
             code,

@@ -87,7 +87,7 @@ pub(crate) fn define(
     let pointer = AbiParam::new(module.target_config().pointer_type());
     let params = [pointer, AbiParam::new(types::F64), pointer];
     let split = |p: &[Value]| (p[0], p[1], head_len);
-    define_with(module, ("marsden_tape", &params, &[]), split, |t, p| {
+    define_with(module, "marsden_tape", &params, &[], split, |t, p| {
         let outputs = t.translate(tape, vec![None; tape.input_len()])?;
         for (k, value) in outputs.into_iter().enumerate() {
             let offset = i32::try_from(8 * k).map_err(codegen)?;
@@ -115,7 +115,9 @@ pub(crate) fn check_inputs(tape: &Tape, head: usize) -> Result<(), JitError> {
 /// finished here.
 pub(crate) fn define_with(
     module: &mut JITModule,
-    (name, params, returns): (&str, &[AbiParam], &[AbiParam]),
+    name: &str,
+    params: &[AbiParam],
+    returns: &[AbiParam],
     split: impl FnOnce(&[Value]) -> (Value, Value, usize),
     body: impl FnOnce(&mut Translator<'_>, &[Value]) -> Result<(), JitError>,
 ) -> Result<FuncId, JitError> {
@@ -132,7 +134,8 @@ pub(crate) fn define_with(
         b.append_block_params_for_function_params(entry);
         b.switch_to_block(entry);
         let values = b.block_params(entry).to_vec();
-        let mut t = Translator::new(b, module, split(&values));
+        let (head, last, head_len) = split(&values);
+        let mut t = Translator::new(b, module, head, last, head_len);
         body(&mut t, &values)?;
         t.b.seal_all_blocks();
         t.b.finalize();
@@ -167,7 +170,9 @@ impl<'a> Translator<'a> {
     pub(crate) fn new(
         b: FunctionBuilder<'a>,
         module: &'a mut JITModule,
-        (head, last, head_len): (Value, Value, usize),
+        head: Value,
+        last: Value,
+        head_len: usize,
     ) -> Self {
         Self {
             b,

@@ -42,5 +42,5 @@ mod timing;
 mod verlet;
 
 pub use compile::JitError;
-pub use native::{CompiledTape, CompiledVerlet};
+pub use native::{CompiledTape, CompiledVerlet, VerletGrid};
 pub use timing::compile_seconds;

@@ -139,6 +139,18 @@ impl CompiledTape {
 type VerletEntry =
     unsafe extern "C" fn(*mut f64, *mut f64, *mut f64, *const f64, f64, f64, i64) -> i64;
 
+/// The uniform time grid of a [`CompiledVerlet`] run: `steps` steps of size `h` from `t0`, at
+/// the times `t_k = t₀ + k·h`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VerletGrid {
+    /// The initial time `t₀`.
+    pub t0: f64,
+    /// The time step `h`.
+    pub h: f64,
+    /// The number of steps asked for.
+    pub steps: usize,
+}
+
 /// A velocity Störmer–Verlet run with a potential's gradient tape compiled into its loop
 /// (`crate::verlet`'s equations): the same numbers, bit for bit, as the generic loop of
 /// `marsden::separable::explicit` calling the tape's interpreter once per step.
@@ -172,19 +184,19 @@ impl CompiledVerlet {
         self.dof
     }
 
-    /// Up to `steps` steps from `(q, p)` at `t₀ = grid.0` with step `h = grid.1`, in place;
-    /// `drift[i] = h/mᵢ`; `grad` is `∇V(t₀, q)` on entry and `∇V` at the final state on exit.
-    /// Stops before the first step whose new state is not finite; returns the steps done.
+    /// Up to `grid.steps` steps from `(q, p)` at `t₀ = grid.t0` with step `h = grid.h`, in
+    /// place; `drift[i] = h/mᵢ`; `grad` is `∇V(t₀, q)` on entry and `∇V` at the final state on
+    /// exit. Stops before the first step whose new state is not finite; returns the steps done.
     ///
     /// # Panics
     ///
     /// If a slice's length is not [`CompiledVerlet::dof`].
     pub fn run(
         &self,
-        grid: (f64, f64),
-        steps: usize,
+        grid: VerletGrid,
         drift: &[f64],
-        (q, p): (&mut [f64], &mut [f64]),
+        q: &mut [f64],
+        p: &mut [f64],
         grad: &mut [f64],
     ) -> usize {
         let n = self.dof;
@@ -192,9 +204,7 @@ impl CompiledVerlet {
             q.len() == n && p.len() == n && grad.len() == n && drift.len() == n,
             "a Verlet run of {n} degrees of freedom needs slices of that length"
         );
-        // More steps than `i64::MAX` cannot be run anyway; the loop stops at the bound.
-        let steps = i64::try_from(steps).unwrap_or(i64::MAX);
-        let done = self.call(grid, steps, drift, (q, p), grad);
+        let done = self.call(grid, drift, q, p, grad);
         usize::try_from(done).unwrap_or(0)
     }
 
@@ -211,12 +221,15 @@ impl CompiledVerlet {
     #[allow(unsafe_code)]
     fn call(
         &self,
-        (t0, h): (f64, f64),
-        steps: i64,
+        grid: VerletGrid,
         drift: &[f64],
-        (q, p): (&mut [f64], &mut [f64]),
+        q: &mut [f64],
+        p: &mut [f64],
         grad: &mut [f64],
     ) -> i64 {
+        let VerletGrid { t0, h, steps } = grid;
+        // More steps than `i64::MAX` cannot be run anyway; the loop stops at the bound.
+        let steps = i64::try_from(steps).unwrap_or(i64::MAX);
         // SAFETY: see above.
         unsafe {
             let entry = std::mem::transmute::<usize, VerletEntry>(self.code.address);

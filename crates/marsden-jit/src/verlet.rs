@@ -52,7 +52,9 @@ pub(crate) fn define(
     let split = |p: &[Value]| (p[0], p[4], n);
     define_with(
         module,
-        ("marsden_verlet", &params, &[integer]),
+        "marsden_verlet",
+        &params,
+        &[integer],
         split,
         |t, p| emit_run(t, gradient, n, p),
     )

@@ -3,7 +3,7 @@
 //! equal states and gradients, the same steps done, the same stop at the first non-finite state.
 
 use marsden_expr::Tape;
-use marsden_jit::{CompiledVerlet, JitError};
+use marsden_jit::{CompiledVerlet, JitError, VerletGrid};
 
 use super::agreement::{reference_forms, separable};
 
@@ -64,7 +64,12 @@ fn compiled(
     start: [&[f64]; 3],
 ) -> Run {
     let [mut q, mut p, mut g] = start.map(<[f64]>::to_vec);
-    let done = kernel.run(grid, steps, d, (&mut q, &mut p), &mut g);
+    let grid = VerletGrid {
+        t0: grid.0,
+        h: grid.1,
+        steps,
+    };
+    let done = kernel.run(grid, d, &mut q, &mut p, &mut g);
     Run {
         q: bits(&q),
         p: bits(&p),

@@ -17,13 +17,14 @@ pub struct FirstIterate {
 /// The first iterate of `spec` with `rule`.
 pub fn initial<L: Lagrangian, F: ControlForce, R: Rule>(
     spec: &OptimalControlSpec,
-    (lagrangian, force): (&L, &F),
+    lagrangian: &L,
+    force: &F,
     grid: TimeGrid,
     rule: &R,
 ) -> FirstIterate {
     let u = vec![vec![0.0; spec.controls.len()]; spec.steps];
     if spec.guess == GuessKind::Simulation
-        && let Some(q) = simulate(&spec.start, (lagrangian, force), grid, rule)
+        && let Some(q) = simulate(&spec.start, lagrangian, force, grid, rule)
     {
         return FirstIterate {
             guess: Guess { q, u },
@@ -56,7 +57,8 @@ fn line(start: &EndSpec, end: &EndSpec, steps: usize) -> Vec<Vec<f64>> {
 /// The core integrator's run from a complete start with `u = 0`, if it succeeds.
 fn simulate<L: Lagrangian, F: ControlForce, R: Rule>(
     start: &EndSpec,
-    (lagrangian, force): (&L, &F),
+    lagrangian: &L,
+    force: &F,
     grid: TimeGrid,
     rule: &R,
 ) -> Option<Vec<Vec<f64>>> {

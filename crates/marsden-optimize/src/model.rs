@@ -17,7 +17,10 @@ use marsden_expr::{Program, ProgramSet};
 /// Calls `body` with `[q, v, t, u]`.
 #[inline]
 fn with_controlled_inputs<S: Scalar, R>(
-    (t, q, v, u): (S, &[S], &[S], &[S]),
+    t: S,
+    q: &[S],
+    v: &[S],
+    u: &[S],
     body: impl FnOnce(&[S]) -> R,
 ) -> R {
     let n = q.len();
@@ -57,7 +60,7 @@ impl ControlForce for ExprControlForce<'_> {
     }
 
     fn force<S: Scalar>(&self, t: S, q: &[S], v: &[S], u: &[S], out: &mut [S]) {
-        with_controlled_inputs((t, q, v, u), |x| self.programs.eval_into(x, out));
+        with_controlled_inputs(t, q, v, u, |x| self.programs.eval_into(x, out));
     }
 }
 
@@ -70,7 +73,7 @@ pub struct ExprCost<'a> {
 
 impl RunningCost for ExprCost<'_> {
     fn cost<S: Scalar>(&self, t: S, q: &[S], v: &[S], u: &[S]) -> S {
-        with_controlled_inputs((t, q, v, u), |x| self.program.eval(x))
+        with_controlled_inputs(t, q, v, u, |x| self.program.eval(x))
     }
 }
 
@@ -87,7 +90,7 @@ impl PathConstraint for ExprPath<'_> {
     }
 
     fn eval<S: Scalar>(&self, t: S, q: &[S], v: &[S], u: &[S], out: &mut [S]) {
-        with_controlled_inputs((t, q, v, u), |x| self.programs.eval_into(x, out));
+        with_controlled_inputs(t, q, v, u, |x| self.programs.eval_into(x, out));
     }
 }
 

@@ -73,7 +73,7 @@ fn solve<R: Rule + StagedControls>(
         });
     let problem = with_bounds(problem, spec)?;
     let grid = *problem.grid();
-    let first = guess::initial(spec, (&spec.lagrangian, &force), grid, rule);
+    let first = guess::initial(spec, &spec.lagrangian, &force, grid, rule);
     let problem = problem.with_guess(first.guess)?;
     let options = SqpOptions {
         kkt_tolerance: spec.solver.tolerance,

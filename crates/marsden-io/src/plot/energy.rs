@@ -67,7 +67,8 @@ pub fn plot_energy_error(
 }
 
 /// Draws the discrete energy balance of a forced run to a PNG at `path`: above, the energy
-/// change `E(t) − E₀` and the accumulated discrete work `W(t) = Σ_{k<t/h} W_k` of the forces;
+/// change `E(t) − E₀` (`change`, at the times `t`) and the accumulated discrete work
+/// `W(t) = Σ_{k<t/h} W_k` of the forces (`work`);
 /// below, what the work does not account for, `E(t) − E₀ − W(t)` (the accumulated defect,
 /// round-off for R12). Energy is not conserved in such a run, so no "energy error" is drawn.
 ///
@@ -77,7 +78,8 @@ pub fn plot_energy_error(
 pub fn plot_energy_balance(
     path: impl AsRef<Path>,
     t: &[f64],
-    (change, work): (&[f64], &[f64]),
+    change: &[f64],
+    work: &[f64],
     opts: &PlotOptions,
 ) -> Result<PlotReport> {
     let path = path.as_ref();

@@ -22,7 +22,8 @@ const MAX_OBSERVABLE_PANELS: usize = 6;
 /// size is out of range; I/O errors name `path`.
 pub fn plot_section(
     path: impl AsRef<Path>,
-    (x, y): (Series<'_>, Series<'_>),
+    x: Series<'_>,
+    y: Series<'_>,
     opts: &PlotOptions,
 ) -> Result<PlotReport> {
     let path = path.as_ref();
@@ -107,14 +108,14 @@ mod tests {
             name: "p_y",
             values: &y,
         };
-        let report = plot_section(&path, (xs, ys), &PlotOptions::default()).unwrap();
+        let report = plot_section(&path, xs, ys, &PlotOptions::default()).unwrap();
         assert!(path.metadata().unwrap().len() > 1000);
         assert_eq!(report.notes, ["1 non-finite point(s) not drawn"]);
         let short = Series {
             name: "p_y",
             values: &y[..10],
         };
-        assert!(plot_section(&path, (xs, short), &PlotOptions::default()).is_err());
+        assert!(plot_section(&path, xs, short, &PlotOptions::default()).is_err());
     }
 
     #[test]

@@ -46,7 +46,9 @@ impl ControlTable {
 /// expressions read the controls after `[q, q̇, t]` (or `[q, p, t]`).
 #[inline(always)]
 pub fn with_controls<S: Scalar, R>(
-    (x, y, t): (&[S], &[S], S),
+    x: &[S],
+    y: &[S],
+    t: S,
     table: &ControlTable,
     body: impl FnOnce(&[S]) -> R,
 ) -> R {
@@ -79,7 +81,7 @@ mod tests {
         assert_eq!(table.at(2.25), [30.0]);
         assert_eq!(table.at(0.0), [10.0]);
         assert_eq!(table.at(9.0), [30.0]);
-        let got = with_controls((&[1.0, 2.0][..], &[3.0, 4.0][..], 1.8), &table, |x| {
+        let got = with_controls(&[1.0, 2.0][..], &[3.0, 4.0][..], 1.8, &table, |x| {
             x.to_vec()
         });
         assert_eq!(got, [1.0, 2.0, 3.0, 4.0, 1.8, 20.0]);

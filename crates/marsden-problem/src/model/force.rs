@@ -156,7 +156,7 @@ impl Force for Velocities<'_> {
         match (self.0.is_empty(), self.1) {
             (true, _) => out.iter_mut().for_each(|f| *f = S::from(0.0)),
             (false, None) => with_inputs(q, v, t, |x| self.0.eval_into(x, out)),
-            (false, Some(u)) => with_controls((q, v, t), u, |x| self.0.eval_into(x, out)),
+            (false, Some(u)) => with_controls(q, v, t, u, |x| self.0.eval_into(x, out)),
         }
     }
 
@@ -170,7 +170,7 @@ impl HamiltonianForce for Momenta<'_> {
     fn hamiltonian_force<S: Scalar>(&self, t: S, q: &[S], p: &[S], out: &mut [S]) {
         match self.1 {
             None => with_inputs(q, p, t, |x| self.0.eval_into(x, out)),
-            Some(u) => with_controls((q, p, t), u, |x| self.0.eval_into(x, out)),
+            Some(u) => with_controls(q, p, t, u, |x| self.0.eval_into(x, out)),
         }
     }
 }

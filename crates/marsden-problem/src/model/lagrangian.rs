@@ -158,13 +158,18 @@ impl VerletKernel for NativeVerlet {
     #[inline]
     fn run(
         &self,
-        grid: (f64, f64),
-        steps: usize,
+        grid: marsden::mechanics::kernel::RunGrid,
         drift: &[f64],
-        state: (&mut [f64], &mut [f64]),
+        q: &mut [f64],
+        p: &mut [f64],
         grad: &mut [f64],
     ) -> usize {
-        self.0.run(grid, steps, drift, state, grad)
+        let grid = marsden_jit::VerletGrid {
+            t0: grid.t0,
+            h: grid.h,
+            steps: grid.steps,
+        };
+        self.0.run(grid, drift, q, p, grad)
     }
 
     fn dof(&self) -> usize {

@@ -146,7 +146,10 @@ fn compile(text: &str, symbols: &Symbols) -> Result<Program, String> {
 
 /// Calls `body` with `[q, v, t, θ]`.
 fn with_parametric_inputs<S: Scalar, R>(
-    (q, v, t, theta): (&[S], &[S], S, &[S]),
+    q: &[S],
+    v: &[S],
+    t: S,
+    theta: &[S],
     body: impl FnOnce(&[S]) -> R,
 ) -> R {
     let n = q.len();
@@ -183,10 +186,10 @@ impl ExprParametric {
     fn momentum_force<S: Scalar>(&self, theta: &[S], t: S, q: &[S], v: &[S], out: &mut [S]) {
         let n = q.len();
         let mut p = vec![S::from(0.0); n];
-        with_parametric_inputs((q, v, t, theta), |z| {
+        with_parametric_inputs(q, v, t, theta, |z| {
             ad::nested_gradient(&OnInputs(self), z, n..2 * n, &mut p);
         });
-        with_parametric_inputs((q, &p, t, theta), |x| {
+        with_parametric_inputs(q, &p, t, theta, |x| {
             for (f, program) in out.iter_mut().zip(&self.forces) {
                 *f = program.eval(x);
             }
@@ -204,7 +207,7 @@ impl ParametricModel for ExprParametric {
     }
 
     fn lagrangian_with<S: Scalar>(&self, theta: &[S], t: S, q: &[S], v: &[S]) -> S {
-        with_parametric_inputs((q, v, t, theta), |x| self.lagrangian.eval(x))
+        with_parametric_inputs(q, v, t, theta, |x| self.lagrangian.eval(x))
     }
 
     fn force_with<S: Scalar>(&self, theta: &[S], t: S, q: &[S], v: &[S], out: &mut [S]) {
@@ -215,7 +218,7 @@ impl ParametricModel for ExprParametric {
         if self.force_inputs == ForceInputs::Momenta {
             return self.momentum_force(theta, t, q, v, out);
         }
-        with_parametric_inputs((q, v, t, theta), |x| {
+        with_parametric_inputs(q, v, t, theta, |x| {
             for (f, program) in out.iter_mut().zip(&self.forces) {
                 *f = program.eval(x);
             }

@@ -39,7 +39,7 @@ pub(super) fn expression(
 ) -> Result<Resolved, Diagnostic> {
     let help = "e.g. `coordinates = [\"x\"]`; the expression then reads `x_0`, `x_1`, `h`, `t`";
     let coordinates =
-        parameters::expression_coordinates(ck, ("discrete_lagrangian", text), system, help)?;
+        parameters::expression_coordinates(ck, "discrete_lagrangian", text, system, help)?;
     params.numbers_only(ck, "a discrete Lagrangian")?;
     let constants: Vec<(String, f64)> = params
         .numbers

@@ -167,7 +167,7 @@ pub fn events(
     let output = raw.output.as_ref().map(|o| o.get_ref());
     let mut symbols = state_symbols(ck, system)?;
     let observables = match output.and_then(|o| o.observables.as_ref()) {
-        Some(raw) => observables(ck, raw.get_ref(), (&mut symbols, system))?,
+        Some(raw) => observables(ck, raw.get_ref(), &mut symbols, system)?,
         None => Observables::none(),
     };
     let raw_events = raw.events.as_deref().unwrap_or(&[]);
@@ -234,7 +234,8 @@ fn what_is(name: &str, symbols: &Symbols, system: &SystemSpec) -> Option<String>
 fn observables(
     ck: &Checker<'_>,
     raw: &RawObservables,
-    (symbols, system): (&mut Symbols, &SystemSpec),
+    symbols: &mut Symbols,
+    system: &SystemSpec,
 ) -> Result<Observables, Diagnostic> {
     let mut out = Observables::none();
     let state = symbols.clone();

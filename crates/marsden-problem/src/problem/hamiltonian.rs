@@ -35,7 +35,7 @@ pub(super) fn expression(
     params: &Parameters,
 ) -> Result<Resolved, Diagnostic> {
     let help = "e.g. `coordinates = [\"theta\"]`; momenta are then named `p_theta`";
-    let coordinates = parameters::expression_coordinates(ck, ("hamiltonian", text), system, help)?;
+    let coordinates = parameters::expression_coordinates(ck, "hamiltonian", text, system, help)?;
     params.numbers_only(ck, "an expression Hamiltonian")?;
     let constants: Vec<(String, f64)> = params
         .numbers

@@ -304,10 +304,7 @@ fn validate_raw(
     output.times = sampled_times::times(&ck, raw, &system, &integrator.grid)?;
     output.exact_times = sampled_times::exact(&ck, raw, &output.times)?;
     let sweep = match with_sweep {
-        true => {
-            let parts = (&system, &initial, bodies.is_some());
-            sweep::sweep(&ck, raw.sweep.as_ref(), parts)?
-        }
+        true => sweep::sweep(&ck, raw.sweep.as_ref(), &system, &initial, bodies.is_some())?,
         false => None,
     };
     if sweep.is_some() {

@@ -173,7 +173,8 @@ fn masses(
 /// No `coordinates` in `[system]`, or a bad name in them ([`check_coordinates`]).
 pub fn expression_coordinates(
     ck: &Checker<'_>,
-    (key, text): (&str, &Spanned<String>),
+    key: &str,
+    text: &Spanned<String>,
     system: &RawSystem,
     help: &str,
 ) -> Result<Vec<String>, Diagnostic> {

@@ -162,8 +162,8 @@ impl SweepSpec {
     }
 }
 
-/// Validates `[sweep]` (and its `[sweep.and]` axes) against the system and initial state of
-/// the file.
+/// Validates `[sweep]` (and its `[sweep.and]` axes) against the `system` and `initial` state
+/// of the file (`from_file`: the initial state is read from `[initial] file`).
 ///
 /// # Errors
 /// An unknown parameter (the valid ones are listed), an initial value the file does not give,
@@ -172,13 +172,15 @@ impl SweepSpec {
 pub fn sweep(
     ck: &Checker<'_>,
     raw: Option<&Spanned<RawSweep>>,
-    context: (&SystemSpec, &InitialSpec, bool),
+    system: &SystemSpec,
+    initial: &InitialSpec,
+    from_file: bool,
 ) -> Result<Option<SweepSpec>, Diagnostic> {
     let mut axes: Vec<SweepAxis> = Vec::new();
     let mut next = raw;
     let mut members: usize = 1;
     while let Some(raw) = next {
-        let axis = axis(ck, raw, context)?;
+        let axis = axis(ck, raw, system, initial, from_file)?;
         if axes.iter().any(|a| a.target == axis.target) {
             let msg = format!("`{}` is swept twice", axis.target.label());
             return Err(ck
@@ -204,7 +206,9 @@ pub fn sweep(
 fn axis(
     ck: &Checker<'_>,
     raw: &Spanned<RawSweep>,
-    (system, initial, from_file): (&SystemSpec, &InitialSpec, bool),
+    system: &SystemSpec,
+    initial: &InitialSpec,
+    from_file: bool,
 ) -> Result<SweepAxis, Diagnostic> {
     let table = raw.get_ref();
     let (target, span) = match (&table.parameter, &table.initial) {

@@ -187,7 +187,7 @@ pub fn system(
             &params,
         )?)
     };
-    let force = forces(ck, system, &parsed, &coordinates, (&tangent, &cotangent))?;
+    let force = forces(ck, system, &parsed, &coordinates, &tangent, &cotangent)?;
     let constraint = constraints(ck, system, &parsed, &coordinates, &positions)?;
     let symmetries = compile_symmetries(ck, system, &parsed, &coordinates, &positions)?;
     Ok(SystemSpec {
@@ -294,7 +294,7 @@ fn expression(
     params: &Parameters,
 ) -> Result<Resolved, Diagnostic> {
     let help = "e.g. `coordinates = [\"theta\"]`; velocities are then named `theta_dot`";
-    let coordinates = parameters::expression_coordinates(ck, ("lagrangian", text), system, help)?;
+    let coordinates = parameters::expression_coordinates(ck, "lagrangian", text, system, help)?;
     params.numbers_only(ck, "an expression Lagrangian")?;
     let constants: Vec<(String, f64)> = params
         .numbers
@@ -316,14 +316,15 @@ fn forces(
     system: &RawSystem,
     parsed: &Parsed,
     coordinates: &[String],
-    (tangent, cotangent): (&Symbols, &dyn Fn() -> Result<Symbols, Diagnostic>),
+    tangent: &Symbols,
+    cotangent: &dyn Fn() -> Result<Symbols, Diagnostic>,
 ) -> Result<ExprForce, Diagnostic> {
     let Some(list) = &system.forces else {
         return Ok(ExprForce::none());
     };
     ck.one_per_coordinate("`forces`", list, coordinates)?;
     let what = "[system] forces";
-    match force_inputs(ck, (list, &parsed.forces), coordinates, tangent)? {
+    match force_inputs(ck, list, &parsed.forces, coordinates, tangent)? {
         ForceInputs::Velocities => {
             let set = ck.compile_all(what, list, &parsed.forces, tangent)?;
             Ok(ExprForce::new(set))
@@ -340,7 +341,8 @@ fn forces(
 /// at the second kind's first use.
 fn force_inputs(
     ck: &Checker<'_>,
-    (list, parsed): (&SpannedList<String>, &[Expr]),
+    list: &SpannedList<String>,
+    parsed: &[Expr],
     coordinates: &[String],
     tangent: &Symbols,
 ) -> Result<ForceInputs, Diagnostic> {

@@ -218,7 +218,7 @@ pub fn draw_section_of(
     let x = series_of(table, &x[0], &x[1])?;
     let y = series_of(table, &y[0], &y[1])?;
     let path = dir.join(SECTION_PNG);
-    marsden_io::plot::plot_section(&path, (x, y), &PlotOptions::default())
+    marsden_io::plot::plot_section(&path, x, y, &PlotOptions::default())
         .map_err(|e| e.to_string())?;
     Ok(SECTION_PNG.to_owned())
 }

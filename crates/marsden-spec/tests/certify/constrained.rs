@@ -97,7 +97,7 @@ fn step_jacobian(x: &State) -> Vec<f64> {
 fn cotangent_basis_spans_the_closed_form_tangent_space_of_the_sphere() {
     let x = start();
     let s = SphericalPendulum::default();
-    let basis = cotangent_basis((&s, &s), x.t, (&x.q, &x.p));
+    let basis = cotangent_basis(&s, &s, x.t, &x.q, &x.p);
     assert_eq!(basis.len(), 4);
     let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(u, w)| u * w).sum::<f64>();
     for u in &basis {
@@ -123,7 +123,7 @@ fn the_defect_on_the_cotangent_bundle_catches_what_it_should() {
     let x = start();
     let s = SphericalPendulum::default();
     let jac = step_jacobian(&x);
-    let basis = cotangent_basis((&s, &s), x.t, (&x.q, &x.p));
+    let basis = cotangent_basis(&s, &s, x.t, &x.q, &x.p);
     let (_, on_n) = restricted_defect(&jac, &basis);
     assert!(on_n <= 1e-13, "on T*N: {on_n:e}");
     let identity: Vec<Vec<f64>> = (0..6)

@@ -142,7 +142,8 @@ pub trait DiscreteAction {
         frame: Frame<'_>,
         z: &mut [f64],
         p_next: &mut [f64],
-        (options, ws): (&NewtonOptions, &mut SeparableWorkspace),
+        options: &NewtonOptions,
+        ws: &mut SeparableWorkspace,
     ) -> Option<Result<NewtonReport, NewtonFailure>> {
         let step = self.separable()?;
         Some(step.solve_separable(frame, z, p_next, options, ws))

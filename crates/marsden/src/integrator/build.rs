@@ -14,6 +14,28 @@ use crate::holonomic::{MomentumProjection, NoProjection};
 use crate::mechanics::{Constraint, NoForce, Unconstrained};
 use crate::numerics::newton::NewtonOptions;
 
+/// The parts an integrator is assembled from.
+struct Parts<A, F, C, P> {
+    /// The discrete action.
+    action: A,
+    /// The discrete forces.
+    force: F,
+    /// The holonomic constraints.
+    constraint: C,
+    /// The momentum projection after every solved step.
+    projection: P,
+}
+
+/// The switches an integrator rebuilt from new parts keeps from the one it replaces.
+struct Switches {
+    /// Use the fast paths when the step allows them.
+    fast_paths: bool,
+    /// Compensated summation of the state update, with the errors it carries.
+    compensation: Compensation,
+    /// The instruction set of the small kernels.
+    dispatch: Dispatch,
+}
+
 impl<A: DiscreteAction> Integrator<A> {
     /// An unforced, unconstrained integrator with default Newton options.
     pub fn new(action: A) -> Self {
@@ -53,7 +75,12 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             ..self.shape
         };
         let switches = self.switches();
-        let parts = (self.action, force, self.constraint, self.projection);
+        let parts = Parts {
+            action: self.action,
+            force,
+            constraint: self.constraint,
+            projection: self.projection,
+        };
         Integrator::assemble(parts, shape, self.options, self.statistics, switches)
     }
 
@@ -74,7 +101,12 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             ..self.shape
         };
         let switches = self.switches();
-        let parts = (self.action, self.force, constraint, self.projection);
+        let parts = Parts {
+            action: self.action,
+            force: self.force,
+            constraint,
+            projection: self.projection,
+        };
         Integrator::assemble(parts, shape, self.options, self.statistics, switches)
     }
 
@@ -104,12 +136,23 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     /// An integrator of new parts with fresh buffers, keeping the options, counters and
     /// switches of the one it replaces; its path is chosen anew.
     fn assemble(
-        (action, force, constraint, projection): (A, F, C, P),
+        parts: Parts<A, F, C, P>,
         shape: StepShape,
         options: NewtonOptions,
         statistics: Statistics,
-        (fast_paths, compensation, dispatch): (bool, Compensation, Dispatch),
+        switches: Switches,
     ) -> Self {
+        let Parts {
+            action,
+            force,
+            constraint,
+            projection,
+        } = parts;
+        let Switches {
+            fast_paths,
+            compensation,
+            dispatch,
+        } = switches;
         Integrator {
             action,
             force,
@@ -129,8 +172,12 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     }
 
     /// The switches a rebuilt integrator keeps.
-    fn switches(&self) -> (bool, Compensation, Dispatch) {
-        (self.fast_paths, self.compensation.clone(), self.dispatch)
+    fn switches(&self) -> Switches {
+        Switches {
+            fast_paths: self.fast_paths,
+            compensation: self.compensation.clone(),
+            dispatch: self.dispatch,
+        }
     }
 
     /// Chooses the path of the steps ([`Path::choose`]).

@@ -32,6 +32,7 @@
 
 use crate::discrete::legendre::ActionAndForces;
 use crate::discrete::{DiscreteAction, DiscreteForce};
+use crate::mechanics::State;
 use crate::numerics::ad::{self, MultiFunction};
 
 /// The carried rounding errors of `q` and `p`, and the state they belong to.
@@ -81,16 +82,19 @@ impl Compensation {
         self.last_p.clone_from(&carry.last_p);
     }
 
-    /// Adds `Δ` to `q` and `δp` (from [`momentum_increment`]) to `p` with compensated
-    /// summation. The carried errors are dropped first if `(q, p)` is not the state the last
-    /// update left (the caller started elsewhere or changed the state between steps).
+    /// Adds `Δ` to `q` and `δp` (from [`momentum_increment`]) to `p` of the step of size `h`
+    /// from `state` with compensated summation (`state.t` is left to the caller). The carried
+    /// errors are dropped first if `(q, p)` is not the state the last update left (the caller
+    /// started elsewhere or changed the state between steps).
     pub fn update<A: DiscreteAction, F: DiscreteForce>(
         &mut self,
-        (action, force): (&A, &F),
-        (t0, h): (f64, f64),
-        (q, p): (&mut [f64], &mut [f64]),
+        action: &A,
+        force: &F,
+        state: &mut State,
+        h: f64,
         offsets: &[f64],
     ) {
+        let (t0, q, p) = (state.t, state.q.as_mut_slice(), state.p.as_mut_slice());
         let n = q.len();
         if self.last_q != q || self.last_p != p {
             self.q_error.clear();
@@ -103,8 +107,10 @@ impl Compensation {
         self.point.extend_from_slice(offsets);
         self.increment.resize(n, 0.0);
         momentum_increment(
-            (action, force),
-            (t0, h),
+            action,
+            force,
+            t0,
+            h,
             &self.point,
             &mut self.scratch,
             &mut self.increment,
@@ -141,8 +147,10 @@ pub(crate) struct IncrementScratch {
 /// the `n` columns of `Q₀` seeded; row 0 of the Jacobian is the gradient, the force values are
 /// summed over the control points.
 pub(crate) fn momentum_increment<A: DiscreteAction, F: DiscreteForce>(
-    (action, force): (&A, &F),
-    (t0, h): (f64, f64),
+    action: &A,
+    force: &F,
+    t0: f64,
+    h: f64,
     point: &[f64],
     scratch: &mut IncrementScratch,
     increment: &mut [f64],
@@ -193,8 +201,10 @@ mod tests {
         let point: Vec<f64> = before.q.iter().chain(&offsets).copied().collect();
         let mut increment = [0.0; 2];
         momentum_increment(
-            (integrator.action(), &NoForce),
-            (0.0, 0.01),
+            integrator.action(),
+            &NoForce,
+            0.0,
+            0.01,
             &point,
             &mut IncrementScratch::default(),
             &mut increment,

@@ -9,6 +9,7 @@ use crate::discrete::{DiscreteAction, DiscreteForce};
 use crate::error::Error;
 use crate::error::{StepError, StepFailure};
 use crate::holonomic::MomentumProjection;
+use crate::mechanics::kernel::RunGrid;
 use crate::mechanics::{Constraint, State};
 
 impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
@@ -29,12 +30,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         };
         let t0 = state.t;
         if let (Some(explicit), true) = (self.action.explicit(), last > 0) {
-            let run = explicit.explicit_run(
-                (t0, h),
-                last,
-                (&mut state.q, &mut state.p),
-                &mut self.buffers.explicit,
-            );
+            let grid = RunGrid { t0, h, steps: last };
+            let run =
+                explicit.explicit_run(grid, &mut state.q, &mut state.p, &mut self.buffers.explicit);
             let st = &mut self.statistics;
             st.potential_gradients += run.gradients;
             st.steps += run.steps;

@@ -24,7 +24,8 @@ pub fn discrete_hamiltonian_map<D: DiscreteLagrangian>(
     ld: &D,
     t: f64,
     h: f64,
-    (q, p): (&[f64], &[f64]),
+    q: &[f64],
+    p: &[f64],
     options: &NewtonOptions,
 ) -> Result<(Vec<f64>, Vec<f64>), Error> {
     let mut integrator = Integrator::new(ld).with_options(*options)?;
@@ -43,7 +44,8 @@ pub fn two_step_map<D: DiscreteLagrangian>(
     ld: &D,
     t_prev: f64,
     h: f64,
-    (q_prev, q): (&[f64], &[f64]),
+    q_prev: &[f64],
+    q: &[f64],
     options: &NewtonOptions,
 ) -> Result<Vec<f64>, Error> {
     let mut p = vec![0.0; ld.dof()];

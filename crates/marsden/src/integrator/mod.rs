@@ -313,12 +313,8 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     fn accept(&mut self, z: &[f64], state: &mut State, h: f64) {
         let sn = self.shape.s * self.shape.n;
         if self.is_compensated() {
-            self.compensation.update(
-                (&self.action, &self.force),
-                (state.t, h),
-                (&mut state.q, &mut state.p),
-                &z[..sn],
-            );
+            self.compensation
+                .update(&self.action, &self.force, state, h, &z[..sn]);
         } else {
             short::add(&mut state.q, &z[sn - self.shape.n..sn]);
             short::copy(&mut state.p, &self.buffers.p_next);

@@ -171,11 +171,13 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
             q0: &state.q,
             p0: &state.p,
         };
-        let parts = (&self.options, &mut b.separable);
-        let Some(result) = self
-            .action
-            .solve_separable_step(frame, z, &mut b.p_next, parts)
-        else {
+        let Some(result) = self.action.solve_separable_step(
+            frame,
+            z,
+            &mut b.p_next,
+            &self.options,
+            &mut b.separable,
+        ) else {
             return self.solve_general(z, state, h);
         };
         let evaluations = evaluations_of(&result);

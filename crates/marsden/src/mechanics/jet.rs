@@ -258,7 +258,7 @@ pub fn check_structure<L: Lagrangian>(l: &L, t: f64, q: &[f64], v: &[f64]) -> Re
         return Ok(());
     };
     if l.dof() > structure::LARGE {
-        return structure::check_by_probes(l, &mass, (t, q, v));
+        return structure::check_by_probes(l, &mass, t, q, v);
     }
     let jet = LagrangianJet::at(l, t, q, v);
     let dense = mass.to_dense();

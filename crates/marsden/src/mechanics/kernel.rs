@@ -22,22 +22,34 @@
 //!
 //! [MW01]: crate#references
 
+/// The uniform time grid of a run of explicit steps: `steps` steps of size `h` from `t0`, at
+/// the times `t_k = t₀ + k·h`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunGrid {
+    /// The initial time `t₀`.
+    pub t0: f64,
+    /// The time step `h`.
+    pub h: f64,
+    /// The number of steps asked for.
+    pub steps: usize,
+}
+
 /// Velocity Störmer–Verlet steps of a separable `L` with a diagonal mass, run by the
 /// Lagrangian's own code ([`crate::mechanics::Lagrangian::verlet_kernel`]).
 pub trait VerletKernel {
-    /// Up to `steps` steps from `(q, p)` at `t₀` on the grid `(t₀, h)`, in place (the equations
-    /// of [`self`](crate::mechanics::kernel)); `drift[i] = h·(1/mᵢ)`; `grad` holds `∇V(t₀, q)`
-    /// on entry and `∇V` at the state left in `(q, p)` on exit. Stops before the first step
-    /// whose new state is not finite. Returns the steps completed.
+    /// Up to `grid.steps` steps from `(q, p)` at `t₀` on the grid `(t₀, h)`, in place (the
+    /// equations of [`self`](crate::mechanics::kernel)); `drift[i] = h·(1/mᵢ)`; `grad` holds
+    /// `∇V(t₀, q)` on entry and `∇V` at the state left in `(q, p)` on exit. Stops before the
+    /// first step whose new state is not finite. Returns the steps completed.
     ///
     /// The slices all have the kernel's length `n`; the integrator checks
     /// [`VerletKernel::dof`] before calling.
     fn run(
         &self,
-        grid: (f64, f64),
-        steps: usize,
+        grid: RunGrid,
         drift: &[f64],
-        state: (&mut [f64], &mut [f64]),
+        q: &mut [f64],
+        p: &mut [f64],
         grad: &mut [f64],
     ) -> usize;
 

@@ -138,7 +138,9 @@ fn direction(len: usize, seed: u64) -> Vec<f64> {
 pub fn check_by_probes<L: Lagrangian + ?Sized>(
     l: &L,
     mass: &MassMatrix,
-    (t, q, v): (f64, &[f64], &[f64]),
+    t: f64,
+    q: &[f64],
+    v: &[f64],
 ) -> Result<(), Error> {
     let n = q.len();
     let mut z = Vec::with_capacity(2 * n + 1);

@@ -240,7 +240,7 @@ fn hessian_chunked<const C: usize, F: MultiFunction>(
             }
             f.eval(xs, res);
             out.evaluations += 1;
-            collect_block(res, (ib, wr), (jb, wc), nc, out);
+            collect_block(res, ib, wr, jb, wc, nc, out);
             for v in xs.iter_mut() {
                 *v = hd_re::<C>(v.re);
             }
@@ -289,11 +289,14 @@ fn hd_re<const C: usize>(v: f64) -> HyperDualSVec64<C, C> {
     HyperDualSVec64::<C, C>::from_re(v)
 }
 
-/// Copies one chunk pair's derivatives into the output buffers.
+/// Copies one chunk pair's derivatives (the `wr` rows from `ib` by the `wc` columns from `jb`
+/// of the `nc` columns) into the output buffers.
 fn collect_block<const C: usize>(
     res: &[HyperDualSVec64<C, C>],
-    (ib, wr): (usize, usize),
-    (jb, wc): (usize, usize),
+    ib: usize,
+    wr: usize,
+    jb: usize,
+    wc: usize,
     nc: usize,
     out: &mut HessianParts,
 ) {

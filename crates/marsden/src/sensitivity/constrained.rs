@@ -251,7 +251,8 @@ thread_local! {
 /// `dy/dθ = −(∂R/∂y)⁻¹ ∂R/∂θ` beside those of `(q_k, p_k)`.
 fn shake_jacobian<A: DiscreteAction, F: DiscreteForce, C: Constraint>(
     step: &AugmentedStep<'_, A, F, C>,
-    (q0, theta): (&[f64], &[f64]),
+    q0: &[f64],
+    theta: &[f64],
     z: &[f64],
     ws: &mut Workspace,
 ) -> Result<(), Error> {
@@ -325,15 +326,29 @@ pub(super) struct Model<'a, A, F, C, L> {
     pub theta: &'a [f64],
 }
 
-/// After `run` stepped from `(t₀, q₀)` with step `h` to `state`, writes
+/// The step a constrained run has just taken: from `(t₀, q₀)` with step `h` to `state`, in
+/// `iterations` Newton iterations.
+pub(super) struct TakenStep<'a> {
+    /// The start time `t₀`.
+    pub t0: f64,
+    /// The step `h`.
+    pub h: f64,
+    /// The start positions `q₀`.
+    pub q0: &'a [f64],
+    /// The state the step ended in.
+    pub state: &'a State,
+    /// The Newton iterations of the step (for the error's report).
+    pub iterations: usize,
+}
+
+/// After `run` took the step `taken` (from `(t₀, q₀)` with step `h` to `state`), writes
 /// `∂(q_{k+1}, p_{k+1})/∂(q_k, p_k, θ)` (row-major 2n × (2n + P)) of that step into `jac`:
 /// SHAKE's Jacobian ([`shake_jacobian`]), then the projection's ([`projection_jacobian`]).
 /// `run` must have active constraints.
 pub(super) fn constrained_jacobian<A, F, C, L, RA, RF, RC, RL, RC2>(
     run: &Integrator<RA, RF, RC, Rattle<RL, RC2>>,
     model: &Model<'_, A, F, C, L>,
-    ((t0, h), q0): ((f64, f64), &[f64]),
-    (state, iterations): (&State, usize),
+    taken: TakenStep<'_>,
     jac: &mut [f64],
 ) -> Result<(), Error>
 where
@@ -347,6 +362,13 @@ where
     RL: Lagrangian,
     RC2: Constraint,
 {
+    let TakenStep {
+        t0,
+        h,
+        q0,
+        state,
+        iterations,
+    } = taken;
     let shape = run.shape();
     let (n, np) = (shape.n, model.theta.len());
     let (m, cols) = (2 * n, 2 * n + np);
@@ -377,7 +399,7 @@ where
                 .chain(run.multipliers())
                 .chain(run.stage_multipliers()),
         );
-        let solved = shake_jacobian(&step, (q0, model.theta), &z, ws);
+        let solved = shake_jacobian(&step, q0, model.theta, &z, ws);
         ws.z = z;
         solved.map_err(&rename)?;
         let projection = run.projection();
@@ -389,9 +411,12 @@ where
         point.clear();
         point.extend(state.q.iter().chain(model.theta));
         let pj = projection_jacobian(
-            (model.lagrangian, model.constraint),
+            model.lagrangian,
+            model.constraint,
             t0 + h,
-            (&point, projection.velocity(), projection.multipliers()),
+            &point,
+            projection.velocity(),
+            projection.multipliers(),
             &mut ws.projection,
         );
         ws.point = point;
@@ -458,13 +483,14 @@ where
             lagrangian: self.projection().lagrangian(),
             theta: &[],
         };
-        constrained_jacobian(
-            self,
-            &model,
-            ((t0, h), self.step_start()),
-            (state, report.iterations),
-            jac,
-        )?;
+        let taken = TakenStep {
+            t0,
+            h,
+            q0: self.step_start(),
+            state: &*state,
+            iterations: report.iterations,
+        };
+        constrained_jacobian(self, &model, taken, jac)?;
         Ok(report)
     }
 }

@@ -45,9 +45,11 @@ use crate::numerics::ad::{self, HessianParts};
 /// space of `T*N` at `(t, q, p)` with `p = ∂L/∂v(t, q, v)`, as vectors `(δq, δp)` of length
 /// `2n`: `2n − 2d` of them when the constraints are independent.
 pub fn cotangent_basis<L: Lagrangian, C: Constraint>(
-    (lagrangian, constraint): (&L, &C),
+    lagrangian: &L,
+    constraint: &C,
     t: f64,
-    (q, v): (&[f64], &[f64]),
+    q: &[f64],
+    v: &[f64],
 ) -> Vec<Vec<f64>> {
     let (n, d) = (q.len(), constraint.count());
     let m = 2 * n;
@@ -157,19 +159,21 @@ pub fn restricted_defect(jac: &[f64], basis: &[Vec<f64>]) -> (f64, f64) {
     (worst, worst / scale.max(f64::MIN_POSITIVE))
 }
 
-/// The `(absolute, relative)` defect on `T*N` of one constrained step of `stepper` from
-/// `state`, whose velocity is `v`.
+/// The `(absolute, relative)` defect on `T*N` of one constrained step of size `h` of `stepper`
+/// (for `lagrangian` under `constraint`) from `state`, whose velocity is `v`.
 ///
 /// # Errors
 /// The step (or its Jacobian) fails.
 pub fn step_defect_on_cotangent_bundle<S: SensitiveStep, L: Lagrangian, C: Constraint>(
     stepper: &mut S,
-    model: (&L, &C),
-    (state, v): (&State, &[f64]),
+    lagrangian: &L,
+    constraint: &C,
+    state: &State,
+    v: &[f64],
     h: f64,
 ) -> Result<(f64, f64), Error> {
     let n = stepper.dof();
-    let basis = cotangent_basis(model, state.t, (&state.q, v));
+    let basis = cotangent_basis(lagrangian, constraint, state.t, &state.q, v);
     let mut jac = vec![0.0; 4 * n * n];
     let mut s = state.clone();
     stepper.step_with_sensitivity(&mut s, h, &mut jac)?;

@@ -17,7 +17,7 @@
 //! [MW01]: crate#references
 //! [LMO08]: crate#references
 
-use super::constrained::{Model, constrained_jacobian};
+use super::constrained::{Model, TakenStep, constrained_jacobian};
 use super::parametric::{AtValues, Frozen, ParametricModel};
 use super::step::{SensitiveStep, differentiable_by_run};
 use crate::analysis::certificate::variational::{
@@ -176,9 +176,14 @@ impl<R: Rule, M: ParametricModel + Clone> SensitiveStep for ConstrainedParametri
             lagrangian: &self.model,
             theta: &self.theta,
         };
-        let state_and_iterations = (&*state, report.iterations);
-        let start = ((t0, h), self.run.step_start());
-        constrained_jacobian(&self.run, &model, start, state_and_iterations, jac)?;
+        let taken = TakenStep {
+            t0,
+            h,
+            q0: self.run.step_start(),
+            state: &*state,
+            iterations: report.iterations,
+        };
+        constrained_jacobian(&self.run, &model, taken, jac)?;
         Ok(report)
     }
 }

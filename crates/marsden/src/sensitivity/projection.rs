@@ -99,9 +99,12 @@ pub(super) struct ProjectionWorkspace {
 ///
 /// Errors with [`StepError::SingularJacobian`] if the KKT matrix is singular.
 pub(super) fn projection_jacobian<'w, L: Lagrangian, C: Constraint>(
-    (lagrangian, constraint): (&L, &C),
+    lagrangian: &L,
+    constraint: &C,
     t: f64,
-    (q, v, nu): (&[f64], &[f64], &[f64]),
+    q: &[f64],
+    v: &[f64],
+    nu: &[f64],
     ws: &'w mut ProjectionWorkspace,
 ) -> Result<&'w [f64], Error> {
     let (n, big, d) = (v.len(), q.len(), constraint.count());

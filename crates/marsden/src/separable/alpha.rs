@@ -65,11 +65,12 @@ pub(crate) fn solve_alpha<L: Lagrangian>(
     l: &L,
     alpha: f64,
     frame: Frame<'_>,
-    (z, p_next): (&mut [f64], &mut [f64]),
+    z: &mut [f64],
+    p_next: &mut [f64],
     options: &NewtonOptions,
     ws: &mut SeparableWorkspace,
 ) -> Result<NewtonReport, NewtonFailure> {
-    if let Some(result) = solve_alpha_small(l, alpha, frame, (&mut *z, &mut *p_next), options, ws) {
+    if let Some(result) = solve_alpha_small(l, alpha, frame, &mut *z, &mut *p_next, options, ws) {
         return result;
     }
     let n = frame.q0.len();

@@ -25,15 +25,16 @@ pub(super) fn solve_alpha_small<L: Lagrangian>(
     l: &L,
     alpha: f64,
     frame: Frame<'_>,
-    out: (&mut [f64], &mut [f64]),
+    z: &mut [f64],
+    p_next: &mut [f64],
     options: &NewtonOptions,
     ws: &mut SeparableWorkspace,
 ) -> Option<Result<NewtonReport, NewtonFailure>> {
     match frame.q0.len() {
-        1 => solve::<L, 1>(l, alpha, frame, out, options, ws),
-        2 => solve::<L, 2>(l, alpha, frame, out, options, ws),
-        3 => solve::<L, 3>(l, alpha, frame, out, options, ws),
-        4 => solve::<L, 4>(l, alpha, frame, out, options, ws),
+        1 => solve::<L, 1>(l, alpha, frame, z, p_next, options, ws),
+        2 => solve::<L, 2>(l, alpha, frame, z, p_next, options, ws),
+        3 => solve::<L, 3>(l, alpha, frame, z, p_next, options, ws),
+        4 => solve::<L, 4>(l, alpha, frame, z, p_next, options, ws),
         _ => None,
     }
 }
@@ -124,7 +125,8 @@ fn solve<L: Lagrangian, const N: usize>(
     l: &L,
     alpha: f64,
     frame: Frame<'_>,
-    (z, p_next): (&mut [f64], &mut [f64]),
+    z: &mut [f64],
+    p_next: &mut [f64],
     options: &NewtonOptions,
     ws: &mut SeparableWorkspace,
 ) -> Option<Result<NewtonReport, NewtonFailure>> {

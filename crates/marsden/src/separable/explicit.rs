@@ -33,7 +33,7 @@
 //! [MW01]: crate#references
 
 use crate::mechanics::Lagrangian;
-use crate::mechanics::kernel::VerletKernel;
+use crate::mechanics::kernel::{RunGrid, VerletKernel};
 use crate::mechanics::structure::InverseMass;
 
 /// A step that needs no nonlinear solve (object-safe: plain `f64` state).
@@ -51,29 +51,30 @@ pub trait ExplicitStep {
         ws: &mut ExplicitWorkspace,
     ) -> usize;
 
-    /// `steps` steps from `(q, p)` at the grid times `t_k = t₀ + k h`, in place. Stops before
+    /// `grid.steps` steps from `(q, p)` at the grid times `t_k = t₀ + k h`, in place. Stops before
     /// the first step whose new state is not finite, leaving `(q, p)` at the last finite state.
     ///
     /// Default: repeated [`ExplicitStep::explicit_step`].
     fn explicit_run(
         &self,
-        (t0, h): (f64, f64),
-        steps: usize,
-        (q, p): (&mut [f64], &mut [f64]),
+        grid: RunGrid,
+        q: &mut [f64],
+        p: &mut [f64],
         ws: &mut ExplicitWorkspace,
     ) -> ExplicitRun {
-        run_by_steps(self, (t0, h), steps, (q, p), ws)
+        run_by_steps(self, grid, q, p, ws)
     }
 }
 
 /// [`ExplicitStep::explicit_run`] by repeated [`ExplicitStep::explicit_step`].
 pub(crate) fn run_by_steps<E: ExplicitStep + ?Sized>(
     step: &E,
-    (t0, h): (f64, f64),
-    steps: usize,
-    (q, p): (&mut [f64], &mut [f64]),
+    grid: RunGrid,
+    q: &mut [f64],
+    p: &mut [f64],
     ws: &mut ExplicitWorkspace,
 ) -> ExplicitRun {
+    let RunGrid { t0, h, steps } = grid;
     let mut buffers = std::mem::take(&mut ws.run);
     buffers.resize(2 * q.len(), 0.0);
     let (delta, p_next) = buffers.split_at_mut(q.len());
@@ -211,16 +212,31 @@ fn half_kick(h: f64, grad: &[f64], p: &mut [f64]) {
     p.iter_mut().zip(grad).for_each(|(pi, g)| *pi -= c * g);
 }
 
-/// One velocity Störmer–Verlet step of a separable `L` (the trapezoid variational step):
-/// `Δ = h M⁻¹ p½` into `delta`, `p ← p_{k+1}`; returns the gradients evaluated.
+/// A separable Lagrangian `L = ½ vᵀ M v − V(t, q)` with the inverse of its constant mass: what
+/// the velocity Störmer–Verlet steps need.
+#[derive(Debug)]
+pub(crate) struct Verlet<'a, L> {
+    /// `L`, for its potential gradient `∇V(t, q)`.
+    pub lagrangian: &'a L,
+    /// `M⁻¹`.
+    pub inverse_mass: &'a InverseMass,
+}
+
+/// One velocity Störmer–Verlet step of a separable `L` (the trapezoid variational step) from
+/// `(q, p)` at `t`: `Δ = h M⁻¹ p½` into `delta`, `p ← p_{k+1}`; returns the gradients evaluated.
 pub(crate) fn velocity_verlet<L: Lagrangian>(
-    l: &L,
-    inverse_mass: &InverseMass,
-    (t, h): (f64, f64),
-    (q, p): (&[f64], &mut [f64]),
+    verlet: Verlet<'_, L>,
+    t: f64,
+    h: f64,
+    q: &[f64],
+    p: &mut [f64],
     delta: &mut [f64],
     ws: &mut ExplicitWorkspace,
 ) -> usize {
+    let Verlet {
+        lagrangian: l,
+        inverse_mass,
+    } = verlet;
     ws.resize(q.len());
     let mut gradients = 1;
     if !ws.holds(t, h, q) {
@@ -244,17 +260,20 @@ pub(crate) fn velocity_verlet<L: Lagrangian>(
 /// The largest `n` run on fixed-size arrays.
 const MAX_FIXED: usize = 4;
 
-/// `steps` velocity Störmer–Verlet steps of a separable `L` in one loop
+/// `grid.steps` velocity Störmer–Verlet steps of a separable `L` in one loop
 /// ([`ExplicitStep::explicit_run`]): fixed-size arrays for a diagonal mass and `n ≤ 4`, else
 /// `None` (the caller then repeats [`velocity_verlet`]).
 pub(crate) fn velocity_verlet_run<L: Lagrangian>(
-    l: &L,
-    inverse_mass: &InverseMass,
-    grid: (f64, f64),
-    steps: usize,
-    state: (&mut [f64], &mut [f64]),
+    verlet: Verlet<'_, L>,
+    grid: RunGrid,
+    q: &mut [f64],
+    p: &mut [f64],
     ws: &mut ExplicitWorkspace,
 ) -> Option<ExplicitRun> {
+    let Verlet {
+        lagrangian: l,
+        inverse_mass,
+    } = verlet;
     let InverseMass::Diagonal(inverse) = inverse_mass else {
         return None;
     };
@@ -264,13 +283,13 @@ pub(crate) fn velocity_verlet_run<L: Lagrangian>(
         .then(|| l.verlet_kernel())
         .flatten();
     if let Some(kernel) = kernel.filter(|k| k.dof() == inverse.len()) {
-        return kernel_run(l, kernel, inverse, grid, steps, state, ws);
+        return kernel_run(l, kernel, inverse, grid, q, p, ws);
     }
     match inverse.len() {
-        1 => verlet_run_fixed::<L, 1>(l, inverse, grid, steps, state, ws),
-        2 => verlet_run_fixed::<L, 2>(l, inverse, grid, steps, state, ws),
-        3 => verlet_run_fixed::<L, 3>(l, inverse, grid, steps, state, ws),
-        4 => verlet_run_fixed::<L, 4>(l, inverse, grid, steps, state, ws),
+        1 => verlet_run_fixed::<L, 1>(l, inverse, grid, q, p, ws),
+        2 => verlet_run_fixed::<L, 2>(l, inverse, grid, q, p, ws),
+        3 => verlet_run_fixed::<L, 3>(l, inverse, grid, q, p, ws),
+        4 => verlet_run_fixed::<L, 4>(l, inverse, grid, q, p, ws),
         _ => None,
     }
 }
@@ -281,11 +300,12 @@ fn kernel_run<L: Lagrangian>(
     l: &L,
     kernel: &dyn VerletKernel,
     inverse: &[f64],
-    (t0, h): (f64, f64),
-    steps: usize,
-    (q, p): (&mut [f64], &mut [f64]),
+    grid: RunGrid,
+    q: &mut [f64],
+    p: &mut [f64],
     ws: &mut ExplicitWorkspace,
 ) -> Option<ExplicitRun> {
+    let RunGrid { t0, h, steps } = grid;
     let n = inverse.len();
     if q.len() != n || p.len() != n {
         return None;
@@ -300,7 +320,7 @@ fn kernel_run<L: Lagrangian>(
         .iter_mut()
         .zip(inverse)
         .for_each(|(d, m)| *d = h * m);
-    let done = kernel.run((t0, h), steps, &ws.drift, (q, p), &mut ws.grad);
+    let done = kernel.run(grid, &ws.drift, q, p, &mut ws.grad);
     run.steps = done;
     run.gradients += done + usize::from(done < steps);
     ws.remember(t0 + done as f64 * h, q);
@@ -313,11 +333,12 @@ fn kernel_run<L: Lagrangian>(
 fn verlet_run_fixed<L: Lagrangian, const N: usize>(
     l: &L,
     inverse: &[f64],
-    (t0, h): (f64, f64),
-    steps: usize,
-    (q, p): (&mut [f64], &mut [f64]),
+    grid: RunGrid,
+    q: &mut [f64],
+    p: &mut [f64],
     ws: &mut ExplicitWorkspace,
 ) -> Option<ExplicitRun> {
+    let RunGrid { t0, h, steps } = grid;
     let (Ok(q_out), Ok(p_out)) = (<&mut [f64; N]>::try_from(q), <&mut [f64; N]>::try_from(p))
     else {
         return None;

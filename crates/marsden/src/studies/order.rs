@@ -232,21 +232,24 @@ where
     })
 }
 
-/// Runs `problem` with `rule` over `[t₀, t_end]` with each number of steps (increasing) and
-/// fits the order against `reference = (q(T), p(T))`.
+/// Runs `problem` with `rule` over `[t₀, t_end]` with each number of `steps` (increasing) and
+/// fits the order against the reference `(reference_q, reference_p) = (q(T), p(T))`.
 ///
 /// # Errors
 /// Only for an invalid grid; a failed run is a point with error `NaN` (which ends the fit).
 pub fn measure_order<L: Lagrangian, F: Force, C: Constraint, R: Rule>(
     problem: &Problem<L, F, C>,
     rule: &R,
-    (t_end, steps): (f64, &[usize]),
-    reference: (&[f64], &[f64]),
+    t_end: f64,
+    steps: &[usize],
+    reference_q: &[f64],
+    reference_p: &[f64],
     options: &OrderOptions,
 ) -> Result<OrderStudy, Error>
 where
     Problem<L, F, C>: Clone,
 {
+    let reference = (reference_q, reference_p);
     let t0 = problem.start().t;
     let solve = SolveOptions {
         newton: options.newton,
@@ -269,14 +272,22 @@ where
         };
         points.push(OrderPoint { h, steps: n, error });
     }
-    Ok(study(rule.name(), rule.order(), points, reference, options))
+    Ok(study(
+        rule.name(),
+        rule.order(),
+        points,
+        reference_q,
+        reference_p,
+        options,
+    ))
 }
 
 fn study(
     method: String,
     expected: u32,
     points: Vec<OrderPoint>,
-    (q, p): (&[f64], &[f64]),
+    q: &[f64],
+    p: &[f64],
     options: &OrderOptions,
 ) -> OrderStudy {
     let hs: Vec<f64> = points.iter().map(|pt| pt.h).collect();

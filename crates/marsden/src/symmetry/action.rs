@@ -159,8 +159,10 @@ pub fn generator_jacobian<G: GroupAction>(
 pub fn tangent_lift<G: GroupAction>(
     action: &G,
     a: usize,
-    (q, v): (&[f64], &[f64]),
-    (dq, dv): (&mut [f64], &mut [f64]),
+    q: &[f64],
+    v: &[f64],
+    dq: &mut [f64],
+    dv: &mut [f64],
 ) {
     let n = q.len();
     let mut jac = vec![0.0; n * n];
@@ -177,8 +179,10 @@ pub fn tangent_lift<G: GroupAction>(
 pub fn cotangent_lift<G: GroupAction>(
     action: &G,
     a: usize,
-    (q, p): (&[f64], &[f64]),
-    (dq, dp): (&mut [f64], &mut [f64]),
+    q: &[f64],
+    p: &[f64],
+    dq: &mut [f64],
+    dp: &mut [f64],
 ) {
     let n = q.len();
     let mut jac = vec![0.0; n * n];
@@ -214,8 +218,10 @@ impl<G: FiniteAction> MultiFunction for Finite<'_, G> {
 pub fn act_cotangent<G: FiniteAction>(
     action: &G,
     xi: &[f64],
-    (q, p): (&[f64], &[f64]),
-    (gq, gp): (&mut [f64], &mut [f64]),
+    q: &[f64],
+    p: &[f64],
+    gq: &mut [f64],
+    gp: &mut [f64],
 ) -> Result<(), Error> {
     let n = q.len();
     let mut jac = vec![0.0; n * n];
@@ -242,8 +248,10 @@ pub fn act_cotangent<G: FiniteAction>(
 pub fn act_tangent<G: FiniteAction>(
     action: &G,
     xi: &[f64],
-    (q, v): (&[f64], &[f64]),
-    (gq, gv): (&mut [f64], &mut [f64]),
+    q: &[f64],
+    v: &[f64],
+    gq: &mut [f64],
+    gv: &mut [f64],
 ) {
     let n = q.len();
     let mut jac = vec![0.0; n * n];

@@ -225,7 +225,9 @@ pub fn relative_defect(defect: f64, scale: f64) -> f64 {
 fn check_with(
     symmetry: String,
     of: &'static str,
-    (m, samples, tolerance): (usize, &[Sample], f64),
+    m: usize,
+    samples: &[Sample],
+    tolerance: f64,
     mut eval: impl FnMut(usize, &Sample) -> (f64, f64),
 ) -> SymmetryReport {
     let generators = (0..m)
@@ -286,10 +288,12 @@ pub fn check_lagrangian<L: Lagrangian, G: GroupAction>(
     Ok(check_with(
         action.name(),
         "L",
-        (action.algebra_dim(), samples, tolerance),
+        action.algebra_dim(),
+        samples,
+        tolerance,
         |a, s| {
             let (dq, dv) = d.split_at_mut(n);
-            tangent_lift(action, a, (&s.q, &s.v), (dq, dv));
+            tangent_lift(action, a, &s.q, &s.v, dq, dv);
             let x: Vec<f64> = s.q.iter().chain(&s.v).copied().collect();
             directional(&OfL(l, s.t), &x, &d)
         },
@@ -311,7 +315,9 @@ pub fn check_discrete<D: DiscreteLagrangian, G: GroupAction>(
     Ok(check_with(
         action.name(),
         "L_d",
-        (action.algebra_dim(), samples, tolerance),
+        action.algebra_dim(),
+        samples,
+        tolerance,
         |a, s| {
             for i in 0..n {
                 x[i] = s.q[i];
@@ -338,10 +344,12 @@ pub fn check_hamiltonian<H: Hamiltonian, G: GroupAction>(
     Ok(check_with(
         action.name(),
         "H",
-        (action.algebra_dim(), samples, tolerance),
+        action.algebra_dim(),
+        samples,
+        tolerance,
         |a, s| {
             let (dq, dp) = d.split_at_mut(n);
-            cotangent_lift(action, a, (&s.q, &s.v), (dq, dp));
+            cotangent_lift(action, a, &s.q, &s.v, dq, dp);
             let x: Vec<f64> = s.q.iter().chain(&s.v).copied().collect();
             directional(&OfH(ham, s.t), &x, &d)
         },
@@ -367,7 +375,9 @@ pub fn check_constraint<C: Constraint, G: GroupAction>(
     Ok(check_with(
         action.name(),
         "φ",
-        (action.algebra_dim(), samples, tolerance),
+        action.algebra_dim(),
+        samples,
+        tolerance,
         |a, s| {
             if d == 0 {
                 return (0.0, 0.0);

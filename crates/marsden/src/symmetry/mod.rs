@@ -124,7 +124,7 @@ pub fn equivariance_defect<G: FiniteAction>(
     let (n, m) = (q.len(), action.algebra_dim());
     validate(action, n, q)?;
     let (mut gq, mut gp) = (vec![0.0; n], vec![0.0; n]);
-    act_cotangent(action, xi, (q, p), (&mut gq, &mut gp))?;
+    act_cotangent(action, xi, q, p, &mut gq, &mut gp)?;
     let (mut j, mut j_moved, mut j_co) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
     momentum_map(action, q, p, &mut j);
     momentum_map(action, &gq, &gp, &mut j_moved);

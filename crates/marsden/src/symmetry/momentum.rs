@@ -40,7 +40,9 @@ pub fn momentum_map<G: GroupAction>(action: &G, q: &[f64], p: &[f64], out: &mut 
 pub fn lagrangian_momentum_map<L: Lagrangian, G: GroupAction>(
     l: &L,
     action: &G,
-    (t, q, v): (f64, &[f64], &[f64]),
+    t: f64,
+    q: &[f64],
+    v: &[f64],
     out: &mut [f64],
 ) {
     let mut p = vec![0.0; l.dof()];

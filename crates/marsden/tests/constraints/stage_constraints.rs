@@ -52,14 +52,7 @@ impl WithRule for Cartesian<'_> {
             newton: tight(),
             ..OrderOptions::default()
         };
-        measure_order(
-            &cartesian_problem(),
-            rule,
-            (T_END, self.0),
-            (&q, &p),
-            &options,
-        )
-        .unwrap()
+        measure_order(&cartesian_problem(), rule, T_END, self.0, &q, &p, &options).unwrap()
     }
 }
 

@@ -27,7 +27,7 @@ fn check<D: DiscreteLagrangian>(ld: &D, expected: [f64; 3], name: &str) {
         residual_tolerance: 1e-14,
         ..NewtonOptions::default()
     };
-    let (q2, _) = discrete_hamiltonian_map(ld, h, h, (&q1, &p1), &options).unwrap();
+    let (q2, _) = discrete_hamiltonian_map(ld, h, h, &q1, &p1, &options).unwrap();
     let mut r = [0.0];
     del_residual(ld, 0.0, h, [&q0, &q1, &q2], &mut r);
     assert!(r[0].abs() <= 1e-14, "{name} DEL residual {:e}", r[0]);

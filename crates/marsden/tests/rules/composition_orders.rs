@@ -29,8 +29,10 @@ fn verlet_compositions_reach_their_orders() {
         let study = measure_order(
             &problem,
             &rule,
-            (5.0, &[5, 10, 20, 40, 80]),
-            (&[q], &[p]),
+            5.0,
+            &[5, 10, 20, 40, 80],
+            &[q],
+            &[p],
             &OrderOptions::default(),
         )
         .unwrap();
@@ -108,8 +110,10 @@ fn implicit_bases_compose() {
             measure_order(
                 &problem,
                 &midpoint4,
-                (5.0, &[10, 20, 40]),
-                (&[q], &[p]),
+                5.0,
+                &[10, 20, 40],
+                &[q],
+                &[p],
                 &OrderOptions::default(),
             )
             .unwrap(),
@@ -119,8 +123,10 @@ fn implicit_bases_compose() {
             measure_order(
                 &problem,
                 &gauss2x,
-                (5.0, &[10, 20, 40]),
-                (&[q], &[p]),
+                5.0,
+                &[10, 20, 40],
+                &[q],
+                &[p],
                 &OrderOptions::default(),
             )
             .unwrap(),

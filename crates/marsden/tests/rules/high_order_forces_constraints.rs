@@ -50,7 +50,7 @@ impl WithRule for Damped<'_> {
             newton: tight(),
             ..OrderOptions::default()
         };
-        measure_order(&problem, rule, (t_end, self.0), (&[q], &[p]), &options).unwrap()
+        measure_order(&problem, rule, t_end, self.0, &[q], &[p], &options).unwrap()
     }
 }
 
@@ -151,7 +151,7 @@ impl WithRule for Spherical<'_> {
             newton: tight(),
             ..OrderOptions::default()
         };
-        measure_order(&problem, rule, (self.1, self.0), (&q, &p), &options).unwrap()
+        measure_order(&problem, rule, self.1, self.0, &q, &p, &options).unwrap()
     }
 }
 

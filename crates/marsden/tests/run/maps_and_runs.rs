@@ -23,11 +23,11 @@ fn two_step_map_agrees_with_the_discrete_hamiltonian_map() {
         ..NewtonOptions::default()
     };
     let (q0, q1, h) = ([1.2], [1.17], 0.1);
-    let q2 = two_step_map(&ld, 0.0, h, (&q0, &q1), &o).unwrap();
+    let q2 = two_step_map(&ld, 0.0, h, &q0, &q1, &o).unwrap();
     // Momentum matching: p1 = D₂L_d(q0, q1), then one Hamiltonian step from (q1, p1).
     let mut p1 = [0.0];
     legendre_plus(&ld, 0.0, h, &q0, &q1, &mut p1);
-    let (q2_h, _) = discrete_hamiltonian_map(&ld, h, h, (&q1, &p1), &o).unwrap();
+    let (q2_h, _) = discrete_hamiltonian_map(&ld, h, h, &q1, &p1, &o).unwrap();
     assert!((q2[0] - q2_h[0]).abs() < 1e-15);
 }
 

@@ -203,7 +203,7 @@ fn so3_momentum_map_is_equivariant() {
     }
     // Cotangent lift of ê₂: (e₂ × q, e₂ × p).
     let (mut dq, mut dp) = ([0.0; 9], [0.0; 9]);
-    cotangent_lift(&rotations, 2, (&s.q, &s.v), (&mut dq, &mut dp));
+    cotangent_lift(&rotations, 2, &s.q, &s.v, &mut dq, &mut dp);
     for i in 0..3 {
         let (q, p) = (&s.q[3 * i..3 * i + 3], &s.v[3 * i..3 * i + 3]);
         assert_eq!(&dq[3 * i..3 * i + 3], &[-q[1], q[0], 0.0]);
@@ -243,7 +243,7 @@ fn lagrangian_momentum_map_is_the_pullback_of_the_hamiltonian_one() {
     for s in Sample::random(2, 10, 5, 1.5) {
         let (q, v) = (&s.q, &s.v);
         let mut j_l = [0.0];
-        lagrangian_momentum_map(&system, &rotation, (0.0, q, v), &mut j_l);
+        lagrangian_momentum_map(&system, &rotation, 0.0, q, v, &mut j_l);
         // FL(q, v) = v + A(q); J_H(q, p) = x p_y − y p_x.
         let p = [v[0] - 0.85 * q[1], v[1] + 0.85 * q[0]];
         let mut j_h = [0.0];
@@ -254,7 +254,7 @@ fn lagrangian_momentum_map_is_the_pullback_of_the_hamiltonian_one() {
         // The same through the Lagrangian built from H by FL (Newton inside, exact by AD).
         let from_h = HamiltonianLagrangian::new(system);
         let mut j_lh = [0.0];
-        lagrangian_momentum_map(&from_h, &rotation, (0.0, q, v), &mut j_lh);
+        lagrangian_momentum_map(&from_h, &rotation, 0.0, q, v, &mut j_lh);
         assert!(
             (j_lh[0] - j_h[0]).abs() < 1e-13,
             "{} vs {}",

@@ -147,7 +147,8 @@ pub fn bounds(
     raw: Option<&Spanned<Ordered<SpannedList<f64>>>>,
     controls: &[String],
     coordinates: &[String],
-    ends: (&EndSpec, &EndSpec),
+    start: &EndSpec,
+    end: &EndSpec,
 ) -> Result<(BoundsSpec, BoundsSpec), Diagnostic> {
     let mut on_u = BoundsSpec::none(controls.len());
     let mut on_q = BoundsSpec::none(coordinates.len());
@@ -202,7 +203,13 @@ pub fn bounds(
         }
         let (bounds, index, coordinate) = target;
         if coordinate {
-            excludes_an_end(ck, at.clone(), (name, index, lo, hi), ends)?;
+            let bounds = CoordinateBounds {
+                name,
+                index,
+                lo,
+                hi,
+            };
+            excludes_an_end(ck, at.clone(), &bounds, start, end)?;
         }
         bounds.lower[index] = lo;
         bounds.upper[index] = hi;
@@ -210,14 +217,33 @@ pub fn bounds(
     Ok((on_u, on_q))
 }
 
-/// Refuses the bounds `[lo, hi]` of coordinate `index` if they exclude its fixed position at
+/// The bounds `[lo, hi]` given on one coordinate.
+struct CoordinateBounds<'a> {
+    /// The coordinate's name.
+    name: &'a str,
+    /// Its index among the coordinates.
+    index: usize,
+    /// The lower bound.
+    lo: f64,
+    /// The upper bound.
+    hi: f64,
+}
+
+/// Refuses the `bounds` `[lo, hi]` of a coordinate if they exclude its fixed position at
 /// `start` or `end`.
 fn excludes_an_end(
     ck: &Checker<'_>,
     at: Option<std::ops::Range<usize>>,
-    (name, index, lo, hi): (&str, usize, f64, f64),
-    (start, end): (&EndSpec, &EndSpec),
+    bounds: &CoordinateBounds<'_>,
+    start: &EndSpec,
+    end: &EndSpec,
 ) -> Result<(), Diagnostic> {
+    let &CoordinateBounds {
+        name,
+        index,
+        lo,
+        hi,
+    } = bounds;
     for (which, spec) in [("start", start), ("end", end)] {
         if let Some(q) = spec.q.get(index).copied().flatten()
             && !(lo..=hi).contains(&q)

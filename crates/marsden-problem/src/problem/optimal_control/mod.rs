@@ -191,7 +191,7 @@ fn validate(source: SourceFile, overrides: &Overrides) -> Result<OptimalControlS
     };
     let coordinates = system.coordinates;
     let expressions =
-        Expressions::compile(&ck, raw_system, section, (&coordinates, &system.parameters))?;
+        Expressions::compile(&ck, raw_system, section, &coordinates, &system.parameters)?;
     let table = section.get_ref();
     let (t0, t_end, steps) = options::horizon(&ck, section, overrides)?;
     let method = options::method(&ck, table.method.as_ref())?;
@@ -207,7 +207,8 @@ fn validate(source: SourceFile, overrides: &Overrides) -> Result<OptimalControlS
         table.bounds.as_ref(),
         &names,
         &coordinates,
-        (&start, &end),
+        &start,
+        &end,
     )?;
     let guess = options::guess(&ck, table.guess.as_ref())?;
     let solver = options::solver(&ck, table)?;
@@ -342,7 +343,8 @@ impl Expressions {
         ck: &Checker<'_>,
         raw_system: &Spanned<RawSystem>,
         section: &Spanned<RawOptimalControl>,
-        (coordinates, constants): (&[String], &[(String, f64)]),
+        coordinates: &[String],
+        constants: &[(String, f64)],
     ) -> Result<Self, Diagnostic> {
         let system = raw_system.get_ref();
         let params = Parameters::read(ck, system)?;

@@ -336,7 +336,7 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
         let n = (y.len() - 1) / 2;
         let (q, v) = (&y[..n], &y[n..2 * n]);
         if let Some(inverse_mass) = &self.inverse_mass {
-            return self.rhs_separable(inverse_mass, t, (q, v), out);
+            return self.rhs_separable(inverse_mass, t, q, v, out);
         }
         let jet = LagrangianJet::at(&self.lagrangian, t, q, v);
         let mut force = vec![0.0; n];
@@ -371,7 +371,8 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
         &self,
         inverse_mass: &InverseMass,
         t: f64,
-        (q, v): (&[f64], &[f64]),
+        q: &[f64],
+        v: &[f64],
         out: &mut [f64],
     ) -> Result<(), Error> {
         let n = q.len();

@@ -196,7 +196,7 @@ impl<L: Lagrangian> ExactDiscreteLagrangian<L> {
             .chain(end.dl_dv.iter().copied())
             .collect();
         let hessian = if hessian {
-            self.hessian((t0, h), (q0, &solution), (&start, &end))?
+            self.hessian(t0, h, q0, &solution, &start, &end)?
         } else {
             Vec::new()
         };
@@ -211,13 +211,16 @@ impl<L: Lagrangian> ExactDiscreteLagrangian<L> {
 
     fn hessian(
         &self,
-        (t0, h): (f64, f64),
-        (q0, bv): (&[f64], &BoundaryValue),
-        (start, end): (&LagrangianJet, &LagrangianJet),
+        t0: f64,
+        h: f64,
+        q0: &[f64],
+        bv: &BoundaryValue,
+        start: &LagrangianJet,
+        end: &LagrangianJet,
     ) -> Result<Vec<f64>, Error> {
         let n = q0.len();
         let scale = max_norm(q0).max(1e-8);
-        let (a, c) = shooting::flow_derivatives(&self.flow, (t0, h), (q0, &bv.v0), (false, scale))?;
+        let (a, c) = shooting::flow_derivatives(&self.flow, t0, h, q0, &bv.v0, false, scale)?;
         let _ = c;
         let mut lu = Lu::new();
         lu.factor(&bv.b, n).map_err(|_| {

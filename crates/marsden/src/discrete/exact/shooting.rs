@@ -52,9 +52,12 @@ fn velocity_scale(q0: &[f64], q1: &[f64], h: f64, v: &[f64]) -> f64 {
 /// `max(|x_a|, scale)`.
 pub(crate) fn flow_derivatives<L: Lagrangian, F: Force>(
     flow: &EulerLagrangeFlow<L, F>,
-    (t0, h): (f64, f64),
-    (q0, v0): (&[f64], &[f64]),
-    (of_velocity, scale): (bool, f64),
+    t0: f64,
+    h: f64,
+    q0: &[f64],
+    v0: &[f64],
+    of_velocity: bool,
+    scale: f64,
 ) -> Result<(Vec<f64>, Vec<f64>), Error> {
     let n = q0.len();
     let (mut dq, mut dv) = (vec![0.0; n * n], vec![0.0; n * n]);
@@ -121,7 +124,7 @@ pub fn solve<L: Lagrangian, F: Force>(
         let (b, d) = match jacobian.take() {
             Some(bd) if last_update <= 1e-6 * scale => bd,
             _ => {
-                let bd = flow_derivatives(flow, (t0, h), (q0, &v0), (true, scale))?;
+                let bd = flow_derivatives(flow, t0, h, q0, &v0, true, scale)?;
                 lu.factor(&bd.0, n)
                     .map_err(|_| failure(iteration, max_norm(&residual)))?;
                 bd
@@ -129,7 +132,12 @@ pub fn solve<L: Lagrangian, F: Force>(
         };
         let before = max_norm(&residual);
         if before == 0.0 {
-            return Ok(finish(flow, (t0 + h, q1), (v0, end), iteration, (b, d)));
+            let shot = Shot {
+                v0,
+                end,
+                iterations: iteration,
+            };
+            return Ok(finish(flow, t0 + h, q1, shot, b, d));
         }
         let mut update: Vec<f64> = residual.iter().map(|r| -r).collect();
         lu.solve(&mut update, &mut scratch);
@@ -145,7 +153,12 @@ pub fn solve<L: Lagrangian, F: Force>(
         // level and no longer decreasing.
         let stalled = after <= noise && after > 0.5 * before;
         if last_update <= floor(&v0) || stalled {
-            return Ok(finish(flow, (t0 + h, q1), (v0, end), iteration + 1, (b, d)));
+            let shot = Shot {
+                v0,
+                end,
+                iterations: iteration + 1,
+            };
+            return Ok(finish(flow, t0 + h, q1, shot, b, d));
         }
         jacobian = Some((b, d));
     }
@@ -156,16 +169,33 @@ fn mismatch(end: &FlowEnd, q1: &[f64]) -> Vec<f64> {
     end.q.iter().zip(q1).map(|(a, b)| a - b).collect()
 }
 
-/// The solution, with the last residual `r = q(h) − q₁` removed to first order: one more
-/// Newton update `δv₀ = −B⁻¹r` applied without another flow, `v₁ += D δv₀` and, since
-/// `∂S/∂v₀ = p₁ᵀB` at fixed `q₀` (Hamilton's principal function), `S −= ⟨p₁, r⟩`.
+/// The last shot of the Newton iteration.
+struct Shot {
+    /// The initial velocity `v₀` shot with.
+    v0: Vec<f64>,
+    /// Where the flow from `(q₀, v₀)` ended.
+    end: FlowEnd,
+    /// The Newton iterations taken.
+    iterations: usize,
+}
+
+/// The solution from the last `shot` towards `q₁` at `t₁`, with the last residual
+/// `r = q(h) − q₁` removed to first order: one more Newton update `δv₀ = −B⁻¹r` applied without
+/// another flow, `v₁ += D δv₀` and, since `∂S/∂v₀ = p₁ᵀB` at fixed `q₀` (Hamilton's principal
+/// function), `S −= ⟨p₁, r⟩` (`b` = `B = ∂q(h)/∂v₀`, `d` = `D = ∂v(h)/∂v₀`, row-major n × n).
 fn finish<L: Lagrangian, F: Force>(
     flow: &EulerLagrangeFlow<L, F>,
-    (t1, q1): (f64, &[f64]),
-    (mut v0, end): (Vec<f64>, FlowEnd),
-    iterations: usize,
-    (b, d): (Vec<f64>, Vec<f64>),
+    t1: f64,
+    q1: &[f64],
+    shot: Shot,
+    b: Vec<f64>,
+    d: Vec<f64>,
 ) -> BoundaryValue {
+    let Shot {
+        mut v0,
+        end,
+        iterations,
+    } = shot;
     let n = v0.len();
     let r = mismatch(&end, q1);
     let mut dv0: Vec<f64> = r.iter().map(|x| -x).collect();

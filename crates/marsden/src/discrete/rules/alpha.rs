@@ -104,14 +104,7 @@ impl<L: Lagrangian> SeparableStep for AlphaLd<L> {
         options: &NewtonOptions,
         ws: &mut SeparableWorkspace,
     ) -> Result<NewtonReport, NewtonFailure> {
-        solve_alpha(
-            &self.lagrangian,
-            self.alpha,
-            frame,
-            (z, p_next),
-            options,
-            ws,
-        )
+        solve_alpha(&self.lagrangian, self.alpha, frame, z, p_next, options, ws)
     }
 }
 

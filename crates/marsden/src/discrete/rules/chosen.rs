@@ -175,9 +175,10 @@ macro_rules! forward_action {
                 frame: Frame<'_>,
                 z: &mut [f64],
                 p_next: &mut [f64],
-                parts: (&NewtonOptions, &mut SeparableWorkspace),
+                options: &NewtonOptions,
+                ws: &mut SeparableWorkspace,
             ) -> Option<Result<NewtonReport, NewtonFailure>> {
-                each!(self, x => x.solve_separable_step(frame, z, p_next, parts), $($variant),+)
+                each!(self, x => x.solve_separable_step(frame, z, p_next, options, ws), $($variant),+)
             }
             fn separable_jacobian(&self) -> Option<&dyn SeparableJacobian> {
                 each!(self, x => x.separable_jacobian(), $($variant),+)

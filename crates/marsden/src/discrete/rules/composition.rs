@@ -270,13 +270,17 @@ fn substeps(gammas: &[f64], t0: f64, h: f64) -> impl Iterator<Item = (f64, f64)>
     })
 }
 
-/// Calls `f(i, t_i, h_i, Q_{i·sb}, offsets of substep i)` for every substep `i`, where the
-/// substep's offsets are `Δ_{i·sb+k} − Δ_{i·sb}`, `k = 1 … sb`.
+/// Calls `f(i, t_i, h_i, Q_{i·sb}, offsets of substep i)` for every substep `i` (of size
+/// `γ_i h`, `γ` = `gammas`, with `sb` offsets each) of the step of size `h` from `(t0, q0)` with
+/// `offsets`, where the substep's offsets are `Δ_{i·sb+k} − Δ_{i·sb}`, `k = 1 … sb`.
 #[inline]
 fn for_each_substep<S: Scalar>(
-    (gammas, sb): (&[f64], usize),
-    (t0, h): (f64, f64),
-    (q0, offsets): (&[S], &[S]),
+    gammas: &[f64],
+    sb: usize,
+    t0: f64,
+    h: f64,
+    q0: &[S],
+    offsets: &[S],
     mut f: impl FnMut(usize, (f64, f64), &[S], &[S]),
 ) {
     let n = q0.len();
@@ -314,14 +318,9 @@ impl<D: DiscreteAction> DiscreteAction for ComposedLd<D> {
     fn action<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], offsets: &[S]) -> S {
         let sb = self.base.internal_stages() + 1;
         let mut sum = S::from(0.0);
-        for_each_substep(
-            (&self.gammas, sb),
-            (t0, h),
-            (q0, offsets),
-            |_, (ti, hi), q, d| {
-                sum += self.base.action(ti, hi, q, d);
-            },
-        );
+        for_each_substep(&self.gammas, sb, t0, h, q0, offsets, |_, (ti, hi), q, d| {
+            sum += self.base.action(ti, hi, q, d);
+        });
         sum
     }
     fn explicit(&self) -> Option<&dyn ExplicitStep> {
@@ -434,20 +433,15 @@ impl<G: DiscreteForce> DiscreteForce for ComposedForce<G> {
         out[..(self.gammas.len() * sb + 1) * n]
             .iter_mut()
             .for_each(|o| *o = zero);
-        for_each_substep(
-            (&self.gammas, sb),
-            (t0, h),
-            (q0, offsets),
-            |i, (ti, hi), q, d| {
-                let mut f = Buffer::<S, { 2 * NODE }>::empty();
-                let f = f.filled((sb + 1) * n, zero);
-                self.base.discrete_force(ti, hi, q, d, f);
-                let first = i * sb * n;
-                for (k, fk) in f.iter().enumerate() {
-                    out[first + k] += *fk;
-                }
-            },
-        );
+        for_each_substep(&self.gammas, sb, t0, h, q0, offsets, |i, (ti, hi), q, d| {
+            let mut f = Buffer::<S, { 2 * NODE }>::empty();
+            let f = f.filled((sb + 1) * n, zero);
+            self.base.discrete_force(ti, hi, q, d, f);
+            let first = i * sb * n;
+            for (k, fk) in f.iter().enumerate() {
+                out[first + k] += *fk;
+            }
+        });
     }
     fn is_active(&self) -> bool {
         self.base.is_active()

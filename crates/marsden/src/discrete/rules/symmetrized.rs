@@ -7,11 +7,12 @@
 
 use super::{Rule, at_node, with_displacement};
 use crate::discrete::{DiscreteForce, DiscreteLagrangian};
+use crate::mechanics::kernel::RunGrid;
 use crate::mechanics::structure::InverseMass;
 use crate::mechanics::{Force, Lagrangian};
 use crate::numerics::scratch::{Buffer, NODE};
 use crate::scalar::Scalar;
-use crate::separable::explicit::{run_by_steps, velocity_verlet, velocity_verlet_run};
+use crate::separable::explicit::{Verlet, run_by_steps, velocity_verlet, velocity_verlet_run};
 use crate::separable::jacobian::step_jacobian;
 use crate::separable::{
     ExplicitRun, ExplicitStep, ExplicitWorkspace, JacobianWorkspace, SeparableJacobian,
@@ -74,7 +75,11 @@ impl<L: Lagrangian> ExplicitStep for SymmetrizedLd<L> {
     ) -> usize {
         match &self.inverse_mass {
             Some(inverse_mass) => {
-                velocity_verlet(&self.lagrangian, inverse_mass, (t, h), (q, p), delta, ws)
+                let verlet = Verlet {
+                    lagrangian: &self.lagrangian,
+                    inverse_mass,
+                };
+                velocity_verlet(verlet, t, h, q, p, delta, ws)
             }
             None => 0,
         }
@@ -82,17 +87,20 @@ impl<L: Lagrangian> ExplicitStep for SymmetrizedLd<L> {
 
     fn explicit_run(
         &self,
-        grid: (f64, f64),
-        steps: usize,
-        (q, p): (&mut [f64], &mut [f64]),
+        grid: RunGrid,
+        q: &mut [f64],
+        p: &mut [f64],
         ws: &mut ExplicitWorkspace,
     ) -> ExplicitRun {
         let Some(inverse_mass) = &self.inverse_mass else {
             return ExplicitRun::default();
         };
-        let state = (&mut *q, &mut *p);
-        velocity_verlet_run(&self.lagrangian, inverse_mass, grid, steps, state, ws)
-            .unwrap_or_else(|| run_by_steps(self, grid, steps, (q, p), ws))
+        let verlet = Verlet {
+            lagrangian: &self.lagrangian,
+            inverse_mass,
+        };
+        velocity_verlet_run(verlet, grid, &mut *q, &mut *p, ws)
+            .unwrap_or_else(|| run_by_steps(self, grid, q, p, ws))
     }
 }
 

@@ -9,19 +9,17 @@
 //! `ε = 0` a branch-free select drops it (and coincident bodies). The summation order differs
 //! from the pairwise AD form only by round-off (test `nbody_hand_gradient_matches_ad`).
 
+use super::NBody;
+
 /// Bodies per chunk of the inner loop (two AVX registers of `f64`, four SSE2 registers).
 pub const LANES: usize = 8;
 
-/// Writes `∇V` (layout `x₁ y₁ z₁ x₂ …`) of bodies with `masses` at `q` into `grad`; `scratch`
-/// holds the structure-of-arrays copy between calls. Inlinable: compiled with the run that
-/// calls it, in the crate that names the system.
+/// Writes `∇V` (layout `x₁ y₁ z₁ x₂ …`) of the bodies of `system` (its masses, `G` and `ε`) at
+/// `q` into `grad`; `scratch` holds the structure-of-arrays copy between calls. Inlinable:
+/// compiled with the run that calls it, in the crate that names the system.
 #[inline]
-pub fn gradient(
-    (masses, g, softening): (&[f64], f64, f64),
-    q: &[f64],
-    grad: &mut [f64],
-    scratch: &mut Vec<f64>,
-) {
+pub fn gradient(system: &NBody, q: &[f64], grad: &mut [f64], scratch: &mut Vec<f64>) {
+    let (masses, g, softening) = (system.masses.as_slice(), system.g, system.softening);
     let n = masses.len();
     let padded = n.div_ceil(LANES) * LANES;
     scratch.clear();

@@ -157,6 +157,6 @@ impl Lagrangian for NBody {
     /// Direct summation ([`gravity::gradient`]), `O(N²)` with one pass over all pairs.
     #[inline]
     fn potential_gradient(&self, _t: f64, q: &[f64], grad: &mut [f64], scratch: &mut Vec<f64>) {
-        gravity::gradient((&self.masses, self.g, self.softening), q, grad, scratch);
+        gravity::gradient(self, q, grad, scratch);
     }
 }
