@@ -246,7 +246,7 @@ where
                 step: c.step,
                 state,
             };
-            problem.solve_resumed(rule, options, &mut watch, (from, &c.integrator))
+            problem.solve_resumed(rule, options, &mut watch, from, &c.integrator)
         }
     };
     (result, watch.error)

@@ -88,23 +88,37 @@ pub enum RootError {
     },
 }
 
-/// A root of `f` between `a` and `b`, given `fa = f(a)` and `fb = f(b)` of opposite signs (or
-/// one of them zero), by Brent's method ([Bre73] ch. 4, `zeroin`; see the [module](self) docs).
+/// The bracket `[a, b]` of a root, with `fa = f(a)` and `fb = f(b)` of opposite signs (or one
+/// of them zero), which the caller has evaluated already.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bracket {
+    /// One end.
+    pub a: f64,
+    /// `f(a)`.
+    pub fa: f64,
+    /// The other end.
+    pub b: f64,
+    /// `f(b)`.
+    pub fb: f64,
+}
+
+/// A root of `f` in `bracket`, by Brent's method ([Bre73] ch. 4, `zeroin`; see the [module](self) docs).
 ///
 /// ```
-/// use marsden::numerics::brent::{BrentOptions, find_root};
+/// use marsden::numerics::brent::{Bracket, BrentOptions, find_root};
 /// let f = |x: f64| x.cos() - x;
-/// let root = find_root(f, (0.0, f(0.0)), (1.0, f(1.0)), &BrentOptions::default()).unwrap();
+/// let bracket = Bracket { a: 0.0, fa: f(0.0), b: 1.0, fb: f(1.0) };
+/// let root = find_root(f, bracket, &BrentOptions::default()).unwrap();
 /// assert!((root.x - 0.739_085_133_215_160_6).abs() < 2e-16);
 /// ```
 ///
 /// [Bre73]: crate#references
 pub fn find_root<F: FnMut(f64) -> f64>(
     mut f: F,
-    (a, fa): (f64, f64),
-    (b, fb): (f64, f64),
+    bracket: Bracket,
     options: &BrentOptions,
 ) -> Result<Root, RootError> {
+    let Bracket { a, fa, b, fb } = bracket;
     if !(fa.is_finite() && fb.is_finite()) || fa * fb > 0.0 {
         return Err(RootError::NotBracketed { a, b, fa, fb });
     }
@@ -243,7 +257,23 @@ mod tests {
 
     fn solve(f: impl FnMut(f64) -> f64 + Copy, a: f64, b: f64) -> Result<Root, RootError> {
         let mut g = f;
-        find_root(f, (a, g(a)), (b, g(b)), &BrentOptions::default())
+        let bracket = Bracket {
+            a,
+            fa: g(a),
+            b,
+            fb: g(b),
+        };
+        find_root(f, bracket, &BrentOptions::default())
+    }
+
+    /// The bracket `[a, b]` of `f`.
+    fn ends(f: impl Fn(f64) -> f64, a: f64, b: f64) -> Bracket {
+        Bracket {
+            a,
+            fa: f(a),
+            b,
+            fb: f(b),
+        }
     }
 
     /// `x³ − 2x − 5` (Wallis's equation, Brent's own example): root 2.0945514815423265…
@@ -275,7 +305,7 @@ mod tests {
             ..BrentOptions::default()
         };
         let f = |x: f64| (x - 0.3).powi(9);
-        let root = find_root(f, (-1.0, f(-1.0)), (1.0, f(1.0)), &options).unwrap();
+        let root = find_root(f, ends(f, -1.0, 1.0), &options).unwrap();
         assert!((root.x - 0.3).abs() <= 1e-12, "{}", root.x);
     }
 
@@ -299,15 +329,20 @@ mod tests {
             })
         ));
         let f = |x: f64| if x > 0.25 { f64::NAN } else { x - 0.5 };
-        let ends = ((0.0, -0.5), (1.0, 0.5));
-        let error = find_root(f, ends.0, ends.1, &BrentOptions::default()).unwrap_err();
+        let bracket = Bracket {
+            a: 0.0,
+            fa: -0.5,
+            b: 1.0,
+            fb: 0.5,
+        };
+        let error = find_root(f, bracket, &BrentOptions::default()).unwrap_err();
         assert!(matches!(error, RootError::NonFinite { .. }), "{error:?}");
         let options = BrentOptions {
             x_tolerance: 0.0,
             max_evaluations: 3,
         };
         let f = |x: f64| x.cos() - x;
-        let error = find_root(f, (0.0, f(0.0)), (1.0, f(1.0)), &options).unwrap_err();
+        let error = find_root(f, ends(f, 0.0, 1.0), &options).unwrap_err();
         let RootError::Budget { low, high, .. } = error else {
             panic!("{error:?}")
         };

@@ -24,4 +24,4 @@ pub use observer::{Observer, StepView, StepWatch, WatchedSteps, next_multiple};
 pub use problem::{Problem, SolveOptions};
 pub use simulate::{Resumed, simulate, simulate_from};
 pub use stepper::Stepper;
-pub use trajectory::{RunFailure, Termination, Trajectory};
+pub use trajectory::{RunFailure, StepMultipliers, Termination, Trajectory};

@@ -256,7 +256,8 @@ impl<L: Lagrangian, F: Force, C: Constraint> Problem<L, F, C> {
         rule: &R,
         options: &SolveOptions,
         observer: &mut O,
-        (from, carried): (Resumed, &IntegratorCheckpoint),
+        from: Resumed,
+        carried: &IntegratorCheckpoint,
     ) -> Result<Trajectory, Box<RunFailure>> {
         self.solve_from(rule, options, observer, Some((from, carried)))
     }

@@ -10,7 +10,7 @@ use std::ops::ControlFlow;
 use super::grid::{RunOptions, TimeGrid};
 use super::observer::{Observer, StepView};
 use super::stepper::Stepper;
-use super::trajectory::{Termination, Trajectory};
+use super::trajectory::{StepMultipliers, Termination, Trajectory};
 use crate::error::{Error, InputError};
 use crate::integrator::{Statistics, StepReport};
 use crate::mechanics::State;
@@ -150,8 +150,8 @@ where
         };
         let mut stop = observer.observe(&view).is_break();
         if k % stride == 0 || k == grid.steps || stop {
-            let multipliers = (stepper.multipliers(), stepper.projection_multipliers());
-            traj.push_sample(k, (state.t, &state.q, &state.p), multipliers, last_report);
+            let multipliers = step_multipliers(stepper);
+            traj.push_sample(k, state.t, &state.q, &state.p, multipliers, last_report);
         }
         let due = match stop {
             false => observer.checkpoint_due(k),
@@ -170,8 +170,7 @@ where
             break;
         }
     }
-    let multipliers = (stepper.multipliers(), stepper.projection_multipliers());
-    store_last_good(&mut traj, &state, multipliers, last_report);
+    store_last_good(&mut traj, &state, step_multipliers(stepper), last_report);
     traj.statistics = difference(&stepper.statistics(), before);
     traj
 }
@@ -226,12 +225,20 @@ where
 fn store_last_good(
     traj: &mut Trajectory,
     state: &State,
-    multipliers: (&[f64], &[f64]),
+    multipliers: StepMultipliers<'_>,
     report: StepReport,
 ) {
     if traj.step_indices.last() != Some(&traj.steps) {
-        let sample = (state.t, state.q.as_slice(), state.p.as_slice());
-        traj.push_sample(traj.steps, sample, multipliers, report);
+        let (t, q, p) = (state.t, &state.q, &state.p);
+        traj.push_sample(traj.steps, t, q, p, multipliers, report);
+    }
+}
+
+/// The multipliers of the stepper's last step.
+fn step_multipliers<S: Stepper + ?Sized>(stepper: &S) -> StepMultipliers<'_> {
+    StepMultipliers {
+        lambda: stepper.multipliers(),
+        mu: stepper.projection_multipliers(),
     }
 }
 

@@ -28,6 +28,17 @@ pub enum Termination {
     },
 }
 
+/// The multipliers of the step that ended at a sample ([`Trajectory::push_sample`]): `λ` of
+/// the constrained discrete Euler–Lagrange equations and `μ` of the momentum projection, each
+/// of length d; a slice of another length (e.g. empty: none computed) is stored as NaN.
+#[derive(Debug, Clone, Copy)]
+pub struct StepMultipliers<'a> {
+    /// `λ` (length d).
+    pub lambda: &'a [f64],
+    /// `μ` (length d).
+    pub mu: &'a [f64],
+}
+
 /// Stored samples of a run (every `stride`-th step, plus the first and the last state).
 ///
 /// Samples are row-major: sample `i` has positions `q(i)` (length n), momenta `p(i)`,
@@ -157,18 +168,21 @@ impl Trajectory {
         lambda: &[f64],
         report: StepReport,
     ) {
-        self.push_sample(step, (t, q, p), (lambda, &[]), report);
+        let multipliers = StepMultipliers { lambda, mu: &[] };
+        self.push_sample(step, t, q, p, multipliers, report);
     }
 
-    /// Appends a sample `(t, q, p)` with its multipliers `(λ, μ)`; a multiplier slice of the
-    /// wrong length (e.g. empty) is stored as NaN.
+    /// Appends a sample `(t, q, p)` with the multipliers of the step that ended there.
     pub fn push_sample(
         &mut self,
         step: usize,
-        (t, q, p): (f64, &[f64], &[f64]),
-        (lambda, mu): (&[f64], &[f64]),
+        t: f64,
+        q: &[f64],
+        p: &[f64],
+        multipliers: StepMultipliers<'_>,
         report: StepReport,
     ) {
+        let StepMultipliers { lambda, mu } = multipliers;
         self.step_indices.push(step);
         self.times.push(t);
         self.positions.extend_from_slice(q);

@@ -280,7 +280,7 @@ fn solve_resumed_from_a_run_loop_checkpoint_is_bit_for_bit() {
     let bytes = postcard::to_allocvec(&carried).unwrap();
     let carried: IntegratorCheckpoint = postcard::from_bytes(&bytes).unwrap();
     let resumed = problem
-        .solve_resumed(&Midpoint, &options, &mut (), (from, &carried))
+        .solve_resumed(&Midpoint, &options, &mut (), from, &carried)
         .unwrap();
     let last = |t: &marsden::Trajectory| {
         let i = t.len() - 1;

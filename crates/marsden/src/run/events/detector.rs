@@ -11,7 +11,7 @@ use super::{Action, Direction, Event, EventFunction, EventRecord};
 use crate::error::{Error, InputError, StepError};
 use crate::mechanics::Lagrangian;
 use crate::mechanics::State;
-use crate::numerics::brent::{self, BrentOptions, RootError};
+use crate::numerics::brent::{self, Bracket, BrentOptions, RootError};
 use crate::numerics::short;
 use crate::run::observer::{Observer, StepView, StepWatch, WatchedSteps};
 use crate::run::trajectory::Termination;
@@ -380,9 +380,14 @@ impl<'l, L: Lagrangian, G: EventFunction> EventDetector<'l, L, G> {
             x_tolerance: 4.0 * f64::EPSILON * before.t.abs().max(after.t.abs()).max(h),
             max_evaluations: MAX_EVALUATIONS,
         };
-        let ends = ((before.t, self.g_before[i]), (after.t, self.g_after[i]));
+        let bracket = Bracket {
+            a: before.t,
+            fa: self.g_before[i],
+            b: after.t,
+            fb: self.g_after[i],
+        };
         let failure = |cause| Error::step(before.step, before.t, cause);
-        match brent::find_root(g, ends.0, ends.1, &options) {
+        match brent::find_root(g, bracket, &options) {
             Ok(root) => Ok(root.x),
             Err(RootError::NonFinite { x, value }) => Err(failure(StepError::EventNotFinite {
                 event: i,
