@@ -32,8 +32,10 @@ use crate::holonomic::{MomentumProjection, ProjectionCarry};
 use crate::mechanics::Constraint;
 use crate::separable::{ExplicitCarry, SeparableCarry};
 
-/// Everything an [`Integrator`] carries from one step to the next
-/// ([`Integrator::checkpoint`], [`Integrator::restore`]; see the [module](self) docs).
+/// Everything an [`Integrator`] carries from one step to the next ([`Integrator::checkpoint`],
+/// [`Integrator::restore`]): the predictor's history, the solution and multipliers of the last
+/// step, and what each step path reuses (a factored Jacobian, a gradient, a compensated-sum
+/// remainder), so that a restored integrator continues bit for bit.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct IntegratorCheckpoint {

@@ -103,6 +103,10 @@ struct Buffers {
     start: Vec<f64>,
     /// The buffers of the separable step Jacobian ([`crate::separable::jacobian`]).
     jacobian: JacobianWorkspace,
+    /// Whether the start of each step is kept ([`Integrator::keep_step_starts`]): then
+    /// `start_q` holds `q_k` after the step, and `p_next` holds `p_k`.
+    keep_start: bool,
+    start_q: Vec<f64>,
 }
 
 impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
@@ -308,18 +312,51 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
         self.path == Path::Explicit
     }
 
-    /// Writes the converged step into `state`.
-    #[inline]
+    /// Writes the converged step into `state`; when the starts of the steps are kept, the new
+    /// momenta trade places with the old ones instead of being copied, and `q_k` is copied
+    /// beside the update (the same numbers either way). Inlined into [`Integrator::step`], its
+    /// one caller: a call of its own cost the pendulum's step 3 % (callgrind).
+    #[inline(always)]
     fn accept(&mut self, z: &[f64], state: &mut State, h: f64) {
         let sn = self.shape.s * self.shape.n;
-        if self.is_compensated() {
+        let dq = &z[sn - self.shape.n..sn];
+        let compensated = self.is_compensated();
+        let b = &mut self.buffers;
+        if compensated {
             self.compensation
                 .update(&self.action, &self.force, state, h, &z[..sn]);
+        } else if b.keep_start {
+            short::copy(&mut b.start_q, &state.q);
+            short::add(&mut state.q, dq);
+            std::mem::swap(&mut state.p, &mut b.p_next);
         } else {
-            short::add(&mut state.q, &z[sn - self.shape.n..sn]);
-            short::copy(&mut state.p, &self.buffers.p_next);
+            short::add(&mut state.q, dq);
+            short::copy(&mut state.p, &b.p_next);
         }
         state.t += h;
+    }
+
+    /// Keeps (`keep = true`) or stops keeping the start `(q_k, p_k)` of each step, so that
+    /// whoever watches the steps one by one reads it after the step
+    /// ([`Integrator::kept_start`]) instead of copying every state it may need again (an
+    /// event detector needs the start of the step where `g` changed sign). Returns whether
+    /// the starts are kept: not on the explicit path, nor with compensated summation, whose
+    /// update of the state is its own.
+    pub(crate) fn keep_step_starts(&mut self, keep: bool) -> bool {
+        let kept = keep && !self.is_explicit() && !self.is_compensated();
+        let b = &mut self.buffers;
+        if kept && b.start_q.len() != self.shape.n {
+            b.start_q.resize(self.shape.n, 0.0);
+        }
+        b.keep_start = kept;
+        kept
+    }
+
+    /// The start `(q_k, p_k)` of the last step taken while the starts are kept
+    /// ([`Integrator::keep_step_starts`]); `None` when they are not.
+    pub(crate) fn kept_start(&self) -> Option<(&[f64], &[f64])> {
+        let b = &self.buffers;
+        b.keep_start.then_some((&b.start_q[..], &b.p_next[..]))
     }
 
     fn count(&mut self, report: NewtonReport) {

@@ -115,6 +115,8 @@ pub fn orthogonality_defect(r: &Mat3) -> f64 {
 /// The nearest rotation to a nearly orthonormal `r` (its polar factor), by the Newton iteration
 /// `R ← ½(R + R⁻ᵀ)` ([HLW06] §IV.4, Higham's polar iteration), which converges quadratically
 /// from a defect below 1; the result is orthonormal to round-off.
+///
+/// [HLW06]: crate#references
 pub fn orthonormalize(r: &Mat3) -> Mat3 {
     let mut r = *r;
     for _ in 0..8 {

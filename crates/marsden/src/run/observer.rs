@@ -129,6 +129,23 @@ pub trait WatchedSteps {
     /// stretch is done or the step failed (the stepper keeps the error for the run loop, and
     /// the state is the last good one).
     fn next_step(&mut self) -> Option<(usize, &State)>;
+
+    /// Asks the stepper to keep the start `(q, p)` of each step from now on, to be read after
+    /// the step by [`WatchedSteps::step_start`] (so that a watch that needs the start of the
+    /// step where it stops does not copy every state); whether it does. Default: it does not.
+    fn keep_starts(&mut self) -> bool {
+        false
+    }
+
+    /// The start `(q, p)` of the last step taken, when the stepper keeps them
+    /// ([`WatchedSteps::keep_starts`]). Default: `None`.
+    fn step_start(&self) -> Option<(&[f64], &[f64])> {
+        None
+    }
+
+    /// The current state and its step number: the last step's new state, or the last good
+    /// state when a step failed, or the stretch's start before the first step.
+    fn current(&self) -> (usize, &State);
 }
 
 /// The first multiple of `period` after `step` (`usize::MAX` when there is none).

@@ -51,8 +51,9 @@ pub trait Stepper {
         steps: usize,
         watch: &mut dyn StepWatch,
     ) -> Result<StepReport, Error> {
-        let one = |s: &mut Self, state: &mut State, h| s.advance(state, h, 1);
-        Stretch::new(self, state, one).watched(grid, k..k + steps, watch)
+        let mut one_by_one = OneByOne(self);
+        let stretch = Stretch::new(&mut one_by_one, state, grid, k..k + steps);
+        stretch.watched(watch)
     }
 
     /// The multipliers `λ` of the last step (length d; default: none).
@@ -152,11 +153,7 @@ where
         steps: usize,
         watch: &mut dyn StepWatch,
     ) -> Result<StepReport, Error> {
-        let one = |s: &mut Self, state: &mut State, h| match s.is_explicit() {
-            true => Integrator::advance(s, state, h, 1),
-            false => s.step(state, h),
-        };
-        Stretch::new(self, state, one).watched(grid, k..k + steps, watch)
+        Stretch::new(self, state, grid, k..k + steps).watched(watch)
     }
     fn multipliers(&self) -> &[f64] {
         Integrator::multipliers(self)
@@ -178,55 +175,61 @@ where
     }
 }
 
-/// A stretch of steps handed to a [`StepWatch`]: single steps taken by `one`, each of the
-/// grid's size for it ([`TimeGrid::step_size`]), the time of each new state set to the grid's.
-struct Stretch<'a, S: ?Sized, F> {
+/// How a [`Stretch`] takes one step, and whether its stepper keeps the start of each step
+/// for the watch to read ([`WatchedSteps::keep_starts`]).
+trait SingleStep {
+    /// One step of size `h` from `state` (advanced in place; unchanged on error).
+    fn single_step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error>;
+    /// Keeps (or stops keeping) the start of each step; whether it is kept. Default: never.
+    fn keep_starts(&mut self, _keep: bool) -> bool {
+        false
+    }
+    /// The start `(q, p)` of the last step, when kept.
+    fn step_start(&self) -> Option<(&[f64], &[f64])> {
+        None
+    }
+}
+
+/// Any stepper, one [`Stepper::advance`] per step.
+struct OneByOne<'a, S: ?Sized>(&'a mut S);
+
+impl<S: Stepper + ?Sized> SingleStep for OneByOne<'_, S> {
+    fn single_step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error> {
+        self.0.advance(state, h, 1)
+    }
+}
+
+/// The Newton paths step by [`Integrator::step`] and keep the start of each step when asked
+/// ([`Integrator::keep_step_starts`]); the explicit path by one [`Integrator::advance`] per
+/// step, as a run shown every step takes it.
+impl<A, F, C, P> SingleStep for Integrator<A, F, C, P>
+where
+    A: DiscreteAction,
+    F: DiscreteForce,
+    C: Constraint,
+    P: MomentumProjection,
+{
+    fn single_step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error> {
+        match self.is_explicit() {
+            true => Integrator::advance(self, state, h, 1),
+            false => self.step(state, h),
+        }
+    }
+    fn keep_starts(&mut self, keep: bool) -> bool {
+        self.keep_step_starts(keep)
+    }
+    fn step_start(&self) -> Option<(&[f64], &[f64])> {
+        Integrator::kept_start(self)
+    }
+}
+
+/// A stretch of steps handed to a [`StepWatch`], being taken: single steps, each of the
+/// grid's size for it ([`TimeGrid::step_size`]), the time of each new state set to the
+/// grid's; the grid point `k` of the current state, the last one `end` (`k` itself once a step
+/// failed), the report of the last step and the error of the one that failed.
+struct Stretch<'a, S: ?Sized> {
     stepper: &'a mut S,
     state: &'a mut State,
-    one: F,
-}
-
-impl<'a, S: ?Sized, F> Stretch<'a, S, F>
-where
-    F: FnMut(&mut S, &mut State, f64) -> Result<StepReport, Error>,
-{
-    fn new(stepper: &'a mut S, state: &'a mut State, one: F) -> Self {
-        Self {
-            stepper,
-            state,
-            one,
-        }
-    }
-
-    /// The steps from grid point `points.start` of `grid` to `points.end` at most, taken by
-    /// `watch` until it has seen what it wants; the report of the last step taken.
-    fn watched(
-        self,
-        grid: &'a TimeGrid,
-        points: std::ops::Range<usize>,
-        watch: &mut dyn StepWatch,
-    ) -> Result<StepReport, Error> {
-        let mut steps = StretchSteps {
-            stretch: self,
-            grid,
-            k: points.start,
-            end: points.end,
-            report: StepReport::default(),
-            failure: None,
-        };
-        watch.watch(&mut steps);
-        match steps.failure {
-            Some(error) => Err(error),
-            None => Ok(steps.report),
-        }
-    }
-}
-
-/// A [`Stretch`] being taken: the grid point `k` of the current state, the last one `end`
-/// (`k` itself once a step failed), the report of the last step and the error of the one that
-/// failed.
-struct StretchSteps<'a, S: ?Sized, F> {
-    stretch: Stretch<'a, S, F>,
     grid: &'a TimeGrid,
     k: usize,
     end: usize,
@@ -234,20 +237,44 @@ struct StretchSteps<'a, S: ?Sized, F> {
     failure: Option<Error>,
 }
 
-impl<S: ?Sized, F> WatchedSteps for StretchSteps<'_, S, F>
-where
-    F: FnMut(&mut S, &mut State, f64) -> Result<StepReport, Error>,
-{
+impl<'a, S: SingleStep + ?Sized> Stretch<'a, S> {
+    /// The steps from grid point `points.start` of `grid` to `points.end` at most.
+    fn new(
+        stepper: &'a mut S,
+        state: &'a mut State,
+        grid: &'a TimeGrid,
+        points: std::ops::Range<usize>,
+    ) -> Self {
+        Self {
+            stepper,
+            state,
+            grid,
+            k: points.start,
+            end: points.end,
+            report: StepReport::default(),
+            failure: None,
+        }
+    }
+
+    /// The stretch taken by `watch` until it has seen what it wants; the report of the last
+    /// step taken. The stepper no longer keeps the starts of its steps afterwards.
+    fn watched(mut self, watch: &mut dyn StepWatch) -> Result<StepReport, Error> {
+        watch.watch(&mut self);
+        self.stepper.keep_starts(false);
+        match self.failure {
+            Some(error) => Err(error),
+            None => Ok(self.report),
+        }
+    }
+}
+
+impl<S: SingleStep + ?Sized> WatchedSteps for Stretch<'_, S> {
     fn next_step(&mut self) -> Option<(usize, &State)> {
         if self.k >= self.end {
             return None;
         }
-        let Stretch {
-            stepper,
-            state,
-            one,
-        } = &mut self.stretch;
-        match one(stepper, state, self.grid.step_size(self.k)) {
+        let h = self.grid.step_size(self.k);
+        match self.stepper.single_step(self.state, h) {
             Ok(report) => self.report = report,
             Err(error) => {
                 (self.failure, self.end) = (Some(error), self.k);
@@ -255,8 +282,17 @@ where
             }
         }
         self.k += 1;
-        state.t = self.grid.time(self.k);
-        Some((self.k, state))
+        self.state.t = self.grid.time(self.k);
+        Some((self.k, self.state))
+    }
+    fn keep_starts(&mut self) -> bool {
+        self.stepper.keep_starts(true)
+    }
+    fn step_start(&self) -> Option<(&[f64], &[f64])> {
+        self.stepper.step_start()
+    }
+    fn current(&self) -> (usize, &State) {
+        (self.k, self.state)
     }
 }
 

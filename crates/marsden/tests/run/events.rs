@@ -446,6 +446,68 @@ fn a_detector_watching_stretches_of_steps_is_the_every_step_detector_bit_for_bit
     assert_eq!(last(&watched), last(&every));
 }
 
+/// The height `y` of the Kepler orbit: zero at each pericentre and apocentre of an orbit
+/// released at its pericentre on the x axis (an event of the positions alone).
+fn height(_t: f64, q: &[f64], _v: &[f64], _p: &[f64]) -> f64 {
+    q[1]
+}
+
+/// Watched and shown every step, under `rule`: the records and the runs' ends.
+fn watched_and_shown<R: Rule>(rule: &R) -> [(marsden::Trajectory, Vec<EventRecord>); 2] {
+    let (q0, p0) = Kepler::pericentre(0.6);
+    let grid = TimeGrid::new(0.0, 0.003, 8000).unwrap();
+    let problem = Problem::new(Kepler::default(), Initial::momentum(&q0, &p0), grid).unwrap();
+    let events = || {
+        vec![
+            Event::record(height as G, Direction::Up),
+            Event::stop(height as G, Direction::Down).count(2),
+        ]
+    };
+    let stretches = SolveOptions {
+        run: RunOptions { stride: usize::MAX },
+        ..options()
+    };
+    let mut watching = EventDetector::new(problem.lagrangian(), events()).unwrap();
+    let watched = (problem.solve_with(rule, &stretches, &mut watching)).unwrap();
+    let mut shown = EventDetector::new(problem.lagrangian(), events()).unwrap();
+    let every = (problem.solve_with(rule, &stretches, &mut EveryStep(&mut shown))).unwrap();
+    [
+        (watched, watching.into_records()),
+        (every, shown.into_records()),
+    ]
+}
+
+/// An event of the positions alone, watched inside long stretches: the midpoint rule's
+/// Newton steps keep the start of each step for the watch (no copy of the state per step),
+/// the trapezoid's explicit steps on Kepler do not (the watch copies each state); both locate,
+/// record and stop exactly as when every step is shown: the same records bit for bit, the
+/// run ended at the same step with the same last state (the first apocentre, the pericentre
+/// after it, and the stop at the second apocentre).
+#[test]
+fn a_watch_of_the_positions_is_the_every_step_detector_bit_for_bit_with_or_without_kept_starts() {
+    let midpoint = watched_and_shown(&Midpoint);
+    let trapezoid = watched_and_shown(&Trapezoid);
+    for [(watched, a), (every, b)] in [&midpoint, &trapezoid] {
+        assert!(matches!(
+            watched.termination,
+            Termination::Event { event: 1, .. }
+        ));
+        assert_eq!(watched.termination, every.termination);
+        assert_eq!(a, b);
+        assert_eq!(
+            a.len(),
+            3,
+            "an apocentre, a pericentre, the stop at the next apocentre"
+        );
+        let last = |run: &marsden::Trajectory| (run.steps, run.q(run.len() - 1).to_vec());
+        assert_eq!(last(watched), last(every));
+    }
+    assert_ne!(
+        midpoint[0].1[0].t, trapezoid[0].1[0].t,
+        "two rules, two runs"
+    );
+}
+
 /// The pendulum whose Lagrangian turns NaN after t = 0.52: the step across it fails.
 struct FailingAfter(Pendulum);
 

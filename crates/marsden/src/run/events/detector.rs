@@ -113,12 +113,20 @@ fn scan<G: EventFunction>(
         if !g.is_finite() {
             return Scan::NotFinite(i);
         }
-        crossed |= event.direction.crosses(g_before, g);
+        crossed |= !same_side(g_before, g) && event.direction.crosses(g_before, g);
     }
     match crossed {
         true => Scan::Crossed,
         false => Scan::Quiet,
     }
+}
+
+/// Whether `g` stayed strictly on one side of zero from `before` to `after` (a product that
+/// underflows to 0 says no: the full test of [`Direction::crosses`] decides then), so that no
+/// direction crosses: the quiet step's test, one multiplication and one comparison.
+#[inline(always)]
+fn same_side(before: f64, after: f64) -> bool {
+    before * after > 0.0
 }
 
 /// Watches a run for the zero crossings of its [`Event`]s (see the [module](super) docs):
@@ -512,5 +520,43 @@ impl<L: Lagrangian, G: EventFunction> Observer for EventDetector<'_, L, G> {
 
     fn termination(&self) -> Option<Termination> {
         self.ending.clone()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Direction, same_side};
+
+    /// The quiet step's test never hides a crossing: where it says "one side", no direction
+    /// crosses, over signed zeros, values whose product underflows or overflows, and infinities.
+    #[test]
+    fn same_side_never_hides_a_crossing() {
+        let values = [
+            0.0,
+            -0.0,
+            1e-200,
+            -1e-200,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            1.0,
+            -1.0,
+            1e200,
+            -1e200,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        let directions = [Direction::Up, Direction::Down, Direction::Both];
+        for (a, b) in values
+            .iter()
+            .flat_map(|&a| values.iter().map(move |&b| (a, b)))
+        {
+            let crossed = directions.iter().any(|d| d.crosses(a, b));
+            assert!(!(same_side(a, b) && crossed), "{a} → {b}");
+        }
+        assert!(same_side(2.0, 3.0) && same_side(-2.0, -3.0));
+        assert!(
+            !same_side(1e-200, 1e-200),
+            "an underflowing product leaves it to the full test"
+        );
     }
 }

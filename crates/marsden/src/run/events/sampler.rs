@@ -92,7 +92,9 @@ impl Kept {
     }
 }
 
-/// Takes [`Sample`]s of a run at requested times (see the [module](self) docs): pass it to
+/// Takes [`Sample`]s of a run at requested times, off each step's cubic Hermite interpolant
+/// ([`crate::run::events::interpolant`]), or by a step of its own length
+/// ([`TimeSampler::by_steps`]): pass it to
 /// [`crate::Problem::solve_with`] or [`crate::run::simulate()`], then read
 /// [`TimeSampler::samples`].
 #[derive(Debug)]
