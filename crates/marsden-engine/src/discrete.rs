@@ -68,7 +68,7 @@ pub fn run(
 }
 
 /// Steps `ld` over the spec's grid from `start`, with the file's Newton options and summation.
-fn solve<O: marsden::Observer + ?Sized>(
+fn solve<O: marsden::Observer>(
     ld: ExprDiscreteLagrangian,
     spec: &RunSpec,
     start: State,

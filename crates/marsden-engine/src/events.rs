@@ -12,7 +12,7 @@
 
 use std::ops::ControlFlow;
 
-use marsden::run::StepWatch;
+use marsden::run::WatchedSteps;
 use marsden::run::events::{Event, EventDetector, EventRecord};
 use marsden::{Lagrangian, Observer, StepView, Termination};
 use marsden_io::RowSink;
@@ -282,13 +282,20 @@ impl<L: Lagrangian, O: Observer> Observer for Watched<'_, '_, L, O> {
     }
 
     /// The detector watches the steps inside the stretches the run loop hands the stepper
-    /// ([`Observer::step_watch`]): events alone do not make the run go step by step.
+    /// ([`Observer::watch_steps`]): events alone do not make the run go step by step.
     fn every_step(&self) -> bool {
         self.samples.is_some() || self.inner.every_step()
     }
 
-    fn step_watch(&mut self) -> Option<&mut dyn StepWatch> {
-        self.detector.as_mut().map(|d| d as &mut dyn StepWatch)
+    fn watches_steps(&self) -> bool {
+        self.detector.is_some()
+    }
+
+    fn watch_steps<W: WatchedSteps>(&mut self, steps: &mut W) {
+        match self.detector.as_mut() {
+            Some(detector) => detector.watch_steps(steps),
+            None => while steps.next_step().is_some() {},
+        }
     }
 
     fn next_stop(&self, step: usize) -> usize {

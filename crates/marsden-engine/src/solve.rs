@@ -72,7 +72,7 @@ pub struct RunRecord {
 
 /// `method = "exact"`: the integrator steps `L_d^E` of the problem's Lagrangian by shooting
 /// (forces and constraints were refused when the file was read).
-fn solve_exact<L: Lagrangian, F: Force, C: Constraint, O: Observer + ?Sized>(
+fn solve_exact<L: Lagrangian, F: Force, C: Constraint, O: Observer>(
     problem: &Problem<L, F, C>,
     options: &SolveOptions,
     observer: &mut O,
@@ -208,7 +208,7 @@ where
     T: marsden::discrete::DiscreteForce,
     G: GroupAction,
     F2: marsden::discrete::DiscreteForce,
-    O: Observer + ?Sized,
+    O: Observer,
 {
     let Some(carried) = carried else {
         return Err("the checkpoint holds no energy balance for this forced run".to_owned());

@@ -27,7 +27,7 @@
 //! checkpoints").
 //!
 //! 2026-11-30: the detector no longer needs the every-step path (it watches the steps inside
-//! the stretches the run loop hands the stepper, `StepWatch`), so `with_event` runs in one
+//! the stretches the run loop hands the stepper, `Observer::watch_steps`), so `with_event` runs in one
 //! stretch like `plain`; the file runs' figures before and after are in BENCHMARKS.md ("Events
 //! and checkpoints").
 //!

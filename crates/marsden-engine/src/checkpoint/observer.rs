@@ -133,8 +133,12 @@ impl<O: Observer + Carries> Observer for Checkpointing<'_, O> {
         self.inner.termination()
     }
 
-    fn step_watch(&mut self) -> Option<&mut dyn marsden::run::StepWatch> {
-        self.inner.step_watch()
+    fn watches_steps(&self) -> bool {
+        self.inner.watches_steps()
+    }
+
+    fn watch_steps<W: marsden::run::WatchedSteps>(&mut self, steps: &mut W) {
+        self.inner.watch_steps(steps);
     }
 
     fn landing(&self, step: usize, t: f64, next: f64) -> Option<f64> {

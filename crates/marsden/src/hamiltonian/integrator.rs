@@ -120,7 +120,7 @@ impl<H: Hamiltonian, M: HamiltonianMethod<H>> HamiltonianIntegrator<H, M> {
     /// step to `observer`, by the run loop of the Lagrangian side ([`crate::run::simulate()`]). A
     /// failing step ends the run with [`crate::run::Termination::Failed`] and the trajectory up to the last
     /// good state.
-    pub fn solve<O: Observer + ?Sized>(
+    pub fn solve<O: Observer>(
         &mut self,
         start: State,
         grid: &TimeGrid,

@@ -20,7 +20,7 @@ pub mod stepper;
 pub mod trajectory;
 
 pub use grid::{RunOptions, TimeGrid};
-pub use observer::{Observer, StepView, StepWatch, WatchedSteps, next_multiple};
+pub use observer::{Observer, StepView, WatchedSteps, next_multiple};
 pub use problem::{Problem, SolveOptions};
 pub use simulate::{Resumed, simulate, simulate_from};
 pub use stepper::Stepper;

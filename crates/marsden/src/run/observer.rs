@@ -60,14 +60,26 @@ pub trait Observer {
     fn termination(&self) -> Option<Termination> {
         None
     }
-    /// When [`Observer::every_step`] is false: a light check of each step the stepper takes
-    /// between the steps shown to [`Observer::observe`]: the watch takes those steps itself
-    /// ([`Stepper::advance_watched`](crate::run::Stepper::advance_watched)); where it stops,
-    /// the run loop ends the stretch and shows that step to [`Observer::observe`]. An event
-    /// detector watches each step so, at the cost of one evaluation of its `g`, without
-    /// the run loop's every-step path. Default: `None`.
-    fn step_watch(&mut self) -> Option<&mut dyn StepWatch> {
-        None
+    /// When [`Observer::every_step`] is false: whether it checks each step the stepper takes
+    /// between the steps shown to [`Observer::observe`], lightly, taking those steps itself
+    /// ([`Observer::watch_steps`]); where it stops, the run loop ends the stretch and shows that
+    /// step to [`Observer::observe`]. An event detector watches each step so, at the cost of
+    /// one evaluation of its `g`, without the run loop's every-step path. Default: false.
+    fn watches_steps(&self) -> bool {
+        false
+    }
+    /// When [`Observer::watches_steps`]: takes the steps of `steps` (a stretch the run loop
+    /// hands the stepper) one by one, looking at each new state, and stops taking them at the
+    /// first step it wants shown to [`Observer::observe`] (the run loop then shows it) or when
+    /// `steps` has none left; takes at least one step when there is one. Generic over the
+    /// stretch, so that the loop is compiled together with the stepper's step (the run loop
+    /// and the stretch are of concrete types: no call through a `dyn` at each step).
+    /// Default: takes them all.
+    fn watch_steps<W: WatchedSteps>(&mut self, steps: &mut W)
+    where
+        Self: Sized,
+    {
+        while steps.next_step().is_some() {}
     }
     /// When [`Observer::every_step`] is true: a time `τ` strictly inside the next step, from
     /// grid point `step` (at `t`) to the one at `next`, at which the observer wants the state
@@ -112,18 +124,7 @@ pub trait Observer {
     }
 }
 
-/// A check of each step inside a stretch of steps that the run loop hands the stepper in one
-/// call ([`Observer::step_watch`]). The watch takes the stretch's steps itself, one by one
-/// ([`WatchedSteps::next_step`]), so that what it keeps between two steps stays at hand in its
-/// own loop instead of being looked up again at every step through the stepper's call.
-pub trait StepWatch {
-    /// Takes the steps of `steps` one by one, looking at each new state, and stops taking them
-    /// at the first step it wants shown to the observer (the run loop then shows it) or when
-    /// `steps` has none left. Takes at least one step when there is one.
-    fn watch(&mut self, steps: &mut dyn WatchedSteps);
-}
-
-/// The steps of a stretch, as a [`StepWatch`] takes them.
+/// The steps of a stretch, as [`Observer::watch_steps`] takes them.
 pub trait WatchedSteps {
     /// Takes the next step: its number (steps completed) and the new state; `None` when the
     /// stretch is done or the step failed (the stepper keeps the error for the run loop, and

@@ -234,7 +234,7 @@ impl<L: Lagrangian, F: Force, C: Constraint> Problem<L, F, C> {
     }
 
     /// Like [`Problem::solve`], showing every step to `observer`.
-    pub fn solve_with<R: Rule, O: Observer + ?Sized>(
+    pub fn solve_with<R: Rule, O: Observer>(
         &self,
         rule: &R,
         options: &SolveOptions,
@@ -251,7 +251,7 @@ impl<L: Lagrangian, F: Force, C: Constraint> Problem<L, F, C> {
     /// # Errors
     /// As [`Problem::solve_with`]; a checkpoint of another kind of step
     /// ([`Integrator::restore`]) fails the run before any step, with an empty trajectory.
-    pub fn solve_resumed<R: Rule, O: Observer + ?Sized>(
+    pub fn solve_resumed<R: Rule, O: Observer>(
         &self,
         rule: &R,
         options: &SolveOptions,
@@ -262,7 +262,7 @@ impl<L: Lagrangian, F: Force, C: Constraint> Problem<L, F, C> {
         self.solve_from(rule, options, observer, Some((from, carried)))
     }
 
-    fn solve_from<R: Rule, O: Observer + ?Sized>(
+    fn solve_from<R: Rule, O: Observer>(
         &self,
         rule: &R,
         options: &SolveOptions,

@@ -9,7 +9,7 @@ use std::ops::ControlFlow;
 
 use super::grid::{RunOptions, TimeGrid};
 use super::observer::{Observer, StepView};
-use super::stepper::Stepper;
+use super::stepper::{Stepper, watched_stretch};
 use super::trajectory::{StepMultipliers, Termination, Trajectory};
 use crate::error::{Error, InputError};
 use crate::integrator::{Statistics, StepReport};
@@ -27,7 +27,7 @@ pub fn simulate<S, O>(
 ) -> Trajectory
 where
     S: Stepper + ?Sized,
-    O: Observer + ?Sized,
+    O: Observer,
 {
     let initial = StepReport::default();
     observer.start(&StepView {
@@ -72,7 +72,7 @@ pub fn simulate_from<S, O>(
 ) -> Trajectory
 where
     S: Stepper + ?Sized,
-    O: Observer + ?Sized,
+    O: Observer,
 {
     run_loop(
         stepper,
@@ -97,7 +97,7 @@ fn run_loop<S, O>(
 ) -> Trajectory
 where
     S: Stepper + ?Sized,
-    O: Observer + ?Sized,
+    O: Observer,
 {
     let (n, d) = stepper.dims();
     let mut traj = Trajectory::new(n, d, grid.h);
@@ -125,9 +125,9 @@ where
         let done_before = stepper.steps_done();
         // A stretch of one step is shown to the observer as it is: a watch would add its entry
         // and exit to the same look at the state.
-        let outcome = match observer.step_watch().filter(|_| chunked && chunk > 1) {
-            Some(watch) => stepper.advance_watched(&mut state, grid, k, chunk, watch),
-            None => stepper.advance_on(&mut state, grid, k, chunk),
+        let outcome = match chunked && chunk > 1 && observer.watches_steps() {
+            true => watched_stretch(stepper, &mut state, grid, k..k + chunk, observer),
+            false => stepper.advance_on(&mut state, grid, k, chunk),
         };
         k += stepper.steps_done() - done_before;
         state.t = grid.time(k);
@@ -188,7 +188,7 @@ fn side_steps<S, O>(
 ) -> ControlFlow<()>
 where
     S: Stepper + ?Sized,
-    O: Observer + ?Sized,
+    O: Observer,
 {
     while let Some(tau) = observer.landing(k, state.t, next) {
         let Some(carried) = stepper.carried() else {

@@ -11,7 +11,7 @@ use crate::integrator::{Integrator, Statistics, StepReport};
 use crate::mechanics::{Constraint, State};
 
 use super::grid::TimeGrid;
-use super::observer::{StepWatch, WatchedSteps};
+use super::observer::{Observer, WatchedSteps};
 
 /// A one-step method with its buffers, as the run loop sees it.
 pub trait Stepper {
@@ -39,21 +39,24 @@ pub trait Stepper {
         step_by_step(self, state, grid, k, steps)
     }
 
-    /// [`Stepper::advance_on`] with the steps taken by `watch` ([`StepWatch::watch`]), which
-    /// looks at each new state: the stretch ends early at the first step it asks to see (the
-    /// run loop counts the steps taken by [`Stepper::steps_done`]). Default: one
-    /// [`Stepper::advance`] per step.
-    fn advance_watched(
-        &mut self,
-        state: &mut State,
-        grid: &TimeGrid,
-        k: usize,
-        steps: usize,
-        watch: &mut dyn StepWatch,
-    ) -> Result<StepReport, Error> {
-        let mut one_by_one = OneByOne(self);
-        let stretch = Stretch::new(&mut one_by_one, state, grid, k..k + steps);
-        stretch.watched(watch)
+    /// One step of size `h` from `state` (advanced in place; unchanged on error), as a stretch
+    /// of steps watched by an observer takes it ([`Observer::watch_steps`]). Default:
+    /// [`Stepper::advance`] by one step.
+    fn single_step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error> {
+        self.advance(state, h, 1)
+    }
+
+    /// Keeps (`keep = true`) or stops keeping the start `(q, p)` of each step, for a watch of
+    /// the steps to read after the step ([`Stepper::kept_start`]) instead of copying every
+    /// state; whether the starts are kept. Default: never.
+    fn keep_step_starts(&mut self, _keep: bool) -> bool {
+        false
+    }
+
+    /// The start `(q, p)` of the last step, when the starts are kept
+    /// ([`Stepper::keep_step_starts`]). Default: `None`.
+    fn kept_start(&self) -> Option<(&[f64], &[f64])> {
+        None
     }
 
     /// The multipliers `λ` of the last step (length d; default: none).
@@ -143,17 +146,19 @@ where
             }
         }
     }
-    /// The Newton paths step by [`Integrator::step`] (the explicit path by the default, one
-    /// [`Integrator::advance`] per step, as a run shown every step takes it).
-    fn advance_watched(
-        &mut self,
-        state: &mut State,
-        grid: &TimeGrid,
-        k: usize,
-        steps: usize,
-        watch: &mut dyn StepWatch,
-    ) -> Result<StepReport, Error> {
-        Stretch::new(self, state, grid, k..k + steps).watched(watch)
+    /// The Newton paths step by [`Integrator::step`], the explicit path by one
+    /// [`Integrator::advance`] per step, as a run shown every step takes it.
+    fn single_step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error> {
+        match self.is_explicit() {
+            true => Integrator::advance(self, state, h, 1),
+            false => self.step(state, h),
+        }
+    }
+    fn keep_step_starts(&mut self, keep: bool) -> bool {
+        Integrator::keep_step_starts(self, keep)
+    }
+    fn kept_start(&self) -> Option<(&[f64], &[f64])> {
+        Integrator::kept_start(self)
     }
     fn multipliers(&self) -> &[f64] {
         Integrator::multipliers(self)
@@ -175,55 +180,8 @@ where
     }
 }
 
-/// How a [`Stretch`] takes one step, and whether its stepper keeps the start of each step
-/// for the watch to read ([`WatchedSteps::keep_starts`]).
-trait SingleStep {
-    /// One step of size `h` from `state` (advanced in place; unchanged on error).
-    fn single_step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error>;
-    /// Keeps (or stops keeping) the start of each step; whether it is kept. Default: never.
-    fn keep_starts(&mut self, _keep: bool) -> bool {
-        false
-    }
-    /// The start `(q, p)` of the last step, when kept.
-    fn step_start(&self) -> Option<(&[f64], &[f64])> {
-        None
-    }
-}
-
-/// Any stepper, one [`Stepper::advance`] per step.
-struct OneByOne<'a, S: ?Sized>(&'a mut S);
-
-impl<S: Stepper + ?Sized> SingleStep for OneByOne<'_, S> {
-    fn single_step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error> {
-        self.0.advance(state, h, 1)
-    }
-}
-
-/// The Newton paths step by [`Integrator::step`] and keep the start of each step when asked
-/// ([`Integrator::keep_step_starts`]); the explicit path by one [`Integrator::advance`] per
-/// step, as a run shown every step takes it.
-impl<A, F, C, P> SingleStep for Integrator<A, F, C, P>
-where
-    A: DiscreteAction,
-    F: DiscreteForce,
-    C: Constraint,
-    P: MomentumProjection,
-{
-    fn single_step(&mut self, state: &mut State, h: f64) -> Result<StepReport, Error> {
-        match self.is_explicit() {
-            true => Integrator::advance(self, state, h, 1),
-            false => self.step(state, h),
-        }
-    }
-    fn keep_starts(&mut self, keep: bool) -> bool {
-        self.keep_step_starts(keep)
-    }
-    fn step_start(&self) -> Option<(&[f64], &[f64])> {
-        Integrator::kept_start(self)
-    }
-}
-
-/// A stretch of steps handed to a [`StepWatch`], being taken: single steps, each of the
+/// A stretch of steps handed to an observer that watches them, being taken: single steps
+/// ([`Stepper::single_step`]), each of the
 /// grid's size for it ([`TimeGrid::step_size`]), the time of each new state set to the
 /// grid's; the grid point `k` of the current state, the last one `end` (`k` itself once a step
 /// failed), the report of the last step and the error of the one that failed.
@@ -237,7 +195,7 @@ struct Stretch<'a, S: ?Sized> {
     failure: Option<Error>,
 }
 
-impl<'a, S: SingleStep + ?Sized> Stretch<'a, S> {
+impl<'a, S: Stepper + ?Sized> Stretch<'a, S> {
     /// The steps from grid point `points.start` of `grid` to `points.end` at most.
     fn new(
         stepper: &'a mut S,
@@ -256,11 +214,11 @@ impl<'a, S: SingleStep + ?Sized> Stretch<'a, S> {
         }
     }
 
-    /// The stretch taken by `watch` until it has seen what it wants; the report of the last
+    /// The stretch taken by `observer` until it has seen what it wants; the report of the last
     /// step taken. The stepper no longer keeps the starts of its steps afterwards.
-    fn watched(mut self, watch: &mut dyn StepWatch) -> Result<StepReport, Error> {
-        watch.watch(&mut self);
-        self.stepper.keep_starts(false);
+    fn watched<O: Observer>(mut self, observer: &mut O) -> Result<StepReport, Error> {
+        observer.watch_steps(&mut self);
+        self.stepper.keep_step_starts(false);
         match self.failure {
             Some(error) => Err(error),
             None => Ok(self.report),
@@ -268,7 +226,8 @@ impl<'a, S: SingleStep + ?Sized> Stretch<'a, S> {
     }
 }
 
-impl<S: SingleStep + ?Sized> WatchedSteps for Stretch<'_, S> {
+impl<S: Stepper + ?Sized> WatchedSteps for Stretch<'_, S> {
+    #[inline(always)]
     fn next_step(&mut self) -> Option<(usize, &State)> {
         if self.k >= self.end {
             return None;
@@ -285,15 +244,31 @@ impl<S: SingleStep + ?Sized> WatchedSteps for Stretch<'_, S> {
         self.state.t = self.grid.time(self.k);
         Some((self.k, self.state))
     }
+    #[inline(always)]
     fn keep_starts(&mut self) -> bool {
-        self.stepper.keep_starts(true)
+        self.stepper.keep_step_starts(true)
     }
+    #[inline(always)]
     fn step_start(&self) -> Option<(&[f64], &[f64])> {
-        self.stepper.step_start()
+        self.stepper.kept_start()
     }
     fn current(&self) -> (usize, &State) {
         (self.k, self.state)
     }
+}
+
+/// `steps` steps from grid point `k` of `grid` (`state.t = grid.time(k)`), each new state at
+/// the grid's own time, taken by `observer` ([`Observer::watch_steps`]), which looks at each new
+/// state: the stretch ends early at the first step it asks to see (the run loop counts the
+/// steps taken by [`Stepper::steps_done`]). The report of the last step taken.
+pub(crate) fn watched_stretch<S: Stepper + ?Sized, O: Observer>(
+    stepper: &mut S,
+    state: &mut State,
+    grid: &TimeGrid,
+    points: std::ops::Range<usize>,
+    observer: &mut O,
+) -> Result<StepReport, Error> {
+    Stretch::new(stepper, state, grid, points).watched(observer)
 }
 
 /// `steps` single steps from grid point `k`, each of the grid's size for it

@@ -407,7 +407,7 @@ impl marsden::Observer for EveryStep<'_, '_> {
     }
 }
 
-/// The detector watching the steps inside one long stretch of the run (`StepWatch`: nothing
+/// The detector watching the steps inside one long stretch of the run (`watch_steps`: nothing
 /// stored between the first and the last state) locates, records and stops exactly as when
 /// the run loop shows it every step: the same records bit for bit, the run ended at the same
 /// step with the same last state (Kepler, e = 0.6: every pericentre recorded, and a stop at the

@@ -13,7 +13,7 @@ use crate::error::{Error, InputError, StepError};
 use crate::mechanics::Lagrangian;
 use crate::numerics::brent::{self, Bracket, BrentOptions, RootError};
 use crate::numerics::short;
-use crate::run::observer::{Observer, StepView, StepWatch};
+use crate::run::observer::{Observer, StepView, WatchedSteps};
 use crate::run::trajectory::Termination;
 
 pub use checkpoint::DetectorCheckpoint;
@@ -46,7 +46,7 @@ impl Point {
 }
 
 /// The state after a step, as the detector reads it: from the run's view, or from the stepper
-/// inside a stretch of steps ([`StepWatch`]).
+/// inside a stretch of steps ([`Observer::watch_steps`]).
 #[derive(Debug, Clone, Copy)]
 struct At<'a> {
     step: usize,
@@ -484,7 +484,7 @@ impl<L: Lagrangian, G: EventFunction> Observer for EventDetector<'_, L, G> {
         self.advance(&initial);
     }
 
-    /// A step the watch has looked at ([`StepWatch`]) is passed over, unless the watch found a
+    /// A step the watch has looked at ([`Observer::watch_steps`]) is passed over, unless the watch found a
     /// sign change at it: that is located now.
     fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()> {
         if self.ending.is_some() {
@@ -509,13 +509,17 @@ impl<L: Lagrangian, G: EventFunction> Observer for EventDetector<'_, L, G> {
     }
 
     /// The run loop may hand the stepper stretches of steps: the detector watches each step
-    /// inside them ([`Observer::step_watch`]).
+    /// inside them ([`Observer::watches_steps`]).
     fn every_step(&self) -> bool {
         false
     }
 
-    fn step_watch(&mut self) -> Option<&mut dyn StepWatch> {
-        Some(self)
+    fn watches_steps(&self) -> bool {
+        true
+    }
+
+    fn watch_steps<W: WatchedSteps>(&mut self, steps: &mut W) {
+        self.watch(steps);
     }
 
     fn termination(&self) -> Option<Termination> {

@@ -1,11 +1,13 @@
-//! The detector as the stepper's watch inside a stretch of steps ([`StepWatch`]): the loop
-//! that takes the stretch's steps and scans `g` at each new state.
+//! The detector as the watch of the steps inside a stretch ([`Observer::watch_steps`]): the
+//! loop that takes the stretch's steps and scans `g` at each new state.
+//!
+//! [`Observer::watch_steps`]: crate::run::Observer::watch_steps
 
 use super::{At, Event, EventDetector, Point, Scan, Values, same_side, scan};
 use crate::mechanics::{Lagrangian, State};
 use crate::numerics::short;
 use crate::run::events::EventFunction;
-use crate::run::observer::{StepWatch, WatchedSteps};
+use crate::run::observer::WatchedSteps;
 use crate::run::trajectory::Termination;
 
 /// What the watch's loop saw last ([`watch_loop`]).
@@ -95,8 +97,10 @@ impl<G: EventFunction> Scanner for Many<'_, G> {
 /// `before`, and the crossing is located when the run loop shows the step. The run is then not
 /// taken step by step through the run loop: watching costs one evaluation of `g` per step (and
 /// a copy of each state where the stepper does not keep the starts of its steps).
-impl<L: Lagrangian, G: EventFunction> StepWatch for EventDetector<'_, L, G> {
-    fn watch(&mut self, steps: &mut dyn WatchedSteps) {
+impl<L: Lagrangian, G: EventFunction> EventDetector<'_, L, G> {
+    /// What [`Observer::watch_steps`](crate::run::Observer::watch_steps) does for the detector.
+    #[inline(always)]
+    pub(super) fn watch<W: WatchedSteps>(&mut self, steps: &mut W) {
         if self.ending.is_some() || self.pending {
             // Shown to the observer after one step, which ends the run or locates the crossing.
             steps.next_step();
@@ -152,7 +156,7 @@ impl<L: Lagrangian, G: EventFunction> EventDetector<'_, L, G> {
     /// The watch's loop when no event reads the velocities ([`watch_loop`]), for one event
     /// (its `g` in registers) or several.
     #[inline(always)]
-    fn watch_positions(&mut self, steps: &mut dyn WatchedSteps) -> LastScan {
+    fn watch_positions<W: WatchedSteps>(&mut self, steps: &mut W) -> LastScan {
         let kept = steps.keep_starts();
         let v = &self.no_velocity[..];
         if let [event] = &self.events[..] {
@@ -188,9 +192,9 @@ impl<L: Lagrangian, G: EventFunction> EventDetector<'_, L, G> {
 /// [`WatchedSteps::step_start`]) when the stepper keeps the starts of its steps (`kept`); else
 /// each new state is copied there.
 #[inline(always)]
-fn watch_loop(
+fn watch_loop<W: WatchedSteps>(
     before: &mut Point,
-    steps: &mut dyn WatchedSteps,
+    steps: &mut W,
     kept: bool,
     scanner: &mut impl Scanner,
 ) -> LastScan {
