@@ -509,16 +509,16 @@ fn a_version_two_checkpoint_fixture_of_a_forced_run_still_resumes() {
 #[test]
 fn sigterm_checkpoints_where_the_run_stops_and_the_resume_equals_the_uninterrupted_run() {
     let steps = 3_000_000;
-    let run = ("trajectory.csv", "checkpoint.bin");
-    sigterm_then_resume(&pendulum("midpoint", steps), steps, run);
-    let tangent = ("checkpoint.bin", "sensitivity-checkpoint.bin");
-    sigterm_then_resume(PARAMETRIC, 400_000, tangent);
+    let text = pendulum("midpoint", steps);
+    sigterm_then_resume(&text, steps, "trajectory.csv", "checkpoint.bin");
+    let (wait_for, written) = ("checkpoint.bin", "sensitivity-checkpoint.bin");
+    sigterm_then_resume(PARAMETRIC, 400_000, wait_for, written);
 }
 
 /// Runs `text` whole, then three times stopped by SIGTERM a pseudo-random moment after
 /// `wait_for` appears, each checked for the checkpoint `written` at the stop, resumed and
 /// compared with the whole run.
-fn sigterm_then_resume(text: &str, steps: u64, (wait_for, written): (&str, &str)) {
+fn sigterm_then_resume(text: &str, steps: u64, wait_for: &str, written: &str) {
     let tmp = tempfile::tempdir().unwrap();
     let file = tmp.path().join("problem.toml");
     std::fs::write(&file, text).unwrap();

@@ -23,7 +23,7 @@ use marsden::discrete::rules::Galerkin;
 use marsden::systems::{FreeFall, Pendulum, PendulumOnCart};
 use marsden::{Midpoint, Rule, Scalar};
 use marsden_control::{
-    Boundary, Effort, InputMap, OptimalControl, PathConstraint, SqpOptions, StagedControls,
+    Boundary, Effort, Horizon, InputMap, OptimalControl, PathConstraint, SqpOptions, StagedControls,
 };
 
 fn main() {
@@ -36,7 +36,11 @@ fn swing_up_cost<R: Rule + StagedControls>(steps: usize, rule: &R) -> f64 {
         Pendulum::default(),
         InputMap::full(1),
         Effort::default(),
-        (0.0, 6.0, steps),
+        Horizon {
+            t0: 0.0,
+            duration: 6.0,
+            steps,
+        },
         Boundary::rest(&[0.0]),
         Boundary::rest(&[PI]),
     );
@@ -66,7 +70,11 @@ fn cart_pole(steps: usize) -> f64 {
         PendulumOnCart::default(),
         InputMap::new(&[0]),
         Effort::default(),
-        (0.0, 2.0, steps),
+        Horizon {
+            t0: 0.0,
+            duration: 2.0,
+            steps,
+        },
         Boundary::rest(&[0.0, 0.0]),
         Boundary::rest(&[0.0, PI]),
     );
@@ -94,7 +102,11 @@ fn bryson_denham(
         FreeFall { m: 1.0, g: 0.0 },
         InputMap::full(1),
         Effort::default(),
-        (0.0, 1.0, steps),
+        Horizon {
+            t0: 0.0,
+            duration: 1.0,
+            steps,
+        },
         Boundary::velocity(&[0.0], &[1.0]),
         Boundary::velocity(&[0.0], &[-1.0]),
     )

@@ -1,6 +1,6 @@
 //! Solves the cart-pole swing-up of the bench (N from the command line) and prints the result.
 
-use marsden_control::{Boundary, Effort, InputMap, OptimalControl, SqpOptions};
+use marsden_control::{Boundary, Effort, Horizon, InputMap, OptimalControl, SqpOptions};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let steps: usize = std::env::args().nth(1).map_or(Ok(200), |a| a.parse())?;
@@ -9,7 +9,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         marsden::systems::PendulumOnCart::default(),
         InputMap::new(&[0]),
         Effort::default(),
-        (0.0, duration, steps),
+        Horizon {
+            t0: 0.0,
+            duration,
+            steps,
+        },
         Boundary::rest(&[0.0, 0.0]),
         Boundary::rest(&[0.0, std::f64::consts::PI]),
     )?;

@@ -4,7 +4,7 @@ use std::f64::consts::PI;
 
 use marsden::GeneralizedMidpoint;
 use marsden::systems::Pendulum;
-use marsden_control::{Boundary, Effort, InputMap, OptimalControl, SqpOptions};
+use marsden_control::{Boundary, Effort, Horizon, InputMap, OptimalControl, SqpOptions};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
@@ -14,7 +14,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Pendulum::default(),
         InputMap::full(1),
         Effort::default(),
-        (0.0, 6.0, steps),
+        Horizon {
+            t0: 0.0,
+            duration: 6.0,
+            steps,
+        },
         Boundary::rest(&[0.0]),
         Boundary::rest(&[PI]),
     )?;

@@ -14,7 +14,7 @@
 //! controls reproduces itself ([`SampledControl`]).
 //!
 //! ```
-//! use marsden_control::{Boundary, Effort, InputMap, OptimalControl, SqpOptions};
+//! use marsden_control::{Boundary, Effort, Horizon, InputMap, OptimalControl, SqpOptions};
 //! use marsden::{Midpoint, systems::FreeFall};
 //!
 //! // Double integrator: L = ½q̇², force u, cost ∫½u², rest to rest from 0 to 1 in T = 1.
@@ -22,7 +22,7 @@
 //!     FreeFall { m: 1.0, g: 0.0 },
 //!     InputMap::full(1),
 //!     Effort::default(),
-//!     (0.0, 1.0, 20),
+//!     Horizon { t0: 0.0, duration: 1.0, steps: 20 },
 //!     Boundary::rest(&[0.0]),
 //!     Boundary::rest(&[1.0]),
 //! )?;
@@ -85,7 +85,7 @@ pub use guess::{FrozenControl, SampledControl, StepControl};
 pub use model::{
     ControlForce, Effort, FinalCost, InputMap, NoFinalCost, NoPath, PathConstraint, RunningCost,
 };
-pub use problem::{Boundary, Bounds, Guess, OptimalControl, Rate};
+pub use problem::{Boundary, Bounds, Guess, Horizon, OptimalControl, Rate};
 pub use solution::{Failure, Infeasibility, Iteration, Solution, Status};
 pub use sqp::SqpOptions;
 pub use stages::{ControlStages, PathPoints, StagedControls};

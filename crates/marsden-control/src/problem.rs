@@ -186,9 +186,21 @@ pub struct OptimalControl<L, F, C, P = NoFinalCost, G = NoPath> {
     pub(crate) guess: Option<Guess>,
 }
 
+/// The time horizon of an [`OptimalControl`] problem: `[t0, t0 + duration]` in `steps` steps of
+/// equal length.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Horizon {
+    /// The start time `t0`.
+    pub t0: f64,
+    /// The length of the horizon.
+    pub duration: f64,
+    /// The number of steps.
+    pub steps: usize,
+}
+
 impl<L: Lagrangian, F: ControlForce, C: RunningCost> OptimalControl<L, F, C> {
-    /// The problem on `[t0, t0 + duration]` with `steps` steps of equal length, no bounds, no
-    /// final cost, and the default initial guess ([`crate::guess`]).
+    /// The problem on the `horizon` `[t0, t0 + duration]` with `steps` steps of equal length, no
+    /// bounds, no final cost, and the default initial guess ([`crate::guess`]).
     ///
     /// # Errors
     /// [`ControlError::Horizon`], and [`ControlError::Length`], [`ControlError::NotFinite`] or
@@ -197,10 +209,15 @@ impl<L: Lagrangian, F: ControlForce, C: RunningCost> OptimalControl<L, F, C> {
         lagrangian: L,
         force: F,
         cost: C,
-        (t0, duration, steps): (f64, f64, usize),
+        horizon: Horizon,
         start: Boundary,
         end: Boundary,
     ) -> Result<Self, ControlError> {
+        let Horizon {
+            t0,
+            duration,
+            steps,
+        } = horizon;
         let horizon = ControlError::Horizon { duration, steps };
         if !(duration > 0.0 && duration.is_finite() && t0.is_finite()) || steps == 0 {
             return Err(horizon);

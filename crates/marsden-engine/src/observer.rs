@@ -232,8 +232,8 @@ impl<'a, 's, L: Lagrangian, C: Constraint, M: MomentumMap> StreamObserver<'a, 's
         if let Some(observables) = self.observables {
             let start = self.row.len();
             self.row.resize(start + observables.len(), f64::NAN);
-            let state = (s.t, s.q, self.velocity.as_slice(), s.p);
-            observables.eval_into(state, &mut self.row[start..]);
+            let (t, q, v, p) = (s.t, s.q, self.velocity.as_slice(), s.p);
+            observables.eval_into(t, q, v, p, &mut self.row[start..]);
         }
         // The hidden constraint's residual `|Dφ(q)·v|`: the last column of the files.
         self.row.extend(velocity_residual);

@@ -155,13 +155,7 @@ fn fill_row(row: &mut Vec<f64>, sample: &Sample, observables: &Observables) {
     row.extend_from_slice(&sample.p);
     let start = row.len();
     row.resize(start + observables.len(), 0.0);
-    let state = (
-        sample.t,
-        sample.q.as_slice(),
-        sample.v.as_slice(),
-        sample.p.as_slice(),
-    );
-    observables.eval_into(state, &mut row[start..]);
+    observables.eval_into(sample.t, &sample.q, &sample.v, &sample.p, &mut row[start..]);
 }
 
 impl<L: Lagrangian> Observer for TimeSamples<'_, '_, L> {

@@ -22,13 +22,7 @@ fn bits(x: &[f64]) -> Vec<u64> {
 
 /// The reference loop: `p½ = p − c g`, `q' = q + d ⊙ p½`, `g' = ∇V(t₀ + k h, q')`,
 /// `p' = p½ − c g'`, stopping before a non-finite `(q', p')`.
-fn interpreted(
-    tape: &Tape,
-    (t0, h): (f64, f64),
-    steps: usize,
-    d: &[f64],
-    start: [&[f64]; 3],
-) -> Run {
+fn interpreted(tape: &Tape, t0: f64, h: f64, steps: usize, d: &[f64], start: [&[f64]; 3]) -> Run {
     let [mut q, mut p, mut g] = start.map(<[f64]>::to_vec);
     let n = q.len();
     let c = 0.5 * h;
@@ -84,7 +78,8 @@ fn assert_same_run(
     grid: (f64, f64),
     steps: usize,
     d: &[f64],
-    (q, p): (&[f64], &[f64]),
+    q: &[f64],
+    p: &[f64],
     what: &str,
 ) -> usize {
     let mut g = vec![0.0; q.len()];
@@ -93,7 +88,7 @@ fn assert_same_run(
     tape.eval_into(&x, &mut Vec::new(), &mut g);
     let kernel = CompiledVerlet::compile(tape, q.len()).unwrap();
     assert_eq!(kernel.dof(), q.len());
-    let expected = interpreted(tape, grid, steps, d, [q, p, &g]);
+    let expected = interpreted(tape, grid.0, grid.1, steps, d, [q, p, &g]);
     let got = compiled(&kernel, grid, steps, d, [q, p, &g]);
     assert_eq!(got, expected, "{what}");
     got.done
@@ -111,7 +106,7 @@ fn reference_potentials_run_as_the_interpreted_loop() {
     for ((name, form), start) in reference_forms().into_iter().zip(starts) {
         let tape = form.gradient().unwrap();
         let d = vec![0.01; start.0.len()];
-        let done = assert_same_run(tape, (0.0, 0.01), 3000, &d, start, name);
+        let done = assert_same_run(tape, (0.0, 0.01), 3000, &d, start.0, start.1, name);
         assert_eq!(done, 3000, "{name}");
     }
 }
@@ -131,10 +126,13 @@ fn time_dependent_potential_with_unequal_masses_and_calls() {
     let d = [h / 2.0, h / 3.0, h / 0.5];
     let start: (&[f64], &[f64]) = (&[0.3, -0.2, 0.5], &[0.1, 0.4, -0.3]);
     assert_eq!(
-        assert_same_run(tape, (1.7, h), 2500, &d, start, "3 dof"),
+        assert_same_run(tape, (1.7, h), 2500, &d, start.0, start.1, "3 dof"),
         2500
     );
-    assert_eq!(assert_same_run(tape, (1.7, h), 0, &d, start, "no steps"), 0);
+    assert_eq!(
+        assert_same_run(tape, (1.7, h), 0, &d, start.0, start.1, "no steps"),
+        0
+    );
 }
 
 /// `V = −exp(x²)` drives `x` to infinity: both runs stop before the same step, at the same
@@ -143,14 +141,7 @@ fn time_dependent_potential_with_unequal_masses_and_calls() {
 fn runaway_run_stops_before_the_first_non_finite_state() {
     let form = separable("0.5*x_dot^2 + exp(x^2)", &["x"], &[]);
     let tape = form.gradient().unwrap();
-    let done = assert_same_run(
-        tape,
-        (0.0, 0.05),
-        1000,
-        &[0.05],
-        (&[1.0], &[1.0]),
-        "runaway",
-    );
+    let done = assert_same_run(tape, (0.0, 0.05), 1000, &[0.05], &[1.0], &[1.0], "runaway");
     assert!(done > 0 && done < 1000, "{done}");
 }
 

@@ -3,7 +3,7 @@
 
 use marsden::Rule;
 use marsden_control::{
-    Boundary, ControlError, OptimalControl, Rate, Solution, SqpOptions, StagedControls,
+    Boundary, ControlError, Horizon, OptimalControl, Rate, Solution, SqpOptions, StagedControls,
 };
 use marsden_problem::problem::optimal_control::{EndSpec, OptimalControlSpec, RateSpec};
 
@@ -64,7 +64,11 @@ fn solve<R: Rule + StagedControls>(
         program: spec.final_cost.as_ref(),
         t_end: spec.t_end,
     };
-    let horizon = (spec.t0, spec.t_end - spec.t0, spec.steps);
+    let horizon = Horizon {
+        t0: spec.t0,
+        duration: spec.t_end - spec.t0,
+        steps: spec.steps,
+    };
     let (start, end) = (boundary(&spec.start), boundary(&spec.end));
     let problem = OptimalControl::new(&spec.lagrangian, force, cost, horizon, start, end)?
         .with_final_cost(final_cost)

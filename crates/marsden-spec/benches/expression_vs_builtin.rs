@@ -76,7 +76,8 @@ fn advance<L: Lagrangian, R: Rule>(
     b: Bencher,
     l: L,
     rule: R,
-    (q, p): (&[f64], &[f64]),
+    q: &[f64],
+    p: &[f64],
     h: f64,
     steps: usize,
 ) {
@@ -100,12 +101,20 @@ mod expression_vs_builtin {
 
     #[divan::bench]
     fn kepler_trapezoid_builtin(b: Bencher) {
-        advance(b, Kepler::default(), Trapezoid, KEPLER, 0.01, 1000);
+        advance(
+            b,
+            Kepler::default(),
+            Trapezoid,
+            KEPLER.0,
+            KEPLER.1,
+            0.01,
+            1000,
+        );
     }
 
     #[divan::bench]
     fn kepler_trapezoid_expression(b: Bencher) {
-        advance(b, kepler_text(), Trapezoid, KEPLER, 0.01, 1000);
+        advance(b, kepler_text(), Trapezoid, KEPLER.0, KEPLER.1, 0.01, 1000);
     }
 
     #[divan::bench]
@@ -114,7 +123,8 @@ mod expression_vs_builtin {
             b,
             kepler_text().interpreted(),
             Trapezoid,
-            KEPLER,
+            KEPLER.0,
+            KEPLER.1,
             0.01,
             1000,
         );
@@ -122,22 +132,54 @@ mod expression_vs_builtin {
 
     #[divan::bench]
     fn pendulum_midpoint_builtin(b: Bencher) {
-        advance(b, Pendulum::default(), Midpoint, PENDULUM, 0.05, 100);
+        advance(
+            b,
+            Pendulum::default(),
+            Midpoint,
+            PENDULUM.0,
+            PENDULUM.1,
+            0.05,
+            100,
+        );
     }
 
     #[divan::bench]
     fn pendulum_midpoint_expression(b: Bencher) {
-        advance(b, pendulum_text(), Midpoint, PENDULUM, 0.05, 100);
+        advance(
+            b,
+            pendulum_text(),
+            Midpoint,
+            PENDULUM.0,
+            PENDULUM.1,
+            0.05,
+            100,
+        );
     }
 
     #[divan::bench]
     fn double_pendulum_midpoint_builtin(b: Bencher) {
-        advance(b, double_pendulum_builtin(), Midpoint, DOUBLE, 0.01, 100);
+        advance(
+            b,
+            double_pendulum_builtin(),
+            Midpoint,
+            DOUBLE.0,
+            DOUBLE.1,
+            0.01,
+            100,
+        );
     }
 
     #[divan::bench]
     fn double_pendulum_midpoint_expression(b: Bencher) {
-        advance(b, double_pendulum_text(), Midpoint, DOUBLE, 0.01, 100);
+        advance(
+            b,
+            double_pendulum_text(),
+            Midpoint,
+            DOUBLE.0,
+            DOUBLE.1,
+            0.01,
+            100,
+        );
     }
 
     #[divan::bench]

@@ -313,7 +313,8 @@ fn packed_hessian_holds_the_band_storages_entries() {
 fn trapezoid_run(
     l: &ExprLagrangian,
     start: (&[f64], &[f64]),
-    (h, steps): (f64, usize),
+    h: f64,
+    steps: usize,
     pieces: usize,
 ) -> (State, String, [usize; 3]) {
     let mut integrator = Integrator::new(Trapezoid.discretize(l));
@@ -382,10 +383,10 @@ fn compiled_verlet_run_takes_the_generic_loops_steps_bit_for_bit() {
         let interpreted = l.clone().interpreted();
         assert!(interpreted.verlet_kernel().is_none());
         let start = (q0.as_slice(), p0.as_slice());
-        let compiled = trapezoid_run(&l, start, (h, 2000), 2000);
-        let reference = trapezoid_run(&interpreted, start, (h, 2000), 2000);
-        let in_pieces = trapezoid_run(&l, start, (h, 2000), 700);
-        let single = trapezoid_run(&l, start, (h, 2000), 0);
+        let compiled = trapezoid_run(&l, start, h, 2000, 2000);
+        let reference = trapezoid_run(&interpreted, start, h, 2000, 2000);
+        let in_pieces = trapezoid_run(&l, start, h, 2000, 700);
+        let single = trapezoid_run(&l, start, h, 2000, 0);
         // A run in pieces restarts its grid at each piece's `t`: the same numbers only
         // when `V` does not depend on time.
         let autonomous = !text.contains("(t)") && !text.contains("*t");

@@ -32,12 +32,13 @@ impl Lagrangian for Coupled4 {
 }
 
 fn run<A: DiscreteAction>(action: A, q: &[f64], p: &[f64], h: f64, n: usize) -> f64 {
-    run_compensated(action, (q, p), h, n, false)
+    run_compensated(action, q, p, h, n, false)
 }
 
 fn run_compensated<A: DiscreteAction>(
     action: A,
-    (q, p): (&[f64], &[f64]),
+    q: &[f64],
+    p: &[f64],
     h: f64,
     n: usize,
     compensated: bool,
@@ -117,7 +118,8 @@ fn main() {
         Some(mode @ ("gauss4" | "gauss4-compensated")) => match Galerkin::gauss(4) {
             Ok(rule) => run_compensated(
                 rule.discretize(Kepler::default()),
-                (&q, &p),
+                &q,
+                &p,
                 2.0 * std::f64::consts::PI / 200.0,
                 n,
                 mode == "gauss4-compensated",

@@ -413,7 +413,7 @@ where
                 e.constraints[end.row + j] = z[col + i] - a;
                 e.jacobian.push((end.row + j, col + i, 1.0));
             }
-            self.rate_targets(end, (t, &z[col..col + n]), col, &mut e);
+            self.rate_targets(end, t, &z[col..col + n], col, &mut e);
         }
         e
     }
@@ -437,7 +437,7 @@ where
 
     /// Subtracts the target momenta of the fixed rate components (and their derivatives in `q`
     /// for velocities).
-    fn rate_targets(&self, end: &End, (t, q): (f64, &[f64]), col: usize, e: &mut Evaluation) {
+    fn rate_targets(&self, end: &End, t: f64, q: &[f64], col: usize, e: &mut Evaluation) {
         let n = self.layout.n;
         let first = end.row + end.q.len();
         match &end.velocity {

@@ -10,7 +10,7 @@
 
 use marsden::Midpoint;
 use marsden::systems::FreeFall;
-use marsden_control::{Boundary, Effort, InputMap, OptimalControl, SqpOptions, Status};
+use marsden_control::{Boundary, Effort, Horizon, InputMap, OptimalControl, SqpOptions, Status};
 
 const BOUND: f64 = 4.5;
 
@@ -28,7 +28,11 @@ fn bounded_double_integrator_approaches_the_saturated_optimum() {
             FreeFall { m: 1.0, g: 0.0 },
             InputMap::full(1),
             Effort::default(),
-            (0.0, 1.0, steps),
+            Horizon {
+                t0: 0.0,
+                duration: 1.0,
+                steps,
+            },
             Boundary::rest(&[0.0]),
             Boundary::rest(&[1.0]),
         )
@@ -79,7 +83,11 @@ fn bryson_denham_state_bound_approaches_four() {
             FreeFall { m: 1.0, g: 0.0 },
             InputMap::full(1),
             Effort::default(),
-            (0.0, 1.0, steps),
+            Horizon {
+                t0: 0.0,
+                duration: 1.0,
+                steps,
+            },
             Boundary::velocity(&[0.0], &[1.0]),
             Boundary::velocity(&[0.0], &[-1.0]),
         )

@@ -10,7 +10,7 @@ use marsden::discrete::rules::{Composition, CompositionScheme, Galerkin, Method}
 use marsden::systems::PendulumOnCart;
 use marsden::{Midpoint, Rule, Scalar, Trapezoid};
 use marsden_control::{
-    Boundary, ControlForce, FinalCost, OptimalControl, PathConstraint, Rate, RunningCost,
+    Boundary, ControlForce, FinalCost, Horizon, OptimalControl, PathConstraint, Rate, RunningCost,
     StagedControls,
 };
 
@@ -67,7 +67,11 @@ fn problem() -> OptimalControl<PendulumOnCart, Actuator, Running, Terminal, Enve
         PendulumOnCart::default(),
         Actuator,
         Running,
-        (0.2, 1.0, 4),
+        Horizon {
+            t0: 0.2,
+            duration: 1.0,
+            steps: 4,
+        },
         start,
         end,
     )

@@ -1,14 +1,20 @@
 //! Bad input gives typed errors, with the numbers that locate it.
 
 use marsden::systems::Pendulum;
-use marsden_control::{Boundary, ControlError, Effort, InputMap, OptimalControl, Rate, SqpOptions};
+use marsden_control::{
+    Boundary, ControlError, Effort, Horizon, InputMap, OptimalControl, Rate, SqpOptions,
+};
 
 fn problem(start: Boundary) -> Result<OptimalControl<Pendulum, InputMap, Effort>, ControlError> {
     OptimalControl::new(
         Pendulum::default(),
         InputMap::full(1),
         Effort::default(),
-        (0.0, 1.0, 10),
+        Horizon {
+            t0: 0.0,
+            duration: 1.0,
+            steps: 10,
+        },
         start,
         Boundary::rest(&[1.0]),
     )
@@ -87,7 +93,11 @@ fn an_empty_or_negative_horizon_is_refused() {
             Pendulum::default(),
             InputMap::full(1),
             Effort::default(),
-            (0.0, duration, steps),
+            Horizon {
+                t0: 0.0,
+                duration,
+                steps,
+            },
             Boundary::rest(&[0.0]),
             Boundary::rest(&[1.0]),
         )
@@ -140,7 +150,11 @@ fn a_partly_free_boundary_velocity_is_refused() {
         marsden::systems::PendulumOnCart::default(),
         InputMap::new(&[0]),
         Effort::default(),
-        (0.0, 1.0, 10),
+        Horizon {
+            t0: 0.0,
+            duration: 1.0,
+            steps: 10,
+        },
         Boundary {
             q: vec![Some(0.0), Some(0.0)],
             rate: Rate::Velocity(vec![Some(0.0), None]),

@@ -12,7 +12,9 @@
 use marsden::analysis::diagnostics::least_squares_slope;
 use marsden::systems::FreeFall;
 use marsden::{Midpoint, Scalar};
-use marsden_control::{Boundary, Effort, FinalCost, InputMap, OptimalControl, SqpOptions, Status};
+use marsden_control::{
+    Boundary, Effort, FinalCost, Horizon, InputMap, OptimalControl, SqpOptions, Status,
+};
 
 const W: f64 = 10.0;
 
@@ -42,7 +44,11 @@ fn final_cost_on_a_free_end_converges_at_order_two() {
             FreeFall { m: 1.0, g: 0.0 },
             InputMap::full(1),
             Effort::default(),
-            (0.0, 1.0, steps),
+            Horizon {
+                t0: 0.0,
+                duration: 1.0,
+                steps,
+            },
             Boundary::rest(&[0.0]),
             Boundary::free(1),
         )

@@ -14,7 +14,9 @@
 use marsden::analysis::diagnostics::least_squares_slope;
 use marsden::systems::{FreeFall, HarmonicOscillator};
 use marsden::{Lagrangian, Midpoint, Rule, Trapezoid};
-use marsden_control::{Boundary, Effort, InputMap, OptimalControl, SqpOptions, StagedControls};
+use marsden_control::{
+    Boundary, Effort, Horizon, InputMap, OptimalControl, SqpOptions, StagedControls,
+};
 
 const DOUBLE_INTEGRATOR: FreeFall = FreeFall { m: 1.0, g: 0.0 };
 
@@ -61,7 +63,11 @@ pub(super) fn rest_to_rest<L: Lagrangian>(
         system,
         InputMap::full(1),
         Effort::default(),
-        (0.0, 1.0, steps),
+        Horizon {
+            t0: 0.0,
+            duration: 1.0,
+            steps,
+        },
         Boundary::rest(&[0.0]),
         Boundary::rest(&[1.0]),
     )

@@ -5,7 +5,7 @@
 use marsden::systems::FreeFall;
 use marsden::{Midpoint, Scalar};
 use marsden_control::{
-    Boundary, Effort, InputMap, OptimalControl, PathConstraint, SqpOptions, Status,
+    Boundary, Effort, Horizon, InputMap, OptimalControl, PathConstraint, SqpOptions, Status,
 };
 
 /// `x − ℓ ≤ 0`.
@@ -43,7 +43,11 @@ fn double_integrator(
         system,
         InputMap::full(1),
         Effort::default(),
-        (0.0, 1.0, steps),
+        Horizon {
+            t0: 0.0,
+            duration: 1.0,
+            steps,
+        },
         start,
         end,
     )

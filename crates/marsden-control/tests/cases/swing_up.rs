@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use marsden::Midpoint;
 use marsden::systems::Pendulum;
-use marsden_control::{Boundary, Effort, InputMap, OptimalControl, SqpOptions, Status};
+use marsden_control::{Boundary, Effort, Horizon, InputMap, OptimalControl, SqpOptions, Status};
 
 /// The swing-up with `steps` steps.
 pub fn swing_up(steps: usize) -> OptimalControl<Pendulum, InputMap, Effort> {
@@ -17,7 +17,11 @@ pub fn swing_up(steps: usize) -> OptimalControl<Pendulum, InputMap, Effort> {
         Pendulum::default(),
         InputMap::full(1),
         Effort::default(),
-        (0.0, 6.0, steps),
+        Horizon {
+            t0: 0.0,
+            duration: 6.0,
+            steps,
+        },
         Boundary::rest(&[0.0]),
         Boundary::rest(&[PI]),
     )

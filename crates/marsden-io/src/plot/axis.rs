@@ -19,9 +19,9 @@ pub(crate) fn extent(values: impl Iterator<Item = f64>, scale: Scale) -> Option<
         })
 }
 
-/// Widens an extent by a margin (5 % each side, in log space for log scale) and opens up
+/// Widens the extent `lo..hi` by a margin (5 % each side, in log space for log scale) and opens up
 /// degenerate ones (a constant series gets a range around its value).
-pub(crate) fn padded((lo, hi): (f64, f64), scale: Scale) -> (f64, f64) {
+pub(crate) fn padded(lo: f64, hi: f64, scale: Scale) -> (f64, f64) {
     match scale {
         Scale::Linear => {
             if hi > lo {
@@ -161,9 +161,9 @@ mod tests {
             Some((1e-3, 1e-3))
         );
         assert_eq!(extent([f64::NAN].into_iter(), Scale::Linear), None);
-        assert_eq!(padded((0.0, 0.0), Scale::Linear), (-1.0, 1.0));
-        assert_eq!(padded((2.0, 2.0), Scale::Linear), (1.8, 2.2));
-        let (a, b) = padded((1e-3, 1e-3), Scale::Log);
+        assert_eq!(padded(0.0, 0.0, Scale::Linear), (-1.0, 1.0));
+        assert_eq!(padded(2.0, 2.0, Scale::Linear), (1.8, 2.2));
+        let (a, b) = padded(1e-3, 1e-3, Scale::Log);
         assert!((a - 1e-4).abs() < 1e-18 && (b - 1e-2).abs() < 1e-15);
     }
 }

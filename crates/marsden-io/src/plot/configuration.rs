@@ -68,8 +68,8 @@ pub fn plot_configuration(
         })
     };
     let ranges = (
-        extent(all().map(|p| p.0), Scale::Linear).map(|r| padded(r, Scale::Linear)),
-        extent(all().map(|p| p.1), Scale::Linear).map(|r| padded(r, Scale::Linear)),
+        extent(all().map(|p| p.0), Scale::Linear).map(|(lo, hi)| padded(lo, hi, Scale::Linear)),
+        extent(all().map(|p| p.1), Scale::Linear).map(|(lo, hi)| padded(lo, hi, Scale::Linear)),
     );
     for o in orbits {
         let n = o.x.len();

@@ -96,8 +96,8 @@ fn phase_panel(
     ) {
         let cloud = grid_thin(
             finite(),
-            padded(xr, Scale::Linear),
-            padded(yr, Scale::Linear),
+            padded(xr.0, xr.1, Scale::Linear),
+            padded(yr.0, yr.1, Scale::Linear),
             cell_px,
         );
         panel.clouds.push(cloud);

@@ -173,7 +173,7 @@ const LARGEST_DRAWN: f64 = 1e300;
 
 /// Whether the axis `lo..hi`, padded, stays within what can be drawn.
 fn drawable_range(lo: f64, hi: f64) -> bool {
-    let (a, b) = padded((lo, hi), Scale::Linear);
+    let (a, b) = padded(lo, hi, Scale::Linear);
     (hi - lo).is_finite() && a.abs() <= LARGEST_DRAWN && b.abs() <= LARGEST_DRAWN
 }
 
@@ -210,8 +210,8 @@ fn draw_panel<DB: DrawingBackend>(
         (Some(x), Some(y), true) => (x, y),
         _ => ((0.0, 1.0), (0.0, 1.0)),
     };
-    let (mut x0, mut x1) = padded(x_ext, Scale::Linear);
-    let (mut y0, mut y1) = padded(y_ext, scale);
+    let (mut x0, mut x1) = padded(x_ext.0, x_ext.1, Scale::Linear);
+    let (mut y0, mut y1) = padded(y_ext.0, y_ext.1, scale);
     if panel.equal_axes && drawable && scale == Scale::Linear {
         ((x0, x1), (y0, y1)) = equalised((x0, x1), (y0, y1), plot_pixels(area, panel));
     }

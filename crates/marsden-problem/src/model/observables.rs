@@ -54,7 +54,7 @@ impl Observables {
 
     /// Writes the value of every observable at `(t, q, v, p)` into `out` (its length is
     /// [`Observables::len`]).
-    pub fn eval_into(&self, (t, q, v, p): (f64, &[f64], &[f64], &[f64]), out: &mut [f64]) {
+    pub fn eval_into(&self, t: f64, q: &[f64], v: &[f64], p: &[f64], out: &mut [f64]) {
         let n = q.len();
         with_slice(3 * n + 1, t, |x| {
             fill_state(x, q, v, p);
@@ -187,7 +187,7 @@ impl ExprEvent<'_> {
             fill_state(x, q, v, p);
             if m > 0 {
                 let (state, values) = x.split_at_mut(3 * n + 1);
-                self.observables.eval_into((t, q, v, p), values);
+                self.observables.eval_into(t, q, v, p, values);
                 state[3 * n] = t;
             }
             self.eval(x)
@@ -222,7 +222,7 @@ mod tests {
             programs,
         };
         let mut out = [0.0; 3];
-        obs.eval_into((7.0, &[1.0, 2.0], &[3.0, 4.0], &[5.0, 6.0]), &mut out);
+        obs.eval_into(7.0, &[1.0, 2.0], &[3.0, 4.0], &[5.0, 6.0], &mut out);
         assert_eq!(out, [21.0, 18.0, 7.0]);
     }
 

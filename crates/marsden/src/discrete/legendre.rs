@@ -30,7 +30,7 @@ pub(crate) struct ActionAndForces<'a, A, F> {
 
 impl<'a, A: DiscreteAction, F: DiscreteForce> ActionAndForces<'a, A, F> {
     /// The step of `action` and `force` from `t0` with step size `h`.
-    pub fn new(action: &'a A, force: &'a F, (t0, h): (f64, f64)) -> Self {
+    pub fn new(action: &'a A, force: &'a F, t0: f64, h: f64) -> Self {
         let (n, s) = (action.dof(), action.internal_stages() + 1);
         Self {
             action,

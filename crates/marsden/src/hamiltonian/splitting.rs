@@ -151,7 +151,7 @@ impl Splitting {
                     .zip(&g)
                     .for_each(|(p, gi)| *p -= b * h * gi);
                 if let Some(j) = jac.as_deref_mut() {
-                    shear(j, n, (n, 0), -b * h, &parts.hess);
+                    shear(j, n, n, 0, -b * h, &parts.hess);
                 }
             }
             if a != 0.0 {
@@ -163,7 +163,7 @@ impl Splitting {
                     .zip(&g)
                     .for_each(|(q, gi)| *q += a * h * gi);
                 if let Some(j) = jac.as_deref_mut() {
-                    shear(j, n, (0, n), a * h, &parts.hess);
+                    shear(j, n, 0, n, a * h, &parts.hess);
                 }
                 tau += a * h;
             }
@@ -173,7 +173,7 @@ impl Splitting {
 }
 
 /// `rows[target] += c · K · rows[source]` for the n-row blocks of a 2n × 2n Jacobian.
-fn shear(jac: &mut [f64], n: usize, (target, source): (usize, usize), c: f64, k: &[f64]) {
+fn shear(jac: &mut [f64], n: usize, target: usize, source: usize, c: f64, k: &[f64]) {
     let m = 2 * n;
     let src: Vec<f64> = jac[source * m..(source + n) * m].to_vec();
     for i in 0..n {

@@ -156,7 +156,7 @@ pub(crate) fn momentum_increment<A: DiscreteAction, F: DiscreteForce>(
     increment: &mut [f64],
 ) {
     let n = increment.len();
-    let f = ActionAndForces::new(action, force, (t0, h));
+    let f = ActionAndForces::new(action, force, t0, h);
     scratch.values.resize(f.outputs(), 0.0);
     scratch.jacobian.resize(f.outputs() * n, 0.0);
     ad::jacobian(&f, point, 0..n, &mut scratch.values, &mut scratch.jacobian);

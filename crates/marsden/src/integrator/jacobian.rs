@@ -36,7 +36,8 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint, P: MomentumProjection>
     /// `None` otherwise, `Some(Err(pivot))` when the step's `A` is singular.
     pub(crate) fn separable_jacobian(
         &mut self,
-        (t0, h): (f64, f64),
+        t0: f64,
+        h: f64,
         jac: &mut [f64],
     ) -> Option<Result<(), f64>> {
         let sh = self.shape;

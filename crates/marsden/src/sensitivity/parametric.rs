@@ -28,6 +28,7 @@ use crate::integrator::{Integrator, StepReport};
 use crate::mechanics::{Constraint, Force, Lagrangian, State};
 use crate::numerics::newton::NewtonOptions;
 use crate::scalar::{Scalar, constant};
+use crate::symmetry::StepSpan;
 
 /// A Lagrangian (and optional force) with `P` named parameters `θ`.
 pub trait ParametricModel {
@@ -273,8 +274,9 @@ impl<R: Rule, M: ParametricModel + Clone> SensitiveStep for ParametricIntegrator
         frozen_step_jacobian(
             &self.frozen,
             &self.frozen_force,
-            (t0, h),
-            (self.run.step_start(), &self.theta),
+            StepSpan { t0, h },
+            self.run.step_start(),
+            &self.theta,
             self.run.stage_offsets(),
             jac,
         )

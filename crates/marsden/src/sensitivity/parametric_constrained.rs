@@ -29,6 +29,7 @@ use crate::holonomic::Rattle;
 use crate::integrator::{Integrator, StepReport};
 use crate::mechanics::{Constraint as _, State};
 use crate::numerics::newton::NewtonOptions;
+use crate::symmetry::StepSpan;
 
 type RunIntegrator<R, M> = Integrator<
     <R as Rule>::Discrete<AtValues<M>>,
@@ -161,8 +162,9 @@ impl<R: Rule, M: ParametricModel + Clone> SensitiveStep for ConstrainedParametri
             frozen_step_jacobian(
                 &self.frozen,
                 &self.frozen_force,
-                (t0, h),
-                (self.run.step_start(), &self.theta),
+                StepSpan { t0, h },
+                self.run.step_start(),
+                &self.theta,
                 self.run.stage_offsets(),
                 jac,
             )

@@ -222,7 +222,7 @@ where
         ends.push((run.q(last).to_vec(), run.p(last).to_vec()));
     }
     let (coarse, fine) = (&ends[0], &ends[1]);
-    let difference = distance((&coarse.0, &coarse.1), (&fine.0, &fine.1));
+    let difference = distance(&coarse.0, &coarse.1, &fine.0, &fine.1);
     let (q, p) = ends.swap_remove(1);
     Ok(ConstrainedReference {
         q,
@@ -249,7 +249,6 @@ pub fn measure_order<L: Lagrangian, F: Force, C: Constraint, R: Rule>(
 where
     Problem<L, F, C>: Clone,
 {
-    let reference = (reference_q, reference_p);
     let t0 = problem.start().t;
     let solve = SolveOptions {
         newton: options.newton,
@@ -266,7 +265,7 @@ where
         let error = match run {
             Ok(traj) if !traj.is_empty() => {
                 let last = traj.len() - 1;
-                distance((traj.q(last), traj.p(last)), reference)
+                distance(traj.q(last), traj.p(last), reference_q, reference_p)
             }
             _ => f64::NAN,
         };
@@ -311,7 +310,7 @@ fn study(
 }
 
 /// Euclidean distance of `(q, p)` from the reference.
-fn distance((q, p): (&[f64], &[f64]), (qr, pr): (&[f64], &[f64])) -> f64 {
+fn distance(q: &[f64], p: &[f64], qr: &[f64], pr: &[f64]) -> f64 {
     q.iter()
         .zip(qr)
         .chain(p.iter().zip(pr))

@@ -39,7 +39,8 @@ pub use action::{
 pub use builtin::{AxisRotation, Rotations, Translations, hat, rotation_matrix};
 pub use check::{Sample, SymmetryReport};
 pub use momentum::{
-    Side, discrete_momentum, discrete_momentum_offset, lagrangian_momentum_map, momentum_map,
+    Side, StepSpan, discrete_momentum, discrete_momentum_offset, lagrangian_momentum_map,
+    momentum_map,
 };
 
 use crate::error::Error;

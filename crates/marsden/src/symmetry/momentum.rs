@@ -87,8 +87,10 @@ impl<D: DiscreteLagrangian> MultiFunction for OffsetLd<'_, D> {
 /// In the variables `(q₀, Δ)`: `D₂L_d = ∂/∂Δ` and `D₁L_d = ∂/∂q₀ − ∂/∂Δ`.
 pub fn discrete_legendre_offset<D: DiscreteLagrangian>(
     ld: &D,
-    (t0, h): (f64, f64),
-    (q0, delta): (&[f64], &[f64]),
+    t0: f64,
+    h: f64,
+    q0: &[f64],
+    delta: &[f64],
     side: Side,
     p: &mut [f64],
 ) {
@@ -105,18 +107,29 @@ pub fn discrete_legendre_offset<D: DiscreteLagrangian>(
     }
 }
 
-/// `J^±_{L_d}` of the step `(q₀, q₀ + Δ)` from `t₀` to `t₀ + h`, written into `out` (length m).
+/// The time span of one step: from `t0` to `t0 + h`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepSpan {
+    /// The step's start time `t₀`.
+    pub t0: f64,
+    /// The step size `h`.
+    pub h: f64,
+}
+
+/// `J^±_{L_d}` of the step `(q₀, q₀ + Δ)` over `span` (from `t₀` to `t₀ + h`), written into
+/// `out` (length m).
 pub fn discrete_momentum_offset<D: DiscreteLagrangian, G: GroupAction>(
     ld: &D,
     action: &G,
-    (t0, h): (f64, f64),
-    (q0, delta): (&[f64], &[f64]),
+    span: StepSpan,
+    q0: &[f64],
+    delta: &[f64],
     side: Side,
     out: &mut [f64],
 ) {
     let n = ld.dof();
     let mut p = vec![0.0; n];
-    discrete_legendre_offset(ld, (t0, h), (q0, delta), side, &mut p);
+    discrete_legendre_offset(ld, span.t0, span.h, q0, delta, side, &mut p);
     match side {
         Side::Minus => momentum_map(action, q0, &p, out),
         Side::Plus => {
@@ -126,17 +139,19 @@ pub fn discrete_momentum_offset<D: DiscreteLagrangian, G: GroupAction>(
     }
 }
 
-/// `J^±_{L_d}(q₀, q₁)` of the step from `t₀` to `t₀ + h`, written into `out` (length m).
+/// `J^±_{L_d}(q₀, q₁)` of the step over `span` (from `t₀` to `t₀ + h`), written into `out`
+/// (length m).
 pub fn discrete_momentum<D: DiscreteLagrangian, G: GroupAction>(
     ld: &D,
     action: &G,
-    (t0, h): (f64, f64),
-    (q0, q1): (&[f64], &[f64]),
+    span: StepSpan,
+    q0: &[f64],
+    q1: &[f64],
     side: Side,
     out: &mut [f64],
 ) {
     let delta: Vec<f64> = q1.iter().zip(q0).map(|(b, a)| b - a).collect();
-    discrete_momentum_offset(ld, action, (t0, h), (q0, &delta), side, out);
+    discrete_momentum_offset(ld, action, span, q0, &delta, side, out);
 }
 
 /// `⟨a, b⟩`.

@@ -14,7 +14,8 @@ fn run<A: DiscreteAction>(
     start: &State,
     h: f64,
     steps: usize,
-    (fast, tolerance): (bool, f64),
+    fast: bool,
+    tolerance: f64,
 ) -> (Vec<f64>, Statistics) {
     let options = NewtonOptions {
         residual_tolerance: tolerance,
@@ -45,7 +46,7 @@ fn max_difference(a: &[f64], b: &[f64]) -> f64 {
 /// nudged up by one ulp, i.e. when two implementations of the same step differ by a systematic
 /// one-ulp rounding in every step (summation orders differ systematically, not at random).
 fn floor<A: DiscreteAction + Clone>(action: &A, start: &State, h: f64, steps: usize) -> f64 {
-    let (slow, _) = run(action.clone(), start, h, steps, (false, 1e-15));
+    let (slow, _) = run(action.clone(), start, h, steps, false, 1e-15);
     let options = NewtonOptions {
         residual_tolerance: 1e-15,
         ..NewtonOptions::default()
@@ -78,7 +79,7 @@ fn assert_round_off_agreement<A: DiscreteAction + Clone>(
     h: f64,
     steps: usize,
 ) -> Statistics {
-    let (slow, slow_stats) = run(action.clone(), start, h, steps, (false, 1e-15));
+    let (slow, slow_stats) = run(action.clone(), start, h, steps, false, 1e-15);
     assert_eq!(slow_stats.potential_gradients, 0);
     let n = start.q.len();
     let mut worst_step: f64 = 0.0;
@@ -93,12 +94,12 @@ fn assert_round_off_agreement<A: DiscreteAction + Clone>(
                 p: x[n..].to_vec(),
             }
         };
-        let (a, _) = run(action.clone(), &from, h, 1, (true, 1e-15));
-        let (b, _) = run(action.clone(), &from, h, 1, (false, 1e-15));
+        let (a, _) = run(action.clone(), &from, h, 1, true, 1e-15);
+        let (b, _) = run(action.clone(), &from, h, 1, false, 1e-15);
         let scale = b.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
         worst_step = worst_step.max(max_difference(&a, &b) / (f64::EPSILON * scale));
     }
-    let (fast, stats) = run(action.clone(), start, h, steps, (true, 1e-15));
+    let (fast, stats) = run(action.clone(), start, h, steps, true, 1e-15);
     let floor = floor(&action, start, h, steps);
     let d = max_difference(&fast, &slow);
     println!(

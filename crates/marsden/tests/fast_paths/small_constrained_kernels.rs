@@ -22,7 +22,8 @@ fn run<L, C, F, R>(
     force: F,
     rule: &R,
     start: &State,
-    (fast, wide): (bool, bool),
+    fast: bool,
+    wide: bool,
 ) -> (Vec<f64>, usize)
 where
     L: Lagrangian + Clone,
@@ -63,15 +64,15 @@ where
     R: Rule,
     R::DiscreteForce<F>: DiscreteForce,
 {
-    let (fast, iterations_fast) = run(sys.clone(), force.clone(), &rule, &start, (true, true));
+    let (fast, iterations_fast) = run(sys.clone(), force.clone(), &rule, &start, true, true);
     // The x86-64-v3 copy of the kernel and the baseline code: the same bits.
-    let (baseline, _) = run(sys.clone(), force.clone(), &rule, &start, (true, false));
+    let (baseline, _) = run(sys.clone(), force.clone(), &rule, &start, true, false);
     let same = fast
         .iter()
         .zip(&baseline)
         .all(|(a, b)| a.to_bits() == b.to_bits());
     assert!(same, "{name}: wide and baseline instructions differ");
-    let (general, iterations_general) = run(sys, force, &rule, &start, (false, true));
+    let (general, iterations_general) = run(sys, force, &rule, &start, false, true);
     let diff = fast
         .iter()
         .zip(&general)

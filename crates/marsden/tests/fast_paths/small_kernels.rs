@@ -16,7 +16,7 @@ fn trajectory<A: DiscreteAction, F: DiscreteForce>(
     h: f64,
     fast: bool,
 ) -> Vec<f64> {
-    trajectory_in(action, force, start, h, (fast, true))
+    trajectory_in(action, force, start, h, fast, true)
 }
 
 /// 1000 steps with the fast paths on or off and the wide instructions (`marsden::integrator::small::dispatch`) on
@@ -26,7 +26,8 @@ fn trajectory_in<A: DiscreteAction, F: DiscreteForce>(
     force: F,
     start: &State,
     h: f64,
-    (fast, wide): (bool, bool),
+    fast: bool,
+    wide: bool,
 ) -> Vec<f64> {
     let mut integrator = Integrator::new(action)
         .with_force(force)
@@ -234,10 +235,11 @@ fn static_and_general_paths_agree_for_three_and_four_coupled_angles() {
 fn wide_and_baseline_instructions_give_the_same_bits() {
     fn same<A: DiscreteAction + Clone, F: DiscreteForce + Clone>(
         name: &str,
-        (action, force): (A, F),
+        action: A,
+        force: F,
         start: &State,
     ) {
-        let run = |wide| trajectory_in(action.clone(), force.clone(), start, 0.01, (true, wide));
+        let run = |wide| trajectory_in(action.clone(), force.clone(), start, 0.01, true, wide);
         let (wide, baseline) = (run(true), run(false));
         let first = wide
             .iter()
@@ -254,22 +256,31 @@ fn wide_and_baseline_instructions_give_the_same_bits() {
         q,
     };
     let m = Midpoint;
-    let pendulum = (
-        m.discretize(Pendulum::default()),
-        m.discretize_force(Drag, 1),
-    );
-    same("forced pendulum", pendulum, &state(vec![1.5]));
+    let pendulum = m.discretize(Pendulum::default());
+    let drag = m.discretize_force(Drag, 1);
+    same("forced pendulum", pendulum, drag, &state(vec![1.5]));
     let double = m.discretize(DoublePendulum::default());
     same(
         "double pendulum",
-        (double.clone(), NoForce),
+        double.clone(),
+        NoForce,
         &state(vec![1.0, 0.5]),
     );
-    let forced = (double, m.discretize_force(Drag, 2));
-    same("forced double pendulum", forced, &state(vec![1.0, 0.5]));
+    let drag = m.discretize_force(Drag, 2);
+    same(
+        "forced double pendulum",
+        double,
+        drag,
+        &state(vec![1.0, 0.5]),
+    );
     for n in [3, 4] {
-        let coupled = (m.discretize(Coupled(n)), m.discretize_force(Drag, n));
+        let (coupled, drag) = (m.discretize(Coupled(n)), m.discretize_force(Drag, n));
         let q = (0..n).map(|i| 0.4 - 0.3 * i as f64).collect();
-        same(&format!("{n} coupled angles, forced"), coupled, &state(q));
+        same(
+            &format!("{n} coupled angles, forced"),
+            coupled,
+            drag,
+            &state(q),
+        );
     }
 }

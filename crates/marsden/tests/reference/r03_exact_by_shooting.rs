@@ -79,8 +79,8 @@ fn r3_local_errors_of_midpoint_and_trapezoid_against_shooting() {
     for (h, e_mid, e_trap) in cases {
         let h: f64 = h;
         let ends = ([1.0], [h.cos()]);
-        let d_mid = local_error(&mid, &exact, 0.0, h, (&ends.0, &ends.1)).unwrap();
-        let d_trap = local_error(&trap, &exact, 0.0, h, (&ends.0, &ends.1)).unwrap();
+        let d_mid = local_error(&mid, &exact, 0.0, h, &ends.0, &ends.1).unwrap();
+        let d_trap = local_error(&trap, &exact, 0.0, h, &ends.0, &ends.1).unwrap();
         println!(
             "h = {h}: mid {d_mid:.15e} ({:.1e}), trap {d_trap:.15e} ({:.1e})",
             d_mid - e_mid,

@@ -30,7 +30,8 @@ fn requested() -> Vec<f64> {
 /// interpolant or reached by steps.
 fn sampled<R: Rule>(
     rule: &R,
-    (h, options): (f64, &SolveOptions),
+    h: f64,
+    options: &SolveOptions,
     times: &[f64],
     by_steps: bool,
 ) -> (marsden::Trajectory, Vec<Sample>) {
@@ -46,7 +47,7 @@ fn sampled<R: Rule>(
 }
 
 /// The final `(q, p)` of the run of `rule` from 0 to `t_end` with steps of `h`.
-fn end_at<R: Rule>(rule: &R, (h, options): (f64, &SolveOptions), t_end: f64) -> (f64, f64) {
+fn end_at<R: Rule>(rule: &R, h: f64, options: &SolveOptions, t_end: f64) -> (f64, f64) {
     let problem = pendulum(TimeGrid::ending_at(0.0, t_end, h).unwrap());
     let run = problem.solve(rule, options).unwrap();
     let last = run.len() - 1;
@@ -59,8 +60,8 @@ fn end_at<R: Rule>(rule: &R, (h, options): (f64, &SolveOptions), t_end: f64) -> 
 fn check_bits<R: Rule>(rule: &R, options: &SolveOptions, what: &str) {
     let h = 0.05;
     let times = requested();
-    let (run, samples) = sampled(rule, (h, options), &times, true);
-    let (plain, _) = sampled(rule, (h, options), &[], false);
+    let (run, samples) = sampled(rule, h, options, &times, true);
+    let (plain, _) = sampled(rule, h, options, &[], false);
     assert_eq!(samples.len(), times.len(), "{what}");
     for (sample, &t) in samples.iter().zip(&times) {
         assert_eq!(sample.t, t);
@@ -69,7 +70,7 @@ fn check_bits<R: Rule>(rule: &R, options: &SolveOptions, what: &str) {
             (t / h).ceil() as usize,
             "{what}: the step t = {t} lies in"
         );
-        let (q, p) = end_at(rule, (h, options), t);
+        let (q, p) = end_at(rule, h, options, t);
         assert_eq!((sample.q[0], sample.p[0]), (q, p), "{what}: t = {t}");
         assert_eq!(sample.v, sample.p, "{what}: unit mass, v = p");
     }
@@ -125,8 +126,8 @@ fn r07_gauss2_samples_by_steps_converge_at_order_four() {
     };
     let (mut by_steps, mut interpolated) = (Vec::new(), Vec::new());
     for &h in &step_sizes {
-        let (_, stepped) = sampled(&gauss, (h, &options()), &times, true);
-        let (_, read) = sampled(&gauss, (h, &options()), &times, false);
+        let (_, stepped) = sampled(&gauss, h, &options(), &times, true);
+        let (_, read) = sampled(&gauss, h, &options(), &times, false);
         by_steps.push(worst(&stepped));
         interpolated.push(worst(&read));
     }

@@ -58,7 +58,9 @@ fn check_parameters<R: Rule, M: ParametricModel + Clone>(
     name: &str,
     rule: &R,
     model: M,
-    (theta, start, grid): (&[f64], &State, &TimeGrid),
+    theta: &[f64],
+    start: &State,
+    grid: &TimeGrid,
     eps: f64,
 ) {
     let make =
@@ -99,7 +101,9 @@ fn kepler_mu_sensitivity_matches_central_differences() {
         "kepler gauss-3",
         &gauss,
         KeplerMu,
-        (&[1.0], &start, &grid),
+        &[1.0],
+        &start,
+        &grid,
         1e-5,
     );
 }
@@ -113,7 +117,9 @@ fn damped_pendulum_length_and_damping_match_central_differences() {
         "damped pendulum midpoint",
         &Midpoint,
         DampedPendulumLc,
-        (&[1.3, 0.2], &start, &grid),
+        &[1.3, 0.2],
+        &start,
+        &grid,
         1e-5,
     );
 }

@@ -46,7 +46,8 @@ fn structured<A: DiscreteAction>(action: &A, x: &State, h: f64, delta: &[f64]) -
 /// Compares the three Jacobians at 40 states of a run of `rule` on `l` from `start`;
 /// `separable_path`: the fast integrator's steps take the separable or explicit path.
 fn check<R: Rule, L: Lagrangian + Clone>(
-    (name, separable_path): (&str, bool),
+    name: &str,
+    separable_path: bool,
     rule: &R,
     l: L,
     start: State,
@@ -120,25 +121,19 @@ fn symmetrized() -> SymmetrizedMidpoint {
 #[test]
 fn r5_kepler_structured_step_jacobian_equals_the_general_one() {
     let (l, x) = kepler();
-    check(("kepler midpoint", true), &Midpoint, l, x.clone(), 0.01);
-    check(("kepler trapezoid", true), &Trapezoid, l, x.clone(), 0.01);
-    check(("kepler alpha 0.3", true), &alpha(), l, x.clone(), 0.01);
-    check(
-        ("kepler symmetrized 0.2", false),
-        &symmetrized(),
-        l,
-        x,
-        0.01,
-    );
+    check("kepler midpoint", true, &Midpoint, l, x.clone(), 0.01);
+    check("kepler trapezoid", true, &Trapezoid, l, x.clone(), 0.01);
+    check("kepler alpha 0.3", true, &alpha(), l, x.clone(), 0.01);
+    check("kepler symmetrized 0.2", false, &symmetrized(), l, x, 0.01);
 }
 
 #[test]
 fn banded_chain_structured_step_jacobian_equals_the_general_one() {
     let (l, x) = chain();
-    check(("chain midpoint", true), &Midpoint, l, x.clone(), 0.05);
-    check(("chain trapezoid", true), &Trapezoid, l, x.clone(), 0.05);
-    check(("chain alpha 0.3", true), &alpha(), l, x.clone(), 0.05);
-    check(("chain symmetrized 0.2", false), &symmetrized(), l, x, 0.05);
+    check("chain midpoint", true, &Midpoint, l, x.clone(), 0.05);
+    check("chain trapezoid", true, &Trapezoid, l, x.clone(), 0.05);
+    check("chain alpha 0.3", true, &alpha(), l, x.clone(), 0.05);
+    check("chain symmetrized 0.2", false, &symmetrized(), l, x, 0.05);
 }
 
 /// A Lagrangian that is not separable has no structured Jacobian (the general one applies).

@@ -6,7 +6,9 @@
 
 use crate::common::tight;
 use marsden::analysis::diagnostics::{NoetherMonitor, NoetherReport};
-use marsden::symmetry::{AxisRotation, DeclaresSymmetries, Side, discrete_momentum_offset};
+use marsden::symmetry::{
+    AxisRotation, DeclaresSymmetries, Side, StepSpan, discrete_momentum_offset,
+};
 use marsden::systems::{HenonHeiles, Kepler};
 use marsden::{
     DiscreteLagrangian, Initial, Integrator, Midpoint, Problem, Rule, SolveOptions, State,
@@ -31,11 +33,11 @@ fn discrete_noether<D: DiscreteLagrangian>(ld: D, steps: usize) -> (f64, f64) {
         let (t, q) = (state.t, state.q.clone());
         integrator.step(&mut state, h).unwrap();
         state.t = (k + 1) as f64 * h;
-        let step = (integrator.action(), &rotation, (t, h));
+        let (ld, span) = (integrator.action(), StepSpan { t0: t, h });
         let delta = integrator.stage_offsets();
-        discrete_momentum_offset(step.0, step.1, step.2, (&q, delta), Side::Plus, &mut j);
+        discrete_momentum_offset(ld, &rotation, span, &q, delta, Side::Plus, &mut j);
         plus = plus.max((j[0] - 0.8).abs());
-        discrete_momentum_offset(step.0, step.1, step.2, (&q, delta), Side::Minus, &mut j);
+        discrete_momentum_offset(ld, &rotation, span, &q, delta, Side::Minus, &mut j);
         minus = minus.max((j[0] - 0.8).abs());
     }
     (plus, minus)

@@ -114,7 +114,7 @@ pub struct SymplecticReport {
 
 impl SymplecticReport {
     /// Adds the defect of one step.
-    pub fn record(&mut self, step: usize, (absolute, relative): (f64, f64)) {
+    pub fn record(&mut self, step: usize, absolute: f64, relative: f64) {
         self.checked += 1;
         self.max_absolute = self.max_absolute.max(absolute);
         // A NaN defect counts as the worst possible.
@@ -151,7 +151,8 @@ pub fn certify<D: DifferentiableStep + ?Sized>(
     for k in 0..grid.steps {
         if k % every == 0 {
             stepper.step_with_jacobian(&mut state, grid.step_size(k), &mut jac)?;
-            report.record(k, symplectic_defect(&jac, n));
+            let (absolute, relative) = symplectic_defect(&jac, n);
+            report.record(k, absolute, relative);
         } else {
             stepper.step(&mut state, grid.step_size(k))?;
         }

@@ -38,6 +38,7 @@ use crate::integrator::{Integrator, StepReport};
 use crate::mechanics::{Constraint, State};
 use crate::numerics::ad::{self, HessianParts};
 use crate::numerics::dense::Lu;
+use crate::symmetry::StepSpan;
 
 /// Derivative blocks of the step equations, read from one full Hessian evaluation.
 ///
@@ -82,12 +83,13 @@ impl Blocks<'_> {
 pub fn step_jacobian<A: DiscreteAction, F: DiscreteForce>(
     action: &A,
     force: &F,
-    (t0, h): (f64, f64),
+    t0: f64,
+    h: f64,
     q0: &[f64],
     offsets: &[f64],
     jac: &mut [f64],
 ) -> Result<(), Error> {
-    frozen_step_jacobian(action, force, (t0, h), (q0, &[]), offsets, jac)
+    frozen_step_jacobian(action, force, StepSpan { t0, h }, q0, &[], offsets, jac)
 }
 
 /// The step Jacobian with frozen coordinates: `action` and `force` have `n + P` coordinates,
@@ -102,11 +104,13 @@ pub fn step_jacobian<A: DiscreteAction, F: DiscreteForce>(
 pub fn frozen_step_jacobian<A: DiscreteAction, F: DiscreteForce>(
     action: &A,
     force: &F,
-    (t0, h): (f64, f64),
-    (q0, theta): (&[f64], &[f64]),
+    span: StepSpan,
+    q0: &[f64],
+    theta: &[f64],
     offsets: &[f64],
     jac: &mut [f64],
 ) -> Result<(), Error> {
+    let StepSpan { t0, h } = span;
     let (n, np) = (q0.len(), theta.len());
     let dof = action.dof();
     let s = action.internal_stages() + 1;
@@ -130,7 +134,7 @@ pub fn frozen_step_jacobian<A: DiscreteAction, F: DiscreteForce>(
             x.extend_from_slice(&offsets[j * n..(j + 1) * n]);
             x.extend(std::iter::repeat_n(0.0, np));
         }
-        let f = ActionAndForces::new(action, force, (t0, h));
+        let f = ActionAndForces::new(action, force, t0, h);
         ad::partial_hessian(&f, x, 0..x.len(), 0..x.len(), parts);
         let b = Blocks {
             parts,
@@ -297,12 +301,13 @@ where
         let t0 = state.t;
         let report = self.step_keeping_start(state, h)?;
         let step = self.statistics().steps.saturating_sub(1);
-        let result = match self.separable_jacobian((t0, h), jac) {
+        let result = match self.separable_jacobian(t0, h, jac) {
             Some(structured) => structured.map_err(|pivot| singular(t0, pivot)),
             None => step_jacobian(
                 self.action(),
                 self.force(),
-                (t0, h),
+                t0,
+                h,
                 self.step_start(),
                 self.stage_offsets(),
                 jac,

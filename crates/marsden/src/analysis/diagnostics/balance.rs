@@ -99,7 +99,7 @@ impl<G: GroupAction, F: DiscreteForce> Balance<'_, G, F> {
     }
 
     /// Checks the step `k` from `(t, q0, p0)` to `(q1, p1)`.
-    fn step(&mut self, k: usize, t: f64, (q0, p0): (&[f64], &[f64]), (q1, p1): (&[f64], &[f64])) {
+    fn step(&mut self, k: usize, t: f64, q0: &[f64], p0: &[f64], q1: &[f64], p1: &[f64]) {
         let (n, m) = (q0.len(), self.action.algebra_dim());
         let s = &mut self.scratch;
         s.delta.clear();
@@ -149,12 +149,13 @@ pub fn force_balance<G: GroupAction, F: DiscreteForce>(
     for i in 1..trajectory.len() {
         let k = trajectory.step_indices[i - 1];
         if trajectory.step_indices[i] == k + 1 {
-            let before = (trajectory.q(i - 1), trajectory.p(i - 1));
             balance.step(
                 k,
                 trajectory.t(i - 1),
-                before,
-                (trajectory.q(i), trajectory.p(i)),
+                trajectory.q(i - 1),
+                trajectory.p(i - 1),
+                trajectory.q(i),
+                trajectory.p(i),
             );
         }
     }
@@ -241,8 +242,10 @@ impl<G: GroupAction, F: DiscreteForce> Observer for BalanceMonitor<'_, G, F> {
         self.balance.step(
             view.step - 1,
             *t,
-            (q.as_slice(), p.as_slice()),
-            (view.q, view.p),
+            q.as_slice(),
+            p.as_slice(),
+            view.q,
+            view.p,
         );
         *t = view.t;
         q.copy_from_slice(view.q);

@@ -270,7 +270,8 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
         let mut estimate = f64::INFINITY;
         let rows = self.options.max_rows;
         for j in 0..rows {
-            self.modified_midpoint((t, h, y, f0), 2 * (j + 1), &mut row[0], midpoint)?;
+            let substep = Substep { t, h, y, f0 };
+            self.modified_midpoint(substep, 2 * (j + 1), &mut row[0], midpoint)?;
             // Neville: T_{j,k} = T_{j,k−1} + (T_{j,k−1} − T_{j−1,k−1}) / ((n_j/n_{j−k})² − 1).
             for k in 1..=j {
                 let ratio = (j + 1) as f64 / (j + 1 - k) as f64;
@@ -300,16 +301,17 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
         Ok((estimate, rows))
     }
 
-    /// Gragg's modified midpoint rule with `steps` (even) steps from `y` (where the vector field
-    /// is `f0`) over `[t, t + h]`, with the final smoothing step, written into `out`;
-    /// `scratch` holds the last two states and the vector field.
+    /// Gragg's modified midpoint rule with `steps` (even) steps over the substep `substep` (from
+    /// `y`, where the vector field is `f0`, over `[t, t + h]`), with the final smoothing step,
+    /// written into `out`; `scratch` holds the last two states and the vector field.
     fn modified_midpoint(
         &self,
-        (t, h, y, f0): (f64, f64, &[f64], &[f64]),
+        substep: Substep<'_>,
         steps: usize,
         out: &mut Vec<f64>,
         [prev, cur, f]: &mut [Vec<f64>; 3],
     ) -> Result<(), Error> {
+        let Substep { t, h, y, f0 } = substep;
         let eta = h / steps as f64;
         prev.clear();
         prev.extend_from_slice(y);
@@ -363,6 +365,19 @@ impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {
         out[2 * n] = jet.value;
         Ok(())
     }
+}
+
+/// The substep of [`EulerLagrangeFlow::modified_midpoint`]: `[t, t + h]` from `y`.
+#[derive(Clone, Copy)]
+struct Substep<'a> {
+    /// The substep's start time.
+    t: f64,
+    /// The substep's length.
+    h: f64,
+    /// The state at `t`.
+    y: &'a [f64],
+    /// The vector field at `y`.
+    f0: &'a [f64],
 }
 
 impl<L: Lagrangian, F: Force> EulerLagrangeFlow<L, F> {

@@ -128,7 +128,7 @@ impl<L: Lagrangian> ExactDiscreteLagrangian<L> {
         Error::check_len("q0", q0, self.flow.lagrangian().dof())?;
         Error::check_len("q1", q1, q0.len())?;
         let guess = self.guess(h, q0, q1);
-        let solution = shooting::solve(&self.flow, (t0, h), (q0, q1), &guess)?;
+        let solution = shooting::solve(&self.flow, t0, h, q0, q1, &guess)?;
         if let Ok(mut last) = self.last.lock() {
             *last = Some((h, q0.to_vec(), q1.to_vec(), solution.v0.clone()));
         }
@@ -181,7 +181,8 @@ impl<L: Lagrangian> ExactDiscreteLagrangian<L> {
         &self,
         t0: f64,
         h: f64,
-        (q0, q1): (&[f64], &[f64]),
+        q0: &[f64],
+        q1: &[f64],
         hessian: bool,
     ) -> Result<ExactJet, Error> {
         let n = q0.len();
@@ -299,7 +300,8 @@ pub fn local_error<D: DiscreteLagrangian, L: Lagrangian>(
     exact: &ExactDiscreteLagrangian<L>,
     t0: f64,
     h: f64,
-    (q0, q1): (&[f64], &[f64]),
+    q0: &[f64],
+    q1: &[f64],
 ) -> Result<f64, Error> {
     Ok(ld.discrete_lagrangian(t0, h, q0, q1) - exact.value(t0, h, q0, q1)?)
 }
@@ -315,7 +317,7 @@ impl<L: Lagrangian> DiscreteLagrangian for ExactDiscreteLagrangian<L> {
     fn discrete_lagrangian<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], q1: &[S]) -> S {
         let re = |x: &[S]| -> Vec<f64> { x.iter().map(|v| v.re()).collect() };
         let (a, b) = (re(q0), re(q1));
-        let Ok(jet) = self.jet(t0, h, (&a, &b), S::NDERIV >= 2) else {
+        let Ok(jet) = self.jet(t0, h, &a, &b, S::NDERIV >= 2) else {
             // NaN in the value *and every derivative*: `S::from(NaN)` alone has zero
             // derivatives, and a step's residual (made of derivatives) would read 0, i.e.
             // converged, on a boundary value problem that has no solution.

@@ -95,8 +95,10 @@ pub(crate) fn flow_derivatives<L: Lagrangian, F: Force>(
 /// its Jacobian is singular: `h` at a conjugate time), and the flow's errors.
 pub fn solve<L: Lagrangian, F: Force>(
     flow: &EulerLagrangeFlow<L, F>,
-    (t0, h): (f64, f64),
-    (q0, q1): (&[f64], &[f64]),
+    t0: f64,
+    h: f64,
+    q0: &[f64],
+    q1: &[f64],
     v_guess: &[f64],
 ) -> Result<BoundaryValue, Error> {
     let n = q0.len();

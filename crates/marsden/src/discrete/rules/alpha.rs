@@ -59,7 +59,8 @@ impl<L: Lagrangian> DiscreteLagrangian for AlphaLd<L> {
         at_node(
             self.alpha,
             h,
-            (q0, delta),
+            q0,
+            delta,
             #[inline(always)]
             |q, v| self.lagrangian.lagrangian(t, q, v),
         ) * h
@@ -128,7 +129,8 @@ impl<F: Force> DiscreteForce for AlphaForce<F> {
         at_node(
             self.alpha,
             h,
-            (q0, offsets),
+            q0,
+            offsets,
             #[inline(always)]
             |q, v| {
                 let zero = S::from(0.0);

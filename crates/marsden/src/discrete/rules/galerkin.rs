@@ -177,8 +177,10 @@ impl GalerkinTable {
     #[inline]
     fn for_each_node<S: Scalar>(
         &self,
-        (t0, h): (f64, f64),
-        (q0, offsets): (&[S], &[S]),
+        t0: f64,
+        h: f64,
+        q0: &[S],
+        offsets: &[S],
         mut f: impl FnMut(usize, S, &[S], &[S]),
     ) {
         let (n, s1) = (q0.len(), self.degree + 1);
@@ -250,10 +252,9 @@ impl<L: Lagrangian> DiscreteAction for GalerkinLd<L> {
     fn action<S: Scalar>(&self, t0: f64, h: f64, q0: &[S], offsets: &[S]) -> S {
         let mut sum = S::from(0.0);
         let weights = &self.table.quadrature.weights;
-        self.table
-            .for_each_node((t0, h), (q0, offsets), |i, t, q, v| {
-                sum += self.lagrangian.lagrangian(t, q, v) * weights[i];
-            });
+        self.table.for_each_node(t0, h, q0, offsets, |i, t, q, v| {
+            sum += self.lagrangian.lagrangian(t, q, v) * weights[i];
+        });
         sum * h
     }
 
@@ -330,7 +331,7 @@ impl<F: Force> DiscreteForce for GalerkinForce<F> {
         let zero = S::from(0.0);
         out[..s1 * n].iter_mut().for_each(|o| *o = zero);
         let table = &*self.table;
-        table.for_each_node((t0, h), (q0, offsets), |i, t, q, v| {
+        table.for_each_node(t0, h, q0, offsets, |i, t, q, v| {
             let mut f = Buffer::<S, NODE>::empty();
             let f = f.filled(n, zero);
             self.force.force(t, q, v, f);

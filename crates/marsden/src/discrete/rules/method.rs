@@ -73,7 +73,7 @@ fn unknown(name: &str, reason: impl Into<String>) -> Error {
 
 /// A whole-number argument of a method name; `what` and `valid` name it and its accepted range
 /// for the message when it is too large to be one (more digits than any count can have).
-fn parse_count(text: &str, name: &str, (what, valid): (&str, &str)) -> Result<usize, Error> {
+fn parse_count(text: &str, name: &str, what: &str, valid: &str) -> Result<usize, Error> {
     text.parse::<usize>().map_err(|_| {
         let digits = !text.is_empty() && text.bytes().all(|b| b.is_ascii_digit());
         match digits {
@@ -115,11 +115,11 @@ impl BaseMethod {
             "alpha" => parse_alpha(rest, name).map(Self::Alpha),
             "symmetrized" => parse_alpha(rest, name).map(Self::Symmetrized),
             "gauss" => {
-                let s = parse_count(rest, name, ("number of stages", &gauss_range()))?;
+                let s = parse_count(rest, name, "number of stages", &gauss_range())?;
                 Galerkin::gauss(s).map(Self::Galerkin)
             }
             "lobatto" => {
-                let s = parse_count(rest, name, ("number of stages", &lobatto_range()))?;
+                let s = parse_count(rest, name, "number of stages", &lobatto_range())?;
                 Galerkin::lobatto(s).map(Self::Galerkin)
             }
             "galerkin" => parse_galerkin(rest, name).map(Self::Galerkin),
@@ -164,8 +164,8 @@ fn parse_galerkin(rest: &str, name: &str) -> Result<Galerkin, Error> {
     };
     let degrees = format!("the degree s is at most {MAX_DEGREE}");
     let points = format!("the number of points r is at most {MAX_POINTS}");
-    let s = parse_count(s, name, ("degree", &degrees))?;
-    let r = parse_count(r, name, ("number of quadrature points", &points))?;
+    let s = parse_count(s, name, "degree", &degrees)?;
+    let r = parse_count(r, name, "number of quadrature points", &points)?;
     if s > MAX_DEGREE {
         return Err(unknown(
             name,

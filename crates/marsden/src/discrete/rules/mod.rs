@@ -75,7 +75,8 @@ pub(crate) fn check_alpha(alpha: f64) -> Result<f64, crate::error::Error> {
 pub(crate) fn at_node<S: crate::scalar::Scalar, R>(
     c: f64,
     h: f64,
-    (q0, delta): (&[S], &[S]),
+    q0: &[S],
+    delta: &[S],
     f: impl FnOnce(&[S], &[S]) -> R,
 ) -> R {
     use crate::numerics::scratch::{Buffer, NODE};

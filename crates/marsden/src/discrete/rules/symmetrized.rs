@@ -126,9 +126,7 @@ impl<L: Lagrangian> DiscreteLagrangian for SymmetrizedLd<L> {
         let mut sum = S::from(0.0);
         for c in [self.alpha, 1.0 - self.alpha] {
             let t = S::from(t0 + c * h);
-            sum += at_node(c, h, (q0, delta), |q, v| {
-                self.lagrangian.lagrangian(t, q, v)
-            });
+            sum += at_node(c, h, q0, delta, |q, v| self.lagrangian.lagrangian(t, q, v));
         }
         sum * (0.5 * h)
     }
@@ -169,7 +167,7 @@ impl<F: Force> DiscreteForce for SymmetrizedForce<F> {
         for c in [self.alpha, 1.0 - self.alpha] {
             let t = S::from(t0 + c * h);
             let (w0, w1) = (0.5 * h * (1.0 - c), 0.5 * h * c);
-            at_node(c, h, (q0, offsets), |q, v| {
+            at_node(c, h, q0, offsets, |q, v| {
                 let mut f = Buffer::<S, NODE>::empty();
                 let f = f.filled(n, zero);
                 self.force.force(t, q, v, f);

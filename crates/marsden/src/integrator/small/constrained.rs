@@ -95,9 +95,9 @@ impl<A: DiscreteAction, F: DiscreteForce, C: Constraint> SmallConstrainedStep<'_
     #[inline(always)]
     fn evaluate_residual<const N: usize, G: SmallGradient<N>>(&self, z: &[f64]) -> Evaluation<N> {
         let m = N + self.d;
-        let step = (self.t0, self.h);
+        let (t0, h) = (self.t0, self.h);
         let (d_q0, p_next, term_scale) =
-            first_derivatives::<N, G, A, F>(self.action, self.force, step, self.q0, &z[..N]);
+            first_derivatives::<N, G, A, F>(self.action, self.force, t0, h, self.q0, &z[..N]);
         let mut e = Evaluation {
             term_scale,
             residual: [0.0; MAX_UNKNOWNS],

@@ -36,7 +36,8 @@ pub(crate) const SPECULATE: f64 = 1e-3;
 pub(crate) fn first_derivatives<const N: usize, G, A, F>(
     action: &A,
     force: &F,
-    (t0, h): (f64, f64),
+    t0: f64,
+    h: f64,
     q0: &[f64],
     delta: &[f64],
 ) -> ([f64; N], [f64; N], f64)

@@ -70,9 +70,9 @@ impl<A: DiscreteAction, F: DiscreteForce> SmallStep<'_, A, F> {
         &self,
         delta: &[f64; N],
     ) -> (Evaluation<N>, f64) {
-        let step = (self.t0, self.h);
+        let (t0, h) = (self.t0, self.h);
         let (mut residual, p_next, term_scale) =
-            first_derivatives::<N, G, A, F>(self.action, self.force, step, self.q0, delta);
+            first_derivatives::<N, G, A, F>(self.action, self.force, t0, h, self.q0, delta);
         residual.iter_mut().zip(self.p0).for_each(|(r, p)| *r += p);
         let jacobian = [[0.0; N]; N];
         let e = Evaluation {

@@ -153,15 +153,19 @@ impl Joint {
                 self.coincide(sides, &mut out);
                 let a0 = Tracked::direction(&sides[0], 0, &axes[0]);
                 let (u1, u2) = perpendiculars(&axes[1]);
-                out.push(a0.dot(&Tracked::direction(&sides[1], 1, &u1)));
-                out.push(a0.dot(&Tracked::direction(&sides[1], 1, &u2)));
+                for u in [u1, u2] {
+                    let (value, gradient) = a0.dot(&Tracked::direction(&sides[1], 1, &u));
+                    out.push(value, gradient);
+                }
             }
             JointKind::Prismatic { axis, reference } => {
                 lock(sides, &reference, &mut out);
                 let gap = self.gap(sides);
                 let (w1, w2) = perpendiculars(&axis);
-                out.push(gap.dot(&Tracked::direction(&sides[0], 0, &w1)));
-                out.push(gap.dot(&Tracked::direction(&sides[0], 0, &w2)));
+                for w in [w1, w2] {
+                    let (value, gradient) = gap.dot(&Tracked::direction(&sides[0], 0, &w));
+                    out.push(value, gradient);
+                }
             }
             JointKind::Fixed { reference } => {
                 lock(sides, &reference, &mut out);
@@ -170,7 +174,7 @@ impl Joint {
             JointKind::Distance { length } => {
                 let gap = self.gap(sides);
                 let (square, gradient) = gap.dot(&gap);
-                out.push((0.5 * (square - length * length), 0.5 * gradient));
+                out.push(0.5 * (square - length * length), 0.5 * gradient);
             }
         }
     }
@@ -185,7 +189,8 @@ impl Joint {
     fn coincide(&self, sides: &[Side; 2], out: &mut Rows<'_>) {
         let gap = self.gap(sides);
         for i in 0..3 {
-            out.push(gap.component(i));
+            let (value, gradient) = gap.component(i);
+            out.push(value, gradient);
         }
     }
 }
@@ -196,7 +201,8 @@ fn lock(sides: &[Side; 2], reference: &Mat3, out: &mut Rows<'_>) {
     let c = |j: usize| reference.transpose() * axis(j);
     for (i, j) in [(1, 2), (2, 0), (0, 1)] {
         let e = Tracked::direction(&sides[0], 0, &axis(i));
-        out.push(e.dot(&Tracked::direction(&sides[1], 1, &c(j))));
+        let (value, gradient) = e.dot(&Tracked::direction(&sides[1], 1, &c(j)));
+        out.push(value, gradient);
     }
 }
 
@@ -208,7 +214,7 @@ struct Rows<'a> {
 }
 
 impl Rows<'_> {
-    fn push(&mut self, (value, gradient): (f64, RowGradient)) {
+    fn push(&mut self, value: f64, gradient: RowGradient) {
         self.values[self.next] = value;
         self.gradients[self.next] = gradient;
         self.next += 1;
