@@ -407,62 +407,17 @@ impl marsden::Observer for EveryStep<'_, '_> {
     }
 }
 
-/// The detector watching the steps inside one long stretch of the run (`watch_steps`: nothing
-/// stored between the first and the last state) locates, records and stops exactly as when
-/// the run loop shows it every step: the same records bit for bit, the run ended at the same
-/// step with the same last state (Kepler, e = 0.6: every pericentre recorded, and a stop at the
-/// third apocentre).
-#[test]
-fn a_detector_watching_stretches_of_steps_is_the_every_step_detector_bit_for_bit() {
+/// Kepler, e = 0.6, from its pericentre on the x axis, 8000 steps of 0.003 under `rule` with
+/// `events`, in one long stretch (nothing stored between the first and the last state):
+/// watched by the detector (`watch_steps`) and shown to it every step by the run loop; the
+/// runs and their records.
+fn watched_and_shown<R: Rule>(
+    rule: &R,
+    events: fn() -> Vec<Event<G>>,
+) -> [(marsden::Trajectory, Vec<EventRecord>); 2] {
     let (q0, p0) = Kepler::pericentre(0.6);
     let grid = TimeGrid::new(0.0, 0.003, 8000).unwrap();
     let problem = Problem::new(Kepler::default(), Initial::momentum(&q0, &p0), grid).unwrap();
-    let events = || {
-        vec![
-            Event::record(radial as G, Direction::Up),
-            Event::stop(radial as G, Direction::Down).count(3),
-        ]
-    };
-    let stretches = SolveOptions {
-        run: RunOptions { stride: usize::MAX },
-        ..options()
-    };
-    let mut watching = EventDetector::new(problem.lagrangian(), events()).unwrap();
-    let watched = (problem.solve_with(&Midpoint, &stretches, &mut watching)).unwrap();
-    let mut shown = EventDetector::new(problem.lagrangian(), events()).unwrap();
-    let every = (problem.solve_with(&Midpoint, &stretches, &mut EveryStep(&mut shown))).unwrap();
-    assert!(matches!(
-        watched.termination,
-        Termination::Event { event: 1, .. }
-    ));
-    assert_eq!(watched.termination, every.termination);
-    assert_eq!(watching.records(), shown.records());
-    assert_eq!(
-        watching.records().len(),
-        5,
-        "three apocentres, two pericentres between"
-    );
-    let last = |run: &marsden::Trajectory| (run.steps, run.q(run.len() - 1).to_vec());
-    assert_eq!(last(&watched), last(&every));
-}
-
-/// The height `y` of the Kepler orbit: zero at each pericentre and apocentre of an orbit
-/// released at its pericentre on the x axis (an event of the positions alone).
-fn height(_t: f64, q: &[f64], _v: &[f64], _p: &[f64]) -> f64 {
-    q[1]
-}
-
-/// Watched and shown every step, under `rule`: the records and the runs' ends.
-fn watched_and_shown<R: Rule>(rule: &R) -> [(marsden::Trajectory, Vec<EventRecord>); 2] {
-    let (q0, p0) = Kepler::pericentre(0.6);
-    let grid = TimeGrid::new(0.0, 0.003, 8000).unwrap();
-    let problem = Problem::new(Kepler::default(), Initial::momentum(&q0, &p0), grid).unwrap();
-    let events = || {
-        vec![
-            Event::record(height as G, Direction::Up),
-            Event::stop(height as G, Direction::Down).count(2),
-        ]
-    };
     let stretches = SolveOptions {
         run: RunOptions { stride: usize::MAX },
         ..options()
@@ -477,6 +432,42 @@ fn watched_and_shown<R: Rule>(rule: &R) -> [(marsden::Trajectory, Vec<EventRecor
     ]
 }
 
+/// Watched and shown, the detector locates, records and stops alike: the same records bit for
+/// bit, the run ended by the stopping event at the same step with the same last state.
+fn assert_alike(runs: &[(marsden::Trajectory, Vec<EventRecord>); 2], records: usize, what: &str) {
+    let [(watched, a), (every, b)] = runs;
+    assert!(matches!(
+        watched.termination,
+        Termination::Event { event: 1, .. }
+    ));
+    assert_eq!(watched.termination, every.termination);
+    assert_eq!(a, b);
+    assert_eq!(a.len(), records, "{what}");
+    let last = |run: &marsden::Trajectory| (run.steps, run.q(run.len() - 1).to_vec());
+    assert_eq!(last(watched), last(every));
+}
+
+/// The detector watching the steps inside one long stretch of the run is the every-step
+/// detector bit for bit, with an event that reads the velocities (every pericentre recorded,
+/// and a stop at the third apocentre).
+#[test]
+fn a_detector_watching_stretches_of_steps_is_the_every_step_detector_bit_for_bit() {
+    let events = || {
+        vec![
+            Event::record(radial as G, Direction::Up),
+            Event::stop(radial as G, Direction::Down).count(3),
+        ]
+    };
+    let runs = watched_and_shown(&Midpoint, events);
+    assert_alike(&runs, 5, "three apocentres, two pericentres between");
+}
+
+/// The height `y` of the Kepler orbit: zero at each pericentre and apocentre of an orbit
+/// released at its pericentre on the x axis (an event of the positions alone).
+fn height(_t: f64, q: &[f64], _v: &[f64], _p: &[f64]) -> f64 {
+    q[1]
+}
+
 /// An event of the positions alone, watched inside long stretches: the midpoint rule's
 /// Newton steps keep the start of each step for the watch (no copy of the state per step),
 /// the trapezoid's explicit steps on Kepler do not (the watch copies each state); both locate,
@@ -485,23 +476,17 @@ fn watched_and_shown<R: Rule>(rule: &R) -> [(marsden::Trajectory, Vec<EventRecor
 /// after it, and the stop at the second apocentre).
 #[test]
 fn a_watch_of_the_positions_is_the_every_step_detector_bit_for_bit_with_or_without_kept_starts() {
-    let midpoint = watched_and_shown(&Midpoint);
-    let trapezoid = watched_and_shown(&Trapezoid);
-    for [(watched, a), (every, b)] in [&midpoint, &trapezoid] {
-        assert!(matches!(
-            watched.termination,
-            Termination::Event { event: 1, .. }
-        ));
-        assert_eq!(watched.termination, every.termination);
-        assert_eq!(a, b);
-        assert_eq!(
-            a.len(),
-            3,
-            "an apocentre, a pericentre, the stop at the next apocentre"
-        );
-        let last = |run: &marsden::Trajectory| (run.steps, run.q(run.len() - 1).to_vec());
-        assert_eq!(last(watched), last(every));
-    }
+    let events = || {
+        vec![
+            Event::record(height as G, Direction::Up),
+            Event::stop(height as G, Direction::Down).count(2),
+        ]
+    };
+    let midpoint = watched_and_shown(&Midpoint, events);
+    let trapezoid = watched_and_shown(&Trapezoid, events);
+    let what = "an apocentre, a pericentre, the stop at the next apocentre";
+    assert_alike(&midpoint, 3, what);
+    assert_alike(&trapezoid, 3, what);
     assert_ne!(
         midpoint[0].1[0].t, trapezoid[0].1[0].t,
         "two rules, two runs"
