@@ -134,7 +134,7 @@ pub fn find_root<F: FnMut(f64) -> f64>(
     if fb == 0.0 {
         return Ok(root(b, fb, b, 0));
     }
-    let mut s = Search::new(a, fa, b, fb);
+    let mut s = Search::new(bracket);
     for evaluations in 0..=options.max_evaluations {
         s.keep_best_in_b();
         let tol = 2.0 * f64::EPSILON * s.b.abs() + 0.5 * options.x_tolerance;
@@ -185,7 +185,8 @@ struct Search {
 }
 
 impl Search {
-    fn new(a: f64, fa: f64, b: f64, fb: f64) -> Self {
+    fn new(bracket: Bracket) -> Self {
+        let Bracket { a, fa, b, fb } = bracket;
         let mut s = Self {
             a,
             fa,

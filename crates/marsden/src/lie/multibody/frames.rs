@@ -25,6 +25,15 @@ pub type Derivative = SMatrix<f64, 3, 12>;
 /// The gradient of one constraint row with respect to `(ξ₀, δx₀, ξ₁, δx₁)`.
 pub type RowGradient = SVector<f64, 12>;
 
+/// One constraint row at a configuration: its value and its gradient.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Row {
+    /// The row's value (zero on the constraint).
+    pub value: f64,
+    /// Its gradient with respect to `(ξ₀, δx₀, ξ₁, δx₁)`.
+    pub gradient: RowGradient,
+}
+
 /// One side of a joint at a configuration: the ground (`R = I`, `x = 0`, nothing varies) or a
 /// body's attitude and position.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -104,15 +113,20 @@ impl Tracked {
     }
 
     /// Component `i` as a constraint row: its value and gradient.
-    pub fn component(&self, i: usize) -> (f64, RowGradient) {
-        (self.value[i], self.derivative.row(i).transpose())
+    pub fn component(&self, i: usize) -> Row {
+        Row {
+            value: self.value[i],
+            gradient: self.derivative.row(i).transpose(),
+        }
     }
 
     /// `self · other` as a constraint row (the product rule).
-    pub fn dot(&self, other: &Self) -> (f64, RowGradient) {
-        let gradient =
-            self.derivative.transpose() * other.value + other.derivative.transpose() * self.value;
-        (self.value.dot(&other.value), gradient)
+    pub fn dot(&self, other: &Self) -> Row {
+        Row {
+            value: self.value.dot(&other.value),
+            gradient: self.derivative.transpose() * other.value
+                + other.derivative.transpose() * self.value,
+        }
     }
 }
 

@@ -20,7 +20,7 @@
 //! [LMO08]: crate#references
 //! [CLLM11]: crate#references
 
-use super::frames::{RowGradient, Side, Tracked, perpendiculars};
+use super::frames::{Row, RowGradient, Side, Tracked, perpendiculars};
 use crate::error::{Error, InputError};
 use crate::lie::so3::{Mat3, Vec3};
 
@@ -154,8 +154,7 @@ impl Joint {
                 let a0 = Tracked::direction(&sides[0], 0, &axes[0]);
                 let (u1, u2) = perpendiculars(&axes[1]);
                 for u in [u1, u2] {
-                    let (value, gradient) = a0.dot(&Tracked::direction(&sides[1], 1, &u));
-                    out.push(value, gradient);
+                    out.push(a0.dot(&Tracked::direction(&sides[1], 1, &u)));
                 }
             }
             JointKind::Prismatic { axis, reference } => {
@@ -163,8 +162,7 @@ impl Joint {
                 let gap = self.gap(sides);
                 let (w1, w2) = perpendiculars(&axis);
                 for w in [w1, w2] {
-                    let (value, gradient) = gap.dot(&Tracked::direction(&sides[0], 0, &w));
-                    out.push(value, gradient);
+                    out.push(gap.dot(&Tracked::direction(&sides[0], 0, &w)));
                 }
             }
             JointKind::Fixed { reference } => {
@@ -173,8 +171,11 @@ impl Joint {
             }
             JointKind::Distance { length } => {
                 let gap = self.gap(sides);
-                let (square, gradient) = gap.dot(&gap);
-                out.push(0.5 * (square - length * length), 0.5 * gradient);
+                let square = gap.dot(&gap);
+                out.push(Row {
+                    value: 0.5 * (square.value - length * length),
+                    gradient: 0.5 * square.gradient,
+                });
             }
         }
     }
@@ -189,8 +190,7 @@ impl Joint {
     fn coincide(&self, sides: &[Side; 2], out: &mut Rows<'_>) {
         let gap = self.gap(sides);
         for i in 0..3 {
-            let (value, gradient) = gap.component(i);
-            out.push(value, gradient);
+            out.push(gap.component(i));
         }
     }
 }
@@ -201,8 +201,7 @@ fn lock(sides: &[Side; 2], reference: &Mat3, out: &mut Rows<'_>) {
     let c = |j: usize| reference.transpose() * axis(j);
     for (i, j) in [(1, 2), (2, 0), (0, 1)] {
         let e = Tracked::direction(&sides[0], 0, &axis(i));
-        let (value, gradient) = e.dot(&Tracked::direction(&sides[1], 1, &c(j)));
-        out.push(value, gradient);
+        out.push(e.dot(&Tracked::direction(&sides[1], 1, &c(j))));
     }
 }
 
@@ -214,9 +213,9 @@ struct Rows<'a> {
 }
 
 impl Rows<'_> {
-    fn push(&mut self, value: f64, gradient: RowGradient) {
-        self.values[self.next] = value;
-        self.gradients[self.next] = gradient;
+    fn push(&mut self, row: Row) {
+        self.values[self.next] = row.value;
+        self.gradients[self.next] = row.gradient;
         self.next += 1;
     }
 }

@@ -45,11 +45,12 @@ impl<G: EventFunction> Scanner for One<'_, G> {
         self.g_after = g;
         match g.is_finite() {
             false => Scan::NotFinite(0),
-            true if same_side(self.g_before, g) => {
-                self.g_before = g;
-                Scan::Quiet
+            // The product test first: most steps keep `g`'s sign and skip the direction's.
+            true if !same_side(self.g_before, g)
+                && self.event.direction.crosses(self.g_before, g) =>
+            {
+                Scan::Crossed
             }
-            true if self.event.direction.crosses(self.g_before, g) => Scan::Crossed,
             true => {
                 self.g_before = g;
                 Scan::Quiet
