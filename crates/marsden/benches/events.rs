@@ -27,9 +27,9 @@
 //! checkpoints").
 //!
 //! 2026-11-30: the detector no longer needs the every-step path (it watches the steps inside
-//! the stretches the run loop hands the stepper, `Observer::watch_steps`), so `with_event` runs in one
-//! stretch like `plain`; the file runs' figures before and after are in BENCHMARKS.md ("Events
-//! and checkpoints").
+//! the stretches the run loop hands the stepper, `Observer::watch_steps`), so `with_event` runs
+//! in one stretch like `plain`; the file runs' figures before and after are in BENCHMARKS.md
+//! ("Events and checkpoints").
 //!
 //! `cargo bench -p marsden --bench events`
 

@@ -181,9 +181,8 @@ where
 }
 
 /// A stretch of steps handed to an observer that watches them, being taken: single steps
-/// ([`Stepper::single_step`]), each of the
-/// grid's size for it ([`TimeGrid::step_size`]), the time of each new state set to the
-/// grid's; the grid point `k` of the current state, the last one `end` (`k` itself once a step
+/// ([`Stepper::single_step`]), each of the grid's size for it ([`TimeGrid::step_size`]), the
+/// time of each new state set to the grid's; the grid point `k` of the current state, the last one `end` (`k` itself once a step
 /// failed), the report of the last step and the error of the one that failed.
 struct Stretch<'a, S: ?Sized> {
     stepper: &'a mut S,

@@ -82,13 +82,12 @@ impl<D: DiscreteLagrangian> MultiFunction for OffsetLd<'_, D> {
 }
 
 /// The discrete Legendre transform of one side from `(q₀, Δ)`: `p₁ = D₂L_d` (`Plus`) or
-/// `p₀ = −D₁L_d` (`Minus`), written into `p`.
+/// `p₀ = −D₁L_d` (`Minus`) of the step over `span`, written into `p`.
 ///
 /// In the variables `(q₀, Δ)`: `D₂L_d = ∂/∂Δ` and `D₁L_d = ∂/∂q₀ − ∂/∂Δ`.
 pub fn discrete_legendre_offset<D: DiscreteLagrangian>(
     ld: &D,
-    t0: f64,
-    h: f64,
+    span: StepSpan,
     q0: &[f64],
     delta: &[f64],
     side: Side,
@@ -98,6 +97,7 @@ pub fn discrete_legendre_offset<D: DiscreteLagrangian>(
     let x: Vec<f64> = q0.iter().chain(delta).copied().collect();
     let mut grad = vec![0.0; 2 * n];
     let mut value = [0.0];
+    let StepSpan { t0, h } = span;
     ad::jacobian(&OffsetLd { ld, t0, h }, &x, 0..2 * n, &mut value, &mut grad);
     for i in 0..n {
         p[i] = match side {
@@ -129,7 +129,7 @@ pub fn discrete_momentum_offset<D: DiscreteLagrangian, G: GroupAction>(
 ) {
     let n = ld.dof();
     let mut p = vec![0.0; n];
-    discrete_legendre_offset(ld, span.t0, span.h, q0, delta, side, &mut p);
+    discrete_legendre_offset(ld, span, q0, delta, side, &mut p);
     match side {
         Side::Minus => momentum_map(action, q0, &p, out),
         Side::Plus => {

@@ -484,8 +484,8 @@ impl<L: Lagrangian, G: EventFunction> Observer for EventDetector<'_, L, G> {
         self.advance(&initial);
     }
 
-    /// A step the watch has looked at ([`Observer::watch_steps`]) is passed over, unless the watch found a
-    /// sign change at it: that is located now.
+    /// A step the watch has looked at ([`Observer::watch_steps`]) is passed over, unless the
+    /// watch found a sign change at it: that is located now.
     fn observe(&mut self, view: &StepView<'_>) -> ControlFlow<()> {
         if self.ending.is_some() {
             return ControlFlow::Break(());

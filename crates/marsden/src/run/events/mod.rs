@@ -5,10 +5,11 @@
 //! watches (`g` rising through zero, falling, or both), an [`Action`] (record each crossing, or
 //! stop the run) and an optional count (stop at the n-th crossing; record at most n). The
 //! [`EventDetector`] is an [`Observer`](super::Observer) that watches the steps inside the
-//! stretches the run loop hands the stepper ([`Observer::watch_steps`](super::Observer::watch_steps):
-//! a run with events is not taken step by step through the loop): after each step it evaluates every
-//! event once at the new state `(t_{k+1}, q_{k+1}, v_{k+1}, p_{k+1})` — one evaluation of each
-//! `g` per step while nothing fires — and on a sign change locates the root inside the step on
+//! stretches the run loop hands the stepper
+//! ([`Observer::watch_steps`](super::Observer::watch_steps): a run with events is not taken
+//! step by step through the loop): after each step it evaluates every event once at the new
+//! state `(t_{k+1}, q_{k+1}, v_{k+1}, p_{k+1})` — one evaluation of each `g` per step while
+//! nothing fires — and on a sign change locates the root inside the step on
 //! the step's cubic Hermite interpolant ([`interpolant`]) with Brent's method
 //! ([`crate::numerics::brent`]). The velocities `v = FL⁻¹(q, p)` cost an inverse Legendre
 //! transform (a Newton solve for a Lagrangian without a declared mass matrix): they are computed
